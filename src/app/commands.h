@@ -1,0 +1,11 @@
+// Subcommands of the `fovrt` executable. Each lives in its own cmd_<name>.cpp and registers its
+// options and callback on the CLI11 app.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace fovrt {
+
+void RegisterInfoCommand(CLI::App& app);
+
+}  // namespace fovrt

@@ -1,0 +1,27 @@
+// fovrt: foveated VR path-tracing testbed. One executable, one subcommand per workflow.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"fovrt: foveated VR path-tracing testbed (stereo Embree tracer, foveated spp maps, "
+                 "SVGF / A-SVGF / two-history SVGF on Vulkan compute)"};
+    app.require_subcommand(1);
+    fovrt::RegisterInfoCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const fovrt::Error& e) {
+        std::fprintf(stderr, "fovrt: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fovrt: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

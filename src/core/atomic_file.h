@@ -1,0 +1,19 @@
+// Atomic output files: write to "<path>.tmp-<pid>" and rename over <path> only once the content
+// is complete, so an interrupted run never leaves a file that looks finished.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace fovrt {
+
+// Calls write(tempPath) and renames the temp file to `path` if it returns without throwing.
+// On any exception the temp file is removed and the exception propagates.
+void WriteAtomically(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path& tempPath)>& write);
+
+// Convenience: writes a whole string atomically.
+void WriteTextAtomically(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace fovrt

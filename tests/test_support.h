@@ -1,0 +1,35 @@
+// Helpers shared by the tests: locating data, and skipping with a message when it is absent.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include <catch2/catch.hpp>
+
+namespace fovrt::test {
+
+inline std::filesystem::path SourceDir() { return FOVRT_SOURCE_DIR; }
+
+// ../shared/scenes beside the checkout (or $FOVRT_SHARED_SCENES), empty when absent.
+inline std::filesystem::path SharedScenes() {
+    if (const char* env = std::getenv("FOVRT_SHARED_SCENES")) return env;
+    auto dir = SourceDir().parent_path() / "shared" / "scenes";
+    return std::filesystem::exists(dir) ? dir : std::filesystem::path();
+}
+
+}  // namespace fovrt::test
+
+// Catch2 v2 has no SKIP: print why and leave the test case as passed.
+#define FOVRT_SKIP(why)                                              \
+    do {                                                             \
+        WARN("skipped: " << why);                                    \
+        std::fprintf(stderr, "skipped: %s\n", std::string(why).c_str()); \
+        return;                                                      \
+    } while (0)
+
+#define FOVRT_REQUIRE_SHARED_SCENES()                                            \
+    do {                                                                         \
+        if (::fovrt::test::SharedScenes().empty())                               \
+            FOVRT_SKIP("../shared/scenes is absent; shared-scene test not run"); \
+    } while (0)
