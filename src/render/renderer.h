@@ -1,0 +1,57 @@
+// Renderer: the stereo Embree path tracer behind one small interface (SPEC §2, issue "Foundation").
+// Layers: TracePath -> RenderPixel (n from the spp map) -> RenderTile -> RenderEye.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "core/camera.h"
+#include "core/frame_inputs.h"
+#include "core/image.h"
+#include "scene/scene.h"
+
+namespace fovrt {
+
+struct RenderSettings {
+    int maxDepth = 2;          // path vertices after the camera: 1 = direct only, 2 = one indirect bounce
+    uint32_t seed = 1;         // run seed; per-pixel seeds = PixelSeed(seed, eye, x, y, frame)
+    int threads = 0;           // 0: all hardware threads (result is identical for any count)
+    bool gradientSamples = false;  // A-SVGF: fill FrameInputs::gradientSamples
+};
+
+// The surface sample a visibility-buffer entry names.
+struct SurfaceSample {
+    uint32_t instance = kNoObject;
+    uint32_t primitive = kNoObject;
+    vec2 barycentrics = vec2(0.0f);
+};
+
+class Renderer {
+public:
+    virtual ~Renderer() = default;
+
+    // Moves the scene to `frame` (time = frame / frameRate): instance transforms, lights, BVH.
+    virtual void SetFrame(uint32_t frame) = 0;
+    virtual const SceneState& State() const = 0;
+    virtual const Scene& GetScene() const = 0;
+
+    // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's
+    // resolution). `prevCamera` and the previous frame's scene state give the motion vectors.
+    virtual void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
+                           const Plane<uint16_t>& spp, FrameInputs& out) = 0;
+
+    // High-spp ground truth (remodulated colour) of the current frame for one eye.
+    virtual void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) = 0;
+
+    // Re-shading API (A-SVGF): shades `sample` as seen from `camera` in the current frame with
+    // n samples whose seeds derive from `seed`, exactly as RenderPixel would. Returns the
+    // remodulated colour.
+    virtual vec3 Shade(const EyeCamera& camera, const SurfaceSample& sample, uint32_t seed,
+                       int sampleCount) const = 0;
+    // World position of a surface sample in the current frame (rigid motion applied).
+    virtual vec3 WorldPosition(const SurfaceSample& sample) const = 0;
+};
+
+std::unique_ptr<Renderer> CreateRenderer(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace fovrt
