@@ -21,6 +21,58 @@ public:
     // `gazeEye` is the gaze direction in this eye's space (unit, -Z forward).
     virtual void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
                           Plane<uint16_t>& spp) const = 0;
+    // The model's continuous spp before rounding (values in [1, kMaxSpp]); the ray-budget wrapper
+    // scales it. Default: Generate() converted to float.
+    virtual void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
+                                 Plane<float>& density) const {
+        Plane<uint16_t> spp;
+        Generate(camera, gazeEye, frameIndex, spp);
+        density.Resize(spp.width(), spp.height());
+        for (size_t i = 0; i < spp.size(); ++i) density[i] = float(spp[i]);
+    }
 };
+
+// Eccentricity in degrees: the angle between the view ray through continuous pixel `pixel` and the
+// gaze ray (both in eye space). Computed with atan2 so it stays accurate near 0.
+float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3& gazeEye);
+
+// Parameters of every model, as loaded from the [foveation] config table (defaults = thesis).
+struct FoveationParams {
+    std::string model = "disc";  // disc | linear | acuity | uniform
+
+    // disc (thesis): sppInside within the fovea disc, sppOutside elsewhere. The radius is
+    // radiusPx at an image `radiusReferenceWidth` pixels wide and scales with the image width
+    // (200 px at 1280 -> 100 px at 640), so the disc covers the same angle at any resolution with
+    // the same FOV. radiusDeg > 0 switches to an angular disc: eccentricity <= radiusDeg.
+    int sppInside = 8;
+    int sppOutside = 1;
+    float radiusPx = 200.0f;
+    int radiusReferenceWidth = 1280;
+    float radiusDeg = 0.0f;
+
+    // linear: sppMax for e <= fovealDeg, sppMin for e >= peripheralDeg, linear in between.
+    // acuity: spp = clamp(sppMax * (omega0 / (omega0 + m e))^2, sppMin, kMaxSpp) (Guenter 2012).
+    int sppMax = 8;
+    int sppMin = 1;
+    float fovealDeg = 5.0f;
+    float peripheralDeg = 30.0f;
+    float omega0Deg = 1.0f / 48.0f;  // foveal MAR ω0 in degrees (Guenter 2012: 1/48°)
+    float marSlope = 0.022f;         // m in deg/deg (Guenter: 0.022–0.0275)
+
+    // uniform: the same spp everywhere.
+    int uniformSpp = 1;
+
+    // Fixed ray budget: total samples per eye per frame (0 = none). Any model's map is scaled and
+    // dithered to it; clamped to the feasible [W*H, kMaxSpp*W*H].
+    int64_t rayBudget = 0;
+};
+
+// Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
+// out-of-range parameters throw fovrt::Error naming the foveation.* key.
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params);
+// Throws fovrt::Error naming the first bad foveation.* key.
+void ValidateFoveationParams(const FoveationParams& params);
+// Wraps a model so each map's total equals `rayBudget` (within a few samples; see models.cpp).
+std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget);
 
 }  // namespace fovrt

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "core/camera.h"
 #include "core/math.h"
 
 namespace fovrt {
@@ -22,5 +23,52 @@ public:
     virtual std::string Name() const = 0;
     virtual GazeSample At(double timeSeconds) const = 0;
 };
+
+// Gaze angles <-> head-space direction (Fick convention, as eye trackers report): yaw about the
+// head's up axis (+ = right), then pitch about the rotated horizontal axis (+ = up), in degrees.
+// (0, 0) is straight ahead, -Z.
+vec3 GazeDirectionFromAngles(float yawDeg, float pitchDeg);
+vec2 GazeAnglesFromDirection(const vec3& direction);  // (yaw, pitch) in degrees
+
+// Head-space gaze -> this eye's space. StereoRig eyes share the head's orientation (parallel
+// axes; vergence ignored, i.e. gaze converges at infinity), so this is the identity today; use
+// it so a future toed-in rig only changes here.
+vec3 GazeInEye(const EyeCamera& eye, const vec3& gazeHead);
+// Continuous pixel of the gaze on an eye's image (may lie outside the image). A direction at or
+// behind the eye plane is pushed just in front of it.
+vec2 GazePixel(const EyeCamera& eye, const vec3& gazeHead);
+
+// Parameters of every source, as loaded from the [gaze] config table (defaults = thesis).
+struct GazeParams {
+    std::string source = "lissajous";  // lissajous | trace | static
+
+    // lissajous: p(t) = centre + offset + amplitude ⊙ sin(2π t frequency + phase).
+    // units = "px": positions on a referenceWidth × referenceHeight image with the eye's FOV,
+    // centre = image centre (thesis: amplitude (640, 360) on 1280×720, frequency (0.4, 0.5) Hz,
+    // phase (90°, 0)); pixels become a head-space direction through that reference camera.
+    // units = "deg": p is (yaw, pitch) in degrees (pitch up), centre = straight ahead.
+    std::string units = "px";
+    vec2 amplitude = vec2(640.0f, 360.0f);
+    vec2 frequencyHz = vec2(0.4f, 0.5f);
+    vec2 phaseDeg = vec2(90.0f, 0.0f);
+    vec2 offset = vec2(0.0f);
+    int referenceWidth = 1280;
+    int referenceHeight = 720;
+
+    // trace: CSV with a header row naming columns n (time, ms), x (yaw, deg), y (pitch, deg);
+    // sample time = first row's time + startMs + t·1000.
+    std::string tracePath;
+    double traceStartMs = 0.0;
+
+    // static: fixed angles.
+    float yawDeg = 0.0f;
+    float pitchDeg = 0.0f;
+};
+
+// Throws fovrt::Error naming the first bad gaze.* key.
+void ValidateGazeParams(const GazeParams& params);
+// `referenceFov` is the FOV of the reference camera used by pixel-unit Lissajous gaze (the
+// left eye's FOV, or the symmetric run FOV). Trace files are loaded here (errors name file:line).
+std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov& referenceFov);
 
 }  // namespace fovrt

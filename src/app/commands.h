@@ -7,5 +7,10 @@
 namespace fovrt {
 
 void RegisterInfoCommand(CLI::App& app);
+void RegisterConfigCommand(CLI::App& app);
+void RegisterRunCommand(CLI::App& app);
+void RegisterReferenceCommand(CLI::App& app);
+void RegisterBenchCommand(CLI::App& app);
+void RegisterMemoryCommand(CLI::App& app);
 
 }  // namespace fovrt

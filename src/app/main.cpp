@@ -11,7 +11,12 @@ int main(int argc, char** argv) {
     CLI::App app{"fovrt: foveated VR path-tracing testbed (stereo Embree tracer, foveated spp maps, "
                  "SVGF / A-SVGF / two-history SVGF on Vulkan compute)"};
     app.require_subcommand(1);
+    fovrt::RegisterRunCommand(app);
+    fovrt::RegisterReferenceCommand(app);
     fovrt::RegisterInfoCommand(app);
+    fovrt::RegisterConfigCommand(app);
+    fovrt::RegisterBenchCommand(app);
+    fovrt::RegisterMemoryCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

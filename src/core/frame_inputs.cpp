@@ -26,6 +26,13 @@ vec3 FrameInputs::NoisyColor(int x, int y) const {
     return albedo(x, y) * (direct(x, y) + indirect(x, y)) + emission(x, y);
 }
 
+size_t FrameInputs::Bytes() const {
+    return direct.bytes() + indirect.bytes() + albedo.bytes() + emission.bytes() + normal.bytes() +
+           linearDepth.bytes() + depthGradient.bytes() + objectId.bytes() + prevPixel.bytes() +
+           primitiveId.bytes() + barycentrics.bytes() + worldPosition.bytes() +
+           sampleCount.bytes() + seed.bytes() + gradientSamples.size() * sizeof(GradientSample);
+}
+
 const std::vector<std::string>& FrameInputs::PlaneNames() {
     static const std::vector<std::string> names = {
         "direct",      "indirect",     "albedo",       "emission",      "normal",

@@ -61,6 +61,8 @@ struct FrameInputs {
     void Allocate(int width, int height);
     // The noisy colour the renderer would display: albedo * (direct + indirect) + emission.
     vec3 NoisyColor(int x, int y) const;
+    // Bytes held by all planes (for memory budgets).
+    size_t Bytes() const;
     // Names of the planes, in a fixed order (EXR layers, memory tables).
     static const std::vector<std::string>& PlaneNames();
 };

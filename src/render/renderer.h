@@ -19,6 +19,17 @@ struct RenderSettings {
     bool gradientSamples = false;  // A-SVGF: fill FrameInputs::gradientSamples
 };
 
+// Work counters since the last ResetStats(): every ray traced (primary, shadow, bounce) and every
+// path sample taken. Samples whose value was NaN/Inf are dropped (counted, contribute 0).
+struct RenderStats {
+    uint64_t primaryRays = 0;
+    uint64_t shadowRays = 0;
+    uint64_t bounceRays = 0;
+    uint64_t samples = 0;
+    uint64_t droppedSamples = 0;
+    uint64_t Rays() const { return primaryRays + shadowRays + bounceRays; }
+};
+
 // The surface sample a visibility-buffer entry names.
 struct SurfaceSample {
     uint32_t instance = kNoObject;
@@ -37,6 +48,7 @@ public:
 
     // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's
     // resolution). `prevCamera` and the previous frame's scene state give the motion vectors.
+    // Set out.cameraCut before the call on a cut: gradient samples are then skipped (as on frame 0).
     virtual void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
                            const Plane<uint16_t>& spp, FrameInputs& out) = 0;
 
@@ -50,6 +62,9 @@ public:
                        int sampleCount) const = 0;
     // World position of a surface sample in the current frame (rigid motion applied).
     virtual vec3 WorldPosition(const SurfaceSample& sample) const = 0;
+
+    virtual RenderStats Stats() const = 0;
+    virtual void ResetStats() = 0;
 };
 
 std::unique_ptr<Renderer> CreateRenderer(const Scene& scene, const RenderSettings& settings);

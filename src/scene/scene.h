@@ -33,6 +33,7 @@ struct Material {
     float roughness = 1.0f;             // perceptual roughness, alpha = roughness²
     float metallic = 0.0f;
     int metallicRoughnessTexture = -1;  // glTF: G = roughness, B = metallic
+    float specular = 1.0f;              // dielectric specular weight: F0 = 0.04·specular (0 = pure Lambert)
     vec3 emission = vec3(0.0f);         // emitted radiance (W/(m²·sr)), area light if non-zero
 };
 
@@ -57,6 +58,7 @@ struct Instance {
     std::string name;
     uint32_t mesh = 0;                 // index into Scene::meshes
     std::vector<TransformKey> keys;    // empty: identity; one key: static
+    bool loop = false;                 // repeat the keys with period = last key time
     mat4 WorldFromObjectAt(float time) const;
 };
 
@@ -73,7 +75,12 @@ struct Light {
     float spotInner = Radians(20.0f);  // spot cone half-angles
     float spotOuter = Radians(30.0f);
     std::vector<TransformKey> path;    // optional motion of position (key pose positions)
-    // On/off switching: the light is on when fmod(time, period) < onDuration (period 0: always on).
+    bool pathLoop = false;             // repeat the path with period = last key time
+    // Spot/directional aimed at a point: direction = normalize(target - position(t)).
+    bool aimAtTarget = false;
+    vec3 target = vec3(0.0f);
+    // On/off switching: the light is on when fmod(time - offset, period) < onDuration
+    // (period 0: always on). See SwitchedOn().
     float switchPeriod = 0.0f;
     float switchOnDuration = 0.0f;
     float switchOffset = 0.0f;         // time shift of the schedule
@@ -118,6 +125,7 @@ struct Scene {
     };
     std::vector<EmissionSwitch> emissionSwitches;
     std::vector<CameraKey> cameraPath;  // at least one key (the static camera)
+    bool cameraLoop = false;            // repeat the camera path with period = last key time
     float horizontalFovDegrees = 60.0f; // default symmetric per-eye FOV when config gives none
     float frameRate = 30.0f;            // frames per second: time = frame / frameRate
     vec3 background = vec3(0.0f);       // radiance of escaped rays
@@ -135,7 +143,17 @@ Scene LoadScene(const std::filesystem::path& path);
 std::filesystem::path BuiltinScenesDir();
 std::filesystem::path SharedScenesDir();
 
-// Resolves "cornell", "pillars", "room" or a path to a scene file.
+// Resolves a built-in name ("cornell", "pillars", "room" in BuiltinScenesDir(); "cornell-shared",
+// "veach-ajar", "box", "suzanne": scene files in BuiltinScenesDir() that reference the shared
+// assets) or a path to a scene/mesh file. Throws fovrt::Error for an unknown name or missing file.
 std::filesystem::path ResolveSceneName(const std::string& nameOrPath);
+
+// The switching schedule shared by lights and emissive instances: on while
+// fmod(time - offset, period) (taken in [0, period)) < onDuration; always on when period <= 0.
+bool SwitchedOn(float time, float period, float onDuration, float offset);
+
+// Number of triangles whose material emits (emission > 0), over all instances.
+size_t CountEmissiveTriangles(const Scene& scene);
+size_t CountTriangles(const Scene& scene);
 
 }  // namespace fovrt

@@ -1,0 +1,86 @@
+#include "denoise/denoiser_factory.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "denoise/memory_plan.h"
+#include "denoise/svgf_cpu.h"
+#include "denoise/svgf_vk.h"
+#include "denoise/two_history_ref.h"
+#include "denoise/two_history_vk.h"
+#include "vk/context.h"
+
+namespace fovrt {
+
+const std::vector<std::string>& DenoiserNames() {
+    static const std::vector<std::string> names = {"svgf", "svgf-weighted", "asvgf", "two-history",
+                                                   "two-history-asvgf"};
+    return names;
+}
+
+namespace {
+
+bool IsSvgf(const std::string& name) { return name == "svgf" || name == "svgf-weighted"; }
+
+void CheckName(const std::string& name) {
+    for (const auto& n : DenoiserNames())
+        if (n == name) return;
+    Fail("unknown denoiser '{}' (known: {})", name, fmt::join(DenoiserNames(), ", "));
+}
+
+// Resolves the Vulkan context: the caller's (not owned), or a new one; null → CPU fallback.
+std::shared_ptr<VulkanContext> ResolveContext(const std::string& device, VulkanContext* context) {
+    if (context) return std::shared_ptr<VulkanContext>(context, [](VulkanContext*) {});
+    if (device == "auto") {
+        if (!VulkanContext::Available()) {
+            std::fprintf(stderr, "fovrt: notice: no Vulkan device; denoising with the C++ reference (cpu)\n");
+            return nullptr;
+        }
+        return std::make_shared<VulkanContext>(VulkanContext::Create({}));
+    }
+    VulkanContextOptions options;
+    options.device = device == "vulkan" ? "auto" : device;
+    return std::make_shared<VulkanContext>(VulkanContext::Create(options));
+}
+
+}  // namespace
+
+DenoiserParams ParamsForDenoiser(const std::string& name, DenoiserParams params) {
+    if (name == "svgf-weighted") params.svgf.weightBySampleCount = true;
+    if (name == "svgf") params.svgf.weightBySampleCount = false;
+    return params;
+}
+
+std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::string& device,
+                                         const DenoiserParams& params, VulkanContext* context) {
+    CheckName(name);
+    const DenoiserParams p = ParamsForDenoiser(name, params);
+    const bool cpu = device == "cpu" && !context;
+    if (IsSvgf(name)) {
+        if (cpu) return std::make_unique<SvgfReferenceDenoiser>(name, p);
+        auto ctx = ResolveContext(device, context);
+        if (!ctx) return std::make_unique<SvgfReferenceDenoiser>(name, p);
+        return std::make_unique<SvgfVulkanDenoiser>(name, std::move(ctx), p);
+    }
+    // Denoisers of other modules register here (two-history, asvgf, two-history-asvgf).
+    if (TwoHistoryVariant v; TwoHistoryVariantOf(name, v)) {
+        if (cpu) return CreateTwoHistoryCpuDenoiser(v, p);
+        auto ctx = ResolveContext(device, context);
+        if (!ctx) return CreateTwoHistoryCpuDenoiser(v, p);
+        return std::make_unique<TwoHistoryVulkanDenoiser>(v, std::move(ctx), p);
+    }
+    Fail("denoiser '{}' is not implemented yet", name);
+}
+
+std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, int height,
+                                           const DenoiserParams& params) {
+    CheckName(name);
+    const DenoiserParams p = ParamsForDenoiser(name, params);
+    if (IsSvgf(name)) return PlanSvgfMemory(width, height, p);
+    if (TwoHistoryVariant v; TwoHistoryVariantOf(name, v)) return PlanTwoHistoryMemory(name, width, height, p);
+    Fail("denoiser '{}' has no memory plan yet", name);
+}
+
+}  // namespace fovrt

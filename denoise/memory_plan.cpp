@@ -1,0 +1,98 @@
+#include "denoise/memory_plan.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "denoise/svgf_layout.h"
+
+namespace fovrt {
+
+std::vector<std::string> SvgfChannels(const SvgfParams& params) {
+    if (params.filterCombined) return {"combined"};
+    return {"direct", "indirect"};
+}
+
+std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserParams& params) {
+    if (width <= 0 || height <= 0) Fail("memory plan: invalid size {}x{}", width, height);
+    const size_t n = size_t(width) * size_t(height);
+    const size_t hs = HistoryScalarBytes(params.precision);
+    const bool weighted = params.svgf.weightBySampleCount;
+    std::vector<BufferPlan> plan;
+    auto add = [&](const std::string& name, size_t bytes, bool history) { plan.push_back({name, bytes, history}); };
+    // Per-frame uploads, in upload order (the staging layout follows it).
+    add("input.direct", 12 * n, false);
+    add("input.indirect", 12 * n, false);
+    add("input.albedo", 12 * n, false);
+    add("input.emission", 12 * n, false);
+    add("input.depthGradient", 8 * n, false);
+    add("input.prevPixel", 8 * n, false);
+    if (weighted) add("input.sampleCount", ((2 * n + 3) / 4) * 4, false);
+    // This frame's geometry becomes the next frame's "previous": A/B pairs.
+    for (const char* side : {"A", "B"}) {
+        add(fmt::format("geometry.depth.{}", side), 4 * n, true);
+        add(fmt::format("geometry.normal.{}", side), 12 * n, true);
+        add(fmt::format("geometry.objectId.{}", side), 4 * n, true);
+    }
+    for (const std::string& ch : SvgfChannels(params.svgf)) {
+        for (const char* side : {"A", "B"}) {
+            add(fmt::format("{}.color.{}", ch, side), 3 * hs * n, true);
+            add(fmt::format("{}.moments.{}", ch, side), 2 * hs * n, true);
+            add(fmt::format("{}.length.{}", ch, side), hs * n, true);
+            if (weighted) add(fmt::format("{}.weight.{}", ch, side), hs * n, true);
+        }
+        add(ch + ".illum0", 16 * n, false);
+        add(ch + ".illum1", 16 * n, false);
+    }
+    add("output", 12 * n, false);
+    add("stats", 8, false);
+    // Staging: every upload (inputs + this frame's depth/normal/objectId), then output + stats.
+    size_t staging = 0;
+    for (const BufferPlan& b : plan)
+        if (b.name.rfind("input.", 0) == 0) staging += StagingAlign(b.bytes);
+    staging += StagingAlign(4 * n) + StagingAlign(12 * n) + StagingAlign(4 * n);
+    staging += StagingAlign(12 * n) + StagingAlign(8);
+    add("staging", staging, false);
+    return plan;
+}
+
+size_t TotalBytes(const std::vector<BufferPlan>& plan) {
+    size_t total = 0;
+    for (const auto& b : plan) total += b.bytes;
+    return total;
+}
+
+size_t HistoryBytes(const std::vector<BufferPlan>& plan) {
+    size_t total = 0;
+    for (const auto& b : plan)
+        if (b.history) total += b.bytes;
+    return total;
+}
+
+void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes, const std::string& what) {
+    if (budgetBytes == 0) return;
+    size_t total = TotalBytes(plan);
+    if (total <= budgetBytes) return;
+    std::vector<BufferPlan> sorted = plan;
+    std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.bytes > b.bytes; });
+    std::string largest;
+    for (size_t i = 0; i < std::min<size_t>(3, sorted.size()); ++i)
+        largest += fmt::format("{}{} ({:.1f} MiB)", i ? ", " : "", sorted[i].name, sorted[i].bytes / 1048576.0);
+    Fail("--memory-budget {} bytes exceeded: {} needs {} bytes ({:.1f} MiB); largest buffers: {}",
+         budgetBytes, what, total, total / 1048576.0, largest);
+}
+
+std::string FormatMemoryPlan(const std::vector<BufferPlan>& plan, int width, int height) {
+    const double pixels = double(width) * double(height);
+    std::string out = fmt::format("{:<28} {:>14} {:>10} {}\n", "buffer", "bytes", "B/pixel", "kind");
+    for (const auto& b : plan)
+        out += fmt::format("{:<28} {:>14} {:>10.2f} {}\n", b.name, b.bytes, b.bytes / pixels,
+                           b.history ? "history" : "scratch");
+    size_t total = TotalBytes(plan), hist = HistoryBytes(plan);
+    out += fmt::format("{:<28} {:>14} {:>10.2f}\n", "history total", hist, hist / pixels);
+    out += fmt::format("{:<28} {:>14} {:>10.2f}\n", "total", total, total / pixels);
+    return out;
+}
+
+}  // namespace fovrt

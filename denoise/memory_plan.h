@@ -1,0 +1,37 @@
+// Memory plans of the denoisers: every buffer (name, bytes, history?) exactly as the Vulkan path
+// allocates it (the Vulkan SVGF allocates by iterating this very list), plus budget enforcement
+// and the `fovrt memory` table.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "denoise/denoiser.h"
+#include "denoise/params.h"
+
+namespace fovrt {
+
+// Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
+inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
+
+// Channels SVGF filters: {"direct", "indirect"}, or {"combined"} with filterCombined.
+std::vector<std::string> SvgfChannels(const SvgfParams& params);
+
+// Every buffer of the SVGF / svgf-weighted Vulkan path at W×H (one eye). Names:
+// input.* (per-frame uploads), geometry.*.A/B (this/previous frame, history), <channel>.color|
+// moments|length|weight.A/B (history), <channel>.illum0/1 (à-trous ping-pong), output, stats, staging.
+std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserParams& params);
+
+size_t TotalBytes(const std::vector<BufferPlan>& plan);
+size_t HistoryBytes(const std::vector<BufferPlan>& plan);
+
+// Throws fovrt::Error when the plan exceeds `budgetBytes`, naming the total and the largest
+// buffers. budgetBytes == 0 means no budget.
+void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes,
+                         const std::string& what = "denoiser");
+
+// Human-readable table: every buffer with bytes and bytes/pixel, then totals.
+std::string FormatMemoryPlan(const std::vector<BufferPlan>& plan, int width, int height);
+
+}  // namespace fovrt

@@ -1,0 +1,59 @@
+// Layouts shared by the SVGF shaders and the host: push-constant blocks (mirrored in each
+// shaders/svgf_*.comp) and the storage format of every plane (see shaders/common/packing.glsl).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/math.h"
+#include "denoise/params.h"
+#include "shaders/shared_constants.h"
+
+namespace fovrt {
+
+inline constexpr uint32_t kSvgfReprojectWeighted = 1u;
+inline constexpr uint32_t kSvgfReprojectCombined = 2u;
+inline constexpr uint32_t kSvgfReprojectWriteColor = 4u;
+
+struct SvgfReprojectPush {
+    ivec2 size;
+    float alphaColor;
+    float alphaMoments;
+    uint32_t flags;  // kSvgfReproject*
+};
+static_assert(sizeof(SvgfReprojectPush) == 20);
+
+struct SvgfFilterMomentsPush {
+    ivec2 size;
+    float sigmaDepth;
+    float sigmaNormal;
+    float threshold;
+};
+static_assert(sizeof(SvgfFilterMomentsPush) == 20);
+
+struct SvgfAtrousPush {
+    ivec2 size;
+    int32_t step;
+    float sigmaDepth;
+    float sigmaNormal;
+    float sigmaLuminance;
+    uint32_t writeHistory;
+};
+static_assert(sizeof(SvgfAtrousPush) == 28);
+
+struct SvgfModulatePush {
+    ivec2 size;
+    uint32_t combined;
+};
+static_assert(sizeof(SvgfModulatePush) == 12);
+
+// Bytes per element of a history plane scalar.
+inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }
+
+// Workgroups covering a W×H image.
+inline uvec2 DispatchGroups(int width, int height) {
+    return uvec2((width + FOVRT_WORKGROUP_X - 1) / FOVRT_WORKGROUP_X,
+                 (height + FOVRT_WORKGROUP_Y - 1) / FOVRT_WORKGROUP_Y);
+}
+
+}  // namespace fovrt

@@ -1,0 +1,257 @@
+#include "denoise/svgf_vk.h"
+
+#include <array>
+#include <cstring>
+
+#include "core/error.h"
+#include "denoise/memory_plan.h"
+#include "denoise/svgf_layout.h"
+
+namespace fovrt {
+
+namespace {
+const char* Side(int parity) { return parity ? "B" : "A"; }
+}  // namespace
+
+SvgfVulkanDenoiser::SvgfVulkanDenoiser(std::string name, std::shared_ptr<VulkanContext> context,
+                                       const DenoiserParams& params)
+    : name_(std::move(name)), context_(std::move(context)), params_(params) {
+    FOVRT_CHECK(context_ != nullptr);
+    CreatePipelines();
+}
+
+void SvgfVulkanDenoiser::CreatePipelines() {
+    const SvgfParams& p = params_.svgf;
+    if (p.atrousIterations < 0 || p.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
+        Fail("denoise.svgf.atrous_iterations = {}: must be in [0, {}]", p.atrousIterations,
+             FOVRT_MAX_ATROUS_ITERATIONS);
+    if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
+        Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess", context_->deviceName());
+    channels_ = SvgfChannels(p);
+    const std::string suffix = params_.precision == Precision::Fp16 ? "_fp16" : "";
+    const uint32_t sets = 4 * uint32_t(channels_.size()) + 2;
+    reproject_ = ComputePipeline(*context_, "svgf_reproject" + suffix, SVGF_REPROJECT_BINDINGS,
+                                 sizeof(SvgfReprojectPush), sets);
+    moments_ = ComputePipeline(*context_, "svgf_filter_moments" + suffix, SVGF_MOMENTS_BINDINGS,
+                               sizeof(SvgfFilterMomentsPush), sets);
+    atrous_ = ComputePipeline(*context_, "svgf_atrous" + suffix, SVGF_ATROUS_BINDINGS, sizeof(SvgfAtrousPush),
+                              sets);
+    modulate_ = ComputePipeline(*context_, "svgf_modulate" + suffix, SVGF_MODULATE_BINDINGS,
+                                sizeof(SvgfModulatePush), 2);
+    timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
+}
+
+SvgfVulkanDenoiser::~SvgfVulkanDenoiser() = default;
+
+Buffer& SvgfVulkanDenoiser::Buf(const std::string& name) {
+    auto it = buffers_.find(name);
+    if (it == buffers_.end()) Fail("svgf: no buffer '{}' in the memory plan", name);
+    return it->second;
+}
+
+void SvgfVulkanDenoiser::Allocate(int width, int height) {
+    buffers_.clear();
+    width_ = width;
+    height_ = height;
+    for (const BufferPlan& b : PlanSvgfMemory(width, height, params_))
+        buffers_.emplace(b.name, context_->allocator().CreateBuffer(b.name, b.bytes,
+                                                                    b.name == "staging" ? MemoryUsage::Staging
+                                                                                        : MemoryUsage::Device));
+    BuildSets();
+    parity_ = 0;
+    needsClear_ = true;
+}
+
+void SvgfVulkanDenoiser::BuildSets() {
+    reproject_.ResetSets();
+    moments_.ResetSets();
+    atrous_.ResetSets();
+    modulate_.ResetSets();
+    const bool weighted = params_.svgf.weightBySampleCount;
+    const bool combined = params_.svgf.filterCombined;
+    reprojectSets_.assign(channels_.size(), {});
+    momentsSets_.assign(channels_.size(), {});
+    atrousSets_.assign(channels_.size(), {});
+    for (size_t c = 0; c < channels_.size(); ++c) {
+        const std::string& ch = channels_[c];
+        for (int parity = 0; parity < 2; ++parity) {
+            const std::string cur = Side(parity), prev = Side(parity ^ 1);
+            std::array<const Buffer*, SVGF_REPROJECT_BINDINGS> r{};
+            r[SVGF_REPROJECT_B_COLOR_IN] = &Buf(combined || c == 0 ? "input.direct" : "input.indirect");
+            r[SVGF_REPROJECT_B_COLOR_IN2] = &Buf("input.indirect");
+            r[SVGF_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
+            r[SVGF_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
+            r[SVGF_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            r[SVGF_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
+            r[SVGF_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
+            r[SVGF_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
+            r[SVGF_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+            r[SVGF_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
+            // Unused bindings (unweighted mode) point at a buffer of the plan that is never read.
+            r[SVGF_REPROJECT_B_SAMPLE_COUNT] = &Buf(weighted ? "input.sampleCount" : "input.prevPixel");
+            r[SVGF_REPROJECT_B_PREV_COLOR] = &Buf(ch + ".color." + prev);
+            r[SVGF_REPROJECT_B_PREV_MOMENTS] = &Buf(ch + ".moments." + prev);
+            r[SVGF_REPROJECT_B_PREV_LENGTH] = &Buf(ch + ".length." + prev);
+            r[SVGF_REPROJECT_B_PREV_WEIGHT] = &Buf(ch + (weighted ? ".weight." : ".length.") + prev);
+            r[SVGF_REPROJECT_B_CUR_COLOR] = &Buf(ch + ".color." + cur);
+            r[SVGF_REPROJECT_B_CUR_MOMENTS] = &Buf(ch + ".moments." + cur);
+            r[SVGF_REPROJECT_B_CUR_LENGTH] = &Buf(ch + ".length." + cur);
+            r[SVGF_REPROJECT_B_CUR_WEIGHT] = &Buf(ch + (weighted ? ".weight." : ".length.") + cur);
+            r[SVGF_REPROJECT_B_ILLUM_OUT] = &Buf(ch + ".illum0");
+            r[SVGF_REPROJECT_B_STATS] = &Buf("stats");
+            reprojectSets_[c][size_t(parity)] = reproject_.MakeSet(r);
+
+            std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
+            m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(ch + ".illum0");
+            m[SVGF_MOMENTS_B_DEPTH] = &Buf("geometry.depth." + cur);
+            m[SVGF_MOMENTS_B_NORMAL] = &Buf("geometry.normal." + cur);
+            m[SVGF_MOMENTS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            m[SVGF_MOMENTS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+            m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
+            m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);
+            m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(ch + ".illum1");
+            momentsSets_[c][size_t(parity)] = moments_.MakeSet(m);
+
+            for (int pp = 0; pp < 2; ++pp) {
+                // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
+                std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
+                a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(ch + (pp ? ".illum0" : ".illum1"));
+                a[SVGF_ATROUS_B_DEPTH] = &Buf("geometry.depth." + cur);
+                a[SVGF_ATROUS_B_NORMAL] = &Buf("geometry.normal." + cur);
+                a[SVGF_ATROUS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+                a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(ch + (pp ? ".illum1" : ".illum0"));
+                a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(ch + ".color." + cur);
+                atrousSets_[c][size_t(parity)][size_t(pp)] = atrous_.MakeSet(a);
+            }
+        }
+    }
+    const int iterations = params_.svgf.atrousIterations;
+    const std::string last = iterations == 0 ? ".illum1" : ((iterations - 1) & 1) ? ".illum1" : ".illum0";
+    std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
+    mod[SVGF_MODULATE_B_ILLUM0] = &Buf(channels_[0] + last);
+    mod[SVGF_MODULATE_B_ILLUM1] = &Buf(channels_.back() + last);
+    mod[SVGF_MODULATE_B_ALBEDO] = &Buf("input.albedo");
+    mod[SVGF_MODULATE_B_EMISSION] = &Buf("input.emission");
+    mod[SVGF_MODULATE_B_OUT] = &Buf("output");
+    modulateSet_ = modulate_.MakeSet(mod);
+}
+
+void SvgfVulkanDenoiser::Reset() { needsClear_ = true; }
+
+void SvgfVulkanDenoiser::SetParams(const DenoiserParams& params) {
+    buffers_.clear();  // descriptor sets refer to them; rebuilt with the new layout
+    params_ = params;
+    CreatePipelines();
+    width_ = height_ = 0;  // next Denoise() allocates
+    Reset();
+}
+
+void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
+    const int w = in.width(), h = in.height();
+    if (w <= 0 || h <= 0) Fail("svgf: empty FrameInputs");
+    if (w != width_ || h != height_) Allocate(w, h);
+    if (in.cameraCut) needsClear_ = true;
+    const SvgfParams& p = params_.svgf;
+    const size_t n = size_t(w) * size_t(h);
+    const uvec2 groups = DispatchGroups(w, h);
+    const int iterations = p.atrousIterations;
+    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
+    const std::string cur = Side(parity_);
+
+    CommandRecorder rec(*context_, &timestamps_);
+    Buffer& staging = Buf("staging");
+    rec.BeginPass("upload");
+    if (needsClear_) {
+        // Reset(): every history (and the previous geometry) dropped. Object id ~0 = background,
+        // so nothing reprojects on the next frame.
+        for (auto& [name, buf] : buffers_)
+            if (name.rfind("geometry.objectId.", 0) == 0)
+                rec.Fill(buf, 0xFFFFFFFFu);
+            else if (name != "staging")
+                rec.Fill(buf, 0u);
+        rec.Barrier();
+        needsClear_ = false;
+    }
+    size_t off = 0;
+    off = rec.Upload(in.direct.data(), 12 * n, staging, off, Buf("input.direct"));
+    off = rec.Upload(in.indirect.data(), 12 * n, staging, off, Buf("input.indirect"));
+    off = rec.Upload(in.albedo.data(), 12 * n, staging, off, Buf("input.albedo"));
+    off = rec.Upload(in.emission.data(), 12 * n, staging, off, Buf("input.emission"));
+    off = rec.Upload(in.depthGradient.data(), 8 * n, staging, off, Buf("input.depthGradient"));
+    off = rec.Upload(in.prevPixel.data(), 8 * n, staging, off, Buf("input.prevPixel"));
+    if (p.weightBySampleCount)
+        off = rec.Upload(in.sampleCount.data(), 2 * n, staging, off, Buf("input.sampleCount"));
+    off = rec.Upload(in.linearDepth.data(), 4 * n, staging, off, Buf("geometry.depth." + cur));
+    off = rec.Upload(in.normal.data(), 12 * n, staging, off, Buf("geometry.normal." + cur));
+    off = rec.Upload(in.objectId.data(), 4 * n, staging, off, Buf("geometry.objectId." + cur));
+    rec.Fill(Buf("stats"), 0u);
+    rec.Barrier();
+    rec.EndPass();
+
+    rec.BeginPass("reproject");
+    SvgfReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments,
+                         (p.weightBySampleCount ? kSvgfReprojectWeighted : 0u) |
+                             (p.filterCombined ? kSvgfReprojectCombined : 0u) |
+                             (atrousFeedback ? 0u : kSvgfReprojectWriteColor)};
+    for (size_t c = 0; c < channels_.size(); ++c)
+        rec.Dispatch(reproject_, reprojectSets_[c][size_t(parity_)], &rp, sizeof(rp), groups);
+    rec.Barrier();
+    rec.EndPass();
+
+    rec.BeginPass("filter_moments");
+    SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal, float(p.varianceHistoryThreshold)};
+    for (size_t c = 0; c < channels_.size(); ++c)
+        rec.Dispatch(moments_, momentsSets_[c][size_t(parity_)], &mp, sizeof(mp), groups);
+    rec.Barrier();
+    rec.EndPass();
+
+    for (int i = 0; i < iterations; ++i) {
+        rec.BeginPass(fmt::format("atrous{}", i));
+        SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance,
+                          atrousFeedback && i + 1 == p.feedbackIteration ? 1u : 0u};
+        for (size_t c = 0; c < channels_.size(); ++c)
+            rec.Dispatch(atrous_, atrousSets_[c][size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
+        rec.Barrier();
+        rec.EndPass();
+    }
+
+    rec.BeginPass("modulate");
+    SvgfModulatePush mo{ivec2(w, h), p.filterCombined ? 1u : 0u};
+    rec.Dispatch(modulate_, modulateSet_, &mo, sizeof(mo), groups);
+    rec.Barrier();
+    rec.EndPass();
+
+    rec.BeginPass("download");
+    const size_t outOffset = off;
+    size_t statsOffset = rec.Download(Buf("output"), 12 * n, staging, outOffset);
+    rec.Download(Buf("stats"), 8, staging, statsOffset);
+    rec.Barrier();
+    rec.EndPass();
+    rec.Submit();
+
+    output.Resize(w, h);
+    const char* base = static_cast<const char*>(staging.mapped());
+    std::memcpy(output.data(), base + outOffset, 12 * n);
+    uint32_t counters[2];
+    std::memcpy(counters, base + statsOffset, sizeof(counters));
+    stats_.nonFiniteSamples += counters[0];
+    stats_.negativeSamples += counters[1];
+    timings_.clear();
+    for (auto& [pass, ms] : timestamps_.Results()) timings_.push_back({pass, ms});
+    parity_ ^= 1;
+}
+
+std::vector<uint8_t> SvgfVulkanDenoiser::ReadBuffer(const std::string& name) {
+    Buffer& src = Buf(name);
+    Buffer tmp = context_->allocator().CreateBuffer("readback:" + name, src.size(), MemoryUsage::Staging);
+    CommandRecorder rec(*context_);
+    rec.Download(src, src.size(), tmp, 0);
+    rec.Barrier();
+    rec.Submit();
+    std::vector<uint8_t> out(src.size());
+    std::memcpy(out.data(), tmp.mapped(), src.size());
+    return out;
+}
+
+}  // namespace fovrt

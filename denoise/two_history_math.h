@@ -1,0 +1,101 @@
+// Two-history SVGF per-pixel maths (SPEC §5, Tu 2024): the unweighted (I_u, W_u) and
+// sample-count-weighted (I_w, W_w) exponential histories, the power sums S_k of the sample counts,
+// the variance-optimal blend factor p, the gradient EMA and the gradient-guided factor q.
+// Header-only and templated on the colour type so the CPU reference, the tests and the GLSL
+// (shaders/common/two_history.glsl, same formulas) agree line by line.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/math.h"
+
+namespace fovrt {
+
+// Per-pixel accumulation state (the thesis's "total weights" float2 and "power sums" float3).
+struct TwoHistoryWeights {
+    float wu = 0.0f;       // W_u = Σ β^(t-i)
+    float ww = 0.0f;       // W_w = Σ β^(t-i) n_i
+    float sMinus1 = 0.0f;  // S_{-1} = Σ β^{2(t-i)} / n_i
+    float s0 = 0.0f;       // S_0  = Σ β^{2(t-i)}
+    float s1 = 0.0f;       // S_1  = Σ β^{2(t-i)} n_i
+};
+
+// Decay β of this frame for temporal weight α. The steady state is β = 1 − α (SPEC §5); during
+// warm-up SVGF uses α' = max(α, 1/historyLength) (SPEC §3, Falcor). In weight form that is "W_u
+// grows by one per frame but never beyond 1/α": β = min(1, (1/α − 1) / W_u,prev). With a
+// constant α this reproduces SVGF's effective α exactly (1, 1/2, …, 1/len, then α), and the
+// recursions below stay exact for a time-varying β, so the blend formula keeps holding.
+inline float TwoHistoryDecay(float alpha, float wuPrev) {
+    alpha = std::clamp(alpha, 1e-4f, 1.0f);
+    if (wuPrev <= 0.0f) return 0.0f;  // no history: nothing to decay
+    return std::min(1.0f, (1.0f / alpha - 1.0f) / wuPrev);
+}
+
+// W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k.
+inline TwoHistoryWeights AccumulateWeights(const TwoHistoryWeights& prev, float beta, float n) {
+    TwoHistoryWeights w;
+    const float b2 = beta * beta;
+    w.wu = beta * prev.wu + 1.0f;
+    w.ww = beta * prev.ww + n;
+    w.sMinus1 = b2 * prev.sMinus1 + 1.0f / n;
+    w.s0 = b2 * prev.s0 + 1.0f;
+    w.s1 = b2 * prev.s1 + n;
+    return w;
+}
+
+// I_u ← I_u + (x − I_u)/W_u, with W_u the updated weight.
+template <typename T>
+T AccumulateUnweighted(const T& prev, const T& x, float wuNew) {
+    return prev + (x - prev) * (1.0f / wuNew);
+}
+
+// I_w ← I_w + n(x − I_w)/W_w, with W_w the updated weight.
+template <typename T>
+T AccumulateWeighted(const T& prev, const T& x, float n, float wwNew) {
+    return prev + (x - prev) * (n / wwNew);
+}
+
+// Variance of lerp(I_w, I_u, p) in units of Var(X) (one sample's variance):
+// V(p) = (1−p)² S_1/W_w² + 2p(1−p) S_0/(W_w W_u) + p² S_{−1}/W_u².
+inline double TwoHistoryBlendVariance(const TwoHistoryWeights& w, double p) {
+    const double a = double(w.s1) / (double(w.ww) * w.ww);
+    const double b = double(w.s0) / (double(w.ww) * w.wu);
+    const double c = double(w.sMinus1) / (double(w.wu) * w.wu);
+    return (1 - p) * (1 - p) * a + 2 * p * (1 - p) * b + p * p * c;
+}
+
+// p = clamp((W_u²S_1 − W_uW_wS_0) / (W_u²S_1 − 2W_uW_wS_0 + W_w²S_{−1}), 0, 1) (SPEC §5 erratum:
+// the slides' boxed formula swaps S_0 and S_1). Evaluated as (a − b)/(a − 2b + c) with the terms
+// of V(p) above, which keeps the magnitudes near 1/W. The denominator is Σβ²(1/W_u − n/W_w)²/n ≥ 0
+// and vanishes only when every n is equal (I_w = I_u, any p is right); when it is lost in
+// rounding V(p) is linear and the smaller end wins.
+inline float TwoHistoryOptimalBlend(const TwoHistoryWeights& w) {
+    if (w.wu <= 0.0f || w.ww <= 0.0f) return 1.0f;
+    const float a = w.s1 / (w.ww * w.ww);
+    const float b = w.s0 / (w.ww * w.wu);
+    const float c = w.sMinus1 / (w.wu * w.wu);
+    const float den = a - 2.0f * b + c;
+    if (!(den > 1e-6f * (a + c))) return a < c ? 0.0f : 1.0f;
+    return std::clamp((a - b) / den, 0.0f, 1.0f);
+}
+
+// Gradient EMA g ← β_g g + (1 − β_g)(x − I_u,prev); g = 0 where the history was dropped.
+template <typename T>
+T AccumulateGradient(const T& gPrev, const T& x, const T& iuPrev, float betaG, bool hasHistory) {
+    if (!hasHistory) return x * 0.0f;
+    return gPrev * betaG + (x - iuPrev) * (1.0f - betaG);
+}
+
+// q = clamp(S · lum(|g|) / std(lum(I_u)), 0, 1).
+inline float TwoHistoryGradientBlend(const vec3& g, float varianceLumIu, float scale) {
+    const float lumAbsG = Luminance(glm::abs(g));
+    const float sd = std::sqrt(std::max(varianceLumIu, 0.0f));
+    if (lumAbsG <= 0.0f) return 0.0f;
+    return std::clamp(scale * lumAbsG / std::max(sd, 1e-8f), 0.0f, 1.0f);
+}
+
+// I_b = lerp(I_opt, I_u, q) = lerp(I_w, I_u, t) with t = p + q − pq.
+inline float TwoHistoryFinalBlend(float p, float q) { return p + q - p * q; }
+
+}  // namespace fovrt

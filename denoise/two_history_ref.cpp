@@ -1,0 +1,368 @@
+#include "denoise/two_history_ref.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "denoise/asvgf_ref.h"
+#include "denoise/memory_plan.h"
+#include "denoise/svgf_layout.h"
+#include "denoise/two_history_math.h"
+
+namespace fovrt {
+
+void TwoHistoryState::Allocate(int width, int height, int channels, bool twoHistory) {
+    for (int c = 0; c < 2; ++c) {
+        const bool used = c < channels;
+        iu[size_t(c)].Resize(used ? width : 0, used ? height : 0, vec3(0.0f));
+        iw[size_t(c)].Resize(used && twoHistory ? width : 0, used && twoHistory ? height : 0,
+                             vec3(0.0f));
+        moments[size_t(c)].Resize(used ? width : 0, used ? height : 0, vec2(0.0f));
+    }
+    wu.Resize(width, height, 0.0f);
+    ww.Resize(twoHistory ? width : 0, twoHistory ? height : 0, 0.0f);
+    powerSums.Resize(twoHistory ? width : 0, twoHistory ? height : 0, vec3(0.0f));
+    gradient.Resize(twoHistory ? width : 0, twoHistory ? height : 0, vec3(0.0f));
+}
+
+void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int channels,
+                            const Plane<vec3>* color2, const FrameInputs& frame,
+                            const SvgfGeometry& prevGeometry, bool hasPrev,
+                            const TwoHistoryState& prev, TwoHistoryState& cur,
+                            const Plane<float>* alphaMap, std::array<Plane<vec4>, 2>& illumU,
+                            std::array<Plane<vec4>, 2>& illumW,
+                            const TwoHistoryReprojectOptions& options, DenoiseStats& stats) {
+    const int w = frame.width(), h = frame.height();
+    const Precision prec = options.precision;
+    const bool two = options.twoHistory;
+    for (int c = 0; c < channels; ++c) {
+        illumU[size_t(c)].Resize(w, h);
+        if (two) illumW[size_t(c)].Resize(w, h);
+    }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const ReprojectionTaps taps =
+                hasPrev ? FindReprojectionTaps(frame, prevGeometry, x, y) : ReprojectionTaps{};
+            const bool success = taps.count > 0;
+            const float n = float(std::max<uint16_t>(frame.sampleCount[i], 1));
+            const float alpha = alphaMap ? (*alphaMap)[i] : options.alpha;
+            const float alphaM = alphaMap ? (*alphaMap)[i] : options.alphaMoments;
+
+            TwoHistoryWeights wPrev;
+            if (success) {
+                wPrev.wu = GatherTaps(prev.wu, taps);
+                if (two) {
+                    wPrev.ww = GatherTaps(prev.ww, taps);
+                    const vec3 s = GatherTaps(prev.powerSums, taps);
+                    wPrev.sMinus1 = s.x, wPrev.s0 = s.y, wPrev.s1 = s.z;
+                }
+            }
+            // β = 0 on disocclusion: every sum restarts from this frame's sample.
+            const float beta = success ? TwoHistoryDecay(alpha, wPrev.wu) : 0.0f;
+            const TwoHistoryWeights wNew = AccumulateWeights(wPrev, beta, n);
+            const float am = success ? std::max(alphaM, 1.0f / wNew.wu) : 1.0f;
+
+            vec3 xSum(0.0f), iuPrevSum(0.0f);
+            for (int c = 0; c < channels; ++c) {
+                const size_t ch = size_t(c);
+                vec3 raw = (*colors[ch])[i];
+                if (channels == 1 && color2) raw += (*color2)[i];
+                const vec3 xc = SanitizeIllumination(raw, stats);
+                const float l = Luminance(xc);
+                const vec3 iuPrev = success ? GatherTaps(prev.iu[ch], taps) : xc;
+                const vec2 mPrev = success ? GatherTaps(prev.moments[ch], taps) : vec2(l, l * l);
+                const vec3 iu = AccumulateUnweighted(iuPrev, xc, wNew.wu);
+                const vec2 m = glm::mix(mPrev, vec2(l, l * l), am);
+                const float var = std::max(0.0f, m.y - m.x * m.x);
+                cur.moments[ch][i] = QuantizeHistory(m, prec);
+                illumU[ch][i] = vec4(iu, var);
+                if (options.writeColorHistory) cur.iu[ch][i] = QuantizeHistory(iu, prec);
+                if (two) {
+                    const vec3 iwPrev = success ? GatherTaps(prev.iw[ch], taps) : xc;
+                    const vec3 iw = AccumulateWeighted(iwPrev, xc, n, wNew.ww);
+                    illumW[ch][i] = vec4(iw, var);
+                    if (options.writeColorHistory) cur.iw[ch][i] = QuantizeHistory(iw, prec);
+                }
+                xSum += xc;
+                iuPrevSum += iuPrev;
+            }
+            cur.wu[i] = QuantizeHistory(wNew.wu, prec);
+            if (two) {
+                cur.ww[i] = QuantizeHistory(wNew.ww, prec);
+                cur.powerSums[i] = QuantizeHistory(vec3(wNew.sMinus1, wNew.s0, wNew.s1), prec);
+                const vec3 gPrev = success ? GatherTaps(prev.gradient, taps) : vec3(0.0f);
+                cur.gradient[i] = QuantizeHistory(
+                    AccumulateGradient(gPrev, xSum, iuPrevSum, options.gradientBeta, success),
+                    prec);
+            }
+        }
+}
+
+void TwoHistoryGradientRef(const Plane<vec3>& gradient, const std::array<Plane<vec4>, 2>& illumU,
+                           int channels, const FrameInputs& frame, const SvgfParams& svgf,
+                           float qScale, Plane<float>& qOut) {
+    static constexpr float kKernel[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
+    const int w = frame.width(), h = frame.height();
+    qOut.Resize(w, h, 0.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (frame.objectId(x, y) == kNoObject) continue;
+            const float zp = frame.linearDepth(x, y);
+            const vec3 np = frame.normal(x, y);
+            const vec2 gp = frame.depthGradient(x, y);
+            vec3 sum(0.0f);
+            float wsum = 0.0f;
+            for (int ky = -2; ky <= 2; ++ky)
+                for (int kx = -2; kx <= 2; ++kx) {
+                    const int qx = x + kx, qy = y + ky;
+                    if (!gradient.InBounds(qx, qy) || frame.objectId(qx, qy) == kNoObject) continue;
+                    float wgt = kKernel[kx + 2] * kKernel[ky + 2];
+                    if (kx != 0 || ky != 0)
+                        wgt *= DepthWeight(zp, frame.linearDepth(qx, qy), gp, vec2(kx, ky),
+                                           svgf.sigmaDepth) *
+                               NormalWeight(np, frame.normal(qx, qy), svgf.sigmaNormal);
+                    sum += wgt * gradient(qx, qy);
+                    wsum += wgt;
+                }
+            float var = 0.0f;
+            for (int c = 0; c < channels; ++c) var += illumU[size_t(c)](x, y).a;
+            qOut(x, y) = TwoHistoryGradientBlend(sum / wsum, var, qScale);
+        }
+}
+
+void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
+                        const Plane<float>& wu, const Plane<float>& ww,
+                        const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out) {
+    out.Resize(illumU.width(), illumU.height());
+    for (size_t i = 0; i < illumU.size(); ++i) {
+        TwoHistoryWeights w;
+        w.wu = wu[i];
+        w.ww = ww[i];
+        w.sMinus1 = powerSums[i].x, w.s0 = powerSums[i].y, w.s1 = powerSums[i].z;
+        const float t = TwoHistoryFinalBlend(TwoHistoryOptimalBlend(w), q[i]);
+        out[i] = glm::mix(illumW[i], illumU[i], t);
+    }
+}
+
+bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant) {
+    if (name == "asvgf")
+        variant = TwoHistoryVariant::Asvgf;
+    else if (name == "two-history")
+        variant = TwoHistoryVariant::TwoHistory;
+    else if (name == "two-history-asvgf")
+        variant = TwoHistoryVariant::TwoHistoryAsvgf;
+    else
+        return false;
+    return true;
+}
+
+const char* TwoHistoryVariantName(TwoHistoryVariant v) {
+    switch (v) {
+        case TwoHistoryVariant::Asvgf:
+            return "asvgf";
+        case TwoHistoryVariant::TwoHistory:
+            return "two-history";
+        case TwoHistoryVariant::TwoHistoryAsvgf:
+            return "two-history-asvgf";
+    }
+    return "?";
+}
+
+void ValidateTwoHistoryParams(const DenoiserParams& params) {
+    const SvgfParams& s = params.svgf;
+    if (s.atrousIterations < 0 || s.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
+        Fail("denoise.svgf.atrous_iterations = {}: expected 0..{}", s.atrousIterations,
+             FOVRT_MAX_ATROUS_ITERATIONS);
+    if (params.asvgf.gradientIterations < 0 || params.asvgf.gradientIterations > 8)
+        Fail("denoise.asvgf.gradient_iterations = {}: expected 0..8",
+             params.asvgf.gradientIterations);
+    if (!(params.asvgf.alpha > 0.0f && params.asvgf.alpha <= 1.0f))
+        Fail("denoise.asvgf.alpha = {}: expected (0, 1]", params.asvgf.alpha);
+    if (!(params.twoHistory.gradientBeta >= 0.0f && params.twoHistory.gradientBeta <= 1.0f))
+        Fail("denoise.two_history.gradient_beta = {}: expected [0, 1]",
+             params.twoHistory.gradientBeta);
+}
+
+TwoHistoryReferenceDenoiser::TwoHistoryReferenceDenoiser(TwoHistoryVariant variant,
+                                                         const DenoiserParams& params)
+    : variant_(variant), params_(params) {
+    ValidateTwoHistoryParams(params);
+}
+
+std::string TwoHistoryReferenceDenoiser::Name() const { return TwoHistoryVariantName(variant_); }
+
+void TwoHistoryReferenceDenoiser::Reset() {
+    width_ = 0;
+    hasPrev_ = false;
+}
+
+void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>& output) {
+    using Clock = std::chrono::steady_clock;
+    timings_.clear();
+    auto t0 = Clock::now();
+    auto lap = [&](const char* pass) {
+        const auto t1 = Clock::now();
+        timings_.push_back({pass, std::chrono::duration<double, std::milli>(t1 - t0).count()});
+        t0 = t1;
+    };
+    const SvgfParams& s = params_.svgf;
+    const int w = frame.width(), h = frame.height();
+    const bool two = variant_ != TwoHistoryVariant::Asvgf;
+    const bool useAsvgf = variant_ != TwoHistoryVariant::TwoHistory;
+    const int channels = s.filterCombined ? 1 : 2;
+    if (frame.cameraCut || w != width_ || h != height_) {
+        width_ = w, height_ = h;
+        hasPrev_ = false;
+        for (auto& st : state_) st.Allocate(w, h, channels, two);
+        prevGeometry_.Allocate(w, h);
+    }
+    TwoHistoryState& prev = state_[parity_];
+    TwoHistoryState& cur = state_[parity_ ^ 1];
+
+    // A-SVGF: per-pixel α of colour and moments from the reconstructed temporal gradient.
+    const Plane<float>* alphaMap = nullptr;
+    if (useAsvgf) {
+        if (hasPrev_) {
+            AsvgfTemporalAlphaRef(frame, params_.asvgf, s, alpha_, lambda_, &recon_);
+        } else {
+            alpha_.Resize(w, h, 1.0f);
+            lambda_.Resize(w, h, 1.0f);
+        }
+        alphaMap = &alpha_;
+        lap("asvgf_gradient");
+    }
+
+    // Feedback: the paper's iteration 1, or the unfiltered accumulation. Two-history cannot
+    // feed back a later iteration (the blend would break the accumulation), so k > 1 → 1.
+    const int feedback = s.atrousIterations == 0 ? 0
+                         : two                   ? std::min(s.feedbackIteration, 1)
+                               : std::min(s.feedbackIteration, s.atrousIterations);
+    TwoHistoryReprojectOptions ro;
+    ro.alpha = s.alphaColor;
+    ro.alphaMoments = s.alphaMoments;
+    ro.gradientBeta = params_.twoHistory.gradientBeta;
+    ro.twoHistory = two;
+    ro.writeColorHistory = feedback == 0;
+    ro.precision = params_.precision;
+    const std::array<const Plane<vec3>*, 2> colors = {&frame.direct, &frame.indirect};
+    TwoHistoryReprojectRef(colors, channels, s.filterCombined ? &frame.indirect : nullptr, frame,
+                           prevGeometry_.View(), hasPrev_, prev, cur, alphaMap, u_, w_, ro, stats_);
+    lap("two_history_reproject");
+
+    const SvgfGeometry geo = GeometryOf(frame);
+    for (int c = 0; c < channels; ++c) {
+        SvgfFilterMomentsRef(u_[size_t(c)], geo, frame.depthGradient, cur.moments[size_t(c)],
+                             cur.wu, tmp_, s);
+        std::swap(u_[size_t(c)], tmp_);
+        if (two) {
+            SvgfFilterMomentsRef(w_[size_t(c)], geo, frame.depthGradient, cur.moments[size_t(c)],
+                                 cur.wu, tmp_, s);
+            std::swap(w_[size_t(c)], tmp_);
+        }
+    }
+    lap("filter_moments");
+
+    if (variant_ == TwoHistoryVariant::TwoHistory) {
+        TwoHistoryGradientRef(cur.gradient, u_, channels, frame, s, params_.twoHistory.qScale, q_);
+        lap("two_history_gradient");
+    } else if (variant_ == TwoHistoryVariant::TwoHistoryAsvgf) {
+        q_ = lambda_;  // q = λ̂: the reconstructed A-SVGF gradient (see the report/README)
+    }
+
+    for (int c = 0; c < channels; ++c) {
+        const size_t ch = size_t(c);
+        Plane<vec4>& u = u_[ch];
+        for (int it = 0; it < s.atrousIterations; ++it) {
+            const bool fb = it + 1 == feedback;
+            SvgfAtrousRef(u, geo, frame.depthGradient, it, tmp_, fb ? &cur.iu[ch] : nullptr, s,
+                          params_.precision);
+            std::swap(u, tmp_);
+            if (two && it == 0) {
+                SvgfAtrousRef(w_[ch], geo, frame.depthGradient, 0, tmp_, fb ? &cur.iw[ch] : nullptr,
+                              s, params_.precision);
+                std::swap(w_[ch], tmp_);
+            }
+            if (two && it == 0) {
+                TwoHistoryBlendRef(u, w_[ch], cur.wu, cur.ww, cur.powerSums, q_, tmp_);
+                std::swap(u, tmp_);
+            }
+        }
+        if (two && s.atrousIterations == 0) {
+            TwoHistoryBlendRef(u, w_[ch], cur.wu, cur.ww, cur.powerSums, q_, tmp_);
+            std::swap(u, tmp_);
+        }
+    }
+    lap("atrous_blend");
+
+    SvgfModulateRef(u_[0], channels == 2 ? &u_[1] : nullptr, frame.albedo, frame.emission, output);
+    lap("modulate");
+
+    prevGeometry_.CopyFrom(frame);
+    hasPrev_ = true;
+    parity_ ^= 1;
+}
+
+std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(TwoHistoryVariant variant,
+                                                      const DenoiserParams& params) {
+    return std::make_unique<TwoHistoryReferenceDenoiser>(variant, params);
+}
+
+size_t GradientSampleCapacity(int width, int height) {
+    const ivec2 g = StratumGridSize(width, height);
+    return 2 * size_t(g.x) * size_t(g.y);
+}
+
+std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
+                                                  const DenoiserParams& params) {
+    TwoHistoryVariant v;
+    if (!TwoHistoryVariantOf(name, v)) return {};
+    const size_t n = size_t(width) * size_t(height);
+    const size_t hs = HistoryScalarBytes(params.precision);
+    std::vector<BufferPlan> plan;
+    auto add = [&](const std::string& what, size_t bytes, bool history) {
+        plan.push_back({what, bytes, history});
+    };
+    const size_t sampleCountBytes = ((2 * n + 3) / 4) * 4;
+    const size_t sampleBytes = GradientSampleCapacity(width, height) * sizeof(GradientSample);
+    if (v != TwoHistoryVariant::Asvgf) {
+        for (const std::string& ch : SvgfChannels(params.svgf)) {
+            add(ch + ".wcolor.A", 3 * hs * n, true);
+            add(ch + ".wcolor.B", 3 * hs * n, true);
+            add(ch + ".willum0", 16 * n, false);
+            add(ch + ".willum1", 16 * n, false);
+        }
+        for (const char* side : {"A", "B"}) {
+            add(std::string("wweight.") + side, hs * n, true);
+            add(std::string("powerSums.") + side, 3 * hs * n, true);
+            add(std::string("gradient.") + side, 3 * hs * n, true);
+        }
+        add("q", 4 * n, false);
+        if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);
+    }
+    if (v != TwoHistoryVariant::TwoHistory) {
+        const ivec2 g = StratumGridSize(width, height);
+        const size_t strata = size_t(g.x) * size_t(g.y);
+        add("asvgf.samples", sampleBytes, false);
+        add("asvgf.claim", 4 * strata, false);
+        add("asvgf.grad0", 8 * strata, false);
+        add("asvgf.grad1", 8 * strata, false);
+        add("asvgf.guide", 4 * strata, false);
+        add("asvgf.alpha", 4 * n, false);
+        add("asvgf.lambda", 4 * n, false);
+    }
+    add("staging.extra", StagingAlign(sampleCountBytes) + StagingAlign(sampleBytes), false);
+    return plan;
+}
+
+std::vector<BufferPlan> PlanTwoHistoryMemory(const std::string& name, int width, int height,
+                                             const DenoiserParams& params) {
+    std::vector<BufferPlan> plan = PlanSvgfMemory(width, height, params);
+    for (BufferPlan& b : PlanTwoHistoryExtraMemory(name, width, height, params))
+        plan.push_back(std::move(b));
+    return plan;
+}
+
+}  // namespace fovrt

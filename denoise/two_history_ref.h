@@ -1,0 +1,149 @@
+// C++ reference (Backend() == "cpu") of two-history SVGF (Tu 2024, SPEC §5), A-SVGF (Schied 2018,
+// SPEC §4) and their combination two-history-asvgf. One function per new stage, each mirroring a
+// shader (shaders/two_history_*.comp); the SVGF stages (variance estimate, à-trous, modulation)
+// are the svgf_ref ones, composed:
+//
+//   [asvgf_*: per-pixel α]  → two_history_reproject (both histories, weights, power sums, g)
+//   → svgf_filter_moments on both → two_history_gradient (edge-aware g → q)
+//   → svgf_atrous iteration 1 on both (feedback) → two_history_blend → svgf_atrous 2..N → modulate
+//
+// `asvgf` keeps only the unweighted history (SVGF with A-SVGF's per-pixel α).
+//
+// Choices the papers leave open (no paper has measured two-history-asvgf):
+// - Warm-up: β = min(1, (1/α − 1)/W_u,prev), i.e. SVGF's α' = max(α, 1/historyLength) in weight
+//   form; W_u doubles as the history length of the variance test (spatial estimate below 4), so
+//   an A-SVGF α near 1 (history dropped) falls back to the spatial variance estimate by itself.
+// - Both histories use the unweighted moments' variance as their à-trous guide; the blend's
+//   variance is lerp(Var_w, Var_u, t), an upper bound of the variance of the lerp.
+// - g is one float3 EMA of the summed illumination (direct + indirect); q uses Σ_c Var_c.
+// - g is filtered by one 5×5 à-trous-kernel pass with w_z·w_n (no luminance term).
+// - two-history-asvgf: β = 1 − α_i(p) (α_i from the A-SVGF gradient, base α = asvgf.alpha) for
+//   both histories and their moments, and q = λ̂(p) (the same 3×3-strata max that gives α_i):
+//   a measured temporal change pushes the blend to the unweighted history in proportion to its
+//   relative size, the role the EMA gradient plays in two-history.
+// - Feedback after à-trous iteration k > 1 is impossible for the two-history variants (the blend
+//   would feed back); they feed back iteration 1 (or the unfiltered accumulation for k = 0).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/frame_inputs.h"
+#include "core/image.h"
+#include "denoise/denoiser.h"
+#include "denoise/params.h"
+#include "denoise/svgf_ref.h"
+
+namespace fovrt {
+
+enum class TwoHistoryVariant { Asvgf, TwoHistory, TwoHistoryAsvgf };
+
+// Persistent per-pixel state of one frame (one side of the A/B pair). Channel 0 is direct (or the
+// combined illumination), channel 1 indirect.
+struct TwoHistoryState {
+    std::array<Plane<vec3>, 2> iu;       // unweighted colour history I_u
+    std::array<Plane<vec3>, 2> iw;       // weighted colour history I_w (two-history only)
+    std::array<Plane<vec2>, 2> moments;  // luminance moments of the unweighted history
+    Plane<float> wu;                     // W_u (also the "history length" of the variance test)
+    Plane<float> ww;                     // W_w (two-history only)
+    Plane<vec3> powerSums;               // (S_{-1}, S_0, S_1) (two-history only)
+    Plane<vec3> gradient;                // EMA gradient g of the summed illumination (two-history)
+    void Allocate(int width, int height, int channels, bool twoHistory);
+};
+
+struct TwoHistoryReprojectOptions {
+    float alpha = 0.2f;              // temporal α of colour (ignored where alphaMap is given)
+    float alphaMoments = 0.2f;       // temporal α of moments (ignored where alphaMap is given)
+    float gradientBeta = 0.8f;       // β_g
+    bool twoHistory = true;          // also accumulate I_w, W_w, S_k and g
+    bool writeColorHistory = false;  // feed back the unfiltered accumulation (no à-trous feedback)
+    Precision precision = Precision::Fp32;
+};
+
+// Stage two_history_reproject. colors[c] (c < channels) is channel c's demodulated illumination;
+// with channels == 1 and color2 non-null, color2 is added (combined filtering). alphaMap, when
+// non-null, is the per-pixel α of colour and moments (A-SVGF). Writes cur's accumulation state,
+// illumU[c] = (I_u, Var) and, for two-history, illumW[c] = (I_w, Var) (Var of the unweighted
+// moments: the edge-stopping guide of both histories).
+void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int channels,
+                            const Plane<vec3>* color2, const FrameInputs& frame,
+                            const SvgfGeometry& prevGeometry, bool hasPrev,
+                            const TwoHistoryState& prev, TwoHistoryState& cur,
+                            const Plane<float>* alphaMap, std::array<Plane<vec4>, 2>& illumU,
+                            std::array<Plane<vec4>, 2>& illumW,
+                            const TwoHistoryReprojectOptions& options, DenoiseStats& stats);
+
+// Stage two_history_gradient: 5×5 à-trous-kernel filter of g with w_z·w_n (edge-aware, no
+// luminance term), then q = clamp(S·lum(|g|)/std(lum(I_u)), 0, 1) with Var(lum I_u) = Σ_c
+// illumU[c].a.
+void TwoHistoryGradientRef(const Plane<vec3>& gradient, const std::array<Plane<vec4>, 2>& illumU,
+                           int channels, const FrameInputs& frame, const SvgfParams& svgf,
+                           float qScale, Plane<float>& qOut);
+
+// Stage two_history_blend: p from (W_u, W_w, S_k), t = p + q − pq,
+// out = lerp(illumW, illumU, t) for colour and variance (lerp of variances bounds the variance of
+// the lerp of correlated estimates from above).
+void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
+                        const Plane<float>& wu, const Plane<float>& ww,
+                        const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out);
+
+// The CPU denoisers "asvgf", "two-history", "two-history-asvgf": the stages above composed.
+class TwoHistoryReferenceDenoiser final : public Denoiser {
+  public:
+    TwoHistoryReferenceDenoiser(TwoHistoryVariant variant, const DenoiserParams& params);
+    std::string Name() const override;
+    std::string Backend() const override { return "cpu"; }
+    void Reset() override;
+    void Denoise(const FrameInputs& inputs, Plane<vec3>& output) override;
+    std::vector<PassTiming> LastTimings() const override { return timings_; }
+    DenoiseStats Stats() const override { return stats_; }
+
+    // Read access for tests (after Denoise): this frame's state, q, A-SVGF α / λ / (δ̂, Δ̂).
+    const TwoHistoryState& CurrentState() const { return state_[size_t(parity_)]; }
+    const Plane<float>& Q() const { return q_; }
+    const Plane<float>& Alpha() const { return alpha_; }
+    const Plane<float>& Lambda() const { return lambda_; }
+    const Plane<vec2>& ReconstructedGradient() const { return recon_; }
+
+  private:
+    TwoHistoryVariant variant_;
+    DenoiserParams params_;
+    int width_ = 0, height_ = 0;
+    bool hasPrev_ = false;
+    int parity_ = 0;  // during Denoise: state_[parity_] previous, state_[parity_ ^ 1] this frame
+                      // (then flipped)
+    std::array<TwoHistoryState, 2> state_;
+    SvgfGeometryPlanes prevGeometry_;
+    std::array<Plane<vec4>, 2> u_, w_;
+    Plane<vec4> tmp_;
+    Plane<float> alpha_, lambda_, q_;
+    Plane<vec2> recon_;
+    std::vector<PassTiming> timings_;
+    DenoiseStats stats_;
+};
+
+std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(TwoHistoryVariant variant,
+                                                      const DenoiserParams& params);
+const char* TwoHistoryVariantName(TwoHistoryVariant variant);
+// Checks the parameters this family reads; fovrt::Error naming the key otherwise.
+void ValidateTwoHistoryParams(const DenoiserParams& params);
+// Variant of a factory name; false when the name is none of the three.
+bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant);
+
+// Buffers of the named denoiser beyond SVGF's, W×H, one eye, named as the Vulkan path allocates
+// them. History (A/B pairs): <channel>.wcolor (I_w, float3), wweight (W_w), powerSums (S_{-1},
+// S_0, S_1), gradient (g, float3); W_u lives in SVGF's <channel>.length. Scratch: weighted
+// illumination ping-pong, q, sample counts, A-SVGF strata/α/λ, extra staging.
+std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
+                                                  const DenoiserParams& params);
+
+// Capacity of the gradient-sample upload: two per stratum.
+size_t GradientSampleCapacity(int width, int height);
+
+// Full plan of the named denoiser: SVGF's buffers (PlanSvgfMemory) + the extra ones above.
+std::vector<BufferPlan> PlanTwoHistoryMemory(const std::string& name, int width, int height,
+                                             const DenoiserParams& params);
+
+}  // namespace fovrt

@@ -1,0 +1,500 @@
+#include "denoise/two_history_vk.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "core/error.h"
+#include "denoise/asvgf_ref.h"
+#include "denoise/memory_plan.h"
+#include "denoise/svgf_layout.h"
+#include "shaders/common/two_history_constants.glsl"
+
+namespace fovrt {
+
+namespace {
+
+const char* Side(int parity) { return parity ? "B" : "A"; }
+
+// Push-constant blocks, mirrored in the shaders named.
+struct TwoHistoryReprojectPush {  // two_history_reproject.comp
+    ivec2 size;
+    float alpha;
+    float alphaMoments;
+    float gradientBeta;
+    uint32_t flags;
+};
+static_assert(sizeof(TwoHistoryReprojectPush) == 24);
+
+struct TwoHistoryGradientPush {  // two_history_gradient.comp
+    ivec2 size;
+    float sigmaDepth;
+    float sigmaNormal;
+    float qScale;
+    uint32_t twoChannels;
+};
+static_assert(sizeof(TwoHistoryGradientPush) == 24);
+
+struct TwoHistoryBlendPush {  // two_history_blend.comp
+    ivec2 size;
+};
+
+struct AsvgfSamplesPush {  // asvgf_gradient_claim.comp, asvgf_gradient_gather.comp
+    ivec2 size;
+    ivec2 grid;
+    uint32_t count;
+};
+static_assert(sizeof(AsvgfSamplesPush) == 20);
+
+struct AsvgfAtrousPush {  // asvgf_gradient_atrous.comp
+    ivec2 size;
+    ivec2 grid;
+    int32_t step;
+    float sigmaDepth;
+    float sigmaNormal;
+    float sigmaLuminance;
+};
+static_assert(sizeof(AsvgfAtrousPush) == 32);
+
+struct AsvgfAlphaPush {  // asvgf_alpha.comp
+    ivec2 size;
+    ivec2 grid;
+    float alpha;
+};
+static_assert(sizeof(AsvgfAlphaPush) == 20);
+
+// The shaders read fovrt::GradientSample as uploaded (std430: 3 ivec2 + 2 float).
+static_assert(sizeof(GradientSample) == 32);
+
+constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f, for vkCmdFillBuffer
+
+// À-trous feedback iteration (1-based; 0 = unfiltered accumulation), as the reference.
+int FeedbackIteration(const SvgfParams& s, bool two) {
+    if (s.atrousIterations == 0) return 0;
+    return two ? std::min(s.feedbackIteration, 1)
+               : std::min(s.feedbackIteration, s.atrousIterations);
+}
+
+}  // namespace
+
+TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
+                                                   std::shared_ptr<VulkanContext> context,
+                                                   const DenoiserParams& params)
+    : variant_(variant), context_(std::move(context)), params_(params) {
+    FOVRT_CHECK(context_ != nullptr);
+    ValidateTwoHistoryParams(params_);
+    params_.svgf.weightBySampleCount = false;  // the weighted history is this family's own
+    if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
+        Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess",
+             context_->deviceName());
+    two_ = variant_ != TwoHistoryVariant::Asvgf;
+    asvgf_ = variant_ != TwoHistoryVariant::TwoHistory;
+    channels_ = SvgfChannels(params_.svgf);
+    const std::string sfx = params_.precision == Precision::Fp16 ? "_fp16" : "";
+    constexpr uint32_t kSets = 16;
+    reproject_ = ComputePipeline(*context_, "two_history_reproject" + sfx, TH_REPROJECT_BINDINGS,
+                                 sizeof(TwoHistoryReprojectPush), kSets);
+    moments_ = ComputePipeline(*context_, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
+                               sizeof(SvgfFilterMomentsPush), kSets);
+    atrous_ = ComputePipeline(*context_, "svgf_atrous" + sfx, SVGF_ATROUS_BINDINGS,
+                              sizeof(SvgfAtrousPush), kSets);
+    modulate_ = ComputePipeline(*context_, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS,
+                                sizeof(SvgfModulatePush), kSets);
+    if (two_) {
+        gradient_ = ComputePipeline(*context_, "two_history_gradient" + sfx, TH_GRADIENT_BINDINGS,
+                                    sizeof(TwoHistoryGradientPush), kSets);
+        blend_ = ComputePipeline(*context_, "two_history_blend" + sfx, TH_BLEND_BINDINGS,
+                                 sizeof(TwoHistoryBlendPush), kSets);
+    }
+    if (asvgf_) {
+        claim_ = ComputePipeline(*context_, "asvgf_gradient_claim" + sfx, ASVGF_CLAIM_BINDINGS,
+                                 sizeof(AsvgfSamplesPush), kSets);
+        gather_ = ComputePipeline(*context_, "asvgf_gradient_gather" + sfx, ASVGF_GATHER_BINDINGS,
+                                  sizeof(AsvgfSamplesPush), kSets);
+        gradAtrous_ = ComputePipeline(*context_, "asvgf_gradient_atrous" + sfx,
+                                      ASVGF_ATROUS_BINDINGS, sizeof(AsvgfAtrousPush), kSets);
+        alpha_ = ComputePipeline(*context_, "asvgf_alpha" + sfx, ASVGF_ALPHA_BINDINGS,
+                                 sizeof(AsvgfAlphaPush), kSets);
+    }
+    timestamps_ = TimestampPool(*context_, 16 + FOVRT_MAX_ATROUS_ITERATIONS);
+}
+
+TwoHistoryVulkanDenoiser::~TwoHistoryVulkanDenoiser() = default;
+
+Buffer& TwoHistoryVulkanDenoiser::Buf(const std::string& name) {
+    auto it = buffers_.find(name);
+    if (it == buffers_.end()) Fail("{}: no buffer '{}' in the memory plan", Name(), name);
+    return it->second;
+}
+
+void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
+    buffers_.clear();
+    width_ = width;
+    height_ = height;
+    grid_ = StratumGridSize(width, height);
+    for (const BufferPlan& b : PlanTwoHistoryMemory(Name(), width, height, params_)) {
+        const bool staging = b.name.rfind("staging", 0) == 0;
+        buffers_.emplace(
+            b.name, context_->allocator().CreateBuffer(
+                        b.name, b.bytes, staging ? MemoryUsage::Staging : MemoryUsage::Device));
+    }
+    BuildSets();
+    parity_ = 0;
+    needsClear_ = true;
+}
+
+void TwoHistoryVulkanDenoiser::BuildSets() {
+    for (ComputePipeline* p : {&reproject_, &moments_, &atrous_, &modulate_, &gradient_, &blend_,
+                               &claim_, &gather_, &gradAtrous_, &alpha_})
+        if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
+    const size_t nch = channels_.size();
+    const std::string& ch0 = channels_[0];
+    const std::string& ch1 = channels_.back();
+    const int iterations = params_.svgf.atrousIterations;
+    reprojectSets_.assign(nch, {});
+    momentsU_.assign(nch, {});
+    momentsW_.assign(nch, {});
+    atrousW_.assign(nch, {});
+    blendSets_.assign(nch, {});
+    atrousU_.assign(nch, {});
+    for (int parity = 0; parity < 2; ++parity) {
+        const std::string cur = Side(parity), prev = Side(parity ^ 1);
+        const size_t pi = size_t(parity);
+        // Bindings a variant does not use point at plan buffers that are never accessed.
+        const Buffer* dummyIn = &Buf("input.prevPixel");
+        const Buffer* dummyOut = &Buf("output");
+        auto two = [&](const std::string& name) { return two_ ? &Buf(name) : dummyIn; };
+        auto twoOut = [&](const std::string& name) { return two_ ? &Buf(name) : dummyOut; };
+
+        for (size_t c = 0; c < nch; ++c) {
+            const std::string& ch = channels_[c];
+            const std::string& other = channels_[nch - 1 - c];
+            std::array<const Buffer*, TH_REPROJECT_BINDINGS> r{};
+            r[TH_REPROJECT_B_COLOR] = &Buf(c == 0 ? "input.direct" : "input.indirect");
+            r[TH_REPROJECT_B_COLOR_OTHER] = &Buf(c == 0 ? "input.indirect" : "input.direct");
+            r[TH_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
+            r[TH_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
+            r[TH_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            r[TH_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
+            r[TH_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
+            r[TH_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
+            r[TH_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+            r[TH_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
+            r[TH_REPROJECT_B_SAMPLE_COUNT] = two("input.sampleCount");
+            r[TH_REPROJECT_B_ALPHA] = asvgf_ ? &Buf("asvgf.alpha") : dummyIn;
+            r[TH_REPROJECT_B_PREV_IU] = &Buf(ch + ".color." + prev);
+            r[TH_REPROJECT_B_PREV_IU_OTHER] = &Buf(other + ".color." + prev);
+            r[TH_REPROJECT_B_PREV_IW] = two(ch + ".wcolor." + prev);
+            r[TH_REPROJECT_B_PREV_M] = &Buf(ch + ".moments." + prev);
+            r[TH_REPROJECT_B_PREV_WU] = &Buf(ch + ".length." + prev);
+            r[TH_REPROJECT_B_PREV_WW] = two("wweight." + prev);
+            r[TH_REPROJECT_B_PREV_S] = two("powerSums." + prev);
+            r[TH_REPROJECT_B_PREV_G] = two("gradient." + prev);
+            r[TH_REPROJECT_B_CUR_IU] = &Buf(ch + ".color." + cur);
+            r[TH_REPROJECT_B_CUR_IW] = twoOut(ch + ".wcolor." + cur);
+            r[TH_REPROJECT_B_CUR_M] = &Buf(ch + ".moments." + cur);
+            r[TH_REPROJECT_B_CUR_WU] = &Buf(ch + ".length." + cur);
+            r[TH_REPROJECT_B_CUR_WW] = twoOut("wweight." + cur);
+            r[TH_REPROJECT_B_CUR_S] = twoOut("powerSums." + cur);
+            r[TH_REPROJECT_B_CUR_G] = twoOut("gradient." + cur);
+            r[TH_REPROJECT_B_ILLUM_U] = &Buf(ch + ".illum0");
+            r[TH_REPROJECT_B_ILLUM_W] = twoOut(ch + ".willum0");
+            r[TH_REPROJECT_B_STATS] = &Buf("stats");
+            reprojectSets_[c][pi] = reproject_.MakeSet(r);
+        }
+
+        for (size_t c = 0; c < nch; ++c) {
+            const std::string& ch = channels_[c];
+            auto momentsSet = [&](const std::string& in, const std::string& out) {
+                std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
+                m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(in);
+                m[SVGF_MOMENTS_B_DEPTH] = &Buf("geometry.depth." + cur);
+                m[SVGF_MOMENTS_B_NORMAL] = &Buf("geometry.normal." + cur);
+                m[SVGF_MOMENTS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                m[SVGF_MOMENTS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+                m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
+                m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);  // W_u
+                m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(out);
+                return moments_.MakeSet(m);
+            };
+            auto atrousSet = [&](const std::string& in, const std::string& out,
+                                 const std::string& hist) {
+                std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
+                a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(in);
+                a[SVGF_ATROUS_B_DEPTH] = &Buf("geometry.depth." + cur);
+                a[SVGF_ATROUS_B_NORMAL] = &Buf("geometry.normal." + cur);
+                a[SVGF_ATROUS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+                a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(out);
+                a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(hist);
+                return atrous_.MakeSet(a);
+            };
+            momentsU_[c][pi] = momentsSet(ch + ".illum0", ch + ".illum1");
+            // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1 (as SVGF).
+            atrousU_[c][pi][0] = atrousSet(ch + ".illum1", ch + ".illum0", ch + ".color." + cur);
+            atrousU_[c][pi][1] = atrousSet(ch + ".illum0", ch + ".illum1", ch + ".color." + cur);
+            if (two_) {
+                momentsW_[c][pi] = momentsSet(ch + ".willum0", ch + ".willum1");
+                atrousW_[c][pi] =
+                    atrousSet(ch + ".willum1", ch + ".willum0", ch + ".wcolor." + cur);
+                std::array<const Buffer*, TH_BLEND_BINDINGS> b{};
+                b[TH_BLEND_B_ILLUM_U] = &Buf(ch + (iterations == 0 ? ".illum1" : ".illum0"));
+                b[TH_BLEND_B_ILLUM_W] = &Buf(ch + (iterations == 0 ? ".willum1" : ".willum0"));
+                b[TH_BLEND_B_WU] = &Buf(ch0 + ".length." + cur);
+                b[TH_BLEND_B_WW] = &Buf("wweight." + cur);
+                b[TH_BLEND_B_S] = &Buf("powerSums." + cur);
+                b[TH_BLEND_B_Q] =
+                    &Buf(variant_ == TwoHistoryVariant::TwoHistory ? "q" : "asvgf.lambda");
+                blendSets_[c][pi] = blend_.MakeSet(b);
+            }
+        }
+        if (variant_ == TwoHistoryVariant::TwoHistory) {
+            std::array<const Buffer*, TH_GRADIENT_BINDINGS> g{};
+            g[TH_GRADIENT_B_GRADIENT] = &Buf("gradient." + cur);
+            g[TH_GRADIENT_B_ILLUM_U0] = &Buf(ch0 + ".illum1");
+            g[TH_GRADIENT_B_ILLUM_U1] = &Buf(ch1 + ".illum1");
+            g[TH_GRADIENT_B_DEPTH] = &Buf("geometry.depth." + cur);
+            g[TH_GRADIENT_B_NORMAL] = &Buf("geometry.normal." + cur);
+            g[TH_GRADIENT_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            g[TH_GRADIENT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+            g[TH_GRADIENT_B_Q] = &Buf("q");
+            gradientSets_[pi] = gradient_.MakeSet(g);
+        }
+        if (asvgf_) {
+            for (int pp = 0; pp < 2; ++pp) {
+                std::array<const Buffer*, ASVGF_ATROUS_BINDINGS> a{};
+                a[ASVGF_ATROUS_B_GRAD_IN] = &Buf(pp ? "asvgf.grad1" : "asvgf.grad0");
+                a[ASVGF_ATROUS_B_GUIDE] = &Buf("asvgf.guide");
+                a[ASVGF_ATROUS_B_DEPTH] = &Buf("geometry.depth." + cur);
+                a[ASVGF_ATROUS_B_NORMAL] = &Buf("geometry.normal." + cur);
+                a[ASVGF_ATROUS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                a[ASVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+                a[ASVGF_ATROUS_B_DIRECT] = &Buf("input.direct");
+                a[ASVGF_ATROUS_B_INDIRECT] = &Buf("input.indirect");
+                a[ASVGF_ATROUS_B_ALBEDO] = &Buf("input.albedo");
+                a[ASVGF_ATROUS_B_EMISSION] = &Buf("input.emission");
+                a[ASVGF_ATROUS_B_GRAD_OUT] = &Buf(pp ? "asvgf.grad0" : "asvgf.grad1");
+                gradAtrousSets_[pi][size_t(pp)] = gradAtrous_.MakeSet(a);
+            }
+        }
+    }
+    if (asvgf_) {
+        std::array<const Buffer*, ASVGF_CLAIM_BINDINGS> c{&Buf("asvgf.samples"),
+                                                          &Buf("asvgf.claim")};
+        claimSet_ = claim_.MakeSet(c);
+        std::array<const Buffer*, ASVGF_GATHER_BINDINGS> g{};
+        g[ASVGF_GATHER_B_SAMPLES] = &Buf("asvgf.samples");
+        g[ASVGF_GATHER_B_CLAIM] = &Buf("asvgf.claim");
+        g[ASVGF_GATHER_B_GRAD] = &Buf("asvgf.grad0");
+        g[ASVGF_GATHER_B_GUIDE] = &Buf("asvgf.guide");
+        gatherSet_ = gather_.MakeSet(g);
+        const int gi = params_.asvgf.gradientIterations;
+        std::array<const Buffer*, ASVGF_ALPHA_BINDINGS> a{};
+        a[ASVGF_ALPHA_B_GRAD] = &Buf(gi > 0 && (gi - 1) % 2 == 0 ? "asvgf.grad1" : "asvgf.grad0");
+        a[ASVGF_ALPHA_B_ALPHA] = &Buf("asvgf.alpha");
+        a[ASVGF_ALPHA_B_LAMBDA] = &Buf("asvgf.lambda");
+        alphaSet_ = alpha_.MakeSet(a);
+    }
+    const std::string last = iterations == 0          ? ".illum1"
+                             : ((iterations - 1) & 1) ? ".illum1"
+                                                      : ".illum0";
+    std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
+    mod[SVGF_MODULATE_B_ILLUM0] = &Buf(ch0 + last);
+    mod[SVGF_MODULATE_B_ILLUM1] = &Buf(ch1 + last);
+    mod[SVGF_MODULATE_B_ALBEDO] = &Buf("input.albedo");
+    mod[SVGF_MODULATE_B_EMISSION] = &Buf("input.emission");
+    mod[SVGF_MODULATE_B_OUT] = &Buf("output");
+    modulateSet_ = modulate_.MakeSet(mod);
+}
+
+void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
+    const int w = in.width(), h = in.height();
+    if (w <= 0 || h <= 0) Fail("{}: empty FrameInputs", Name());
+    if (w != width_ || h != height_) Allocate(w, h);
+    if (in.cameraCut) needsClear_ = true;
+    const SvgfParams& p = params_.svgf;
+    const size_t n = size_t(w) * size_t(h);
+    const uvec2 groups = DispatchGroups(w, h);
+    const uvec2 gridGroups = DispatchGroups(grid_.x, grid_.y);
+    const int iterations = p.atrousIterations;
+    const int feedback = FeedbackIteration(p, two_);
+    const std::string cur = Side(parity_);
+    const size_t sampleCount = asvgf_ ? in.gradientSamples.size() : 0;
+    if (sampleCount > GradientSampleCapacity(w, h))
+        Fail("{}: {} gradient samples exceed the capacity {} (two per 3x3 stratum)", Name(),
+             sampleCount, GradientSampleCapacity(w, h));
+
+    CommandRecorder rec(*context_, &timestamps_);
+    Buffer& staging = Buf("staging");
+    Buffer& stagingExtra = Buf("staging.extra");
+    rec.BeginPass("upload");
+    if (needsClear_) {
+        // Every history and the previous geometry dropped; object id ~0 = background: nothing
+        // reprojects on the next frame.
+        for (auto& [name, buf] : buffers_)
+            if (name.rfind("geometry.objectId.", 0) == 0)
+                rec.Fill(buf, 0xFFFFFFFFu);
+            else if (name.rfind("staging", 0) != 0)
+                rec.Fill(buf, 0u);
+        rec.Barrier();
+        needsClear_ = false;
+        hasPrev_ = false;
+    }
+    size_t off = 0;
+    off = rec.Upload(in.direct.data(), 12 * n, staging, off, Buf("input.direct"));
+    off = rec.Upload(in.indirect.data(), 12 * n, staging, off, Buf("input.indirect"));
+    off = rec.Upload(in.albedo.data(), 12 * n, staging, off, Buf("input.albedo"));
+    off = rec.Upload(in.emission.data(), 12 * n, staging, off, Buf("input.emission"));
+    off = rec.Upload(in.depthGradient.data(), 8 * n, staging, off, Buf("input.depthGradient"));
+    off = rec.Upload(in.prevPixel.data(), 8 * n, staging, off, Buf("input.prevPixel"));
+    off = rec.Upload(in.linearDepth.data(), 4 * n, staging, off, Buf("geometry.depth." + cur));
+    off = rec.Upload(in.normal.data(), 12 * n, staging, off, Buf("geometry.normal." + cur));
+    off = rec.Upload(in.objectId.data(), 4 * n, staging, off, Buf("geometry.objectId." + cur));
+    size_t offExtra = 0;
+    if (two_)
+        offExtra = rec.Upload(in.sampleCount.data(), 2 * n, stagingExtra, offExtra,
+                              Buf("input.sampleCount"));
+    if (sampleCount > 0)
+        rec.Upload(in.gradientSamples.data(), sampleCount * sizeof(GradientSample), stagingExtra,
+                   offExtra, Buf("asvgf.samples"));
+    rec.Fill(Buf("stats"), 0u);
+    rec.Barrier();
+    rec.EndPass();
+
+    if (asvgf_) {
+        if (hasPrev_) {
+            rec.BeginPass("asvgf_gradient");
+            rec.Fill(Buf("asvgf.claim"), 0xFFFFFFFFu);
+            rec.Barrier();
+            const AsvgfSamplesPush sp{ivec2(w, h), grid_, uint32_t(sampleCount)};
+            if (sampleCount > 0) {
+                rec.Dispatch(
+                    claim_, claimSet_, &sp, sizeof(sp),
+                    uvec2((uint32_t(sampleCount) + FOVRT_WORKGROUP_1D - 1) / FOVRT_WORKGROUP_1D,
+                          1));
+                rec.Barrier();
+            }
+            rec.Dispatch(gather_, gatherSet_, &sp, sizeof(sp), gridGroups);
+            rec.Barrier();
+            for (int i = 0; i < params_.asvgf.gradientIterations; ++i) {
+                const AsvgfAtrousPush ap{ivec2(w, h),  grid_,         1 << i,
+                                         p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
+                rec.Dispatch(gradAtrous_, gradAtrousSets_[size_t(parity_)][size_t(i & 1)], &ap,
+                             sizeof(ap), gridGroups);
+                rec.Barrier();
+            }
+            rec.EndPass();
+            rec.BeginPass("asvgf_alpha");
+            const AsvgfAlphaPush alp{ivec2(w, h), grid_, params_.asvgf.alpha};
+            rec.Dispatch(alpha_, alphaSet_, &alp, sizeof(alp), groups);
+            rec.Barrier();
+            rec.EndPass();
+        } else {
+            // No previous frame: α = λ = 1 (the reference does the same).
+            rec.Fill(Buf("asvgf.alpha"), kFloatOne);
+            rec.Fill(Buf("asvgf.lambda"), kFloatOne);
+            rec.Barrier();
+        }
+    }
+
+    rec.BeginPass("two_history_reproject");
+    uint32_t flags = TH_REPROJECT_FLAG_HAS_PREV * (hasPrev_ ? 1u : 0u);
+    if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
+    flags |= channels_.size() == 2 ? TH_REPROJECT_FLAG_OTHER : TH_REPROJECT_FLAG_COMBINED;
+    if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
+    if (feedback == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
+    for (size_t c = 0; c < channels_.size(); ++c) {
+        // Channel 0 also writes the per-pixel shared state (W_w, S_k, g).
+        const TwoHistoryReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments,
+                                         params_.twoHistory.gradientBeta,
+                                         flags | (c == 0 ? TH_REPROJECT_FLAG_SHARED : 0u)};
+        rec.Dispatch(reproject_, reprojectSets_[c][size_t(parity_)], &rp, sizeof(rp), groups);
+    }
+    rec.Barrier();
+    rec.EndPass();
+
+    rec.BeginPass("filter_moments");
+    const SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal,
+                                   float(p.varianceHistoryThreshold)};
+    for (size_t c = 0; c < channels_.size(); ++c) {
+        rec.Dispatch(moments_, momentsU_[c][size_t(parity_)], &mp, sizeof(mp), groups);
+        if (two_) rec.Dispatch(moments_, momentsW_[c][size_t(parity_)], &mp, sizeof(mp), groups);
+    }
+    rec.Barrier();
+    rec.EndPass();
+
+    if (variant_ == TwoHistoryVariant::TwoHistory) {
+        rec.BeginPass("two_history_gradient");
+        const TwoHistoryGradientPush gp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal,
+                                        params_.twoHistory.qScale, channels_.size() == 2 ? 1u : 0u};
+        rec.Dispatch(gradient_, gradientSets_[size_t(parity_)], &gp, sizeof(gp), groups);
+        rec.Barrier();
+        rec.EndPass();
+    }
+
+    auto blend = [&] {
+        rec.BeginPass("two_history_blend");
+        const TwoHistoryBlendPush bp{ivec2(w, h)};
+        for (size_t c = 0; c < channels_.size(); ++c)
+            rec.Dispatch(blend_, blendSets_[c][size_t(parity_)], &bp, sizeof(bp), groups);
+        rec.Barrier();
+        rec.EndPass();
+    };
+    if (two_ && iterations == 0) blend();
+    for (int i = 0; i < iterations; ++i) {
+        rec.BeginPass(fmt::format("atrous{}", i));
+        const uint32_t writeHistory = i + 1 == feedback ? 1u : 0u;
+        const SvgfAtrousPush ap{ivec2(w, h),   1 << i,           p.sigmaDepth,
+                                p.sigmaNormal, p.sigmaLuminance, writeHistory};
+        for (size_t c = 0; c < channels_.size(); ++c) {
+            rec.Dispatch(atrous_, atrousU_[c][size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+                         groups);
+            if (two_ && i == 0)
+                rec.Dispatch(atrous_, atrousW_[c][size_t(parity_)], &ap, sizeof(ap), groups);
+        }
+        rec.Barrier();
+        rec.EndPass();
+        if (two_ && i == 0) blend();
+    }
+
+    rec.BeginPass("modulate");
+    const SvgfModulatePush mo{ivec2(w, h), channels_.size() == 1 ? 1u : 0u};
+    rec.Dispatch(modulate_, modulateSet_, &mo, sizeof(mo), groups);
+    rec.Barrier();
+    rec.EndPass();
+
+    rec.BeginPass("download");
+    const size_t outOffset = off;
+    const size_t statsOffset = rec.Download(Buf("output"), 12 * n, staging, outOffset);
+    rec.Download(Buf("stats"), 8, staging, statsOffset);
+    rec.Barrier();
+    rec.EndPass();
+    rec.Submit();
+
+    output.Resize(w, h);
+    const char* base = static_cast<const char*>(staging.mapped());
+    std::memcpy(output.data(), base + outOffset, 12 * n);
+    uint32_t counters[2];
+    std::memcpy(counters, base + statsOffset, sizeof(counters));
+    stats_.nonFiniteSamples += counters[0];
+    stats_.negativeSamples += counters[1];
+    timings_.clear();
+    for (auto& [pass, ms] : timestamps_.Results()) timings_.push_back({pass, ms});
+    hasPrev_ = true;
+    parity_ ^= 1;
+}
+
+std::vector<uint8_t> TwoHistoryVulkanDenoiser::ReadBuffer(const std::string& name) {
+    Buffer& src = Buf(name);
+    Buffer tmp =
+        context_->allocator().CreateBuffer("readback:" + name, src.size(), MemoryUsage::Staging);
+    CommandRecorder rec(*context_);
+    rec.Download(src, src.size(), tmp, 0);
+    rec.Barrier();
+    rec.Submit();
+    std::vector<uint8_t> out(src.size());
+    std::memcpy(out.data(), tmp.mapped(), src.size());
+    return out;
+}
+
+}  // namespace fovrt

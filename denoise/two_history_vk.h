@@ -1,0 +1,70 @@
+// Two-history SVGF, A-SVGF and two-history-asvgf on Vulkan compute: the new stages
+// (shaders/two_history_*.comp, shaders/asvgf_*.comp) composed with SVGF's own shaders
+// (svgf_filter_moments, svgf_atrous, svgf_modulate), one dispatch per stage, GPU timestamps per
+// pass. Buffers are allocated by iterating PlanTwoHistoryMemory(), so `fovrt memory` lists
+// exactly what is allocated. Same maths as TwoHistoryReferenceDenoiser (two_history_ref.h).
+#pragma once
+
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "denoise/denoiser.h"
+#include "denoise/two_history_ref.h"
+#include "vk/context.h"
+#include "vk/pipeline.h"
+#include "vk/recorder.h"
+
+namespace fovrt {
+
+class TwoHistoryVulkanDenoiser : public Denoiser {
+  public:
+    TwoHistoryVulkanDenoiser(TwoHistoryVariant variant, std::shared_ptr<VulkanContext> context,
+                             const DenoiserParams& params);
+    ~TwoHistoryVulkanDenoiser() override;
+    std::string Name() const override { return TwoHistoryVariantName(variant_); }
+    std::string Backend() const override { return "vulkan"; }
+    void Reset() override { needsClear_ = true; }
+    void Denoise(const FrameInputs& inputs, Plane<vec3>& output) override;
+    std::vector<PassTiming> LastTimings() const override { return timings_; }
+    DenoiseStats Stats() const override { return stats_; }
+
+    VulkanContext& context() { return *context_; }
+    // Downloads a buffer of the plan by name (tests: histories and scratch after Denoise()).
+    std::vector<uint8_t> ReadBuffer(const std::string& name);
+    // Name suffix of the history side written by the last Denoise() ("A" or "B").
+    std::string LastWrittenSide() const { return parity_ ? "A" : "B"; }
+
+  private:
+    void Allocate(int width, int height);
+    void BuildSets();
+    Buffer& Buf(const std::string& name);
+
+    TwoHistoryVariant variant_;
+    std::shared_ptr<VulkanContext> context_;
+    DenoiserParams params_;
+    bool two_ = false, asvgf_ = false;
+    std::vector<std::string> channels_;
+    int width_ = 0, height_ = 0;
+    ivec2 grid_{0};
+    int parity_ = 0;
+    bool needsClear_ = true;
+    bool hasPrev_ = false;
+    std::map<std::string, Buffer> buffers_;
+    ComputePipeline reproject_, moments_, atrous_, modulate_, gradient_, blend_;
+    ComputePipeline claim_, gather_, gradAtrous_, alpha_;
+    std::array<VkDescriptorSet, 2> gradientSets_{};
+    std::vector<std::array<VkDescriptorSet, 2>> reprojectSets_, momentsU_, momentsW_, atrousW_,
+        blendSets_;
+    std::vector<std::array<std::array<VkDescriptorSet, 2>, 2>> atrousU_;
+    VkDescriptorSet claimSet_ = VK_NULL_HANDLE, gatherSet_ = VK_NULL_HANDLE;
+    std::array<std::array<VkDescriptorSet, 2>, 2> gradAtrousSets_{};  // [parity][pingpong]
+    VkDescriptorSet alphaSet_ = VK_NULL_HANDLE, modulateSet_ = VK_NULL_HANDLE;
+    TimestampPool timestamps_;
+    std::vector<PassTiming> timings_;
+    DenoiseStats stats_;
+};
+
+}  // namespace fovrt

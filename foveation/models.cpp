@@ -1,0 +1,261 @@
+// The spp models of SPEC §7: two-level disc, linear eccentricity falloff, acuity (MAR), uniform,
+// and the fixed-ray-budget wrapper.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "foveation/spp_model.h"
+
+namespace fovrt {
+
+float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3& gazeEye) {
+    // For unit vectors, |a - b| = 2 sin(θ/2): accurate near 0 (unlike acos of the dot product)
+    // and cheaper than atan2(|a × b|, a · b).
+    vec3 ray = camera.EyeDirection(pixel);
+    vec3 gaze = glm::normalize(gazeEye);
+    float half = std::min(0.5f * glm::length(ray - gaze), 1.0f);
+    return Degrees(2.0f * std::asin(half));
+}
+
+namespace {
+
+// Per-call gaze data shared by all pixels of one map.
+struct GazeContext {
+    vec3 gaze;       // unit, eye space
+    bool inFront;    // gaze points into the image half-space (always, for real gaze)
+    vec2 gazePixel;  // continuous pixel of the gaze ray (valid when inFront)
+};
+
+// A model defined by a continuous spp per pixel; Generate() rounds to nearest and clamps.
+class DensityModel : public SppModel {
+public:
+    void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
+                  Plane<uint16_t>& spp) const override {
+        Plane<float> density;
+        GenerateDensity(camera, gazeEye, frameIndex, density);
+        spp.Resize(density.width(), density.height());
+        for (size_t i = 0; i < density.size(); ++i)
+            spp[i] = uint16_t(std::clamp(std::lround(density[i]), 1L, long(kMaxSpp)));
+    }
+    void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t,
+                         Plane<float>& density) const override {
+        const int w = camera.width(), h = camera.height();
+        density.Resize(w, h);
+        GazeContext g;
+        g.gaze = glm::normalize(gazeEye);
+        g.inFront = g.gaze.z < -1e-6f;
+        g.gazePixel = g.inFront ? camera.PixelOfEyeDirection(g.gaze) : vec2(0.0f);
+        // View rays are separable in tangent space: (tx[x], ty[y], -1), normalised per pixel.
+        std::vector<float> tx(static_cast<size_t>(w)), ty(static_cast<size_t>(h));
+        for (int x = 0; x < w; ++x) {
+            vec3 d = camera.EyeDirection(vec2(x + 0.5f, 0.5f));
+            tx[size_t(x)] = d.x / -d.z;
+        }
+        for (int y = 0; y < h; ++y) {
+            vec3 d = camera.EyeDirection(vec2(0.5f, y + 0.5f));
+            ty[size_t(y)] = d.y / -d.z;
+        }
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                vec3 ray = vec3(tx[size_t(x)], ty[size_t(y)], -1.0f);
+                ray *= 1.0f / std::sqrt(glm::dot(ray, ray));
+                // Same formula as EccentricityDegrees (2·asin(|ray − gaze| / 2)).
+                float e = Degrees(2.0f * std::asin(std::min(0.5f * glm::length(ray - g.gaze), 1.0f)));
+                density(x, y) = std::clamp(Density(camera, vec2(x + 0.5f, y + 0.5f), e, g), 1.0f,
+                                           float(kMaxSpp));
+            }
+        }
+    }
+
+protected:
+    // `eccentricityDeg` is the pixel's eccentricity (EccentricityDegrees).
+    virtual float Density(const EyeCamera& camera, const vec2& pixel, float eccentricityDeg,
+                          const GazeContext& g) const = 0;
+};
+
+class DiscModel final : public DensityModel {
+public:
+    explicit DiscModel(const FoveationParams& p) : p_(p) {}
+    std::string Name() const override { return "disc"; }
+
+protected:
+    float Density(const EyeCamera& camera, const vec2& pixel, float e, const GazeContext& g) const override {
+        bool inside;
+        if (p_.radiusDeg > 0.0f) {
+            inside = e <= p_.radiusDeg;
+        } else {
+            // Gaze behind the eye (never for real gaze): no pixel is foveal.
+            float radius = p_.radiusPx * float(camera.width()) / float(p_.radiusReferenceWidth);
+            vec2 d = pixel - g.gazePixel;
+            inside = g.inFront && glm::dot(d, d) <= radius * radius;
+        }
+        return float(inside ? p_.sppInside : p_.sppOutside);
+    }
+
+private:
+    FoveationParams p_;
+};
+
+class LinearModel final : public DensityModel {
+public:
+    explicit LinearModel(const FoveationParams& p) : p_(p) {}
+    std::string Name() const override { return "linear"; }
+
+protected:
+    float Density(const EyeCamera&, const vec2&, float e, const GazeContext&) const override {
+        if (e <= p_.fovealDeg) return float(p_.sppMax);
+        if (e >= p_.peripheralDeg) return float(p_.sppMin);
+        float t = (e - p_.fovealDeg) / (p_.peripheralDeg - p_.fovealDeg);
+        return float(p_.sppMax) + t * float(p_.sppMin - p_.sppMax);
+    }
+
+private:
+    FoveationParams p_;
+};
+
+class AcuityModel final : public DensityModel {
+public:
+    explicit AcuityModel(const FoveationParams& p) : p_(p) {}
+    std::string Name() const override { return "acuity"; }
+
+protected:
+    float Density(const EyeCamera&, const vec2&, float e, const GazeContext&) const override {
+        float ratio = p_.omega0Deg / (p_.omega0Deg + p_.marSlope * e);  // ω0 / ω(e)
+        return std::max(float(p_.sppMin), float(p_.sppMax) * ratio * ratio);
+    }
+
+private:
+    FoveationParams p_;
+};
+
+class UniformModel final : public DensityModel {
+public:
+    explicit UniformModel(int spp) : spp_(spp) {}
+    std::string Name() const override { return "uniform"; }
+
+protected:
+    float Density(const EyeCamera&, const vec2&, float, const GazeContext&) const override { return float(spp_); }
+
+private:
+    int spp_;
+};
+
+// Fixed ray budget: scale the inner model's continuous map by s so that
+// Σ clamp(s·d, 1, kMaxSpp) = budget (regula falsi; the sum is monotone in s), then round with
+// serpentine 1-D error diffusion. Every target lies in [1, kMaxSpp] and the carried error in
+// [-0.5, 0.5], so each output stays in [1, kMaxSpp] and the total differs from the budget by
+// < 1 sample plus the solver tolerance (0.05)
+// and float rounding of the targets. The carry starts at a hash of the frame index, so the
+// dither pattern changes from frame to frame deterministically.
+class BudgetModel final : public SppModel {
+public:
+    BudgetModel(std::unique_ptr<SppModel> inner, int64_t budget)
+        : inner_(std::move(inner)), budget_(budget) {}
+    std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
+
+    void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
+                         Plane<float>& density) const override {
+        inner_->GenerateDensity(camera, gazeEye, frameIndex, density);
+        const double n = double(density.size());
+        const double target = std::clamp(double(budget_), n, n * kMaxSpp);
+        float dMin = float(kMaxSpp);
+        for (size_t i = 0; i < density.size(); ++i) {
+            dMin = std::min(dMin, density[i]);
+        }
+        dMin = std::max(dMin, 1e-6f);
+        auto total = [&](double s) {
+            double sum = 0.0;
+            for (size_t i = 0; i < density.size(); ++i)
+                sum += std::clamp(s * double(density[i]), 1.0, double(kMaxSpp));
+            return sum;
+        };
+        // total(0) = n <= target <= total(kMaxSpp / dMin) = n·kMaxSpp; total is monotone and
+        // piecewise linear in s, so regula falsi (Illinois variant) converges in a few passes.
+        double lo = 0.0, hi = double(kMaxSpp) / dMin;
+        double fLo = n - target, fHi = n * kMaxSpp - target;
+        double s = hi;
+        int side = 0;
+        for (int it = 0; it < 100 && fHi - fLo > 0.0 && hi - lo > 1e-12 * hi; ++it) {
+            s = (lo * fHi - hi * fLo) / (fHi - fLo);
+            double f = total(s) - target;
+            if (std::abs(f) <= 0.05) break;
+            if (f < 0) {
+                lo = s, fLo = f;
+                if (side == -1) fHi *= 0.5;
+                side = -1;
+            } else {
+                hi = s, fHi = f;
+                if (side == 1) fLo *= 0.5;
+                side = 1;
+            }
+        }
+        for (size_t i = 0; i < density.size(); ++i)
+            density[i] = float(std::clamp(s * double(density[i]), 1.0, double(kMaxSpp)));
+    }
+
+    void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
+                  Plane<uint16_t>& spp) const override {
+        Plane<float> density;
+        GenerateDensity(camera, gazeEye, frameIndex, density);
+        spp.Resize(density.width(), density.height());
+        double carry = double(HashPcg(frameIndex ^ 0x5bd1e995u)) / 4294967296.0 - 0.5;
+        for (int y = 0; y < spp.height(); ++y) {
+            for (int i = 0; i < spp.width(); ++i) {
+                int x = (y % 2 == 0) ? i : spp.width() - 1 - i;  // serpentine
+                double want = double(density(x, y)) + carry;
+                double value = std::clamp(std::floor(want + 0.5), 1.0, double(kMaxSpp));
+                carry = want - value;
+                spp(x, y) = uint16_t(value);
+            }
+        }
+    }
+
+private:
+    std::unique_ptr<SppModel> inner_;
+    int64_t budget_;
+};
+
+}  // namespace
+
+void ValidateFoveationParams(const FoveationParams& p) {
+    auto sppKey = [](const char* key, int v) {
+        if (v < 1 || v > kMaxSpp) Fail("foveation.{} = {} is out of range [1, {}]", key, v, kMaxSpp);
+    };
+    if (p.model != "disc" && p.model != "linear" && p.model != "acuity" && p.model != "uniform")
+        Fail("foveation.model = '{}' is not one of disc, linear, acuity, uniform", p.model);
+    sppKey("spp_inside", p.sppInside);
+    sppKey("spp_outside", p.sppOutside);
+    sppKey("spp_max", p.sppMax);
+    sppKey("spp_min", p.sppMin);
+    sppKey("uniform_spp", p.uniformSpp);
+    if (!(p.radiusPx > 0.0f)) Fail("foveation.radius_px = {} must be > 0", p.radiusPx);
+    if (p.radiusReferenceWidth <= 0)
+        Fail("foveation.radius_reference_width = {} must be > 0", p.radiusReferenceWidth);
+    if (!(p.radiusDeg >= 0.0f && p.radiusDeg < 180.0f))
+        Fail("foveation.radius_deg = {} must be in [0, 180) (0 = radius in pixels)", p.radiusDeg);
+    if (!(p.fovealDeg >= 0.0f)) Fail("foveation.foveal_deg = {} must be >= 0", p.fovealDeg);
+    if (!(p.peripheralDeg > p.fovealDeg))
+        Fail("foveation.peripheral_deg = {} must be > foveation.foveal_deg = {}", p.peripheralDeg, p.fovealDeg);
+    if (!(p.omega0Deg > 0.0f)) Fail("foveation.omega0_deg = {} must be > 0", p.omega0Deg);
+    if (!(p.marSlope >= 0.0f)) Fail("foveation.mar_slope = {} must be >= 0", p.marSlope);
+    if (p.rayBudget < 0) Fail("foveation.ray_budget = {} must be >= 0 (0 = no budget)", p.rayBudget);
+}
+
+std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget) {
+    return std::make_unique<BudgetModel>(std::move(inner), rayBudget);
+}
+
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p) {
+    ValidateFoveationParams(p);
+    std::unique_ptr<SppModel> model;
+    if (p.model == "disc") model = std::make_unique<DiscModel>(p);
+    else if (p.model == "linear") model = std::make_unique<LinearModel>(p);
+    else if (p.model == "acuity") model = std::make_unique<AcuityModel>(p);
+    else model = std::make_unique<UniformModel>(p.uniformSpp);
+    if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget);
+    return model;
+}
+
+}  // namespace fovrt

@@ -1,0 +1,237 @@
+#include "gaze/sources.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+
+#include "core/check.h"
+#include "core/error.h"
+
+namespace fovrt {
+
+vec3 GazeDirectionFromAngles(float yawDeg, float pitchDeg) {
+    float yaw = Radians(yawDeg), pitch = Radians(pitchDeg);
+    return vec3(std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
+}
+
+vec2 GazeAnglesFromDirection(const vec3& direction) {
+    vec3 d = glm::normalize(direction);
+    return vec2(Degrees(std::atan2(d.x, -d.z)), Degrees(std::asin(std::clamp(d.y, -1.0f, 1.0f))));
+}
+
+vec3 GazeInEye(const EyeCamera&, const vec3& gazeHead) { return gazeHead; }
+
+vec2 GazePixel(const EyeCamera& eye, const vec3& gazeHead) {
+    vec3 d = GazeInEye(eye, gazeHead);
+    d.z = std::min(d.z, -1e-6f);
+    return eye.PixelOfEyeDirection(d);
+}
+
+// ---- Lissajous -----------------------------------------------------------------------------
+
+LissajousGaze::LissajousGaze(const GazeParams& params, const Fov& referenceFov)
+    : params_(params),
+      reference_(Pose(), referenceFov, std::max(params.referenceWidth, 1), std::max(params.referenceHeight, 1)) {}
+
+vec2 LissajousGaze::CurveAt(double t) const {
+    const bool pixels = params_.units == "px";
+    vec2 centre = pixels ? 0.5f * vec2(float(params_.referenceWidth), float(params_.referenceHeight)) : vec2(0.0f);
+    vec2 p;
+    for (int i = 0; i < 2; ++i) {
+        double arg = 2.0 * double(kPi) * t * double(params_.frequencyHz[i]) + double(Radians(params_.phaseDeg[i]));
+        p[i] = centre[i] + params_.offset[i] + params_.amplitude[i] * float(std::sin(arg));
+    }
+    return p;
+}
+
+GazeSample LissajousGaze::At(double t) const {
+    vec2 c = CurveAt(t);
+    vec3 direction = params_.units == "px" ? reference_.EyeDirection(c) : GazeDirectionFromAngles(c.x, c.y);
+    return GazeSample{t, direction, true};
+}
+
+// ---- Trace -----------------------------------------------------------------------------------
+
+namespace {
+
+std::string_view Trim(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+    return s;
+}
+
+std::vector<std::string_view> SplitCsv(std::string_view line) {
+    std::vector<std::string_view> fields;
+    size_t start = 0;
+    while (true) {
+        size_t comma = line.find(',', start);
+        fields.push_back(Trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+    }
+    return fields;
+}
+
+std::string Lower(std::string_view s) {
+    std::string out(s);
+    for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+bool IsNanToken(std::string_view s) {
+    std::string l = Lower(s);
+    return l.empty() || l == "nan" || l == "-nan" || l == "+nan";
+}
+
+// Parses the whole field as a double; false on garbage (trailing characters included).
+bool ParseDouble(std::string_view s, double& value) {
+    if (s.empty()) return false;
+    if (s.front() == '+') s.remove_prefix(1);
+    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    return ec == std::errc() && ptr == s.data() + s.size();
+}
+
+}  // namespace
+
+std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::string& name) {
+    std::vector<GazeTraceSample> samples;
+    std::string line;
+    int lineNumber = 0;
+    int columnTime = -1, columnX = -1, columnY = -1;
+    bool haveHeader = false;
+    bool anyValid = false;
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        std::string_view view = Trim(line);
+        if (view.empty() || view.front() == '#') continue;
+        std::vector<std::string_view> fields = SplitCsv(view);
+        if (!haveHeader) {
+            for (size_t i = 0; i < fields.size(); ++i) {
+                std::string f = Lower(fields[i]);
+                if ((f == "n" || f == "time_ms") && columnTime < 0) columnTime = int(i);
+                else if (f == "x" && columnX < 0) columnX = int(i);
+                else if (f == "y" && columnY < 0) columnY = int(i);
+            }
+            if (columnTime < 0 || columnX < 0 || columnY < 0)
+                Fail("{}:{}: gaze trace header must name columns n (time in ms), x and y (degrees); got '{}'",
+                     name, lineNumber, std::string(view.substr(0, 80)));
+            haveHeader = true;
+            continue;
+        }
+        int needed = std::max({columnTime, columnX, columnY}) + 1;
+        if (int(fields.size()) < needed)
+            Fail("{}:{}: expected at least {} comma-separated fields, got {}", name, lineNumber, needed, fields.size());
+        GazeTraceSample s;
+        if (!ParseDouble(fields[size_t(columnTime)], s.timeMs) || !std::isfinite(s.timeMs))
+            Fail("{}:{}: time '{}' is not a finite number", name, lineNumber,
+                 std::string(fields[size_t(columnTime)].substr(0, 40)));
+        if (!samples.empty() && s.timeMs < samples.back().timeMs)
+            Fail("{}:{}: time {} ms goes backwards (previous row {} ms)", name, lineNumber, s.timeMs,
+                 samples.back().timeMs);
+        std::string_view fx = fields[size_t(columnX)], fy = fields[size_t(columnY)];
+        if (IsNanToken(fx) || IsNanToken(fy)) {
+            s.valid = false;
+        } else {
+            double x, y;
+            if (!ParseDouble(fx, x) || !ParseDouble(fy, y))
+                Fail("{}:{}: gaze angles '{}', '{}' are not numbers", name, lineNumber,
+                     std::string(fx.substr(0, 40)), std::string(fy.substr(0, 40)));
+            if (std::isnan(x) || std::isnan(y)) {
+                s.valid = false;
+            } else {
+                if (!(std::abs(x) < 90.0) || !(std::abs(y) < 90.0))
+                    Fail("{}:{}: gaze angles ({}, {}) out of range (|angle| < 90 degrees)", name, lineNumber, x, y);
+                s.yawDeg = float(x);
+                s.pitchDeg = float(y);
+            }
+        }
+        anyValid = anyValid || s.valid;
+        samples.push_back(s);
+    }
+    if (!haveHeader) Fail("{}: empty gaze trace (no header row)", name);
+    if (samples.empty()) Fail("{}: gaze trace has a header but no samples", name);
+    if (!anyValid) Fail("{}: gaze trace has no valid sample (all x/y are NaN or empty)", name);
+    return samples;
+}
+
+std::vector<GazeTraceSample> LoadGazeTraceCsv(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) Fail("cannot open gaze trace '{}'", path.string());
+    return ParseGazeTraceCsv(in, path.string());
+}
+
+TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs)
+    : samples_(std::move(samples)), startMs_(startMs) {
+    FOVRT_CHECK(!samples_.empty());
+    lastValid_.resize(samples_.size());
+    int last = -1;
+    firstValid_ = -1;
+    for (size_t i = 0; i < samples_.size(); ++i) {
+        if (samples_[i].valid) {
+            last = int(i);
+            if (firstValid_ < 0) firstValid_ = int(i);
+        }
+        lastValid_[i] = last;
+    }
+    FOVRT_CHECK(firstValid_ >= 0);
+}
+
+GazeSample TraceGaze::At(double timeSeconds) const {
+    const double ms = samples_.front().timeMs + startMs_ + timeSeconds * 1000.0;
+    auto direction = [&](const GazeTraceSample& s) { return GazeDirectionFromAngles(s.yawDeg, s.pitchDeg); };
+    auto invalidAt = [&](size_t i) {
+        int v = lastValid_[i] >= 0 ? lastValid_[i] : firstValid_;
+        return GazeSample{timeSeconds, direction(samples_[size_t(v)]), false};
+    };
+    // First sample with time > ms; the bracket is [hi - 1, hi].
+    auto it = std::upper_bound(samples_.begin(), samples_.end(), ms,
+                               [](double t, const GazeTraceSample& s) { return t < s.timeMs; });
+    if (it == samples_.begin() || it == samples_.end()) {  // clamp outside the trace
+        size_t i = it == samples_.begin() ? 0 : samples_.size() - 1;
+        if (!samples_[i].valid) return invalidAt(i);
+        return GazeSample{timeSeconds, direction(samples_[i]), true};
+    }
+    size_t hi = size_t(it - samples_.begin()), lo = hi - 1;
+    const GazeTraceSample& a = samples_[lo];
+    const GazeTraceSample& b = samples_[hi];
+    if (!a.valid || !b.valid) return invalidAt(lo);
+    double span = b.timeMs - a.timeMs;
+    float t = span > 0.0 ? float((ms - a.timeMs) / span) : 0.0f;
+    return GazeSample{timeSeconds,
+                      GazeDirectionFromAngles(a.yawDeg + t * (b.yawDeg - a.yawDeg),
+                                              a.pitchDeg + t * (b.pitchDeg - a.pitchDeg)),
+                      true};
+}
+
+// ---- Factory ---------------------------------------------------------------------------------
+
+void ValidateGazeParams(const GazeParams& p) {
+    if (p.source != "lissajous" && p.source != "trace" && p.source != "static")
+        Fail("gaze.source = '{}' is not one of lissajous, trace, static", p.source);
+    if (p.units != "px" && p.units != "deg") Fail("gaze.units = '{}' is not one of px, deg", p.units);
+    if (p.referenceWidth <= 0) Fail("gaze.reference_width = {} must be > 0", p.referenceWidth);
+    if (p.referenceHeight <= 0) Fail("gaze.reference_height = {} must be > 0", p.referenceHeight);
+    for (int i = 0; i < 2; ++i) {
+        if (!std::isfinite(p.amplitude[i]) || !std::isfinite(p.frequencyHz[i]) ||
+            !std::isfinite(p.phaseDeg[i]) || !std::isfinite(p.offset[i]))
+            Fail("gaze.amplitude/frequency_hz/phase_deg/offset must be finite");
+        if (p.frequencyHz[i] < 0.0f) Fail("gaze.frequency_hz = {} must be >= 0", p.frequencyHz[i]);
+    }
+    if (p.units == "deg" && (std::abs(p.offset.x) + std::abs(p.amplitude.x) >= 90.0f ||
+                             std::abs(p.offset.y) + std::abs(p.amplitude.y) >= 90.0f))
+        Fail("gaze.offset + gaze.amplitude must stay below 90 degrees");
+    if (p.source == "trace" && p.tracePath.empty()) Fail("gaze.trace_path must be set when gaze.source = 'trace'");
+    if (!std::isfinite(p.traceStartMs)) Fail("gaze.trace_start_ms must be finite");
+    if (!(std::abs(p.yawDeg) < 90.0f)) Fail("gaze.yaw_deg = {} must be in (-90, 90)", p.yawDeg);
+    if (!(std::abs(p.pitchDeg) < 90.0f)) Fail("gaze.pitch_deg = {} must be in (-90, 90)", p.pitchDeg);
+}
+
+std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov& referenceFov) {
+    ValidateGazeParams(params);
+    if (params.source == "lissajous") return std::make_unique<LissajousGaze>(params, referenceFov);
+    if (params.source == "static") return std::make_unique<StaticGaze>(params.yawDeg, params.pitchDeg);
+    return std::make_unique<TraceGaze>(LoadGazeTraceCsv(params.tracePath), params.traceStartMs);
+}
+
+}  // namespace fovrt

@@ -1,0 +1,31 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// asvgf_gradient_claim — one gradient sample per stratum (SPEC §4: "at most one per current
+// stratum, first wins"). Mirrors the selection in AsvgfScatterGradientsRef.
+// Purpose: each valid sample (stratum inside the grid, pixel on screen, finite luminances)
+//   atomicMin's its index into its stratum's slot: the lowest index wins, deterministically.
+// Reads:  gradient samples.  Writes: claim slots (cleared to 0xFFFFFFFF by the host).
+#include "common/two_history_constants.glsl"
+#include "common/asvgf.glsl"
+
+layout(local_size_x = FOVRT_WORKGROUP_1D) in;
+
+layout(std430, binding = ASVGF_CLAIM_B_SAMPLES) readonly buffer Samples { GradientSample samples[]; };
+layout(std430, binding = ASVGF_CLAIM_B_CLAIM) buffer Claim { uint claim[]; };
+
+layout(push_constant) uniform Push {
+    ivec2 size;   // image
+    ivec2 grid;   // strata
+    uint count;   // samples
+} pc;
+
+void main() {
+    uint k = gl_GlobalInvocationID.x;
+    if (k >= pc.count) return;
+    GradientSample s = samples[k];
+    if (any(lessThan(s.stratum, ivec2(0))) || any(greaterThanEqual(s.stratum, pc.grid))) return;
+    if (any(lessThan(s.pixel, ivec2(0))) || any(greaterThanEqual(s.pixel, pc.size))) return;
+    if (isnan(s.new_luminance) || isinf(s.new_luminance) || isnan(s.old_luminance) || isinf(s.old_luminance))
+        return;
+    atomicMin(claim[s.stratum.y * pc.grid.x + s.stratum.x], k);
+}

@@ -1,0 +1,36 @@
+// Edge-stopping weights of the SVGF spatial filters (paper §4.3, SPEC §3):
+//   w_z = exp(−|z(p)−z(q)| / (σz |∇z(p)·(p−q)| + ε)),  w_n = max(0, n·n')^σn,
+//   w_l = exp(−|l(p)−l(q)| / (σl sqrt(g3×3(Var l(p))) + ε)).
+// Mirrored by denoise/svgf_ref.cpp (DepthWeight, NormalWeight, LuminanceWeight).
+#ifndef FOVRT_EDGE_STOPPING_GLSL
+#define FOVRT_EDGE_STOPPING_GLSL
+#include "shared_constants.h"
+
+float depth_weight(float zp, float zq, vec2 depth_grad, vec2 offset, float sigma_depth) {
+    float denom = sigma_depth * abs(dot(depth_grad, offset)) + FOVRT_ATROUS_DEPTH_EPSILON;
+    return exp(-abs(zp - zq) / denom);
+}
+
+float normal_weight(vec3 np, vec3 nq, float sigma_normal) {
+    return pow(max(0.0, dot(np, nq)), sigma_normal);
+}
+
+float luminance_weight(float lp, float lq, float sigma_l_std) {
+    return exp(-abs(lp - lq) / (sigma_l_std + FOVRT_ATROUS_LUMINANCE_EPSILON));
+}
+
+// The product w_z·w_n(·w_l) as one exp2 (one transcendental pair per tap instead of three; same
+// value up to rounding): lavapipe executes every tap of every lane, so this is the hot path.
+float geometry_weight(float zp, float zq, vec2 depth_grad, vec2 offset, float sigma_depth, vec3 np, vec3 nq,
+                      float sigma_normal, float extra_exponent) {
+    float denom = sigma_depth * abs(dot(depth_grad, offset)) + FOVRT_ATROUS_DEPTH_EPSILON;
+    float e = -(abs(zp - zq) / denom + extra_exponent) * 1.4426950408889634;  // log2(e)
+    return exp2(e + sigma_normal * log2(max(dot(np, nq), 1e-30)));
+}
+
+// À-trous 1-D kernel h = (1/16, 1/4, 3/8, 1/4, 1/16), indexed by offset + 2.
+const float kAtrousKernel[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+// 3×3 Gaussian prefilter of the variance: 1/4 centre, 1/8 edges, 1/16 corners.
+float gauss3(int dx, int dy) { return (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25); }
+
+#endif

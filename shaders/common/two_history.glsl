@@ -1,0 +1,34 @@
+// Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/two_history_math.h line by
+// line (TwoHistoryDecay, AccumulateWeights, TwoHistoryOptimalBlend, TwoHistoryGradientBlend).
+// Weights are packed as (W_u, W_w) and power sums as (S_{-1}, S_0, S_1).
+#ifndef FOVRT_TWO_HISTORY_GLSL
+#define FOVRT_TWO_HISTORY_GLSL
+#include "common/luminance.glsl"
+
+// β = min(1, (1/α − 1)/W_u,prev): steady state 1 − α, SVGF's max(α, 1/length) during warm-up.
+float two_history_decay(float alpha, float wu_prev) {
+    alpha = clamp(alpha, 1e-4, 1.0);
+    if (wu_prev <= 0.0) return 0.0;
+    return min(1.0, (1.0 / alpha - 1.0) / wu_prev);
+}
+
+// p = clamp((a − b)/(a − 2b + c), 0, 1) with a = S_1/W_w², b = S_0/(W_w W_u), c = S_{-1}/W_u².
+float two_history_optimal_blend(float wu, float ww, vec3 s) {
+    if (wu <= 0.0 || ww <= 0.0) return 1.0;
+    float a = s.z / (ww * ww);
+    float b = s.y / (ww * wu);
+    float c = s.x / (wu * wu);
+    float den = a - 2.0 * b + c;
+    if (!(den > 1e-6 * (a + c))) return a < c ? 0.0 : 1.0;
+    return clamp((a - b) / den, 0.0, 1.0);
+}
+
+// q = clamp(S · lum(|g|) / std(lum I_u), 0, 1).
+float two_history_gradient_blend(vec3 g, float variance_lum_iu, float scale) {
+    float lum_abs_g = luminance(abs(g));
+    float sd = sqrt(max(variance_lum_iu, 0.0));
+    if (lum_abs_g <= 0.0) return 0.0;
+    return clamp(scale * lum_abs_g / max(sd, 1e-8), 0.0, 1.0);
+}
+
+#endif

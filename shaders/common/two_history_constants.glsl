@@ -1,0 +1,105 @@
+// Bindings and push-constant flags of the two-history and A-SVGF shaders (shaders/two_history_*.comp,
+// shaders/asvgf_*.comp). Macros only: included by GLSL and by C++ (denoise/two_history_vk.cpp).
+#ifndef FOVRT_TWO_HISTORY_CONSTANTS_GLSL
+#define FOVRT_TWO_HISTORY_CONSTANTS_GLSL
+
+// 1-D passes (one invocation per gradient sample).
+#define FOVRT_WORKGROUP_1D 64
+
+// two_history_reproject: one dispatch per channel (lavapipe allows 32 storage buffers per
+// stage). The per-pixel shared state (W_w, S_k, g) is written by the SHARED dispatch (channel 0),
+// which also reads the other channel to form g on the summed illumination.
+#define TH_REPROJECT_B_COLOR 0         // float[3N] this channel's illumination
+#define TH_REPROJECT_B_COLOR_OTHER 1   // float[3N] the other channel (added when combined)
+#define TH_REPROJECT_B_DEPTH 2
+#define TH_REPROJECT_B_NORMAL 3
+#define TH_REPROJECT_B_OBJECT 4
+#define TH_REPROJECT_B_PREV_DEPTH 5
+#define TH_REPROJECT_B_PREV_NORMAL 6
+#define TH_REPROJECT_B_PREV_OBJECT 7
+#define TH_REPROJECT_B_DEPTH_GRAD 8
+#define TH_REPROJECT_B_PREV_PIXEL 9
+#define TH_REPROJECT_B_SAMPLE_COUNT 10 // uint[N/2] packed uint16
+#define TH_REPROJECT_B_ALPHA 11        // float[N] per-pixel α (A-SVGF)
+#define TH_REPROJECT_B_PREV_IU 12      // previous frame's histories
+#define TH_REPROJECT_B_PREV_IU_OTHER 13
+#define TH_REPROJECT_B_PREV_IW 14
+#define TH_REPROJECT_B_PREV_M 15
+#define TH_REPROJECT_B_PREV_WU 16      // the channel's "length" buffer holds W_u
+#define TH_REPROJECT_B_PREV_WW 17
+#define TH_REPROJECT_B_PREV_S 18
+#define TH_REPROJECT_B_PREV_G 19
+#define TH_REPROJECT_B_CUR_IU 20       // this frame's histories
+#define TH_REPROJECT_B_CUR_IW 21
+#define TH_REPROJECT_B_CUR_M 22
+#define TH_REPROJECT_B_CUR_WU 23
+#define TH_REPROJECT_B_CUR_WW 24
+#define TH_REPROJECT_B_CUR_S 25
+#define TH_REPROJECT_B_CUR_G 26
+#define TH_REPROJECT_B_ILLUM_U 27      // vec4[N] (I_u, Var)
+#define TH_REPROJECT_B_ILLUM_W 28      // vec4[N] (I_w, Var)
+#define TH_REPROJECT_B_STATS 29
+#define TH_REPROJECT_BINDINGS 30
+
+#define TH_REPROJECT_FLAG_TWO_HISTORY 1u   // accumulate I_w, W_w, S_k, g
+#define TH_REPROJECT_FLAG_COMBINED 2u      // this channel = direct + indirect
+#define TH_REPROJECT_FLAG_ALPHA_MAP 4u     // α from the per-pixel map
+#define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
+#define TH_REPROJECT_FLAG_HAS_PREV 16u     // a previous frame exists
+#define TH_REPROJECT_FLAG_SHARED 32u       // write W_w, S_k, g (once per pixel)
+#define TH_REPROJECT_FLAG_OTHER 64u        // a second channel exists (g sums both)
+
+// two_history_gradient: edge-aware filter of g, then q.
+#define TH_GRADIENT_B_GRADIENT 0
+#define TH_GRADIENT_B_ILLUM_U0 1
+#define TH_GRADIENT_B_ILLUM_U1 2
+#define TH_GRADIENT_B_DEPTH 3
+#define TH_GRADIENT_B_NORMAL 4
+#define TH_GRADIENT_B_OBJECT 5
+#define TH_GRADIENT_B_DEPTH_GRAD 6
+#define TH_GRADIENT_B_Q 7
+#define TH_GRADIENT_BINDINGS 8
+
+// two_history_blend: in place on the unweighted channel's à-trous output.
+#define TH_BLEND_B_ILLUM_U 0   // vec4[N] read and written
+#define TH_BLEND_B_ILLUM_W 1
+#define TH_BLEND_B_WU 2
+#define TH_BLEND_B_WW 3
+#define TH_BLEND_B_S 4
+#define TH_BLEND_B_Q 5
+#define TH_BLEND_BINDINGS 6
+
+// asvgf_gradient_claim: per sample, atomicMin of its index into its stratum's slot (the lowest
+// index wins, as the C++ reference's "first sample wins").
+#define ASVGF_CLAIM_B_SAMPLES 0   // GradientSample[count] (32 bytes each)
+#define ASVGF_CLAIM_B_CLAIM 1     // uint[strata], 0xFFFFFFFF = empty
+#define ASVGF_CLAIM_BINDINGS 2
+
+// asvgf_gradient_gather: per stratum, (δ, Δ) and the guide pixel.
+#define ASVGF_GATHER_B_SAMPLES 0
+#define ASVGF_GATHER_B_CLAIM 1
+#define ASVGF_GATHER_B_GRAD 2      // vec2[strata]
+#define ASVGF_GATHER_B_GUIDE 3     // int[strata]: pixel index y·W + x
+#define ASVGF_GATHER_BINDINGS 4
+
+// asvgf_gradient_atrous: one 3×3-box iteration at stratum resolution.
+#define ASVGF_ATROUS_B_GRAD_IN 0
+#define ASVGF_ATROUS_B_GUIDE 1
+#define ASVGF_ATROUS_B_DEPTH 2
+#define ASVGF_ATROUS_B_NORMAL 3
+#define ASVGF_ATROUS_B_OBJECT 4
+#define ASVGF_ATROUS_B_DEPTH_GRAD 5
+#define ASVGF_ATROUS_B_DIRECT 6
+#define ASVGF_ATROUS_B_INDIRECT 7
+#define ASVGF_ATROUS_B_ALBEDO 8
+#define ASVGF_ATROUS_B_EMISSION 9
+#define ASVGF_ATROUS_B_GRAD_OUT 10
+#define ASVGF_ATROUS_BINDINGS 11
+
+// asvgf_alpha: per pixel α and λ.
+#define ASVGF_ALPHA_B_GRAD 0
+#define ASVGF_ALPHA_B_ALPHA 1
+#define ASVGF_ALPHA_B_LAMBDA 2
+#define ASVGF_ALPHA_BINDINGS 3
+
+#endif

@@ -1,0 +1,85 @@
+// Constants shared by the C++ host code and the GLSL shaders (included by both; macros only, so
+// it parses as C++ and as GLSL). Dispatch sizes, binding indices and caps derive from here.
+#ifndef FOVRT_SHARED_CONSTANTS_H
+#define FOVRT_SHARED_CONSTANTS_H
+
+// Workgroup of every 2-D image pass: 8×8 invocations (lavapipe runs 8-wide subgroups).
+#define FOVRT_WORKGROUP_X 8
+#define FOVRT_WORKGROUP_Y 8
+
+// History length cap (frames). α = max(α, 1/length) makes lengths beyond 1/α irrelevant.
+#define FOVRT_MAX_HISTORY_LENGTH 64.0
+// Reprojection consistency tests (SPEC §3, Falcor): reject a tap when
+// |z_prev − z| / (dz + 0.01) > 10, or when dot(n_prev, n) < cos threshold.
+#define FOVRT_REPROJECT_DEPTH_TOLERANCE 10.0
+#define FOVRT_REPROJECT_DEPTH_EPSILON 0.01
+#define FOVRT_REPROJECT_NORMAL_COS 0.9
+// Bilinear weights below this sum count as "no valid tap" (falls back to the 3×3 search).
+#define FOVRT_REPROJECT_MIN_WEIGHT 0.001
+// Epsilons of the à-trous weights (SPEC §3) and albedo floor of demodulation (Falcor 1e-3).
+#define FOVRT_ATROUS_DEPTH_EPSILON 1e-4
+#define FOVRT_ATROUS_LUMINANCE_EPSILON 1e-10
+// 7×7 spatial variance estimate radius.
+#define FOVRT_MOMENTS_RADIUS 3
+// Maximum à-trous iterations (SvgfParams::atrousIterations range).
+#define FOVRT_MAX_ATROUS_ITERATIONS 8
+// Object id of background pixels (matches fovrt::kNoObject).
+#define FOVRT_NO_OBJECT 0xFFFFFFFFu
+
+// ---- Bindings (set 0), one list per shader --------------------------------------------------
+// Per-pixel planes are tightly packed arrays indexed i = y·width + x: RGB as 3 floats, vec2 as 2.
+// History planes ("hfloat") are float, or float16_t in the _fp16 variants.
+// svgf_reproject
+#define SVGF_REPROJECT_B_COLOR_IN 0        // float[3N]  demodulated illumination of this channel
+#define SVGF_REPROJECT_B_COLOR_IN2 1       // float[3N]  second channel, added when combined
+#define SVGF_REPROJECT_B_DEPTH 2           // float[N]   linear depth (this frame)
+#define SVGF_REPROJECT_B_NORMAL 3          // float[3N]  world normal (this frame)
+#define SVGF_REPROJECT_B_OBJECT 4          // uint[N]    object id (this frame)
+#define SVGF_REPROJECT_B_PREV_DEPTH 5      // float[N]   previous frame
+#define SVGF_REPROJECT_B_PREV_NORMAL 6     // float[3N]  previous frame
+#define SVGF_REPROJECT_B_PREV_OBJECT 7     // uint[N]    previous frame
+#define SVGF_REPROJECT_B_DEPTH_GRAD 8      // float[2N]  depth gradient (this frame)
+#define SVGF_REPROJECT_B_PREV_PIXEL 9      // float[2N]  motion: previous continuous pixel
+#define SVGF_REPROJECT_B_SAMPLE_COUNT 10   // uint[N/2]  uint16 sample counts, packed pairs
+#define SVGF_REPROJECT_B_PREV_COLOR 11     // hfloat[3N] colour history (read)
+#define SVGF_REPROJECT_B_PREV_MOMENTS 12   // hfloat[2N] moments history (read)
+#define SVGF_REPROJECT_B_PREV_LENGTH 13    // hfloat[N]  history length (read)
+#define SVGF_REPROJECT_B_PREV_WEIGHT 14    // hfloat[N]  total weight W (read; weighted mode)
+#define SVGF_REPROJECT_B_CUR_COLOR 15      // hfloat[3N] colour history (written when no à-trous feedback)
+#define SVGF_REPROJECT_B_CUR_MOMENTS 16    // hfloat[2N] moments (written)
+#define SVGF_REPROJECT_B_CUR_LENGTH 17     // hfloat[N]  history length (written)
+#define SVGF_REPROJECT_B_CUR_WEIGHT 18     // hfloat[N]  total weight (written; weighted mode)
+#define SVGF_REPROJECT_B_ILLUM_OUT 19      // vec4[N]    accumulated illumination + variance
+#define SVGF_REPROJECT_B_STATS 20          // uint[2]    non-finite, negative counters
+#define SVGF_REPROJECT_BINDINGS 21
+
+// svgf_filter_moments
+#define SVGF_MOMENTS_B_ILLUM_IN 0          // vec4[N]
+#define SVGF_MOMENTS_B_DEPTH 1             // float[N]
+#define SVGF_MOMENTS_B_NORMAL 2            // float[3N]
+#define SVGF_MOMENTS_B_OBJECT 3            // uint[N]
+#define SVGF_MOMENTS_B_DEPTH_GRAD 4        // float[2N]
+#define SVGF_MOMENTS_B_MOMENTS 5           // hfloat[2N] this frame's moments
+#define SVGF_MOMENTS_B_LENGTH 6            // hfloat[N]  this frame's history length
+#define SVGF_MOMENTS_B_ILLUM_OUT 7         // vec4[N]
+#define SVGF_MOMENTS_BINDINGS 8
+
+// svgf_atrous
+#define SVGF_ATROUS_B_ILLUM_IN 0           // vec4[N]
+#define SVGF_ATROUS_B_DEPTH 1              // float[N]
+#define SVGF_ATROUS_B_NORMAL 2             // float[3N]
+#define SVGF_ATROUS_B_OBJECT 3             // uint[N]
+#define SVGF_ATROUS_B_DEPTH_GRAD 4         // float[2N]
+#define SVGF_ATROUS_B_ILLUM_OUT 5          // vec4[N]
+#define SVGF_ATROUS_B_HIST_COLOR 6         // hfloat[3N] colour history (written on the feedback iteration)
+#define SVGF_ATROUS_BINDINGS 7
+
+// svgf_modulate
+#define SVGF_MODULATE_B_ILLUM0 0           // vec4[N]   filtered direct (or combined)
+#define SVGF_MODULATE_B_ILLUM1 1           // vec4[N]   filtered indirect (ignored when combined)
+#define SVGF_MODULATE_B_ALBEDO 2           // float[3N]
+#define SVGF_MODULATE_B_EMISSION 3         // float[3N]
+#define SVGF_MODULATE_B_OUT 4              // float[3N]
+#define SVGF_MODULATE_BINDINGS 5
+
+#endif

@@ -1,0 +1,64 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// two_history_gradient — edge-aware filter of the gradient EMA and the gradient blend factor q
+// (SPEC §5). Mirrors TwoHistoryGradientRef.
+// Purpose: g' = Σ h(k) w_z w_n g / Σ h(k) w_z w_n over a 5×5 à-trous kernel (step 1, no
+//   luminance term: g itself is what is being estimated); q = clamp(S·lum(|g'|)/std, 0, 1) with
+//   std² = Σ_channels Var of the unweighted history (after the variance estimate).
+// Reads:  gradient EMA (this frame), (I_u, Var) per channel, geometry, depth gradient.
+// Writes: q (float per pixel).
+#include "shared_constants.h"
+#include "common/two_history_constants.glsl"
+#include "common/packing.glsl"
+#include "common/edge_stopping.glsl"
+#include "common/two_history.glsl"
+
+layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+
+layout(std430, binding = TH_GRADIENT_B_GRADIENT) readonly buffer Gradient { hfloat gradient[]; };
+layout(std430, binding = TH_GRADIENT_B_ILLUM_U0) readonly buffer IllumU0 { vec4 illum_u0[]; };
+layout(std430, binding = TH_GRADIENT_B_ILLUM_U1) readonly buffer IllumU1 { vec4 illum_u1[]; };
+layout(std430, binding = TH_GRADIENT_B_DEPTH) readonly buffer Depth { float depth[]; };
+layout(std430, binding = TH_GRADIENT_B_NORMAL) readonly buffer Normal { float normal[]; };
+layout(std430, binding = TH_GRADIENT_B_OBJECT) readonly buffer Object { uint object_id[]; };
+layout(std430, binding = TH_GRADIENT_B_DEPTH_GRAD) readonly buffer DepthGrad { float depth_grad[]; };
+layout(std430, binding = TH_GRADIENT_B_Q) writeonly buffer Q { float q_out[]; };
+
+// Mirrors TwoHistoryGradientPush in denoise/two_history_vk.cpp.
+layout(push_constant) uniform Push {
+    ivec2 size;
+    float sigma_depth;
+    float sigma_normal;
+    float q_scale;
+    uint two_channels;
+} pc;
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    int i = p.y * pc.size.x + p.x;
+    if (object_id[i] == FOVRT_NO_OBJECT) {
+        q_out[i] = 0.0;
+        return;
+    }
+    float zp = depth[i];
+    vec3 np = LOAD3(normal, i);
+    vec2 gp = LOAD2(depth_grad, i);
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int ky = -2; ky <= 2; ++ky)
+        for (int kx = -2; kx <= 2; ++kx) {
+            ivec2 q = p + ivec2(kx, ky);
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
+            int j = q.y * pc.size.x + q.x;
+            if (object_id[j] == FOVRT_NO_OBJECT) continue;
+            float w = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
+            if (kx != 0 || ky != 0)
+                w *= depth_weight(zp, depth[j], gp, vec2(kx, ky), pc.sigma_depth) *
+                     normal_weight(np, LOAD3(normal, j), pc.sigma_normal);
+            sum += w * LOAD3(gradient, j);
+            wsum += w;
+        }
+    float variance = illum_u0[i].a + (pc.two_channels != 0u ? illum_u1[i].a : 0.0);
+    q_out[i] = two_history_gradient_blend(sum / wsum, variance, pc.q_scale);
+}

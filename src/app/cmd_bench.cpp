@@ -1,0 +1,245 @@
+// `fovrt bench`: path-tracer throughput (Mrays/s counting primary, shadow and bounce rays;
+// Msamples/s counting path samples) on stereo frames, then the side-by-side comparison with
+// Embree's own tutorial path tracer (Debian embree-tools, /usr/bin/pathtracer) on the same
+// Cornell box OBJ at equal resolution, spp and path length, both on 2 threads.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <sys/resource.h>
+#include <tbb/info.h>
+
+#include "commands.h"
+#include "core/camera.h"
+#include "core/error.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "denoise/denoise_bench.h"
+
+namespace fovrt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+}
+
+// User + system CPU seconds of this process (who = RUSAGE_SELF) or of its waited-for children.
+double CpuSeconds(int who) {
+    rusage u{};
+    getrusage(who, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct BenchOptions {
+    std::vector<std::string> scenes = {"cornell", "veach-ajar"};
+    int width = 1280;
+    int height = 720;
+    int spp = 1;
+    int maxDepth = 2;
+    int frames = 1;
+    int threads = 0;
+    bool compare = true;
+    int compareSpp = 4;
+    std::string embreeBinary = "/usr/bin/pathtracer";
+    bool denoisers = false;  // time the denoisers instead (denoise/denoise_bench.h)
+};
+
+size_t TriangleCount(const Scene& scene) {
+    size_t n = 0;
+    for (const Instance& inst : scene.instances) n += scene.meshes[inst.mesh].triangles.size();
+    return n;
+}
+
+struct Throughput {
+    double seconds = 0.0;
+    double cpuSeconds = 0.0;
+    RenderStats stats;
+};
+
+// Renders `frames` frames of the given eye cameras (after one untimed warm-up frame).
+Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames) {
+    std::vector<FrameInputs> out(eyes.size());
+    Plane<uint16_t> sppMap(eyes[0].width(), eyes[0].height(), uint16_t(spp));
+    for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
+    renderer.ResetStats();
+    auto start = Clock::now();
+    double cpuStart = CpuSeconds(RUSAGE_SELF);
+    for (int f = 1; f <= frames; ++f) {
+        renderer.SetFrame(uint32_t(f));
+        for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
+    }
+    return Throughput{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_SELF) - cpuStart, renderer.Stats()};
+}
+
+void PrintThroughput(const char* label, const Throughput& t, int frames) {
+    const RenderStats& s = t.stats;
+    std::printf("  %s: %.1f ms/frame, %.2f Mrays/s (primary %.2fM, shadow %.2fM, bounce %.2fM per frame), "
+                "%.2f Msamples/s (%.2f per CPU-second), %llu dropped samples\n",
+                label, 1e3 * t.seconds / frames, 1e-6 * double(s.Rays()) / t.seconds,
+                1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.shadowRays) / frames,
+                1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
+                1e-6 * double(s.samples) / t.cpuSeconds,
+                static_cast<unsigned long long>(s.droppedSamples));
+}
+
+void BenchScene(const std::string& name, const BenchOptions& o) {
+    std::filesystem::path path;
+    Scene scene;
+    auto t0 = Clock::now();
+    try {
+        path = ResolveSceneName(name);
+        scene = LoadScene(path);
+    } catch (const Error& e) {
+        std::printf("scene %s: skipped (%s)\n", name.c_str(), e.what());
+        return;
+    }
+    auto t1 = Clock::now();
+    RenderSettings settings;
+    settings.maxDepth = o.maxDepth;
+    settings.threads = o.threads;
+    auto renderer = CreateRenderer(scene, settings);
+    auto t2 = Clock::now();
+    StereoRig rig;
+    rig.head = scene.HeadAt(0.0f);
+    rig.width = o.width;
+    rig.height = o.height;
+    rig.fov[0] = rig.fov[1] =
+        Fov::FromHorizontal(Radians(scene.horizontalFovDegrees), float(o.width) / float(o.height));
+    Throughput t = Measure(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames);
+    std::printf("scene %s (%s): %zu triangles, load %.2f s, BVH %.2f s\n", name.c_str(),
+                path.string().c_str(), TriangleCount(scene), Seconds(t0, t1), Seconds(t1, t2));
+    std::string label = std::to_string(o.width) + "x" + std::to_string(o.height) + " x 2 eyes, " +
+                        std::to_string(o.spp) + " spp, max depth " + std::to_string(o.maxDepth) +
+                        ", " + std::to_string(o.frames) + " frames";
+    PrintThroughput(label.c_str(), t, o.frames);
+}
+
+// Our tracer vs Embree's pathtracer tutorial on the shared Cornell box OBJ.
+void CompareWithEmbree(const BenchOptions& o) {
+    std::printf("comparison with Embree's pathtracer (embree-tools):\n");
+    if (!std::filesystem::exists(o.embreeBinary)) {
+        std::printf("  skipped: %s is absent (install embree-tools)\n", o.embreeBinary.c_str());
+        return;
+    }
+    std::filesystem::path shared = SharedScenesDir();
+    std::filesystem::path obj = shared / "cornell-box" / "CornellBox-Original.obj";
+    if (shared.empty() || !std::filesystem::exists(obj)) {
+        std::printf("  skipped: the shared Cornell box OBJ is absent\n");
+        return;
+    }
+    // One camera for both: at (0, 1, 3.5) looking at (0, 1, 0), 40 degrees vertical FOV.
+    const vec3 eye(0.0f, 1.0f, 3.5f), target(0.0f, 1.0f, 0.0f);
+    const float vfov = 40.0f;
+    float tanY = std::tan(Radians(vfov / 2.0f)), tanX = tanY * float(o.width) / float(o.height);
+    Fov fov{-std::atan(tanX), std::atan(tanX), std::atan(tanY), -std::atan(tanY)};
+    EyeCamera camera(Pose::LookAt(eye, target), fov, o.width, o.height);
+
+    // Embree's OBJ loader ignores Ke (its image would be black), so both tracers get the same
+    // single point light under the ceiling lamp instead of the emissive quad.
+    const vec3 lightPosition(0.0f, 1.9f, 0.0f), lightIntensity(3.0f);
+    Scene scene = LoadScene(obj);
+    // The MTL's Ks = 0 materials (all non-metals here) are pure Lambert, as Embree renders them.
+    for (Material& m : scene.materials) {
+        m.emission = vec3(0.0f);
+        if (m.metallic == 0.0f) m.specular = 0.0f;
+    }
+    Light light;
+    light.name = "bench-point";
+    light.position = lightPosition;
+    light.color = lightIntensity;
+    light.intensity = 1.0f;
+    scene.lights = {light};
+    RenderSettings settings;
+    settings.maxDepth = o.maxDepth;
+    settings.threads = 2;
+    auto renderer = CreateRenderer(scene, settings);
+    Throughput ours = Measure(*renderer, {camera}, o.compareSpp, o.frames);
+    // Both rates count pixel samples, W x H x spp per frame, background pixels included (Embree's
+    // tutorial traces them too; ours stops after the primary ray there).
+    double pixelSamples = double(o.width) * o.height * o.compareSpp * o.frames;
+    double oursRate = pixelSamples / ours.seconds;
+    double oursCpuRate = pixelSamples / ours.cpuSeconds;
+
+    // Embree: time spp S and 3S in one process each; the difference removes loading, BVH build
+    // and image writing, leaving the time of 2S spp over the image.
+    std::filesystem::path image = std::filesystem::temp_directory_path() / "fovrt_bench_embree.ppm";
+    struct Timing {
+        double wall, cpu;
+    };
+    auto runEmbree = [&](int spp) {
+        std::string cmd = o.embreeBinary + " -i '" + obj.string() + "' --size " + std::to_string(o.width) +
+                          " " + std::to_string(o.height) + " --spp " + std::to_string(spp) +
+                          " --max-path-length " + std::to_string(o.maxDepth) +
+                          " --threads 2 --vp 0 1 3.5 --vi 0 1 0 --vu 0 1 0 --fov " + std::to_string(vfov) +
+                          " --pointlight " + fmt::format("{} {} {} {} {} {}", lightPosition.x, lightPosition.y,
+                                                         lightPosition.z, lightIntensity.x, lightIntensity.y,
+                                                         lightIntensity.z) +
+                          " -o '" + image.string() + "' > /dev/null 2>&1";
+        auto start = Clock::now();
+        double cpuStart = CpuSeconds(RUSAGE_CHILDREN);
+        int rc = std::system(cmd.c_str());
+        Timing t{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_CHILDREN) - cpuStart};
+        if (rc != 0) Fail("bench: '{}' failed with status {}", cmd, rc);
+        return t;
+    };
+    // S and 3S: a 2S difference keeps the estimate stable on a busy machine.
+    Timing tS = runEmbree(o.compareSpp), t2S = runEmbree(3 * o.compareSpp);
+    std::filesystem::remove(image);
+    double embreeSamples = double(o.width) * o.height * 2.0 * o.compareSpp;
+    double embreeRate = embreeSamples / std::max(t2S.wall - tS.wall, 1e-6);
+    double embreeCpuRate = embreeSamples / std::max(t2S.cpu - tS.cpu, 1e-6);
+    std::printf("  %dx%d, %d spp, path length %d (primary + %d bounce(s), NEE at every vertex), 2 threads,\n"
+                "  one point light (%.1f, %.1f, %.1f) in both\n",
+                o.width, o.height, o.compareSpp, o.maxDepth, o.maxDepth - 1, lightPosition.x,
+                lightPosition.y, lightPosition.z);
+    std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s; primary rays "
+                "once per pixel, not per sample)\n",
+                1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds);
+    std::printf("  embree: %.2f Msamples/s wall, %.2f Msamples per CPU-second (%s: %.3f s / %.3f s CPU at "
+                "%d spp, %.3f s / %.3f s CPU at %d spp)\n",
+                1e-6 * embreeRate, 1e-6 * embreeCpuRate, o.embreeBinary.c_str(), tS.wall, tS.cpu,
+                o.compareSpp, t2S.wall, t2S.cpu, 3 * o.compareSpp);
+    std::printf("  ratio fovrt / embree samples per second: %.2f wall-clock, %.2f per CPU-second\n",
+                oursRate / embreeRate, oursCpuRate / embreeCpuRate);
+}
+
+}  // namespace
+
+void RegisterBenchCommand(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    CLI::App* cmd = app.add_subcommand("bench", "Path-tracer throughput (Mrays/s, Msamples/s) and "
+                                                "comparison with Embree's own path tracer");
+    cmd->add_option("--scene", o->scenes, "Scene names or files (default: cornell veach-ajar)");
+    cmd->add_option("--width", o->width, "Width per eye")->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", o->height, "Height per eye")->check(CLI::Range(1, 16384));
+    cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, 4096));
+    cmd->add_option("--max-depth", o->maxDepth, "Path vertices after the camera (2 = one bounce)")
+        ->check(CLI::Range(1, 64));
+    cmd->add_option("--frames", o->frames, "Timed frames per scene")->check(CLI::Range(1, 100000));
+    cmd->add_option("--threads", o->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
+    cmd->add_flag("!--no-compare", o->compare, "Skip the comparison with Embree's pathtracer");
+    cmd->add_option("--compare-spp", o->compareSpp, "spp of the Embree comparison")->check(CLI::Range(1, 4096));
+    cmd->add_option("--embree-bin", o->embreeBinary, "Embree's tutorial path tracer");
+    cmd->add_flag("--denoisers", o->denoisers, "Time the denoisers (Vulkan and C++ reference) at --width x --height instead");
+    cmd->callback([o] {
+        if (o->denoisers) {
+            DenoiserBenchOptions options;  // named fields: no -Wmissing-field-initializers
+            options.width = o->width;
+            options.height = o->height;
+            (void)RunDenoiserBench(options);
+            return;
+        }
+        int threads = o->threads > 0 ? o->threads : tbb::info::default_concurrency();
+        std::printf("fovrt bench: %d thread(s)\n", threads);
+        for (const std::string& name : o->scenes) BenchScene(name, *o);
+        if (o->compare) CompareWithEmbree(*o);
+    });
+}
+
+}  // namespace fovrt

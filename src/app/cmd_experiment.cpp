@@ -1,0 +1,20 @@
+// `fovrt experiment FILE [--quick]`: same noisy inputs, several denoisers, metrics per region
+// against a cached reference; CSV, summary JSON, stdout table and an HTML report (experiment.h).
+#include "app/commands.h"
+#include "app/experiment.h"
+
+namespace fovrt {
+
+void RegisterExperimentCommand(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "experiment", "Compare denoisers on identical foveated inputs against a high-spp reference");
+    auto options = std::make_shared<ConfigOptions>();
+    auto quick = std::make_shared<bool>(false);
+    cmd->add_option("file", options->configPath, "Experiment file (presets/*.toml)")->required();
+    cmd->add_flag("--quick", *quick, "Apply the file's [experiment.quick] overrides (a smoke run)");
+    cmd->add_option("--set", options->sets, "Override a config key: section.key=value (TOML value)");
+    cmd->add_option("--memory-budget", options->memoryBudget, "Refuse to start above BYTES (e.g. 2GiB)");
+    cmd->callback([options, quick] { RunExperiment(LoadExperiment(*options, *quick)); });
+}
+
+}  // namespace fovrt

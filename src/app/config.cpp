@@ -1,0 +1,708 @@
+#include "app/config.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "core/check.h"
+#include "core/error.h"
+
+namespace fovrt {
+namespace {
+
+// Where each leaf key came from ("a.toml:12", "--set", "--memory-budget", "JSON").
+using Origins = std::map<std::string, std::string>;
+
+// Tables the schema knows; every other table is an unknown key.
+const std::set<std::string> kSections = {"scene",   "camera",          "run",
+                                         "foveation", "gaze",          "denoise",
+                                         "denoise.svgf", "denoise.asvgf", "denoise.two_history",
+                                         "output",  "reference"};
+
+std::string TypeName(const toml::node& node) {
+    switch (node.type()) {
+        case toml::node_type::table: return "table";
+        case toml::node_type::array: return "array";
+        case toml::node_type::string: return "string";
+        case toml::node_type::integer: return "integer";
+        case toml::node_type::floating_point: return "float";
+        case toml::node_type::boolean: return "boolean";
+        default: return "date/time";
+    }
+}
+
+void RecordOrigins(const toml::table& table, const std::string& prefix, const std::string& file,
+                   Origins& origins) {
+    for (const auto& [key, node] : table) {
+        std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (const toml::table* sub = node.as_table()) {
+            RecordOrigins(*sub, path, file, origins);
+            // A table's own line (its [header]); implicit tables have none.
+            if (sub->empty() || node.source().begin.line > 0)
+                origins[path] = fmt::format("{}:{}", file, node.source().begin.line);
+        } else {
+            origins[path] = fmt::format("{}:{}", file, node.source().begin.line);
+        }
+    }
+}
+
+// Deep-merges `src` into `dst` (src wins), recording `origin` for every leaf it sets.
+void Merge(toml::table& dst, const toml::table& src, const std::string& prefix, const std::string& origin,
+           Origins& origins) {
+    for (const auto& [key, node] : src) {
+        std::string k(key.str());
+        std::string path = prefix.empty() ? k : prefix + "." + k;
+        if (const toml::table* sub = node.as_table()) {
+            toml::node* existing = dst.get(k);
+            if (existing && !existing->is_table()) Fail("{}: '{}' is a value, not a table", origin, path);
+            if (!existing) dst.insert(k, toml::table{});
+            Merge(*dst.get(k)->as_table(), *sub, path, origin, origins);
+        } else {
+            node.visit([&](const auto& value) { dst.insert_or_assign(k, value); });
+            origins[path] = origin;
+        }
+    }
+}
+
+// Sets one dotted key (from --set) to `value`.
+void SetPath(toml::table& root, const std::string& path, const toml::node& value, const std::string& origin,
+             Origins& origins) {
+    toml::table* table = &root;
+    size_t start = 0;
+    while (true) {
+        size_t dot = path.find('.', start);
+        std::string segment = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+        if (segment.empty()) Fail("{}: bad key '{}' (empty segment)", origin, path);
+        if (dot == std::string::npos) {
+            value.visit([&](const auto& v) { table->insert_or_assign(segment, v); });
+            origins[path] = origin;
+            return;
+        }
+        toml::node* next = table->get(segment);
+        if (!next) {
+            table->insert(segment, toml::table{});
+            next = table->get(segment);
+        }
+        if (!next->is_table())
+            Fail("{}: '{}' is a value, not a table", origin, path.substr(0, dot));
+        table = next->as_table();
+        start = dot + 1;
+    }
+}
+
+// Reads typed values from the merged table, remembering which keys the schema consumed.
+class Reader {
+public:
+    Reader(const toml::table& root, const Origins& origins) : root_(root), origins_(origins) {}
+
+    [[noreturn]] void Bad(const std::string& key, const std::string& message) const {
+        auto it = origins_.find(key);
+        if (it != origins_.end()) Fail("config key '{}' ({}): {}", key, it->second, message);
+        Fail("config key '{}': {}", key, message);
+    }
+
+    const toml::node* Find(const std::string& key) {
+        used_.insert(key);
+        toml::node_view<const toml::node> view = root_.at_path(key);
+        return view.node();
+    }
+
+    void Int(const std::string& key, int& out, int64_t lo, int64_t hi) {
+        int64_t v = out;
+        Int64(key, v, lo, hi);
+        out = int(v);
+    }
+    void Int64(const std::string& key, int64_t& out, int64_t lo, int64_t hi) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        if (!n->is_integer()) Bad(key, fmt::format("expected an integer, got {}", TypeName(*n)));
+        int64_t v = n->as_integer()->get();
+        if (v < lo || v > hi) Bad(key, fmt::format("{} is out of range [{}, {}]", v, lo, hi));
+        out = v;
+    }
+    void Float(const std::string& key, float& out, double lo, double hi, bool loOpen = false) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        double v;
+        if (n->is_integer()) v = double(n->as_integer()->get());
+        else if (n->is_floating_point()) v = n->as_floating_point()->get();
+        else Bad(key, fmt::format("expected a number, got {}", TypeName(*n)));
+        if (!std::isfinite(v) || v < lo || v > hi || (loOpen && v == lo))
+            Bad(key, fmt::format("{} is out of range {}{}, {}]", v, loOpen ? "(" : "[", lo, hi));
+        out = float(v);
+    }
+    void Double(const std::string& key, double& out) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        if (n->is_integer()) out = double(n->as_integer()->get());
+        else if (n->is_floating_point()) out = n->as_floating_point()->get();
+        else Bad(key, fmt::format("expected a number, got {}", TypeName(*n)));
+        if (!std::isfinite(out)) Bad(key, "must be finite");
+    }
+    void Bool(const std::string& key, bool& out) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        if (!n->is_boolean()) Bad(key, fmt::format("expected true or false, got {}", TypeName(*n)));
+        out = n->as_boolean()->get();
+    }
+    void String(const std::string& key, std::string& out, std::initializer_list<const char*> allowed = {}) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        if (!n->is_string()) Bad(key, fmt::format("expected a string, got {}", TypeName(*n)));
+        std::string v = n->as_string()->get();
+        if (allowed.size() != 0) {
+            bool ok = false;
+            std::string list;
+            for (const char* a : allowed) {
+                ok = ok || v == a;
+                list += (list.empty() ? "" : ", ") + std::string(a);
+            }
+            if (!ok) Bad(key, fmt::format("'{}' is not one of {}", v, list));
+        }
+        out = v;
+    }
+    void Strings(const std::string& key, std::vector<std::string>& out) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        if (n->is_string()) {
+            out = {n->as_string()->get()};
+            return;
+        }
+        if (!n->is_array()) Bad(key, fmt::format("expected an array of strings, got {}", TypeName(*n)));
+        std::vector<std::string> v;
+        for (const toml::node& e : *n->as_array()) {
+            if (!e.is_string()) Bad(key, fmt::format("expected an array of strings, found a {}", TypeName(e)));
+            v.push_back(e.as_string()->get());
+        }
+        out = v;
+    }
+    // A fixed-size array of numbers.
+    template <size_t N>
+    bool Numbers(const std::string& key, std::array<float, N>& out) {
+        const toml::node* n = Find(key);
+        if (!n) return false;
+        const toml::array* a = n->as_array();
+        if (!a || a->size() != N) Bad(key, fmt::format("expected an array of {} numbers", N));
+        for (size_t i = 0; i < N; ++i) {
+            const toml::node& e = *a->get(i);
+            double v;
+            if (e.is_integer()) v = double(e.as_integer()->get());
+            else if (e.is_floating_point()) v = e.as_floating_point()->get();
+            else Bad(key, fmt::format("expected an array of {} numbers, found a {}", N, TypeName(e)));
+            if (!std::isfinite(v)) Bad(key, "values must be finite");
+            out[i] = float(v);
+        }
+        return true;
+    }
+    void Vec2(const std::string& key, vec2& out) {
+        std::array<float, 2> a{out.x, out.y};
+        if (Numbers(key, a)) out = vec2(a[0], a[1]);
+    }
+
+    // Every key present but not consumed by the schema is an error.
+    void CheckUnknown(const toml::table& table, const std::string& prefix) const {
+        for (const auto& [key, node] : table) {
+            std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+            if (used_.count(path)) continue;
+            if (node.is_table() && kSections.count(path)) {
+                CheckUnknown(*node.as_table(), path);
+                continue;
+            }
+            auto it = origins_.find(path);
+            if (it == origins_.end() && node.is_table() && !node.as_table()->empty()) {
+                // An unknown table: report its first key (which has an origin).
+                CheckUnknownLeaf(*node.as_table(), path);
+            }
+            Fail("unknown config key '{}'{}", path, it != origins_.end() ? " (" + it->second + ")" : "");
+        }
+    }
+
+private:
+    void CheckUnknownLeaf(const toml::table& table, const std::string& prefix) const {
+        for (const auto& [key, node] : table) {
+            std::string path = prefix + "." + std::string(key.str());
+            auto it = origins_.find(path);
+            if (it != origins_.end())
+                Fail("unknown config key '{}' ({})", path, it->second);
+            if (node.is_table()) CheckUnknownLeaf(*node.as_table(), path);
+        }
+    }
+
+    const toml::table& root_;
+    const Origins& origins_;
+    std::set<std::string> used_;
+};
+
+RunConfig Build(const toml::table& root, const Origins& origins, const std::string& sources,
+                const std::vector<std::string>& ignoredTables = {}) {
+    RunConfig c;
+    Reader r(root, origins);
+    constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+
+    // memory_budget: bytes as an integer, or a size string ("2GiB").
+    if (const toml::node* n = r.Find("memory_budget")) {
+        if (n->is_integer()) {
+            int64_t v = n->as_integer()->get();
+            if (v < 0) r.Bad("memory_budget", fmt::format("{} must be >= 0 (0 = no budget)", v));
+            c.memoryBudget = uint64_t(v);
+        } else if (n->is_string()) {
+            try {
+                c.memoryBudget = ParseByteSize(n->as_string()->get(), "memory_budget");
+            } catch (const Error& e) {
+                r.Bad("memory_budget", e.what());
+            }
+        } else {
+            r.Bad("memory_budget", fmt::format("expected bytes (integer or \"512MiB\"), got {}", TypeName(*n)));
+        }
+    }
+
+    r.String("scene.name", c.scene.name);
+    if (c.scene.name.empty()) r.Bad("scene.name", "must not be empty");
+
+    r.Int("camera.width", c.camera.width, 1, 16384);
+    r.Int("camera.height", c.camera.height, 1, 16384);
+    std::array<float, 4> fov{};
+    if (r.Numbers("camera.fov_deg", fov)) {
+        for (float a : fov)
+            if (!(std::abs(a) < 90.0f)) r.Bad("camera.fov_deg", "angles must lie in (-90, 90) degrees");
+        if (!(fov[0] < fov[1])) r.Bad("camera.fov_deg", "left must be < right ([left, right, up, down])");
+        if (!(fov[3] < fov[2])) r.Bad("camera.fov_deg", "down must be < up ([left, right, up, down])");
+        c.camera.fovDeg = fov;
+    }
+    r.Float("camera.ipd", c.camera.ipd, 0.0, 1.0);
+
+    r.Int("run.frames", c.run.frames, 1, kMaxInt);
+    r.Int("run.first_frame", c.run.firstFrame, 0, kMaxInt);
+    r.Float("run.fps", c.run.fps, 0.0, 10000.0);
+    int64_t seed = c.run.seed;
+    r.Int64("run.seed", seed, 0, std::numeric_limits<uint32_t>::max());
+    c.run.seed = uint32_t(seed);
+    r.Int("run.threads", c.run.threads, 0, 4096);
+    r.Int("run.max_depth", c.run.maxDepth, 0, 1024);
+
+    FoveationConfig& f = c.foveation;
+    r.String("foveation.model", f.model, {"disc", "linear", "acuity", "uniform"});
+    r.Int("foveation.spp_inside", f.sppInside, 1, kMaxSpp);
+    r.Int("foveation.spp_outside", f.sppOutside, 1, kMaxSpp);
+    r.Float("foveation.radius_px", f.radiusPx, 0.0, 1e6, true);
+    r.Int("foveation.radius_reference_width", f.radiusReferenceWidth, 1, 16384);
+    r.Float("foveation.radius_deg", f.radiusDeg, 0.0, 179.0);
+    r.Int("foveation.spp_max", f.sppMax, 1, kMaxSpp);
+    r.Int("foveation.spp_min", f.sppMin, 1, kMaxSpp);
+    r.Float("foveation.foveal_deg", f.fovealDeg, 0.0, 180.0);
+    r.Float("foveation.peripheral_deg", f.peripheralDeg, 0.0, 180.0);
+    r.Float("foveation.omega0_deg", f.omega0Deg, 0.0, 10.0, true);
+    r.Float("foveation.mar_slope", f.marSlope, 0.0, 10.0);
+    r.Int("foveation.uniform_spp", f.uniformSpp, 1, kMaxSpp);
+    r.Int64("foveation.ray_budget", f.rayBudget, 0, std::numeric_limits<int64_t>::max());
+    const int64_t pixels = int64_t(c.camera.width) * c.camera.height;
+    if (f.rayBudget != 0 && (f.rayBudget < pixels || f.rayBudget > pixels * kMaxSpp))
+        r.Bad("foveation.ray_budget",
+              fmt::format("{} is outside [width*height, {}*width*height] = [{}, {}] (0 = no budget)",
+                          f.rayBudget, kMaxSpp, pixels, pixels * kMaxSpp));
+    if (f.peripheralDeg <= f.fovealDeg)
+        r.Bad("foveation.peripheral_deg",
+              fmt::format("{} must be > foveation.foveal_deg = {}", f.peripheralDeg, f.fovealDeg));
+
+    GazeConfig& g = c.gaze;
+    r.String("gaze.source", g.source, {"lissajous", "trace", "static"});
+    r.String("gaze.units", g.units, {"px", "deg"});
+    r.Vec2("gaze.amplitude", g.amplitude);
+    r.Vec2("gaze.frequency_hz", g.frequencyHz);
+    r.Vec2("gaze.phase_deg", g.phaseDeg);
+    r.Vec2("gaze.offset", g.offset);
+    r.Int("gaze.reference_width", g.referenceWidth, 1, 16384);
+    r.Int("gaze.reference_height", g.referenceHeight, 1, 16384);
+    r.String("gaze.trace_path", g.tracePath);
+    r.Double("gaze.trace_start_ms", g.traceStartMs);
+    r.Float("gaze.yaw_deg", g.yawDeg, -89.999, 89.999);
+    r.Float("gaze.pitch_deg", g.pitchDeg, -89.999, 89.999);
+    if (g.source == "trace" && g.tracePath.empty())
+        r.Bad("gaze.trace_path", "must be set when gaze.source = \"trace\"");
+    if (g.frequencyHz.x < 0 || g.frequencyHz.y < 0) r.Bad("gaze.frequency_hz", "must be >= 0");
+
+    DenoiseConfig& d = c.denoise;
+    r.Strings("denoise.denoisers", d.denoisers);
+    for (const std::string& name : d.denoisers)
+        if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
+    // A device index may be given as a number (device = 1) or a string ("1").
+    if (const toml::node* n = r.Find("denoise.device"); n && n->is_integer()) {
+        if (n->as_integer()->get() < 0) r.Bad("denoise.device", "a device index must be >= 0");
+        d.device = std::to_string(n->as_integer()->get());
+    } else {
+        r.String("denoise.device", d.device);
+    }
+    {
+        bool digits = !d.device.empty() &&
+                      std::all_of(d.device.begin(), d.device.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); });
+        if (d.device != "auto" && d.device != "cpu" && !digits)
+            r.Bad("denoise.device", fmt::format("'{}' is not auto, cpu or a device index", d.device));
+    }
+    std::string precision = d.params.precision == Precision::Fp16 ? "fp16" : "fp32";
+    r.String("denoise.precision", precision, {"fp32", "fp16"});
+    d.params.precision = precision == "fp16" ? Precision::Fp16 : Precision::Fp32;
+    SvgfParams& s = d.params.svgf;
+    r.Float("denoise.svgf.alpha_color", s.alphaColor, 0.0, 1.0, true);
+    r.Float("denoise.svgf.alpha_moments", s.alphaMoments, 0.0, 1.0, true);
+    r.Int("denoise.svgf.atrous_iterations", s.atrousIterations, 0, 8);
+    r.Int("denoise.svgf.feedback_iteration", s.feedbackIteration, 0, 8);
+    if (s.feedbackIteration > s.atrousIterations)
+        r.Bad("denoise.svgf.feedback_iteration",
+              fmt::format("{} must be <= denoise.svgf.atrous_iterations = {}", s.feedbackIteration, s.atrousIterations));
+    r.Float("denoise.svgf.sigma_depth", s.sigmaDepth, 0.0, 1e6, true);
+    r.Float("denoise.svgf.sigma_normal", s.sigmaNormal, 0.0, 1e6);
+    r.Float("denoise.svgf.sigma_luminance", s.sigmaLuminance, 0.0, 1e6, true);
+    r.Int("denoise.svgf.variance_history_threshold", s.varianceHistoryThreshold, 0, 1 << 20);
+    r.Bool("denoise.svgf.filter_combined", s.filterCombined);
+    r.Bool("denoise.svgf.weight_by_sample_count", s.weightBySampleCount);
+    r.Float("denoise.asvgf.alpha", d.params.asvgf.alpha, 0.0, 1.0, true);
+    r.Int("denoise.asvgf.gradient_iterations", d.params.asvgf.gradientIterations, 0, 8);
+    r.Float("denoise.two_history.gradient_beta", d.params.twoHistory.gradientBeta, 0.0, 1.0);
+    r.Float("denoise.two_history.q_scale", d.params.twoHistory.qScale, 0.0, 1e6);
+
+    r.String("output.dir", c.output.dir);
+    if (c.output.dir.empty()) r.Bad("output.dir", "must not be empty");
+    r.Bool("output.write_exr", c.output.writeExr);
+    r.Bool("output.write_png", c.output.writePng);
+    r.Bool("output.write_inputs", c.output.writeInputs);
+    r.Float("output.exposure", c.output.exposure, -64.0, 64.0);
+    r.Bool("output.report", c.output.report);
+
+    r.Int("reference.spp", c.reference.spp, 1, 1 << 24);
+    r.String("reference.cache_dir", c.reference.cacheDir);
+
+    toml::table checked = root;
+    for (const std::string& name : ignoredTables) checked.erase(name);
+    r.CheckUnknown(checked, "");
+
+    // The modules' own validation (same key names) as a last line of defence.
+    try {
+        ValidateFoveationParams(c.foveation);
+        ValidateGazeParams(c.gaze);
+    } catch (const Error& e) {
+        Fail("{} (config: {})", e.what(), sources);
+    }
+    return c;
+}
+
+// Shortest decimal that round-trips the float, as a double: manifests show 0.063, not 0.0630000010.
+double CleanFloat(float v) { return std::stod(fmt::format("{}", v)); }
+
+toml::array TomlArray(std::initializer_list<float> values) {
+    toml::array a;
+    for (float v : values) a.push_back(CleanFloat(v));
+    return a;
+}
+
+toml::table ToTable(const RunConfig& c) {
+    const FoveationConfig& f = c.foveation;
+    const GazeConfig& g = c.gaze;
+    const DenoiserParams& p = c.denoise.params;
+    toml::table camera{{"width", c.camera.width}, {"height", c.camera.height}, {"ipd", CleanFloat(c.camera.ipd)}};
+    if (c.camera.fovDeg) {
+        const auto& v = *c.camera.fovDeg;
+        camera.insert("fov_deg", TomlArray({v[0], v[1], v[2], v[3]}));
+    }
+    toml::array denoisers;
+    for (const std::string& name : c.denoise.denoisers) denoisers.push_back(name);
+    return toml::table{
+        {"memory_budget", int64_t(c.memoryBudget)},
+        {"scene", toml::table{{"name", c.scene.name}}},
+        {"camera", camera},
+        {"run", toml::table{{"frames", c.run.frames},
+                            {"first_frame", c.run.firstFrame},
+                            {"fps", CleanFloat(c.run.fps)},
+                            {"seed", int64_t(c.run.seed)},
+                            {"threads", c.run.threads},
+                            {"max_depth", c.run.maxDepth}}},
+        {"foveation", toml::table{{"model", f.model},
+                                  {"spp_inside", f.sppInside},
+                                  {"spp_outside", f.sppOutside},
+                                  {"radius_px", CleanFloat(f.radiusPx)},
+                                  {"radius_reference_width", f.radiusReferenceWidth},
+                                  {"radius_deg", CleanFloat(f.radiusDeg)},
+                                  {"spp_max", f.sppMax},
+                                  {"spp_min", f.sppMin},
+                                  {"foveal_deg", CleanFloat(f.fovealDeg)},
+                                  {"peripheral_deg", CleanFloat(f.peripheralDeg)},
+                                  {"omega0_deg", CleanFloat(f.omega0Deg)},
+                                  {"mar_slope", CleanFloat(f.marSlope)},
+                                  {"uniform_spp", f.uniformSpp},
+                                  {"ray_budget", f.rayBudget}}},
+        {"gaze", toml::table{{"source", g.source},
+                             {"units", g.units},
+                             {"amplitude", TomlArray({g.amplitude.x, g.amplitude.y})},
+                             {"frequency_hz", TomlArray({g.frequencyHz.x, g.frequencyHz.y})},
+                             {"phase_deg", TomlArray({g.phaseDeg.x, g.phaseDeg.y})},
+                             {"offset", TomlArray({g.offset.x, g.offset.y})},
+                             {"reference_width", g.referenceWidth},
+                             {"reference_height", g.referenceHeight},
+                             {"trace_path", g.tracePath},
+                             {"trace_start_ms", g.traceStartMs},
+                             {"yaw_deg", CleanFloat(g.yawDeg)},
+                             {"pitch_deg", CleanFloat(g.pitchDeg)}}},
+        {"denoise",
+         toml::table{{"denoisers", denoisers},
+                     {"device", c.denoise.device},
+                     {"precision", p.precision == Precision::Fp16 ? "fp16" : "fp32"},
+                     {"svgf", toml::table{{"alpha_color", CleanFloat(p.svgf.alphaColor)},
+                                          {"alpha_moments", CleanFloat(p.svgf.alphaMoments)},
+                                          {"atrous_iterations", p.svgf.atrousIterations},
+                                          {"feedback_iteration", p.svgf.feedbackIteration},
+                                          {"sigma_depth", CleanFloat(p.svgf.sigmaDepth)},
+                                          {"sigma_normal", CleanFloat(p.svgf.sigmaNormal)},
+                                          {"sigma_luminance", CleanFloat(p.svgf.sigmaLuminance)},
+                                          {"variance_history_threshold", p.svgf.varianceHistoryThreshold},
+                                          {"filter_combined", p.svgf.filterCombined},
+                                          {"weight_by_sample_count", p.svgf.weightBySampleCount}}},
+                     {"asvgf", toml::table{{"alpha", CleanFloat(p.asvgf.alpha)},
+                                           {"gradient_iterations", p.asvgf.gradientIterations}}},
+                     {"two_history", toml::table{{"gradient_beta", CleanFloat(p.twoHistory.gradientBeta)},
+                                                 {"q_scale", CleanFloat(p.twoHistory.qScale)}}}}},
+        {"output", toml::table{{"dir", c.output.dir},
+                               {"write_exr", c.output.writeExr},
+                               {"write_png", c.output.writePng},
+                               {"write_inputs", c.output.writeInputs},
+                               {"exposure", CleanFloat(c.output.exposure)},
+                               {"report", c.output.report}}},
+        {"reference", toml::table{{"spp", c.reference.spp}, {"cache_dir", c.reference.cacheDir}}},
+    };
+}
+
+nlohmann::json NodeToJson(const toml::node& node) {
+    if (const toml::table* t = node.as_table()) {
+        nlohmann::json j = nlohmann::json::object();
+        for (const auto& [key, value] : *t) j[std::string(key.str())] = NodeToJson(value);
+        return j;
+    }
+    if (const toml::array* a = node.as_array()) {
+        nlohmann::json j = nlohmann::json::array();
+        for (const toml::node& e : *a) j.push_back(NodeToJson(e));
+        return j;
+    }
+    if (node.is_string()) return node.as_string()->get();
+    if (node.is_integer()) return node.as_integer()->get();
+    if (node.is_floating_point()) return node.as_floating_point()->get();
+    if (node.is_boolean()) return node.as_boolean()->get();
+    return nullptr;
+}
+
+// JSON -> TOML node; `path` names the key in errors. null members are skipped (= default).
+void JsonIntoTable(const nlohmann::json& j, toml::table& out, const std::string& prefix);
+
+toml::array JsonToArray(const nlohmann::json& j, const std::string& path) {
+    toml::array a;
+    for (const nlohmann::json& e : j) {
+        if (e.is_string()) a.push_back(e.get<std::string>());
+        else if (e.is_boolean()) a.push_back(e.get<bool>());
+        else if (e.is_number_integer()) a.push_back(e.get<int64_t>());
+        else if (e.is_number()) a.push_back(e.get<double>());
+        else Fail("JSON config key '{}': arrays may hold only strings, numbers and booleans", path);
+    }
+    return a;
+}
+
+void JsonIntoTable(const nlohmann::json& j, toml::table& out, const std::string& prefix) {
+    for (const auto& [key, value] : j.items()) {
+        std::string path = prefix.empty() ? key : prefix + "." + key;
+        if (value.is_null()) continue;
+        if (value.is_object()) {
+            toml::table sub;
+            JsonIntoTable(value, sub, path);
+            out.insert(key, std::move(sub));
+        } else if (value.is_array()) {
+            out.insert(key, JsonToArray(value, path));
+        } else if (value.is_string()) {
+            out.insert(key, value.get<std::string>());
+        } else if (value.is_boolean()) {
+            out.insert(key, value.get<bool>());
+        } else if (value.is_number_unsigned() && value.get<uint64_t>() > uint64_t(std::numeric_limits<int64_t>::max())) {
+            Fail("JSON config key '{}': {} is too large", path, value.get<uint64_t>());
+        } else if (value.is_number_integer()) {
+            out.insert(key, value.get<int64_t>());
+        } else {
+            out.insert(key, value.get<double>());
+        }
+    }
+}
+
+void RecordAll(const toml::table& table, const std::string& prefix, const std::string& origin, Origins& origins) {
+    for (const auto& [key, node] : table) {
+        std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (const toml::table* sub = node.as_table()) RecordAll(*sub, path, origin, origins);
+        else origins[path] = origin;
+    }
+}
+
+toml::table ParseTomlFile(const std::string& path, Origins& origins) {
+    if (!std::filesystem::exists(path)) Fail("config file '{}' does not exist", path);
+    try {
+        toml::table table = toml::parse_file(path);
+        RecordOrigins(table, "", path, origins);
+        return table;
+    } catch (const toml::parse_error& e) {
+        Fail("{}:{}:{}: {}", path, e.source().begin.line, e.source().begin.column, e.description());
+    }
+}
+
+}  // namespace
+
+uint64_t ParseByteSize(const std::string& text, const std::string& what) {
+    std::string s;
+    for (char ch : text)
+        if (!std::isspace(static_cast<unsigned char>(ch))) s += ch;
+    size_t split = 0;
+    while (split < s.size() && (std::isdigit(static_cast<unsigned char>(s[split])) || s[split] == '.')) ++split;
+    double number = 0.0;
+    auto [ptr, ec] = std::from_chars(s.data(), s.data() + split, number);
+    if (split == 0 || ec != std::errc() || ptr != s.data() + split)
+        Fail("{}: '{}' is not a byte size (e.g. 1073741824, 512MiB, 2GB)", what, text);
+    std::string unit;
+    for (char ch : s.substr(split)) unit += char(std::tolower(static_cast<unsigned char>(ch)));
+    static const std::map<std::string, double> kUnits = {
+        {"", 1.0},        {"b", 1.0},
+        {"k", 0x1p10},    {"kib", 0x1p10}, {"kb", 1e3},
+        {"m", 0x1p20},    {"mib", 0x1p20}, {"mb", 1e6},
+        {"g", 0x1p30},    {"gib", 0x1p30}, {"gb", 1e9},
+        {"t", 0x1p40},    {"tib", 0x1p40}, {"tb", 1e12}};
+    auto it = kUnits.find(unit);
+    if (it == kUnits.end())
+        Fail("{}: unknown unit in '{}' (use B, KiB, MiB, GiB, TiB, KB, MB, GB, TB)", what, text);
+    double bytes = number * it->second;
+    if (!(bytes < 0x1p63)) Fail("{}: '{}' is too large", what, text);
+    return uint64_t(std::llround(bytes));
+}
+
+Fov EyeFov(const CameraConfig& camera, float sceneHorizontalFovDegrees) {
+    if (camera.fovDeg) {
+        const auto& a = *camera.fovDeg;
+        return Fov{Radians(a[0]), Radians(a[1]), Radians(a[2]), Radians(a[3])};
+    }
+    return Fov::FromHorizontal(Radians(sceneHorizontalFovDegrees), float(camera.width) / float(camera.height));
+}
+
+double FrameTimeSeconds(const RunSettings& run, float sceneFrameRate, int frame) {
+    double fps = run.fps > 0.0f ? double(run.fps) : double(sceneFrameRate);
+    FOVRT_CHECK_OP(fps, >, 0.0);
+    return double(frame) / fps;
+}
+
+RunConfig DefaultConfig() { return Build(toml::table{}, {}, "defaults"); }
+
+RunConfig LoadConfigFile(const std::string& path) {
+    Origins origins;
+    toml::table table = ParseTomlFile(path, origins);
+    return Build(table, origins, path);
+}
+
+RunConfig ConfigFromTomlString(const std::string& text, const std::string& origin) {
+    Origins origins;
+    try {
+        toml::table table = toml::parse(text, origin);
+        RecordOrigins(table, "", origin, origins);
+        return Build(table, origins, origin);
+    } catch (const toml::parse_error& e) {
+        Fail("{}:{}:{}: {}", origin, e.source().begin.line, e.source().begin.column, e.description());
+    }
+}
+
+RunConfig ConfigFromJson(const nlohmann::json& json) {
+    if (!json.is_object()) Fail("JSON config must be an object");
+    toml::table table;
+    JsonIntoTable(json, table, "");
+    Origins origins;
+    RecordAll(table, "", "JSON", origins);
+    return Build(table, origins, "JSON");
+}
+
+std::string RunConfig::ToToml() const {
+    std::ostringstream out;
+    // toml++ prints doubles with 17 significant digits (0.20000000000000001): exact, if not pretty.
+    // Its relaxed-precision mode keeps only 6 digits, which would break the round trip.
+    out << ToTable(*this) << "\n";
+    return out.str();
+}
+
+nlohmann::json RunConfig::ToJson() const { return NodeToJson(ToTable(*this)); }
+
+void AddConfigOptions(CLI::App* command, ConfigOptions& options) {
+    command->add_option("-c,--config", options.configPath, "TOML config file (defaults apply to absent keys)");
+    command->add_option("--set", options.sets,
+                        "Override one config key: section.key=value (TOML value; repeatable)")
+        ->allow_extra_args(false);
+    command->add_option("--memory-budget", options.memoryBudget,
+                        "Memory budget in bytes (e.g. 2GiB); 0 = none. Overrides memory_budget");
+}
+
+RunConfig ResolveConfig(const ConfigOptions& options) {
+    toml::table root;
+    Origins origins;
+    std::string sources = "defaults";
+    if (!options.configPath.empty()) {
+        root = ParseTomlFile(options.configPath, origins);
+        sources = options.configPath;
+    }
+    for (const std::string& overlay : options.overlayTables) {
+        toml::node_view<toml::node> view = root.at_path(overlay);
+        if (!view) continue;  // the file has no such table: nothing to merge
+        if (!view.is_table()) Fail("config table '{}' is not a table ({})", overlay, sources);
+        // Origins of the overlay's keys point into the file (file:line; copies lose the source
+        // positions, so record them from the original), keyed by the merged path.
+        Origins overlayOrigins;
+        RecordOrigins(*view.as_table(), "", options.configPath, overlayOrigins);
+        toml::table copy = *view.as_table();
+        Merge(root, copy, "", "[" + overlay + "]", origins);
+        for (const auto& [key, origin] : overlayOrigins) origins[key] = origin + " [" + overlay + "]";
+        sources += " + [" + overlay + "]";
+    }
+    for (const std::string& set : options.sets) {
+        std::string origin = "--set " + set;
+        size_t eq = set.find('=');
+        if (eq == std::string::npos || eq == 0) Fail("--set '{}': expected section.key=value", set);
+        std::string key = set.substr(0, eq);
+        std::string value = set.substr(eq + 1);
+        while (!key.empty() && std::isspace(static_cast<unsigned char>(key.back()))) key.pop_back();
+        try {
+            toml::table parsed = toml::parse("v = " + value);
+            SetPath(root, key, *parsed.get("v"), origin, origins);
+        } catch (const toml::parse_error&) {
+            // Not a TOML value: take it as a bare string (paths, scene names).
+            SetPath(root, key, toml::value<std::string>(value), origin, origins);
+        }
+        sources += " + --set";
+    }
+    if (!options.memoryBudget.empty()) {
+        uint64_t bytes = ParseByteSize(options.memoryBudget, "--memory-budget");
+        if (bytes > uint64_t(std::numeric_limits<int64_t>::max())) Fail("--memory-budget: too large");
+        root.insert_or_assign("memory_budget", int64_t(bytes));
+        origins["memory_budget"] = "--memory-budget";
+    }
+    return Build(root, origins, sources, options.ignoredTables);
+}
+
+RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, toml::table& experiment) {
+    ConfigOptions resolved = options;
+    resolved.ignoredTables.push_back("experiment");
+    if (quick) resolved.overlayTables.push_back("experiment.quick");
+    RunConfig config = ResolveConfig(resolved);
+    experiment = toml::table{};
+    if (!options.configPath.empty()) {
+        Origins unused;
+        toml::table file = ParseTomlFile(options.configPath, unused);
+        if (toml::node* node = file.get("experiment")) {
+            if (!node->is_table()) Fail("{}: 'experiment' must be a table", options.configPath);
+            experiment = *node->as_table();
+        }
+    }
+    return config;
+}
+
+}  // namespace fovrt

@@ -1,0 +1,149 @@
+// RunConfig: the typed configuration every fovrt command uses.
+//
+// Sources, applied to one TOML table before validation: built-in defaults (the default job runs
+// with no file at all) <- `-c FILE` (TOML) <- each `--set section.key=value` in order (value in
+// TOML syntax; a value that is not valid TOML is taken as a bare string, so
+// `--set scene.name=veach-ajar` works) <- `--memory-budget BYTES`. Unknown keys, wrong types and
+// out-of-range values are fovrt::Error naming the key (and file:line or "--set").
+//
+// Keys (TOML):
+//   memory_budget = 0              bytes, 0 = none; also "512MiB", "2GB" (K/M/G/T, KiB/MiB/GiB/TiB)
+//   [scene]      name = "cornell"  a scene name or a path to a scene file
+//   [camera]     width = 640, height = 360 (per eye; thesis: 1280×720)
+//                fov_deg = [left, right, up, down]  per-eye FOV in degrees (left/down negative);
+//                    absent = symmetric from the scene's horizontal fov and width/height
+//                ipd = 0.063 (metres)
+//   [run]        frames = 60, first_frame = 0, fps = 0 (frame i at i/fps s; 0 = the scene's
+//                frame_rate), seed = 1,
+//                threads = 0 (0 = all cores), max_depth = 5
+//   [foveation]  model = "disc"|"linear"|"acuity"|"uniform", spp_inside = 8, spp_outside = 1,
+//                radius_px = 200, radius_reference_width = 1280, radius_deg = 0, spp_max = 8,
+//                spp_min = 1, foveal_deg = 5, peripheral_deg = 30, omega0_deg = 1/48,
+//                mar_slope = 0.022, uniform_spp = 1, ray_budget = 0 (samples per eye per frame)
+//   [gaze]       source = "lissajous"|"trace"|"static", units = "px"|"deg",
+//                amplitude = [640, 360], frequency_hz = [0.4, 0.5], phase_deg = [90, 0],
+//                offset = [0, 0], reference_width = 1280, reference_height = 720,
+//                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0
+//   [denoise]    denoisers = ["svgf"], device = "auto"|"cpu"|"<index>", precision = "fp32"|"fp16"
+//   [denoise.svgf] alpha_color, alpha_moments, atrous_iterations, feedback_iteration,
+//                sigma_depth, sigma_normal, sigma_luminance, variance_history_threshold,
+//                filter_combined, weight_by_sample_count          (denoise/params.h)
+//   [denoise.asvgf] alpha, gradient_iterations
+//   [denoise.two_history] gradient_beta, q_scale
+//   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = false,
+//                exposure = 0 (stops, PNG only), report = true
+//   [reference]  spp = 1024, cache_dir = "cache/reference"
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include "denoise/params.h"
+#include "foveation/spp_model.h"
+#include "gaze/gaze_source.h"
+
+namespace fovrt {
+
+struct SceneConfig {
+    std::string name = "cornell";  // scene name or path
+};
+
+struct CameraConfig {
+    int width = 640;   // per eye; thesis 1280
+    int height = 360;  // per eye; thesis 720
+    // Per-eye FOV in degrees {left, right, up, down}; nullopt = symmetric from the scene's
+    // horizontal FOV and width/height (resolved by whoever builds the StereoRig).
+    std::optional<std::array<float, 4>> fovDeg;
+    float ipd = 0.063f;  // metres
+};
+
+struct RunSettings {
+    int frames = 60;
+    int firstFrame = 0;
+    float fps = 0.0f;    // frame i is at time i / fps seconds; 0 = the scene's frame rate
+    uint32_t seed = 1;
+    int threads = 0;     // 0 = all cores
+    int maxDepth = 5;    // path vertices after the primary hit
+};
+
+using FoveationConfig = FoveationParams;
+using GazeConfig = GazeParams;
+
+struct DenoiseConfig {
+    std::vector<std::string> denoisers = {"svgf"};
+    std::string device = "auto";  // auto | cpu | <Vulkan device index>
+    DenoiserParams params;        // includes precision (fp32 | fp16)
+};
+
+struct OutputConfig {
+    std::string dir = "out";
+    bool writeExr = false;     // denoised HDR per eye per frame
+    bool writePng = true;      // tonemapped previews
+    bool writeInputs = false;  // FrameInputs EXR dumps (large)
+    float exposure = 0.0f;     // stops, PNG only
+    bool report = true;        // HTML/JSON report at the end
+};
+
+struct ReferenceConfig {
+    int spp = 1024;
+    std::string cacheDir = "cache/reference";
+};
+
+struct RunConfig {
+    SceneConfig scene;
+    CameraConfig camera;
+    RunSettings run;
+    FoveationConfig foveation;
+    GazeConfig gaze;
+    DenoiseConfig denoise;
+    OutputConfig output;
+    ReferenceConfig reference;
+    uint64_t memoryBudget = 0;  // bytes, 0 = none
+
+    std::string ToToml() const;
+    nlohmann::json ToJson() const;
+};
+
+// Loaders. `origin` names the source in error messages.
+RunConfig DefaultConfig();
+RunConfig LoadConfigFile(const std::string& path);                       // file + validation
+RunConfig ConfigFromTomlString(const std::string& text, const std::string& origin = "<string>");
+RunConfig ConfigFromJson(const nlohmann::json& json);                     // e.g. a run manifest
+
+// Parses "1234", "512MiB", "2GB" etc. into bytes; `what` names the option/key in errors.
+uint64_t ParseByteSize(const std::string& text, const std::string& what);
+
+// Per-eye FOV: camera.fov_deg when given, else symmetric from the scene's horizontal FOV and
+// camera.width / camera.height.
+Fov EyeFov(const CameraConfig& camera, float sceneHorizontalFovDegrees);
+// Time of a frame in seconds: frame / run.fps, or frame / sceneFrameRate when run.fps = 0.
+double FrameTimeSeconds(const RunSettings& run, float sceneFrameRate, int frame);
+
+// Command-line plumbing shared by every subcommand.
+struct ConfigOptions {
+    std::string configPath;            // -c/--config FILE
+    std::vector<std::string> sets;     // --set section.key=value (repeatable, in order)
+    std::string memoryBudget;          // --memory-budget BYTES (empty = not given)
+    // For commands whose files carry their own tables (e.g. [experiment]): top-level tables the
+    // schema skips (no unknown-key error), and dotted tables of the file merged over its root
+    // before the --set overrides, in order (e.g. "experiment.quick" for --quick). Not CLI options:
+    // the command sets them.
+    std::vector<std::string> ignoredTables;
+    std::vector<std::string> overlayTables;
+};
+void AddConfigOptions(CLI::App* command, ConfigOptions& options);
+RunConfig ResolveConfig(const ConfigOptions& options);
+
+// Experiment files (presets/*.toml): a RunConfig plus an [experiment] table. Resolves the config
+// with [experiment] skipped by the schema and, when `quick`, [experiment.quick] merged over the
+// file (before --set); returns the file's [experiment] table (empty if absent) in `experiment`.
+RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, toml::table& experiment);
+
+}  // namespace fovrt

@@ -1,0 +1,292 @@
+#include "app/experiment.h"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "app/build_info.h"
+#include "app/denoiser_set.h"
+#include "app/frame_pipeline.h"
+#include "app/progress.h"
+#include "app/reference_cache.h"
+#include "app/report_collect.h"
+#include "app/report_html.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "denoise/denoiser_factory.h"
+#include "denoise/memory_plan.h"
+#include "io/exr.h"
+
+namespace fovrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+double MsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+std::vector<std::string> StringArray(const toml::table& table, const std::string& key,
+                                     const std::string& file) {
+    const toml::node* node = table.get(key);
+    if (!node) Fail("{}: experiment.{} is missing", file, key);
+    const toml::array* array = node->as_array();
+    if (!array || array->empty()) Fail("{}: experiment.{} must be a non-empty array of strings", file, key);
+    std::vector<std::string> values;
+    for (const toml::node& element : *array) {
+        auto value = element.value<std::string>();
+        if (!value) Fail("{}: experiment.{} must contain only strings", file, key);
+        values.push_back(*value);
+    }
+    return values;
+}
+
+// The fovea region the metrics use: the spp disc of the disc model, else the foveal angle.
+FoveaRadius FoveaOf(const RunConfig& config) {
+    const FoveationParams& f = config.foveation;
+    if (f.model == "disc") {
+        if (f.radiusDeg > 0.0f) return FoveaRadius::Degrees(f.radiusDeg);
+        return FoveaRadius::Pixels(f.radiusPx * float(config.camera.width) /
+                                   float(f.radiusReferenceWidth));
+    }
+    if (f.model == "linear") return FoveaRadius::Degrees(f.fovealDeg);
+    return FoveaRadius::Degrees(5.0f);  // the first eccentricity band
+}
+
+Plane<vec3> NoisyImage(const FrameInputs& inputs) {
+    Plane<vec3> noisy(inputs.width(), inputs.height());
+    for (int y = 0; y < noisy.height(); ++y)
+        for (int x = 0; x < noisy.width(); ++x) noisy(x, y) = inputs.NoisyColor(x, y);
+    return noisy;
+}
+
+// Mean per-pass milliseconds per variant, over every frame and eye.
+class TimingTable {
+public:
+    void Add(const std::string& variant, const std::string& pass, double ms) {
+        auto& [sum, count] = sums_[variant][pass];
+        sum += ms;
+        ++count;
+        if (std::find(order_.begin(), order_.end(), variant) == order_.end()) order_.push_back(variant);
+    }
+    ReportTable ToReport(const std::string& title) const {
+        ReportTable table{title, {"variant", "pass", "mean ms", "samples"}, {}};
+        for (const std::string& variant : order_)
+            for (const auto& [pass, sc] : sums_.at(variant))
+                table.rows.push_back({variant, pass, fmt::format("{:.3f}", sc.first / double(sc.second)),
+                                      std::to_string(sc.second)});
+        return table;
+    }
+    nlohmann::json ToJson() const {
+        nlohmann::json j = nlohmann::json::object();
+        for (const auto& [variant, passes] : sums_)
+            for (const auto& [pass, sc] : passes) j[variant][pass] = sc.first / double(sc.second);
+        return j;
+    }
+
+private:
+    std::map<std::string, std::map<std::string, std::pair<double, int>>> sums_;
+    std::vector<std::string> order_;
+};
+
+ReportTable MemoryTable(const RunConfig& config) {
+    int w = config.camera.width, h = config.camera.height;
+    double pixels = double(w) * double(h);
+    ReportTable table{fmt::format("Denoiser memory per eye at {}×{}", w, h),
+                      {"variant", "history bytes/pixel", "total bytes/pixel", "total MiB"},
+                      {}};
+    for (const std::string& name : config.denoise.denoisers) {
+        auto plan = PlanDenoiserMemory(name, w, h, ParamsForDenoiser(name, config.denoise.params));
+        table.rows.push_back({name, fmt::format("{:.1f}", double(HistoryBytes(plan)) / pixels),
+                              fmt::format("{:.1f}", double(TotalBytes(plan)) / pixels),
+                              fmt::format("{:.2f}", double(TotalBytes(plan)) / (1024.0 * 1024.0))});
+    }
+    return table;
+}
+
+}  // namespace
+
+ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick) {
+    if (options.configPath.empty()) Fail("fovrt experiment needs an experiment file (e.g. presets/thesis-foveated.toml)");
+    ExperimentSpec spec;
+    spec.file = options.configPath;
+    spec.quick = quick;
+    toml::table experiment;
+    spec.config = ResolveExperimentConfig(options, quick, experiment);
+    const std::string file = spec.file.string();
+    for (const auto& [key, node] : experiment) {
+        std::string k(key.str());
+        if (k != "scenes" && k != "variants" && k != "visual_frame" && k != "quick")
+            Fail("{}: unknown key experiment.{}", file, k);
+    }
+    spec.scenes = StringArray(experiment, "scenes", file);
+    spec.variants = StringArray(experiment, "variants", file);
+    if (const toml::node* frame = experiment.get("visual_frame")) {
+        auto value = frame->value<int64_t>();
+        if (!value || *value < -1) Fail("{}: experiment.visual_frame must be an integer ≥ -1", file);
+        spec.visualFrame = int(*value);
+    }
+    const auto& names = DenoiserNames();
+    for (const std::string& variant : spec.variants)
+        if (std::find(names.begin(), names.end(), variant) == names.end())
+            Fail("{}: experiment.variants: unknown denoiser '{}'", file, variant);
+    spec.config.denoise.denoisers = spec.variants;
+    return spec;
+}
+
+Results RunExperiment(const ExperimentSpec& spec) {
+    const RunConfig& base = spec.config;
+    const fs::path outDir = base.output.dir;
+    fs::create_directories(outDir);
+    fs::remove(outDir / "manifest.json");  // present only once this run is complete
+
+    auto totalStart = std::chrono::steady_clock::now();
+    Results results;
+    TimingTable timings;
+    HtmlReport report;
+    report.title = fmt::format("fovrt experiment: {}{}", spec.file.filename().string(),
+                               spec.quick ? " (--quick)" : "");
+    report.results = &results;
+    nlohmann::json sceneRecords = nlohmann::json::array();
+    std::string deviceDescription;
+
+    Progress progress("experiment", int(spec.scenes.size()) * base.run.frames);
+    for (const std::string& sceneName : spec.scenes) {
+        RunConfig config = base;
+        config.scene.name = sceneName;
+        std::vector<BufferPlan> plan = PlanRunMemory(config);
+        EnforceMemoryBudget(plan, config.memoryBudget, "experiment");
+
+        FramePipeline pipeline(config);
+        DenoiserSet denoisers(config.denoise);
+        deviceDescription = denoisers.DeviceDescription();
+        ReferenceCache cache(config.reference.cacheDir);
+        const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
+        MetricsCollector collector(results);
+        const FoveaRadius fovea = FoveaOf(config);
+        const int lastFrame = config.run.firstFrame + config.run.frames - 1;
+        const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : lastFrame;
+
+        SceneVisuals visuals;
+        visuals.scene = sceneName;
+        visuals.width = config.camera.width;
+        visuals.height = config.camera.height;
+        visuals.eye = 0;
+        visuals.foveaRadiusPixels = fovea.unit == FoveaRadius::Unit::kPixels
+                                        ? fovea.value
+                                        : fovea.value * pipeline.RigAt(0).Eye(0).PixelsPerDegree();
+        double renderMs = 0.0, referenceMs = 0.0;
+        int referenceHits = 0;
+
+        StereoFrame frame;
+        std::vector<Plane<vec3>> outputs(denoisers.size());
+        for (int i = 0; i < config.run.frames; ++i) {
+            const uint32_t index = uint32_t(config.run.firstFrame + i);
+            pipeline.Render(index, frame);
+            StereoRig rig = pipeline.RigAt(index);
+            for (int eye = 0; eye < 2; ++eye) {
+                EyeFrame& e = frame.eyes[size_t(eye)];
+                renderMs += e.renderMs;
+                EyeCamera camera = rig.Eye(eye);
+
+                auto start = std::chrono::steady_clock::now();
+                ReferenceKey key{fingerprint, index, frame.timeSeconds, eye, camera,
+                                 config.reference.spp, config.run.maxDepth, config.run.seed};
+                bool hit = false;
+                Plane<vec3> reference = cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
+                referenceHits += hit ? 1 : 0;
+                referenceMs += MsSince(start);
+
+                EyeFrameImages images;
+                images.scene = sceneName;
+                images.frame = int(index);
+                images.eye = eye;
+                images.camera = camera;
+                images.gazeEye = e.gazeEye;
+                images.fovea = fovea;
+                images.cameraCut = e.inputs.cameraCut;
+                images.reference = &reference;
+                for (size_t v = 0; v < denoisers.size(); ++v) {
+                    Denoiser& denoiser = denoisers.At(v, eye);
+                    denoiser.Denoise(e.inputs, outputs[v]);
+                    for (const PassTiming& t : denoiser.LastTimings())
+                        timings.Add(denoisers.Name(v), t.pass, t.ms);
+                    images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
+                    if (config.output.writeExr)
+                        WriteRgbExr(outDir / sceneName / denoisers.Name(v) /
+                                        fmt::format("f{:05d}_{}.exr", index, eye == 0 ? "left" : "right"),
+                                    outputs[v]);
+                }
+                collector.Add(images);
+
+                if (eye == visuals.eye) {
+                    visuals.gazePath.push_back(e.gazePixel);
+                    if (int(index) == visualFrame) {
+                        visuals.frame = int(index);
+                        visuals.gazePixel = e.gazePixel;
+                        visuals.sppMap = e.sppMap;
+                        visuals.reference = reference;
+                        visuals.noisy = NoisyImage(e.inputs);
+                        visuals.variants.clear();
+                        for (size_t v = 0; v < denoisers.size(); ++v)
+                            visuals.variants.emplace_back(denoisers.Name(v), outputs[v]);
+                    }
+                }
+            }
+            progress.Step(fmt::format("{} frame {}", sceneName, index));
+        }
+        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", sceneName), results, sceneName);
+        report.scenes.push_back(std::move(visuals));
+        RenderStats stats = pipeline.GetRenderer().Stats();
+        sceneRecords.push_back({{"scene", sceneName},
+                                {"source", pipeline.GetScene().sourcePath.string()},
+                                {"fingerprint", fmt::format("{:016x}", fingerprint)},
+                                {"render_ms_per_eye", renderMs / (2.0 * config.run.frames)},
+                                {"reference_ms_per_eye", referenceMs / (2.0 * config.run.frames)},
+                                {"reference_cache_hits", referenceHits},
+                                {"rays", stats.Rays()},
+                                {"dropped_nonfinite_samples", stats.droppedSamples}});
+    }
+    progress.Finish();
+
+    WriteSummaryJson(outDir / "summary.json", results);
+    std::printf("%s", SummaryTable(results).c_str());
+
+    report.manifest = {{"experiment", spec.file.string()},
+                       {"quick", spec.quick ? "yes" : "no"},
+                       {"resolution per eye", fmt::format("{}×{}", base.camera.width, base.camera.height)},
+                       {"frames", std::to_string(base.run.frames)},
+                       {"seed", std::to_string(base.run.seed)},
+                       {"foveation", base.foveation.model},
+                       {"gaze", base.gaze.source},
+                       {"reference spp", std::to_string(base.reference.spp)},
+                       {"denoise device", deviceDescription},
+                       {"relMSE ε", "0.01"},
+                       {"fovrt", FOVRT_VERSION}};
+    report.tables.push_back(MemoryTable(base));
+    report.tables.push_back(timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
+    if (base.output.report) WriteHtmlReport(outDir / "report.html", report);
+
+    nlohmann::json manifest;
+    manifest["command"] = "experiment";
+    manifest["complete"] = true;
+    manifest["experiment_file"] = spec.file.string();
+    manifest["quick"] = spec.quick;
+    manifest["scenes"] = sceneRecords;
+    manifest["variants"] = spec.variants;
+    manifest["build"] = BuildInfoJson();
+    manifest["config"] = base.ToJson();
+    manifest["denoise_device"] = deviceDescription;
+    manifest["pass_ms"] = timings.ToJson();
+    manifest["total_s"] = MsSince(totalStart) / 1000.0;
+    WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+    std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
+                 outDir.string().c_str());
+    return results;
+}
+
+}  // namespace fovrt

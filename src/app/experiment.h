@@ -1,0 +1,33 @@
+// `fovrt experiment`: the research workflow. For each scene, renders every frame once per eye
+// (noisy FrameInputs + the cached high-spp reference), feeds identical inputs to every listed
+// denoiser variant, and scores each output per region (whole, fovea, periphery, eccentricity
+// bands) against the reference. Writes a per-frame CSV per scene, a summary JSON, the thesis-style
+// table on stdout, a self-contained HTML report and a manifest that records everything needed to
+// rerun. Same config and seed -> identical CSV.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/config.h"
+#include "app/report.h"
+
+namespace fovrt {
+
+// An experiment file: a RunConfig plus an [experiment] table (scenes, variants, quick overrides).
+struct ExperimentSpec {
+    std::filesystem::path file;
+    RunConfig config;                   // resolved (quick overrides and --set applied)
+    std::vector<std::string> scenes;    // each replaces scene.name
+    std::vector<std::string> variants;  // becomes denoise.denoisers; "svgf" is the baseline
+    int visualFrame = -1;               // frame shown in the report's images; -1 = the last
+    bool quick = false;
+};
+
+ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick);
+
+// Runs the experiment and writes its outputs under spec.config.output.dir. Returns the results.
+Results RunExperiment(const ExperimentSpec& spec);
+
+}  // namespace fovrt

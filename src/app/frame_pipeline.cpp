@@ -1,0 +1,95 @@
+#include "app/frame_pipeline.h"
+
+#include <chrono>
+
+#include "core/error.h"
+
+namespace fovrt {
+namespace {
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+bool AnyDenoiserNeedsGradients(const DenoiseConfig& denoise) {
+    for (const std::string& name : denoise.denoisers)
+        if (name.find("asvgf") != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+Fov ResolveFov(const RunConfig& config, const Scene& scene) {
+    if (config.camera.fovDeg) {
+        const auto& deg = *config.camera.fovDeg;
+        return Fov{Radians(deg[0]), Radians(deg[1]), Radians(deg[2]), Radians(deg[3])};
+    }
+    float aspect = float(config.camera.width) / float(config.camera.height);
+    return Fov::FromHorizontal(Radians(scene.horizontalFovDegrees), aspect);
+}
+
+FramePipeline::FramePipeline(const RunConfig& config)
+    : config_(config), scene_(LoadScene(ResolveSceneName(config.scene.name))) {
+    // One clock for everything: the config's fps (when given) overrides the scene's frame rate,
+    // so gaze, animation and motion vectors agree on what "frame i" means.
+    if (config.run.fps > 0.0f) scene_.frameRate = config.run.fps;
+
+    RenderSettings settings;
+    settings.maxDepth = config.run.maxDepth;
+    settings.seed = config.run.seed;
+    settings.threads = config.run.threads;
+    settings.gradientSamples = AnyDenoiserNeedsGradients(config.denoise);
+    renderer_ = CreateRenderer(scene_, settings);
+    sppModel_ = CreateSppModel(config.foveation);
+    gaze_ = CreateGazeSource(config.gaze, ResolveFov(config, scene_));
+}
+
+StereoRig FramePipeline::RigAt(uint32_t frame) const {
+    StereoRig rig;
+    rig.head = scene_.HeadAt(float(TimeOf(frame)));
+    rig.ipd = config_.camera.ipd;
+    rig.fov[0] = rig.fov[1] = ResolveFov(config_, scene_);
+    rig.width = config_.camera.width;
+    rig.height = config_.camera.height;
+    return rig;
+}
+
+void FramePipeline::SetFrame(uint32_t frame) {
+    renderer_->SetFrame(frame);
+    hasPrevious_ = false;  // the next Render() after a jump is a cut
+}
+
+void FramePipeline::Render(uint32_t frame, StereoFrame& out) {
+    bool cut = !hasPrevious_ || frame != previousFrame_ + 1;
+    renderer_->SetFrame(frame);
+    StereoRig rig = RigAt(frame);
+    out.frame = frame;
+    out.timeSeconds = TimeOf(frame);
+    out.gaze = gaze_->At(out.timeSeconds);
+
+    for (int eye = 0; eye < 2; ++eye) {
+        EyeFrame& eyeFrame = out.eyes[size_t(eye)];
+        EyeCamera camera = rig.Eye(eye);
+        EyeCamera prevCamera = cut ? camera : previousCameras_[size_t(eye)];
+
+        auto start = std::chrono::steady_clock::now();
+        eyeFrame.gazeEye = GazeInEye(camera, out.gaze.direction);
+        eyeFrame.gazePixel = GazePixel(camera, out.gaze.direction);
+        sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap);
+        eyeFrame.sppMs = MillisecondsSince(start);
+
+        start = std::chrono::steady_clock::now();
+        eyeFrame.inputs.cameraCut = cut;
+        renderer_->RenderEye(eye, camera, prevCamera, eyeFrame.sppMap, eyeFrame.inputs);
+        eyeFrame.inputs.cameraCut = cut;
+        eyeFrame.inputs.frameIndex = frame;
+        eyeFrame.inputs.timeSeconds = out.timeSeconds;
+        eyeFrame.renderMs = MillisecondsSince(start);
+        previousCameras_[size_t(eye)] = camera;
+    }
+    hasPrevious_ = true;
+    previousFrame_ = frame;
+}
+
+}  // namespace fovrt

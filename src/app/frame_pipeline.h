@@ -1,0 +1,72 @@
+// FramePipeline: one stereo frame from a RunConfig — gaze source -> per-eye spp map -> path tracer
+// -> FrameInputs per eye. Shared by `fovrt run`, `fovrt reference` and `fovrt experiment`, so every
+// workflow renders exactly the same noisy inputs for the same config and seed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "app/config.h"
+#include "core/frame_inputs.h"
+#include "foveation/spp_model.h"
+#include "gaze/gaze_source.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace fovrt {
+
+struct EyeFrame {
+    FrameInputs inputs;
+    Plane<uint16_t> sppMap;
+    vec3 gazeEye = vec3(0, 0, -1);  // gaze direction in this eye's space
+    vec2 gazePixel = vec2(0.0f);    // where the gaze lands on this eye's image
+    double sppMs = 0.0;             // building the spp map
+    double renderMs = 0.0;          // path tracing this eye
+};
+
+struct StereoFrame {
+    uint32_t frame = 0;
+    double timeSeconds = 0.0;
+    GazeSample gaze;
+    std::array<EyeFrame, 2> eyes;
+};
+
+class FramePipeline {
+public:
+    explicit FramePipeline(const RunConfig& config);
+
+    const Scene& GetScene() const { return scene_; }
+    Renderer& GetRenderer() { return *renderer_; }
+    const SppModel& GetSppModel() const { return *sppModel_; }
+    const GazeSource& GetGazeSource() const { return *gaze_; }
+    const RunConfig& Config() const { return config_; }
+    float FramesPerSecond() const { return scene_.frameRate; }
+    double TimeOf(uint32_t frame) const { return double(frame) / double(scene_.frameRate); }
+
+    // The stereo rig (head pose from the scene's camera path, IPD and FOV from the config).
+    StereoRig RigAt(uint32_t frame) const;
+
+    // Renders `frame` for both eyes into `out`. Frames are rendered in the order asked; the
+    // previous call's cameras give the motion vectors, and a jump that is not the next frame is
+    // treated as a camera cut (cameraCut = true, no history may be reused).
+    void Render(uint32_t frame, StereoFrame& out);
+
+    // Moves the scene to `frame` without rendering noisy inputs (for reference-only work).
+    void SetFrame(uint32_t frame);
+
+private:
+    RunConfig config_;
+    Scene scene_;
+    std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<SppModel> sppModel_;
+    std::unique_ptr<GazeSource> gaze_;
+    bool hasPrevious_ = false;
+    uint32_t previousFrame_ = 0;
+    std::array<EyeCamera, 2> previousCameras_;
+};
+
+// The per-eye FOV the config asks for, or the symmetric default from the scene.
+Fov ResolveFov(const RunConfig& config, const Scene& scene);
+
+}  // namespace fovrt

@@ -1,0 +1,46 @@
+// ReferenceCache: high-spp ground-truth frames on disk, keyed by everything that changes them
+// (scene content, frame time, eye camera, resolution, spp, path length, seed), so repeated
+// experiments never re-render a reference. Entries are RGB EXRs written atomically.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace fovrt {
+
+// A content fingerprint of a scene: geometry, materials, textures, lights, animation keys.
+uint64_t SceneFingerprint(const Scene& scene);
+
+struct ReferenceKey {
+    uint64_t sceneFingerprint = 0;
+    uint32_t frame = 0;
+    double timeSeconds = 0.0;
+    int eye = 0;
+    EyeCamera camera;
+    int spp = 0;
+    int maxDepth = 0;
+    uint32_t seed = 0;
+
+    std::string Hex() const;  // the file stem of the cache entry
+};
+
+class ReferenceCache {
+public:
+    explicit ReferenceCache(std::filesystem::path dir) : dir_(std::move(dir)) {}
+
+    std::filesystem::path PathOf(const ReferenceKey& key) const;
+    // Returns the cached image, or renders it with `renderer` (already at the key's frame) and
+    // stores it. `hit` (optional) says which happened.
+    Plane<vec3> GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit = nullptr);
+
+private:
+    std::filesystem::path dir_;
+};
+
+}  // namespace fovrt

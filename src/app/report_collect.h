@@ -1,0 +1,44 @@
+// MetricsCollector: the experiment loop's one call per (scene, frame, eye). It builds the region
+// masks from the eye camera and gaze, computes every metric map of every variant against the
+// reference (FLIP at the eye's pixels per degree), averages them per region and appends the rows
+// to Results. It keeps each variant's previous output per (scene, eye) for the temporal error.
+#pragma once
+
+#include <map>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "app/report.h"
+#include "core/camera.h"
+#include "core/image.h"
+#include "metrics/regions.h"
+
+namespace fovrt {
+
+struct EyeFrameImages {
+    std::string scene;
+    int frame = 0;
+    int eye = 0;
+    EyeCamera camera;
+    vec3 gazeEye{0.0f, 0.0f, -1.0f};  // gaze direction in eye space
+    FoveaRadius fovea;                 // default: the thesis's 200 px spp disc
+    bool cameraCut = false;            // no temporal error across a cut
+    const Plane<vec3>* reference = nullptr;
+    std::vector<std::pair<std::string, const Plane<vec3>*>> outputs;  // variant -> HDR output
+};
+
+class MetricsCollector {
+public:
+    explicit MetricsCollector(Results& results) : results_(results) {}
+
+    // Appends one row per (variant, non-empty region, metric). Returns the region set it used.
+    RegionSet Add(const EyeFrameImages& images);
+
+private:
+    Results& results_;
+    std::map<std::tuple<std::string, int, std::string>, Plane<vec3>> previous_;  // (scene, eye, variant)
+};
+
+}  // namespace fovrt

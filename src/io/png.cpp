@@ -1,0 +1,72 @@
+#include "io/png.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <stb/stb_image_write.h>
+
+#include "core/atomic_file.h"
+#include "core/check.h"
+#include "core/error.h"
+
+namespace fovrt {
+namespace {
+
+float SrgbOetf(float linear) {
+    return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+void AppendBytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(context);
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+}
+
+}  // namespace
+
+std::vector<uint8_t> TonemapToRgb8(const Plane<vec3>& hdr, float exposure, Tonemap tonemap) {
+    const float scale = std::exp2(exposure);
+    std::vector<uint8_t> rgb(hdr.size() * 3);
+    for (size_t i = 0; i < hdr.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            float v = hdr[i][c] * scale;
+            if (!std::isfinite(v) || v < 0.0f) v = 0.0f;
+            v = tonemap == Tonemap::Reinhard ? v / (1.0f + v) : std::min(v, 1.0f);
+            rgb[i * 3 + size_t(c)] = uint8_t(std::lround(SrgbOetf(v) * 255.0f));
+        }
+    }
+    return rgb;
+}
+
+std::vector<uint8_t> EncodeRgb8Png(int width, int height, const std::vector<uint8_t>& rgb) {
+    FOVRT_CHECK(width > 0 && height > 0);
+    FOVRT_CHECK_OP(rgb.size(), ==, size_t(width) * size_t(height) * 3);
+    std::vector<uint8_t> png;
+    if (!stbi_write_png_to_func(&AppendBytes, &png, width, height, 3, rgb.data(), width * 3))
+        Fail("PNG encoding of a {}x{} image failed", width, height);
+    return png;
+}
+
+std::vector<uint8_t> EncodePngToMemory(const Plane<vec3>& hdr, float exposure, Tonemap tonemap) {
+    return EncodeRgb8Png(hdr.width(), hdr.height(), TonemapToRgb8(hdr, exposure, tonemap));
+}
+
+void WriteRgb8Png(const std::filesystem::path& path, int width, int height,
+                  const std::vector<uint8_t>& rgb) {
+    if (width <= 0 || height <= 0) Fail("cannot write PNG '{}': empty image ({}x{})", path.string(), width, height);
+    std::vector<uint8_t> png = EncodeRgb8Png(width, height, rgb);
+    WriteAtomically(path, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp, std::ios::binary);
+        if (!out) Fail("cannot open '{}' for writing", temp.string());
+        out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        out.close();
+        if (!out) Fail("failed writing PNG '{}'", path.string());
+    });
+}
+
+void WritePng(const std::filesystem::path& path, const Plane<vec3>& hdr, float exposure, Tonemap tonemap) {
+    WriteRgb8Png(path, hdr.width(), hdr.height(), TonemapToRgb8(hdr, exposure, tonemap));
+}
+
+}  // namespace fovrt

@@ -1,0 +1,38 @@
+// 8-bit PNG output for previews and HTML reports.
+//
+// Display transform: scale by 2^exposure (exposure in stops), then either clamp to [0,1]
+// (Tonemap::Clamp — the default, identical to src/metrics/tonemap.h's ToneMap at exposure 0) or
+// Reinhard x/(1+x) per channel (Tonemap::Reinhard), then the sRGB OETF, then round to 8 bits.
+// Non-finite and negative values display as 0. PNGs are encoded by stb_image_write, whose
+// implementation Debian compiles once into libstb (we link it; nobody defines
+// STB_IMAGE_WRITE_IMPLEMENTATION).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "core/image.h"
+#include "core/math.h"
+
+namespace fovrt {
+
+enum class Tonemap { Clamp, Reinhard };
+
+// Tonemapped, sRGB-encoded 8-bit RGB bytes (row 0 at the top), 3 bytes per pixel.
+std::vector<uint8_t> TonemapToRgb8(const Plane<vec3>& hdr, float exposure = 0.0f,
+                                   Tonemap tonemap = Tonemap::Clamp);
+
+// PNG bytes of already-encoded 8-bit RGB data (e.g. an error heat map).
+std::vector<uint8_t> EncodeRgb8Png(int width, int height, const std::vector<uint8_t>& rgb);
+// PNG bytes of an HDR image after the display transform above (for embedding in HTML reports).
+std::vector<uint8_t> EncodePngToMemory(const Plane<vec3>& hdr, float exposure = 0.0f,
+                                       Tonemap tonemap = Tonemap::Clamp);
+
+// Writes a PNG atomically (temp + rename).
+void WritePng(const std::filesystem::path& path, const Plane<vec3>& hdr, float exposure = 0.0f,
+              Tonemap tonemap = Tonemap::Clamp);
+void WriteRgb8Png(const std::filesystem::path& path, int width, int height,
+                  const std::vector<uint8_t>& rgb);
+
+}  // namespace fovrt

@@ -1,0 +1,292 @@
+#include "render/embree_scene.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "core/check.h"
+#include "core/error.h"
+
+namespace fovrt {
+namespace {
+
+void ErrorCallback(void*, RTCError code, const char* message) {
+    // Embree reports programming errors here; they are invariant violations for us.
+    ::fovrt::detail::CheckFailed(__FILE__, __LINE__,
+                                 fmt::format("embree error {}: {}", int(code), message ? message : ""));
+}
+
+void InitRay(RTCRay& ray, const vec3& o, const vec3& d, float tFar) {
+    ray.org_x = o.x;
+    ray.org_y = o.y;
+    ray.org_z = o.z;
+    ray.tnear = 0.0f;
+    ray.dir_x = d.x;
+    ray.dir_y = d.y;
+    ray.dir_z = d.z;
+    ray.time = 0.0f;
+    ray.tfar = tFar;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+}
+
+}  // namespace
+
+vec3 OffsetRayOrigin(const vec3& p, const vec3& n) {
+    constexpr float kOrigin = 1.0f / 32.0f;
+    constexpr float kFloatScale = 1.0f / 65536.0f;
+    constexpr float kIntScale = 256.0f;
+    vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        int offset = int(kIntScale * n[i]);
+        int32_t bits = std::bit_cast<int32_t>(p[i]) + (p[i] < 0.0f ? -offset : offset);
+        float moved = std::bit_cast<float>(bits);
+        out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
+    }
+    return out;
+}
+
+EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) Fail("embree: cannot create a device (error {})", int(rtcGetDeviceError(nullptr)));
+    rtcSetDeviceErrorFunction(device_, ErrorCallback, nullptr);
+
+    // Triangle geometry of a mesh, optionally with its vertices baked into world space.
+    auto makeTriangles = [&](const Mesh& mesh, const mat4* worldFromObject) -> RTCGeometry {
+        if (mesh.triangles.empty()) return nullptr;
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            vec3 p = worldFromObject ? vec3(*worldFromObject * vec4(mesh.positions[i], 1.0f)) : mesh.positions[i];
+            vertices[3 * i + 0] = p.x;
+            vertices[3 * i + 1] = p.y;
+            vertices[3 * i + 2] = p.z;
+        }
+        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangles.size()));
+        for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+            const uvec3& t = mesh.triangles[i];
+            if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size())
+                Fail("scene {}: mesh '{}' triangle {} indexes a missing vertex", scene.name, mesh.name, i);
+            indices[3 * i + 0] = t.x;
+            indices[3 * i + 1] = t.y;
+            indices[3 * i + 2] = t.z;
+        }
+        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+        rtcCommitGeometry(geom);
+        return geom;
+    };
+
+    // Static instances (at most one key) are flattened: their triangles, baked into world space,
+    // go straight into the top-level scene (geometry ID = instance index) when nothing moves.
+    // With animated instances they go into one static scene, instanced once with identity, so
+    // the per-frame commit only rebuilds the small top level over the moving instances.
+    bool animated = false;
+    for (const Instance& inst : scene.instances) animated = animated || inst.keys.size() > 1;
+    top_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
+    RTCScene staticScene = top_;
+    if (animated) {
+        rtcSetSceneFlags(top_, RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);
+        staticScene = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(staticScene, RTC_BUILD_QUALITY_HIGH);
+    }
+    blas_.assign(scene.meshes.size(), nullptr);
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        if (inst.mesh >= scene.meshes.size())
+            Fail("scene {}: instance '{}' names mesh {} but there are {} meshes", scene.name,
+                 inst.name, inst.mesh, scene.meshes.size());
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        if (inst.keys.size() <= 1) {
+            mat4 m = inst.WorldFromObjectAt(0.0f);
+            if (RTCGeometry geom = makeTriangles(mesh, &m)) {
+                rtcAttachGeometryByID(staticScene, geom, unsigned(i));
+                rtcReleaseGeometry(geom);
+            }
+            instances_.push_back(nullptr);
+            continue;
+        }
+        // Animated instance: a BLAS per mesh (shared), transform updated per frame.
+        if (!blas_[inst.mesh]) {
+            RTCScene blas = rtcNewScene(device_);
+            rtcSetSceneBuildQuality(blas, RTC_BUILD_QUALITY_HIGH);
+            if (RTCGeometry geom = makeTriangles(mesh, nullptr)) {
+                rtcAttachGeometryByID(blas, geom, 0);
+                rtcReleaseGeometry(geom);
+            }
+            rtcCommitScene(blas);
+            blas_[inst.mesh] = blas;
+        }
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, blas_[inst.mesh]);
+        rtcSetGeometryTimeStepCount(geom, 1);
+        mat4 identity(1.0f);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(top_, geom, unsigned(i));
+        instances_.push_back(geom);
+    }
+    if (staticScene != top_) {
+        rtcCommitScene(staticScene);
+        staticGroupId_ = unsigned(scene.instances.size());
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, staticScene);
+        rtcSetGeometryTimeStepCount(geom, 1);
+        mat4 identity(1.0f);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(top_, geom, staticGroupId_);
+        rtcReleaseGeometry(geom);
+        blas_.push_back(staticScene);  // released with the BLAS
+    }
+    xforms_.assign(scene.instances.size(), InstanceXform{});
+    rtcCommitScene(top_);
+}
+
+EmbreeScene::~EmbreeScene() {
+    for (RTCGeometry g : instances_)
+        if (g) rtcReleaseGeometry(g);
+    if (top_) rtcReleaseScene(top_);
+    for (RTCScene s : blas_)
+        if (s) rtcReleaseScene(s);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+std::vector<InstanceXform> EmbreeScene::MakeXforms(const Scene& scene, const SceneState& state) {
+    std::vector<InstanceXform> xforms(scene.instances.size());
+    for (size_t i = 0; i < xforms.size(); ++i) {
+        InstanceXform& x = xforms[i];
+        x.worldFromObject = i < state.worldFromObject.size() ? state.worldFromObject[i] : mat4(1.0f);
+        x.normalMatrix = glm::transpose(glm::inverse(mat3(x.worldFromObject)));
+        x.emissionScale = i < state.emissionScale.size() ? state.emissionScale[i] : 1.0f;
+        x.identity = x.worldFromObject == mat4(1.0f);
+    }
+    return xforms;
+}
+
+void EmbreeScene::Update(const SceneState& state) {
+    xforms_ = MakeXforms(scene_, state);
+    for (size_t i = 0; i < instances_.size(); ++i) {
+        if (!instances_[i]) continue;  // static, flattened
+        rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                &xforms_[i].worldFromObject[0][0]);
+        rtcCommitGeometry(instances_[i]);
+    }
+    rtcCommitScene(top_);
+}
+
+bool EmbreeScene::Intersect(const vec3& origin, const vec3& dir, float tFar, SurfaceSample& hit,
+                            float& t, bool coherent) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    RTCRayHit rh;
+    InitRay(rh.ray, origin, dir, tFar);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(top_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit.instance = InstanceOf(rh.hit.instID[0], rh.hit.geomID);
+    hit.primitive = rh.hit.primID;
+    hit.barycentrics = vec2(rh.hit.u, rh.hit.v);
+    t = rh.ray.tfar;
+    return true;
+}
+
+void EmbreeScene::Intersect8(const vec3& origin, const vec3* dirs, const bool* valid,
+                             SurfaceSample* hits, float* ts) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) int mask[8];
+    alignas(32) RTCRayHit8 rh;
+    for (int i = 0; i < 8; ++i) {
+        mask[i] = valid[i] ? -1 : 0;
+        rh.ray.org_x[i] = origin.x;
+        rh.ray.org_y[i] = origin.y;
+        rh.ray.org_z[i] = origin.z;
+        rh.ray.tnear[i] = 0.0f;
+        rh.ray.dir_x[i] = dirs[i].x;
+        rh.ray.dir_y[i] = dirs[i].y;
+        rh.ray.dir_z[i] = dirs[i].z;
+        rh.ray.time[i] = 0.0f;
+        rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
+        rh.ray.mask[i] = 0xFFFFFFFFu;
+        rh.ray.id[i] = unsigned(i);
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(mask, top_, &context, &rh);
+    for (int i = 0; i < 8; ++i) {
+        if (!valid[i] || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+            hits[i] = SurfaceSample{};
+            ts[i] = std::numeric_limits<float>::infinity();
+            continue;
+        }
+        hits[i].instance = InstanceOf(rh.hit.instID[0][i], rh.hit.geomID[i]);
+        hits[i].primitive = rh.hit.primID[i];
+        hits[i].barycentrics = vec2(rh.hit.u[i], rh.hit.v[i]);
+        ts[i] = rh.ray.tfar[i];
+    }
+}
+
+bool EmbreeScene::Occluded(const vec3& origin, const vec3& dir, float tFar) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    RTCRay ray;
+    InitRay(ray, origin, dir, tFar);
+    rtcOccluded1(top_, &context, &ray);
+    return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+vec3 EmbreeScene::ObjectPosition(const SurfaceSample& s) const {
+    const Mesh& mesh = scene_.meshes[scene_.instances[s.instance].mesh];
+    const uvec3& tri = mesh.triangles[s.primitive];
+    vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
+    return p0 + s.barycentrics.x * (p1 - p0) + s.barycentrics.y * (p2 - p0);
+}
+
+SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const {
+    FOVRT_CHECK_OP(s.instance, <, scene_.instances.size());
+    const InstanceXform& x = xforms[s.instance];
+    const Mesh& mesh = scene_.meshes[scene_.instances[s.instance].mesh];
+    FOVRT_CHECK_OP(s.primitive, <, mesh.triangles.size());
+    const uvec3& tri = mesh.triangles[s.primitive];
+    float u = s.barycentrics.x, v = s.barycentrics.y, w = 1.0f - u - v;
+    vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
+    if (!x.identity) {
+        p0 = vec3(x.worldFromObject * vec4(p0, 1.0f));
+        p1 = vec3(x.worldFromObject * vec4(p1, 1.0f));
+        p2 = vec3(x.worldFromObject * vec4(p2, 1.0f));
+    }
+    SurfaceHit h;
+    h.position = p0 + u * (p1 - p0) + v * (p2 - p0);
+    vec3 c = glm::cross(p1 - p0, p2 - p0);
+    float len = glm::length(c);
+    h.area = 0.5f * len;
+    h.geomNormal = len > 0.0f ? c / len : vec3(0.0f, 0.0f, 1.0f);
+    h.shadingNormal = h.geomNormal;
+    if (!mesh.normals.empty()) {
+        vec3 n = w * mesh.normals[tri.x] + u * mesh.normals[tri.y] + v * mesh.normals[tri.z];
+        if (!x.identity) n = x.normalMatrix * n;
+        float nlen = glm::length(n);
+        if (nlen > 0.0f && std::isfinite(nlen)) {
+            h.shadingNormal = n / nlen;
+            // Authored normals define the front side; keep the geometric normal on it.
+            if (glm::dot(h.shadingNormal, h.geomNormal) < 0.0f) h.geomNormal = -h.geomNormal;
+        }
+    }
+    h.uv = mesh.uvs.empty() ? vec2(u, v)
+                            : w * mesh.uvs[tri.x] + u * mesh.uvs[tri.y] + v * mesh.uvs[tri.z];
+    h.material = mesh.materials.empty() ? 0u : mesh.materials[s.primitive];
+    return h;
+}
+
+}  // namespace fovrt

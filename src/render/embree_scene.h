@@ -1,0 +1,81 @@
+// Embree 3 acceleration structures for a fovrt Scene: one BLAS per mesh, one top-level scene with
+// an instance per Scene::Instance whose transform follows the SceneState of the current frame.
+// Also reconstructs surface data (position, normals, uv, material) from a visibility-buffer
+// entry, so the renderer and the re-shading API see bit-identical surfaces.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace fovrt {
+
+struct InstanceXform {
+    mat4 worldFromObject = mat4(1.0f);
+    mat3 normalMatrix = mat3(1.0f);  // inverse transpose of the linear part
+    float emissionScale = 1.0f;
+    bool identity = true;            // skip the transforms (static scenes)
+};
+
+// Everything shading needs about one surface point.
+struct SurfaceHit {
+    vec3 position;       // world
+    vec3 geomNormal;     // world, unit, winding orientation (not face-forwarded)
+    vec3 shadingNormal;  // world, unit, same side as geomNormal
+    vec2 uv;
+    uint32_t material;
+    float area;          // world-space triangle area
+};
+
+class EmbreeScene {
+public:
+    explicit EmbreeScene(const Scene& scene);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    // Per-frame instance transforms (also used for surface reconstruction), then commit.
+    void Update(const SceneState& state);
+
+    // Closest hit along o + t d, t in (0, tFar). Returns false on a miss.
+    bool Intersect(const vec3& origin, const vec3& dir, float tFar, SurfaceSample& hit,
+                   float& t, bool coherent = false) const;
+    // Eight rays at once (primary-ray packets); valid[i] = false lanes are ignored.
+    void Intersect8(const vec3& origin, const vec3* dirs, const bool* valid, SurfaceSample* hits,
+                    float* ts) const;
+    // True when something blocks o + t d for t in (0, tFar).
+    bool Occluded(const vec3& origin, const vec3& dir, float tFar) const;
+
+    SurfaceHit Surface(const SurfaceSample& s) const { return SurfaceAt(s, xforms_); }
+    // Surface with another frame's transforms (motion vectors).
+    SurfaceHit SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const;
+    // Object-space point of a surface sample.
+    vec3 ObjectPosition(const SurfaceSample& s) const;
+
+    const std::vector<InstanceXform>& xforms() const { return xforms_; }
+    static std::vector<InstanceXform> MakeXforms(const Scene& scene, const SceneState& state);
+
+private:
+    // Scene instance of a hit: flattened static geometry reports it as the geometry ID.
+    uint32_t InstanceOf(unsigned instID, unsigned geomID) const {
+        return instID == RTC_INVALID_GEOMETRY_ID || instID == staticGroupId_ ? geomID : instID;
+    }
+
+    const Scene& scene_;
+    unsigned staticGroupId_ = RTC_INVALID_GEOMETRY_ID;
+    RTCDevice device_ = nullptr;
+    RTCScene top_ = nullptr;
+    std::vector<RTCScene> blas_;
+    std::vector<RTCGeometry> instances_;
+    std::vector<InstanceXform> xforms_;
+};
+
+// Moves a ray origin off a surface along the geometric normal, by an amount that scales with the
+// magnitude of the position (Wächter & Binder, Ray Tracing Gems ch. 6).
+vec3 OffsetRayOrigin(const vec3& p, const vec3& n);
+
+}  // namespace fovrt

@@ -1,0 +1,623 @@
+// The stereo Embree path tracer: TracePath -> ShadePixel (n from the spp map) -> RenderTile ->
+// RenderEye, plus the A-SVGF gradient samples (forward projection + re-shading with old seeds).
+//
+// Integrator conventions:
+// - Primary visibility is noise-free: one ray through the pixel centre; the n samples all start at
+//   that primary surface sample (so Shade() can reproduce them from a visibility-buffer entry).
+// - maxDepth = path vertices after the camera. Vertex k < maxDepth: next-event estimation (MIS,
+//   power heuristic, against BSDF sampling) + a BSDF-sampled continuation whose emitter hits are
+//   MIS-weighted. The last vertex only does NEE, with full weight (no continuation ray). So a
+//   white furnace with emission Le and albedo a gives Le * sum_{k=0..maxDepth} a^k: k = 0 is the
+//   emission seen at the primary hit, k = j the light arriving after j reflections.
+// - Emissive triangles are sampled in proportion to their power (world area * luminance of the
+//   emitted radiance, times the instance's emission scale), then uniformly in area. Emission is
+//   two-sided (OBJ light winding is unreliable). Point/spot/directional lights are all sampled
+//   at every vertex (one shadow ray each).
+// - "direct" = paths with one reflection (NEE at the primary hit, emitters hit by the first
+//   bounce); "indirect" = the rest. Both are demodulated by the primary albedo.
+// - Demodulation albedo = diffuse reflectance + normal-incidence specular reflectance F0,
+//   clamped to [1e-3, 1] (per channel), so albedo * (L / albedo) reproduces L also for black
+//   dielectrics and metals (whose albedo is then their base colour).
+// - Samples with a non-finite value are dropped (contribute 0, counted in RenderStats).
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "render/bsdf.h"
+#include "render/embree_scene.h"
+#include "render/renderer.h"
+#include "render/sampler.h"
+
+namespace fovrt {
+namespace {
+
+constexpr int kTileSize = 16;               // pixels; fixed so work splits identically for any thread count
+constexpr float kMinAlbedo = 1e-3f;         // demodulation guard (Falcor's max(albedo, 1e-3))
+constexpr float kGradientDepthTolerance = 0.01f;  // relative depth match for forward projection
+constexpr uint32_t kReferenceStream = 0x52454631u;  // decorrelates reference seeds from noisy ones
+constexpr uint32_t kGradientStream = 0x47524144u;   // random pixel per stratum
+
+struct RayCounts {
+    uint64_t primary = 0, shadow = 0, bounce = 0, samples = 0, dropped = 0;
+};
+
+// Material parameters resolved at one surface point (textures applied).
+struct ShadingPoint {
+    SurfaceHit hit;
+    BsdfParams bsdf;
+    vec3 albedo;    // demodulation albedo
+    vec3 emission;  // emitted radiance (scaled by the instance's switch)
+};
+
+// A path vertex with everything that depends only on the incoming direction, computed once
+// (for the primary vertex: once per pixel, not per sample).
+struct PathVertex {
+    ShadingPoint p;
+    vec3 ng;      // geometric normal on the side the path arrives from
+    Frame frame;  // around the shading normal, bent so that wo stays above it
+    BsdfWo wo;    // local outgoing direction and its BSDF terms
+    vec3 origin;  // offset origin for rays leaving the surface
+};
+
+// Demodulated result of n samples at one primary surface sample.
+struct PixelShade {
+    vec3 direct = vec3(0.0f);
+    vec3 indirect = vec3(0.0f);
+    vec3 albedo = vec3(0.0f);
+    vec3 emission = vec3(0.0f);
+    vec3 radiance = vec3(0.0f);  // emission + direct + indirect, not demodulated
+};
+
+// Same expression as FrameInputs::NoisyColor, so re-shaded and stored luminances match bit for bit.
+vec3 Remodulate(const PixelShade& s) { return s.albedo * (s.direct + s.indirect) + s.emission; }
+
+struct EyeHistory {
+    bool valid = false;
+    uint32_t frame = 0;
+    Plane<uint32_t> instance;
+    Plane<uint32_t> primitive;
+    Plane<vec2> barycentrics;
+    Plane<uint32_t> seed;
+    Plane<uint16_t> sampleCount;
+    Plane<float> luminance;  // of the noisy remodulated colour
+};
+
+class PathTracer final : public Renderer {
+public:
+    PathTracer(const Scene& scene, const RenderSettings& settings)
+        : scene_(scene), settings_(settings),
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
+        if (settings_.maxDepth < 1) Fail("render: maxDepth must be >= 1 (got {})", settings_.maxDepth);
+        if (scene_.materials.empty()) scene_.materials.push_back(Material{});
+        for (const Mesh& mesh : scene_.meshes)
+            for (uint32_t m : mesh.materials)
+                if (m >= scene_.materials.size())
+                    Fail("scene {}: mesh '{}' uses material {} but there are {}", scene_.name,
+                         mesh.name, m, scene_.materials.size());
+        for (const Material& m : scene_.materials) {
+            if (m.baseColorTexture >= int(scene_.textures.size()) ||
+                m.metallicRoughnessTexture >= int(scene_.textures.size()))
+                Fail("scene {}: material '{}' names a texture that does not exist", scene_.name, m.name);
+        }
+        embree_ = std::make_unique<EmbreeScene>(scene_);
+        for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
+            const Mesh& mesh = scene_.meshes[scene_.instances[i].mesh];
+            for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+                uint32_t mat = mesh.materials.empty() ? 0u : mesh.materials[t];
+                if (Luminance(scene_.materials[mat].emission) > 0.0f) emissive_.push_back({i, t});
+            }
+        }
+        SetFrame(0);
+        prevState_ = state_;
+        prevXforms_ = embree_->xforms();
+    }
+
+    void SetFrame(uint32_t frame) override {
+        if (hasFrame_ && frame == frame_) return;
+        if (hasFrame_) {
+            prevState_ = state_;
+            prevXforms_ = embree_->xforms();
+        }
+        frame_ = frame;
+        state_ = scene_.StateAt(float(frame) / scene_.frameRate);
+        embree_->Update(state_);
+        if (!hasFrame_) {
+            prevState_ = state_;
+            prevXforms_ = embree_->xforms();
+        }
+        hasFrame_ = true;
+        BuildLightDistribution();
+    }
+
+    const SceneState& State() const override { return state_; }
+    const Scene& GetScene() const override { return scene_; }
+
+    void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
+                   const Plane<uint16_t>& spp, FrameInputs& out) override {
+        FOVRT_CHECK(eye == 0 || eye == 1);
+        int w = camera.width(), h = camera.height();
+        FOVRT_CHECK_OP(spp.width(), ==, w);
+        FOVRT_CHECK_OP(spp.height(), ==, h);
+        bool cut = out.cameraCut;
+        out.Allocate(w, h);
+        out.eye = eye;
+        out.frameIndex = frame_;
+        out.timeSeconds = state_.time;
+        out.camera = camera;
+        out.prevCamera = prevCamera;
+        Plane<float> luminance(w, h, 0.0f);
+
+        ForEachTile(w, h, [&](int x0, int y0, int x1, int y1, RayCounts& counts) {
+            RenderTile(eye, camera, prevCamera, spp, x0, y0, x1, y1, out, luminance, counts);
+        });
+
+        EyeHistory& history = history_[eye];
+        if (settings_.gradientSamples && history.valid && !cut && history.frame + 1 == frame_ &&
+            history.instance.width() == w && history.instance.height() == h)
+            GradientSamples(eye, camera, history, out);
+
+        history.valid = true;
+        history.frame = frame_;
+        history.instance = out.objectId;
+        history.primitive = out.primitiveId;
+        history.barycentrics = out.barycentrics;
+        history.seed = out.seed;
+        history.sampleCount = out.sampleCount;
+        history.luminance = std::move(luminance);
+    }
+
+    void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) override {
+        FOVRT_CHECK_OP(spp, >=, 1);
+        int w = camera.width(), h = camera.height();
+        out.Resize(w, h, vec3(0.0f));
+        uint32_t runSeed = HashCombine(settings_.seed, kReferenceStream);
+        ForEachTile(w, h, [&](int x0, int y0, int x1, int y1, RayCounts& counts) {
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    vec3 dir = camera.WorldDirection(vec2(x + 0.5f, y + 0.5f));
+                    SurfaceSample s;
+                    float t;
+                    ++counts.primary;
+                    if (!embree_->Intersect(camera.Position(), dir, kInf, s, t, true)) {
+                        out(x, y) = scene_.background;
+                        continue;
+                    }
+                    uint32_t seed = PixelSeed(runSeed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
+                    out(x, y) = ShadePixel(camera.Position(), s, seed, spp, counts).radiance;
+                }
+        });
+    }
+
+    vec3 Shade(const EyeCamera& camera, const SurfaceSample& sample, uint32_t seed,
+               int sampleCount) const override {
+        RayCounts counts;
+        vec3 color = Remodulate(ShadePixel(camera.Position(), sample, seed, sampleCount, counts));
+        AddStats(counts);
+        return color;
+    }
+
+    vec3 WorldPosition(const SurfaceSample& sample) const override {
+        return embree_->Surface(sample).position;
+    }
+
+    RenderStats Stats() const override {
+        RenderStats s;
+        s.primaryRays = primaryRays_.load();
+        s.shadowRays = shadowRays_.load();
+        s.bounceRays = bounceRays_.load();
+        s.samples = samples_.load();
+        s.droppedSamples = dropped_.load();
+        return s;
+    }
+    void ResetStats() override {
+        primaryRays_ = 0;
+        shadowRays_ = 0;
+        bounceRays_ = 0;
+        samples_ = 0;
+        dropped_ = 0;
+    }
+
+private:
+    static constexpr float kInf = std::numeric_limits<float>::infinity();
+
+    struct EmissiveTriangle {
+        uint32_t instance, primitive;
+    };
+
+    // Runs fn over fixed 16×16 tiles in parallel; each tile's counters are summed afterwards.
+    template <typename Fn>
+    void ForEachTile(int w, int h, Fn&& fn) const {
+        int tilesX = (w + kTileSize - 1) / kTileSize, tilesY = (h + kTileSize - 1) / kTileSize;
+        arena_.execute([&] {
+            tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
+                int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+                RayCounts counts;
+                fn(x0, y0, std::min(x0 + kTileSize, w), std::min(y0 + kTileSize, h), counts);
+                AddStats(counts);
+            });
+        });
+    }
+
+    void AddStats(const RayCounts& c) const {
+        primaryRays_ += c.primary;
+        shadowRays_ += c.shadow;
+        bounceRays_ += c.bounce;
+        samples_ += c.samples;
+        dropped_ += c.dropped;
+    }
+
+    void BuildLightDistribution() {
+        lightCdf_.resize(emissive_.size());
+        double total = 0.0;
+        for (size_t i = 0; i < emissive_.size(); ++i) {
+            SurfaceSample s{emissive_[i].instance, emissive_[i].primitive, vec2(1.0f / 3.0f)};
+            SurfaceHit hit = embree_->Surface(s);
+            float power = hit.area * Luminance(EmissionOf(hit, s.instance));
+            total += double(std::max(power, 0.0f));
+            lightCdf_[i] = float(total);
+        }
+        lightPower_ = float(total);
+    }
+
+    vec3 EmissionOf(const SurfaceHit& hit, uint32_t instance) const {
+        return scene_.materials[hit.material].emission * embree_->xforms()[instance].emissionScale;
+    }
+
+    ShadingPoint Resolve(const SurfaceSample& s) const {
+        ShadingPoint p;
+        p.hit = embree_->Surface(s);
+        const Material& m = scene_.materials[p.hit.material];
+        vec3 base = m.baseColor;
+        float roughness = m.roughness, metallic = m.metallic;
+        if (m.baseColorTexture >= 0) base *= vec3(scene_.textures[m.baseColorTexture].Sample(p.hit.uv));
+        if (m.metallicRoughnessTexture >= 0) {
+            vec4 mr = scene_.textures[m.metallicRoughnessTexture].Sample(p.hit.uv);
+            roughness *= mr.g;
+            metallic *= mr.b;
+        }
+        p.bsdf = MakeBsdfParams(base, roughness, metallic, m.specular);
+        p.albedo = glm::clamp(p.bsdf.diffuse + p.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
+        p.emission = m.emission * embree_->xforms()[s.instance].emissionScale;
+        return p;
+    }
+
+    // Solid-angle pdf with which NEE picks a point on an emitter seen at distance t along wi.
+    float LightPdf(const vec3& emission, const vec3& geomNormal, float t, const vec3& wi) const {
+        float lum = Luminance(emission);
+        float cosL = std::abs(glm::dot(geomNormal, wi));
+        if (lightPower_ <= 0.0f || lum <= 0.0f || cosL <= 0.0f) return 0.0f;
+        return lum / lightPower_ * t * t / cosL;
+    }
+
+    // Next-event estimation at one vertex. `mis`: weight emitter samples against BSDF sampling.
+    vec3 SampleLights(const PathVertex& v, const PathSampler& sampler, int vertex, const vec2& sel,
+                      bool mis, RayCounts& counts) const {
+        const ShadingPoint& p = v.p;
+        const vec3& ng = v.ng;
+        const vec3& origin = v.origin;
+        vec3 result(0.0f);
+        for (const LightState& light : state_.lights) {
+            if (light.radiantIntensity == vec3(0.0f)) continue;
+            vec3 wi;
+            float tFar;
+            vec3 li;
+            if (light.type == LightType::Directional) {
+                wi = -glm::normalize(light.direction);
+                tFar = kInf;
+                li = light.radiantIntensity;
+            } else {
+                vec3 d = light.position - p.hit.position;
+                float dist2 = glm::dot(d, d);
+                if (!(dist2 > 0.0f)) continue;
+                float dist = std::sqrt(dist2);
+                wi = d / dist;
+                tFar = dist * (1.0f - 1e-4f);
+                li = light.radiantIntensity / dist2;
+                if (light.type == LightType::Spot) {
+                    float c = glm::dot(-wi, glm::normalize(light.direction));
+                    float x = std::clamp((c - light.cosOuter) / std::max(light.cosInner - light.cosOuter, 1e-6f), 0.0f, 1.0f);
+                    li *= x * x * (3.0f - 2.0f * x);
+                    if (x <= 0.0f) continue;
+                }
+            }
+            if (glm::dot(wi, ng) <= 0.0f) continue;
+            BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
+            if (e.fCos == vec3(0.0f)) continue;
+            ++counts.shadow;
+            if (embree_->Occluded(origin, wi, tFar)) continue;
+            result += e.fCos * li;
+        }
+        if (lightPower_ > 0.0f) {
+            size_t index = size_t(std::upper_bound(lightCdf_.begin(), lightCdf_.end(), sel.x * lightPower_) -
+                                  lightCdf_.begin());
+            index = std::min(index, emissive_.size() - 1);
+            vec2 u = sampler.LightPoint(vertex);
+            float su = std::sqrt(u.x);
+            SurfaceSample ls{emissive_[index].instance, emissive_[index].primitive,
+                             vec2(su * (1.0f - u.y), su * u.y)};
+            SurfaceHit light = embree_->Surface(ls);
+            vec3 emission = EmissionOf(light, ls.instance);
+            vec3 d = light.position - p.hit.position;
+            float dist2 = glm::dot(d, d);
+            if (dist2 > 0.0f) {
+                float dist = std::sqrt(dist2);
+                vec3 wi = d / dist;
+                float pdf = LightPdf(emission, light.geomNormal, dist, wi);
+                if (pdf > 0.0f && glm::dot(wi, ng) > 0.0f) {
+                    BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
+                    if (e.fCos != vec3(0.0f)) {
+                        ++counts.shadow;
+                        if (!embree_->Occluded(origin, wi, dist * (1.0f - 1e-3f))) {
+                            float weight = mis ? pdf * pdf / (pdf * pdf + e.pdf * e.pdf) : 1.0f;
+                            result += e.fCos * emission * (weight / pdf);
+                        }
+                    }
+                }
+            }
+        }
+        return result;
+    }
+
+    PathVertex MakeVertex(const ShadingPoint& p, const vec3& wo) const {
+        // Face-forward both normals to the side the path arrives from.
+        vec3 ng = glm::dot(p.hit.geomNormal, wo) < 0.0f ? -p.hit.geomNormal : p.hit.geomNormal;
+        vec3 ns = glm::dot(p.hit.shadingNormal, ng) < 0.0f ? -p.hit.shadingNormal : p.hit.shadingNormal;
+        float cosO = glm::dot(ns, wo);
+        if (cosO < 0.01f) ns = glm::normalize(ns + (0.01f - cosO) * wo);  // keep wo above
+        Frame frame(ns);
+        return PathVertex{p, ng, frame, PrepareBsdfWo(p.bsdf, frame.ToLocal(wo)),
+                          OffsetRayOrigin(p.hit.position, ng)};
+    }
+
+    // One path sample from the primary vertex; adds radiance to direct / indirect.
+    void TracePath(const PathVertex& primary, const PathSampler& sampler, vec3& direct, vec3& indirect,
+                   RayCounts& counts) const {
+        const PathVertex* v = &primary;
+        std::optional<PathVertex> storage;
+        vec3 throughput(1.0f);
+        for (int depth = 1;; ++depth) {
+            int vertex = depth - 1;
+            vec3& target = depth == 1 ? direct : indirect;
+            bool last = depth >= settings_.maxDepth;
+            vec2 sel = sampler.Selectors(vertex);
+            target += throughput * SampleLights(*v, sampler, vertex, sel, !last, counts);
+            if (last) return;
+
+            BsdfSample bs;
+            if (!SampleBsdf(v->p.bsdf, v->wo, sampler.BsdfDirection(vertex), sel.y, bs)) return;
+            vec3 wi = v->frame.ToWorld(bs.wi);
+            if (glm::dot(wi, v->ng) <= 0.0f) return;  // below the geometric surface
+            ++counts.bounce;
+            SurfaceSample next;
+            float t;
+            if (!embree_->Intersect(v->origin, wi, kInf, next, t)) {
+                target += throughput * bs.weight * scene_.background;
+                return;
+            }
+            throughput *= bs.weight;
+            ShadingPoint p = Resolve(next);
+            if (p.emission != vec3(0.0f)) {
+                float pdfLight = LightPdf(p.emission, p.hit.geomNormal, t, wi);
+                float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
+                target += throughput * p.emission * weight;
+            }
+            storage.emplace(MakeVertex(p, -wi));
+            v = &*storage;
+        }
+    }
+
+    // n samples at one primary surface sample seen from eyePos.
+    PixelShade ShadePixel(const vec3& eyePos, const SurfaceSample& s, uint32_t seed, int n,
+                          RayCounts& counts, SurfaceHit* hitOut = nullptr) const {
+        ShadingPoint p = Resolve(s);
+        if (hitOut) *hitOut = p.hit;
+        PathVertex primary = MakeVertex(p, glm::normalize(eyePos - p.hit.position));
+        vec3 direct(0.0f), indirect(0.0f);
+        PixelSampler pixelSampler(seed, uint32_t(settings_.maxDepth) * PathSampler::kPairsPerVertex);
+        for (int i = 0; i < n; ++i) {
+            vec3 d(0.0f), ind(0.0f);
+            TracePath(primary, PathSampler(pixelSampler, uint32_t(i)), d, ind, counts);
+            ++counts.samples;
+            if (!IsFinite(d) || !IsFinite(ind)) {
+                ++counts.dropped;
+                continue;
+            }
+            direct += d;
+            indirect += ind;
+        }
+        PixelShade out;
+        float inv = n > 0 ? 1.0f / float(n) : 0.0f;
+        direct *= inv;
+        indirect *= inv;
+        out.albedo = p.albedo;
+        out.emission = p.emission;
+        out.radiance = p.emission + direct + indirect;
+        out.direct = direct / p.albedo;  // albedo >= kMinAlbedo
+        out.indirect = indirect / p.albedo;
+        return out;
+    }
+
+    // Per-eye constants of the pinhole model: eye-space ray through pixel centre (x, y) is
+    // (tanLeft + (x + 0.5) sx, tanUp + (y + 0.5) sy, -1).
+    struct EyeRays {
+        mat3 worldFromEye;
+        mat3 eyeFromWorld;
+        float tanLeft, tanUp, sx, sy;
+        explicit EyeRays(const EyeCamera& camera) {
+            worldFromEye = glm::mat3_cast(camera.pose().orientation);
+            eyeFromWorld = glm::transpose(worldFromEye);
+            const Fov& f = camera.fov();
+            tanLeft = std::tan(f.angleLeft);
+            tanUp = std::tan(f.angleUp);
+            sx = (std::tan(f.angleRight) - tanLeft) / float(camera.width());
+            sy = (std::tan(f.angleDown) - tanUp) / float(camera.height());
+        }
+        vec3 Eye(int x, int y) const { return vec3(tanLeft + (x + 0.5f) * sx, tanUp + (y + 0.5f) * sy, -1.0f); }
+    };
+
+    // Change of linear depth per pixel along x and y on the primary hit's tangent plane: with the
+    // eye-space ray e(x, y) (z = -1), depth = c / (n.e), so d depth / dx = -depth n_x sx / (n.e).
+    static vec2 DepthGradient(const EyeRays& rays, const vec3& eyeDir, const vec3& ngWorld, float depth) {
+        vec3 n = rays.eyeFromWorld * ngWorld;
+        float denom = glm::dot(n, eyeDir);
+        // Grazing planes: a gradient as large as the depth itself (lenient depth weights).
+        if (!(std::abs(denom) > 1e-6f)) return vec2(depth);
+        vec2 g(-depth * n.x * rays.sx / denom, -depth * n.y * rays.sy / denom);
+        return glm::clamp(g, vec2(-depth), vec2(depth));
+    }
+
+    void RenderTile(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
+                    const Plane<uint16_t>& spp, int x0, int y0, int x1, int y1, FrameInputs& out,
+                    Plane<float>& luminance, RayCounts& counts) const {
+        vec3 eyePos = camera.Position();
+        mat3 prevView = mat3(prevCamera.View());
+        EyeRays rays(camera);
+        for (int y = y0; y < y1; ++y) {
+            for (int xs = x0; xs < x1; xs += 8) {
+                // Coherent primary rays: 8-wide packets along the row.
+                vec3 dirs[8];
+                bool valid[8];
+                SurfaceSample hits[8];
+                float ts[8];
+                for (int i = 0; i < 8; ++i) {
+                    valid[i] = xs + i < x1;
+                    dirs[i] = glm::normalize(rays.worldFromEye * rays.Eye(xs + i, y));
+                    counts.primary += valid[i] ? 1 : 0;
+                }
+                embree_->Intersect8(eyePos, dirs, valid, hits, ts);
+                for (int i = 0; i < 8 && xs + i < x1; ++i) {
+                    int x = xs + i;
+                    uint32_t seed = PixelSeed(settings_.seed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
+                    int n = std::max<int>(1, spp(x, y));
+                    out.seed(x, y) = seed;
+                    out.sampleCount(x, y) = uint16_t(n);
+                    const SurfaceSample& s = hits[i];
+                    if (s.instance == kNoObject) {
+                        out.emission(x, y) = scene_.background;
+                        luminance(x, y) = Luminance(scene_.background);
+                        vec3 e = prevView * dirs[i];
+                        out.prevPixel(x, y) = e.z < 0.0f ? prevCamera.PixelOfEyeDirection(e) : vec2(-1.0f);
+                        continue;
+                    }
+                    SurfaceHit hit;
+                    PixelShade shade = ShadePixel(eyePos, s, seed, n, counts, &hit);
+                    vec3 ng = glm::dot(hit.geomNormal, dirs[i]) > 0.0f ? -hit.geomNormal : hit.geomNormal;
+                    vec3 ns = glm::dot(hit.shadingNormal, ng) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
+                    float depth = camera.LinearDepth(hit.position);
+                    out.direct(x, y) = shade.direct;
+                    out.indirect(x, y) = shade.indirect;
+                    out.albedo(x, y) = shade.albedo;
+                    out.emission(x, y) = shade.emission;
+                    out.normal(x, y) = ns;
+                    out.linearDepth(x, y) = depth;
+                    out.depthGradient(x, y) = DepthGradient(rays, rays.Eye(x, y), ng, depth);
+                    out.objectId(x, y) = s.instance;
+                    out.primitiveId(x, y) = s.primitive;
+                    out.barycentrics(x, y) = s.barycentrics;
+                    out.worldPosition(x, y) = hit.position;
+                    vec3 prevWorld = vec3(prevXforms_[s.instance].worldFromObject *
+                                          vec4(embree_->ObjectPosition(s), 1.0f));
+                    auto prev = prevCamera.Project(prevWorld);
+                    out.prevPixel(x, y) = prev ? prev->pixel : vec2(-1.0f);
+                    luminance(x, y) = Luminance(Remodulate(shade));
+                }
+            }
+        }
+    }
+
+    // A-SVGF forward projection (paper §3): one random previous-frame pixel per 3×3 stratum,
+    // moved to this frame, kept if visible and first in its current stratum, re-shaded with the
+    // previous seed and sample count.
+    void GradientSamples(int eye, const EyeCamera& camera, const EyeHistory& history, FrameInputs& out) const {
+        int w = camera.width(), h = camera.height();
+        int sw = (w + kGradientStratumSize - 1) / kGradientStratumSize;
+        int sh = (h + kGradientStratumSize - 1) / kGradientStratumSize;
+        struct Candidate {
+            GradientSample g;
+            SurfaceSample s;
+            uint32_t seed;
+            int n;
+        };
+        std::vector<uint8_t> taken(size_t(sw) * size_t(sh), 0);
+        std::vector<Candidate> candidates;
+        for (int sy = 0; sy < sh; ++sy) {
+            for (int sx = 0; sx < sw; ++sx) {
+                Pcg32 rng(PixelSeed(HashCombine(settings_.seed, kGradientStream), uint32_t(eye),
+                                    uint32_t(sx), uint32_t(sy), frame_));
+                int bx = sx * kGradientStratumSize, by = sy * kGradientStratumSize;
+                int px = bx + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, w - bx))));
+                int py = by + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, h - by))));
+                if (history.instance(px, py) == kNoObject) continue;
+                SurfaceSample s{history.instance(px, py), history.primitive(px, py), history.barycentrics(px, py)};
+                auto proj = camera.Project(WorldPosition(s));
+                if (!proj) continue;
+                int cx = int(std::floor(proj->pixel.x)), cy = int(std::floor(proj->pixel.y));
+                if (!out.objectId.InBounds(cx, cy) || out.objectId(cx, cy) == kNoObject) continue;
+                bool sameSurface = out.objectId(cx, cy) == s.instance && out.primitiveId(cx, cy) == s.primitive;
+                if (!sameSurface && std::abs(out.linearDepth(cx, cy) - proj->linearDepth) >
+                                        kGradientDepthTolerance * proj->linearDepth)
+                    continue;  // occluded in this frame
+                size_t stratum = size_t(cy / kGradientStratumSize) * size_t(sw) + size_t(cx / kGradientStratumSize);
+                if (taken[stratum]) continue;  // first wins (raster order of previous strata)
+                taken[stratum] = 1;
+                Candidate c;
+                c.g.stratum = ivec2(cx / kGradientStratumSize, cy / kGradientStratumSize);
+                c.g.pixel = ivec2(cx, cy);
+                c.g.prevPixel = ivec2(px, py);
+                c.g.oldLuminance = history.luminance(px, py);
+                c.g.newLuminance = 0.0f;
+                c.s = s;
+                c.seed = history.seed(px, py);
+                c.n = history.sampleCount(px, py);
+                candidates.push_back(c);
+            }
+        }
+        vec3 eyePos = camera.Position();
+        arena_.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 64),
+                              [&](const tbb::blocked_range<size_t>& range) {
+                RayCounts counts;
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    Candidate& c = candidates[i];
+                    c.g.newLuminance = Luminance(Remodulate(ShadePixel(eyePos, c.s, c.seed, c.n, counts)));
+                }
+                AddStats(counts);
+            });
+        });
+        out.gradientSamples.reserve(candidates.size());
+        for (const Candidate& c : candidates) out.gradientSamples.push_back(c.g);
+    }
+
+    Scene scene_;
+    RenderSettings settings_;
+    mutable tbb::task_arena arena_;
+    std::unique_ptr<EmbreeScene> embree_;
+    bool hasFrame_ = false;
+    uint32_t frame_ = 0;
+    SceneState state_, prevState_;
+    std::vector<InstanceXform> prevXforms_;
+    std::vector<EmissiveTriangle> emissive_;
+    std::vector<float> lightCdf_;
+    float lightPower_ = 0.0f;
+    EyeHistory history_[2];
+    mutable std::atomic<uint64_t> primaryRays_{0}, shadowRays_{0}, bounceRays_{0}, samples_{0}, dropped_{0};
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> CreateRenderer(const Scene& scene, const RenderSettings& settings) {
+    return std::make_unique<PathTracer>(scene, settings);
+}
+
+}  // namespace fovrt

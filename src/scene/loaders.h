@@ -1,0 +1,47 @@
+// Internal to fovrt_scene: mesh-file and texture loaders that append to a Scene under load.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace fovrt::detail {
+
+// One instance-to-be produced by a mesh file: its mesh and a name ("" for the file's only part,
+// else the glTF node name).
+struct MeshPart {
+    uint32_t mesh = 0;
+    std::string name;
+};
+
+// State shared by the loaders of one LoadScene() call: caches so that a file or texture named
+// twice is decoded once.
+struct LoadContext {
+    Scene& scene;
+    std::map<std::pair<std::string, bool>, int> textures;      // (path, srgb) -> index
+    std::map<std::string, std::vector<MeshPart>> meshFiles;     // path -> parts
+};
+
+std::vector<MeshPart> LoadObj(const std::filesystem::path& file, LoadContext& context);
+std::vector<MeshPart> LoadGltf(const std::filesystem::path& file, LoadContext& context);
+
+// Decodes an image file (PNG/JPEG/TGA/BMP/HDR... through stb_image) into a linear texture;
+// `srgb` converts 8-bit colour channels from sRGB. `referrer` names who asked (file + key) for
+// the error message. Returns the index in scene.textures.
+int LoadTextureFile(const std::filesystem::path& file, bool srgb, const std::string& referrer,
+                    LoadContext& context);
+
+// Converts 8-bit texel data (1-4 channels) into a Texture; 16-bit when bits == 16.
+Texture TextureFromPixels(const std::string& path, int width, int height, int channels, int bits,
+                          const unsigned char* data, bool srgb);
+
+// Validates and finishes a mesh: finite positions/normals/uvs, indices in range, one material
+// per triangle, unit normals (vertices whose normal is missing or zero get the area-weighted
+// average of their faces' normals). Throws fovrt::Error naming `file`.
+void FinishMesh(Mesh& mesh, const std::string& file);
+
+}  // namespace fovrt::detail

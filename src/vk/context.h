@@ -1,0 +1,88 @@
+// VulkanContext: the compute device the denoisers run on. Either creates its own headless
+// instance/device/compute queue, or wraps handles created elsewhere (a GLFW window, or an OpenXR
+// session via xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR) without owning them: the
+// denoiser never insists on creating its own. Move-only; all state lives behind one pointer so
+// buffers and pipelines may keep a stable reference to it.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/allocator.h"
+
+namespace fovrt {
+
+enum class Validation { Auto, On, Off };  // Auto: on in Debug builds or when FOVRT_VK_VALIDATION=1
+
+struct VulkanContextOptions {
+    std::string device = "auto";  // "auto" (first discrete/integrated GPU, else any), "cpu", or an index
+    Validation validation = Validation::Auto;
+    bool quiet = false;           // no notice when validation was asked for but is unavailable
+};
+
+// Handles owned by someone else (window or OpenXR). They must outlive the context.
+struct ExternalVulkan {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;       // must support compute
+    uint32_t queueFamily = 0;
+    bool storageBuffer16BitEnabled = false;  // whether the creator enabled storageBuffer16BitAccess
+};
+
+struct VulkanDeviceInfo {
+    uint32_t index = 0;
+    std::string name;
+    std::string type;  // "discrete", "integrated", "cpu", "virtual", "other"
+};
+
+class VulkanContext {
+public:
+    // Creates instance + device + compute queue. fovrt::Error when no Vulkan device exists or an
+    // unknown device index is asked for (the message lists the devices).
+    static VulkanContext Create(const VulkanContextOptions& options = {});
+    // Wraps external handles (not destroyed by the context). Creates only a command pool.
+    static VulkanContext Wrap(const ExternalVulkan& external);
+    // Devices the loader reports (empty when there is no loader/ICD).
+    static std::vector<VulkanDeviceInfo> ListDevices();
+    // True when Create() with default options would succeed (cached after the first call).
+    static bool Available();
+
+    VulkanContext(VulkanContext&&) noexcept;
+    VulkanContext& operator=(VulkanContext&&) noexcept;
+    VulkanContext(const VulkanContext&) = delete;
+    VulkanContext& operator=(const VulkanContext&) = delete;
+    ~VulkanContext();
+
+    VkInstance instance() const;
+    VkPhysicalDevice physicalDevice() const;
+    VkDevice device() const;
+    VkQueue queue() const;
+    uint32_t queueFamily() const;
+    VkCommandPool commandPool() const;
+    const std::string& deviceName() const;
+    bool isCpuDevice() const;
+    bool supports16BitStorage() const;
+    bool supportsTimestamps() const;
+    double timestampPeriodNs() const;
+    bool validationEnabled() const;
+    // Validation-layer messages of severity error / warning since creation.
+    uint32_t validationErrors() const;
+    uint32_t validationWarnings() const;
+
+    VulkanAllocator& allocator();
+    const VulkanAllocator& allocator() const;
+
+    struct State;
+
+private:
+    explicit VulkanContext(std::unique_ptr<State> state);
+    std::unique_ptr<State> s_;
+};
+
+}  // namespace fovrt

@@ -1,0 +1,112 @@
+#include "vk/pipeline.h"
+
+#include <utility>
+
+#include "core/error.h"
+#include "shaders/shader_registry.h"
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace fovrt {
+
+ComputePipeline::ComputePipeline(VulkanContext& context, const std::string& shaderName,
+                                 uint32_t bindings, uint32_t pushBytes, uint32_t maxSets)
+    : device_(context.device()), bindings_(bindings), pushBytes_(pushBytes), name_(shaderName) {
+    std::span<const uint32_t> code = ShaderCode(shaderName);
+    auto moduleInfo = VkInit<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+    moduleInfo.codeSize = code.size_bytes();
+    moduleInfo.pCode = code.data();
+    FOVRT_VK(vkCreateShaderModule(device_, &moduleInfo, nullptr, &module_));
+
+    std::vector<VkDescriptorSetLayoutBinding> layoutBindings(bindings);
+    for (uint32_t b = 0; b < bindings; ++b) {
+        layoutBindings[b].binding = b;
+        layoutBindings[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        layoutBindings[b].descriptorCount = 1;
+        layoutBindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    auto setInfo = VkInit<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    setInfo.bindingCount = bindings;
+    setInfo.pBindings = layoutBindings.data();
+    FOVRT_VK(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &setLayout_));
+
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
+    auto layoutInfo = VkInit<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout_;
+    layoutInfo.pushConstantRangeCount = pushBytes ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    FOVRT_VK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &layout_));
+
+    auto pipeInfo = VkInit<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    pipeInfo.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipeInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipeInfo.stage.module = module_;
+    pipeInfo.stage.pName = "main";
+    pipeInfo.layout = layout_;
+    FOVRT_VK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &pipeline_));
+
+    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(1u, bindings) * maxSets};
+    auto poolInfo = VkInit<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    poolInfo.maxSets = maxSets;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    FOVRT_VK(vkCreateDescriptorPool(device_, &poolInfo, nullptr, &pool_));
+}
+
+ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
+    if (this != &other) {
+        Destroy();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        module_ = std::exchange(other.module_, VK_NULL_HANDLE);
+        setLayout_ = std::exchange(other.setLayout_, VK_NULL_HANDLE);
+        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+        pool_ = std::exchange(other.pool_, VK_NULL_HANDLE);
+        bindings_ = other.bindings_;
+        pushBytes_ = other.pushBytes_;
+        name_ = std::move(other.name_);
+    }
+    return *this;
+}
+
+ComputePipeline::~ComputePipeline() { Destroy(); }
+
+void ComputePipeline::Destroy() {
+    if (device_ == VK_NULL_HANDLE) return;
+    if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
+    if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
+    if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    if (setLayout_) vkDestroyDescriptorSetLayout(device_, setLayout_, nullptr);
+    if (module_) vkDestroyShaderModule(device_, module_, nullptr);
+    device_ = VK_NULL_HANDLE;
+}
+
+VkDescriptorSet ComputePipeline::MakeSet(std::span<const Buffer* const> buffers) {
+    if (buffers.size() != bindings_)
+        Fail("pipeline {}: {} buffers given for {} bindings", name_, buffers.size(), bindings_);
+    auto info = VkInit<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    info.descriptorPool = pool_;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &setLayout_;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    FOVRT_VK(vkAllocateDescriptorSets(device_, &info, &set));
+    std::vector<VkDescriptorBufferInfo> infos(bindings_);
+    std::vector<VkWriteDescriptorSet> writes(bindings_);
+    for (uint32_t b = 0; b < bindings_; ++b) {
+        if (!buffers[b] || !buffers[b]->valid()) Fail("pipeline {}: binding {} has no buffer", name_, b);
+        infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
+        writes[b] = VkInit<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        writes[b].dstSet = set;
+        writes[b].dstBinding = b;
+        writes[b].descriptorCount = 1;
+        writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[b].pBufferInfo = &infos[b];
+    }
+    vkUpdateDescriptorSets(device_, bindings_, writes.data(), 0, nullptr);
+    return set;
+}
+
+void ComputePipeline::ResetSets() { FOVRT_VK(vkResetDescriptorPool(device_, pool_, 0)); }
+
+}  // namespace fovrt

@@ -1,0 +1,56 @@
+// ComputePipeline: one compute shader (embedded SPIR-V from the fovrt_shaders registry), its
+// descriptor-set layout (N storage buffers at bindings 0..N−1, set 0), a push-constant range, and a
+// descriptor pool from which binding sets are made once (histories are A/B pairs, so a frame
+// picks one of a few prebuilt sets instead of rewriting descriptors).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/allocator.h"
+
+namespace fovrt {
+
+class VulkanContext;
+
+class ComputePipeline {
+public:
+    ComputePipeline() = default;
+    // `shaderName` as in ShaderCode(); `bindings` storage buffers; `pushBytes` of push constants;
+    // `maxSets` descriptor sets may be allocated from this pipeline.
+    ComputePipeline(VulkanContext& context, const std::string& shaderName, uint32_t bindings,
+                    uint32_t pushBytes, uint32_t maxSets = 16);
+    ComputePipeline(ComputePipeline&& other) noexcept { *this = std::move(other); }
+    ComputePipeline& operator=(ComputePipeline&& other) noexcept;
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+    ~ComputePipeline();
+
+    // A descriptor set binding buffers[i] at binding i (all `bindings` must be given).
+    VkDescriptorSet MakeSet(std::span<const Buffer* const> buffers);
+    // Frees every set made so far (before rebuilding them after a resize).
+    void ResetSets();
+
+    VkPipeline handle() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    uint32_t pushBytes() const { return pushBytes_; }
+    const std::string& name() const { return name_; }
+
+private:
+    void Destroy();
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkShaderModule module_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    uint32_t bindings_ = 0;
+    uint32_t pushBytes_ = 0;
+    std::string name_;
+};
+
+}  // namespace fovrt

@@ -1,0 +1,83 @@
+// CommandRecorder: records uploads (through a staging buffer), dispatches, barriers, copies and
+// timestamps into one command buffer, then submits and waits on a fence. TimestampPool turns
+// pairs of GPU timestamps into per-pass milliseconds (timestampPeriod).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/math.h"
+#include "vk/allocator.h"
+
+namespace fovrt {
+
+class VulkanContext;
+class ComputePipeline;
+
+class TimestampPool {
+public:
+    TimestampPool() = default;
+    TimestampPool(VulkanContext& context, uint32_t maxPasses);
+    TimestampPool(TimestampPool&& other) noexcept { *this = std::move(other); }
+    TimestampPool& operator=(TimestampPool&& other) noexcept;
+    TimestampPool(const TimestampPool&) = delete;
+    TimestampPool& operator=(const TimestampPool&) = delete;
+    ~TimestampPool();
+
+    bool enabled() const { return pool_ != VK_NULL_HANDLE; }
+    // After the submit completed: (pass name, ms) of every Begin/End pair recorded.
+    std::vector<std::pair<std::string, double>> Results() const;
+
+private:
+    friend class CommandRecorder;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueryPool pool_ = VK_NULL_HANDLE;
+    uint32_t capacity_ = 0;
+    double periodNs_ = 1.0;
+    std::vector<std::string> names_;
+};
+
+class CommandRecorder {
+public:
+    // `timestamps` may be null (no timing). The recorder starts recording at construction.
+    explicit CommandRecorder(VulkanContext& context, TimestampPool* timestamps = nullptr);
+    CommandRecorder(const CommandRecorder&) = delete;
+    CommandRecorder& operator=(const CommandRecorder&) = delete;
+    ~CommandRecorder();
+
+    // Copies `bytes` from host memory into `staging` at `stagingOffset` and records a copy into
+    // `dst`. Returns the next free staging offset.
+    size_t Upload(const void* data, size_t bytes, Buffer& staging, size_t stagingOffset, Buffer& dst);
+    // Records a copy of `bytes` from `src` into `staging` at `stagingOffset`; the data is readable
+    // at staging.mapped() + offset after Submit(). Returns the next free staging offset.
+    size_t Download(const Buffer& src, size_t bytes, Buffer& staging, size_t stagingOffset);
+    void Copy(const Buffer& src, Buffer& dst, size_t bytes);
+    void Fill(Buffer& dst, uint32_t value);
+    void Dispatch(const ComputePipeline& pipeline, VkDescriptorSet set, const void* push,
+                  size_t pushBytes, uvec2 groups);
+    // Global barrier: all earlier compute/transfer writes visible to later compute/transfer/host.
+    void Barrier();
+    // Barrier on one buffer (compute/transfer write → compute/transfer read/write).
+    void BufferBarrier(const Buffer& buffer);
+    // Timestamps around a pass (no-op without a pool).
+    void BeginPass(const std::string& name);
+    void EndPass();
+    // Ends recording, submits, waits on a fence. Recording again starts a new command buffer
+    // (and resets the timestamp pool, so read its Results() before that).
+    void Submit();
+
+private:
+    void Begin();
+    VkCommandBuffer Cmd();  // begins recording when needed
+    VulkanContext& context_;
+    TimestampPool* timestamps_;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    uint32_t nextQuery_ = 0;
+    bool recording_ = false;
+};
+
+}  // namespace fovrt

@@ -1,0 +1,106 @@
+// The experiment presets in presets/: every key is a valid RunConfig key (the config loader
+// rejects unknown keys), the [experiment] table names scenes and known denoisers, the thesis
+// protocol values are what SPEC §5 says, and the [experiment.quick] overrides shrink the run.
+#include <filesystem>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "app/config.h"
+#include "denoise/denoiser.h"
+#include "test_support.h"
+
+using namespace fovrt;
+
+namespace {
+
+// Deep-merges `over` into `base` (tables recursively, other values replaced).
+void Merge(toml::table& base, const toml::table& over) {
+    for (const auto& [key, node] : over) {
+        if (const toml::table* sub = node.as_table(); sub && base[key].as_table()) {
+            Merge(*base[key].as_table(), *sub);
+        } else {
+            base.insert_or_assign(key, node);
+        }
+    }
+}
+
+struct Preset {
+    RunConfig config;
+    RunConfig quick;
+    std::vector<std::string> scenes, variants;
+};
+
+Preset LoadPreset(const std::string& name) {
+    const auto path = test::SourceDir() / "presets" / name;
+    REQUIRE(std::filesystem::exists(path));
+    toml::table file = toml::parse_file(path.string());
+    REQUIRE(file["experiment"].as_table());
+    toml::table experiment = *file["experiment"].as_table();
+    file.erase("experiment");
+    Preset p;
+    for (const auto& v : *experiment["scenes"].as_array()) p.scenes.push_back(*v.value<std::string>());
+    for (const auto& v : *experiment["variants"].as_array()) p.variants.push_back(*v.value<std::string>());
+    std::ostringstream text;
+    text << file;
+    p.config = ConfigFromTomlString(text.str(), name);
+    REQUIRE(experiment["quick"].as_table());
+    Merge(file, *experiment["quick"].as_table());
+    std::ostringstream quickText;
+    quickText << file;
+    p.quick = ConfigFromTomlString(quickText.str(), name + " [quick]");
+    return p;
+}
+
+void CheckCommon(const Preset& p) {
+    const auto& known = DenoiserNames();
+    for (const std::string& v : p.variants) CHECK(std::find(known.begin(), known.end(), v) != known.end());
+    for (const std::string& s : p.scenes)
+        CHECK(std::filesystem::exists(test::SourceDir() / "scenes" / (s + ".toml")));
+    CHECK(p.quick.camera.width < p.config.camera.width);
+    CHECK(p.quick.run.frames < p.config.run.frames);
+    CHECK(p.quick.reference.spp < p.config.reference.spp);
+    CHECK(p.quick.reference.spp >= 1);
+}
+
+}  // namespace
+
+TEST_CASE("thesis-foveated preset: the thesis protocol", "[app][presets]") {
+    Preset p = LoadPreset("thesis-foveated.toml");
+    CheckCommon(p);
+    CHECK(p.scenes == std::vector<std::string>{"cornell", "veach-ajar"});
+    CHECK(p.variants == std::vector<std::string>{"svgf", "svgf-weighted", "two-history", "asvgf", "two-history-asvgf"});
+    const RunConfig& c = p.config;
+    CHECK(c.camera.width == 1280);
+    CHECK(c.camera.height == 720);
+    CHECK(c.foveation.model == "disc");
+    CHECK(c.foveation.sppInside == 8);
+    CHECK(c.foveation.sppOutside == 1);
+    CHECK(c.foveation.radiusPx == 200.0f);
+    CHECK(c.denoise.params.svgf.atrousIterations == 2);
+    CHECK(c.denoise.params.svgf.feedbackIteration == 1);
+    CHECK(c.denoise.params.svgf.alphaColor == Approx(0.05f));
+    CHECK(c.denoise.params.twoHistory.gradientBeta == Approx(0.8f));
+    CHECK(c.gaze.source == "lissajous");
+    CHECK(c.gaze.amplitude.x == 640.0f);
+    CHECK(c.gaze.frequencyHz.y == Approx(0.5f));
+    CHECK(c.gaze.phaseDeg.x == Approx(90.0f));
+    CHECK(p.quick.camera.width * 9 == p.quick.camera.height * 16);  // keeps 16:9
+}
+
+TEST_CASE("svgf-paper preset: uniform 1 spp, 5 iterations, α = 0.2", "[app][presets]") {
+    Preset p = LoadPreset("svgf-paper.toml");
+    CheckCommon(p);
+    CHECK(p.config.foveation.model == "uniform");
+    CHECK(p.config.foveation.uniformSpp == 1);
+    CHECK(p.config.denoise.params.svgf.atrousIterations == 5);
+    CHECK(p.config.denoise.params.svgf.alphaColor == Approx(0.2f));
+}
+
+TEST_CASE("asvgf-lag preset: room and pillars, svgf vs asvgf", "[app][presets]") {
+    Preset p = LoadPreset("asvgf-lag.toml");
+    CheckCommon(p);
+    CHECK(p.scenes == std::vector<std::string>{"room", "pillars"});
+    CHECK(p.variants == std::vector<std::string>{"svgf", "asvgf"});
+    CHECK(p.config.denoise.params.asvgf.alpha == Approx(0.1f));
+}

@@ -1,0 +1,199 @@
+// Results model, CSV/JSON/table writers and the self-contained HTML report.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/report.h"
+#include "app/report_collect.h"
+#include "app/report_html.h"
+#include "foveation/spp_model.h"
+#include "test_support.h"
+
+using namespace fovrt;
+
+namespace {
+
+Results MakeResults() {
+    Results r;
+    // Two frames × two eyes; svgf is the baseline, two-history is 10 % better in relMSE.
+    for (int frame = 0; frame < 2; ++frame)
+        for (int eye = 0; eye < 2; ++eye) {
+            const double base = 0.04 + 0.01 * frame + 0.002 * eye;
+            r.Add({"cornell", frame, eye, "svgf", "whole", "relmse", base});
+            r.Add({"cornell", frame, eye, "svgf", "fovea", "relmse", base / 2});
+            r.Add({"cornell", frame, eye, "svgf", "whole", "ssim", 0.9});
+            r.Add({"cornell", frame, eye, "svgf", "fovea", "ssim", 0.8});
+            r.Add({"cornell", frame, eye, "two-history", "whole", "relmse", 0.9 * base});
+            r.Add({"cornell", frame, eye, "two-history", "fovea", "relmse", 0.45 * base});
+            r.Add({"cornell", frame, eye, "two-history", "whole", "ssim", 0.91});
+            r.Add({"cornell", frame, eye, "two-history", "fovea", "ssim", 0.82});
+        }
+    return r;
+}
+
+std::string ReadFile(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+TEST_CASE("results: means over frames and eyes, percent vs baseline", "[app][report]") {
+    Results r = MakeResults();
+    auto m = r.Mean("cornell", "svgf", "whole", "relmse");
+    REQUIRE(m);
+    CHECK(m->count == 4u);
+    CHECK(m->mean == Approx((0.04 + 0.042 + 0.05 + 0.052) / 4));
+    auto t = r.Mean("cornell", "two-history", "whole", "relmse");
+    CHECK(*PercentRelative(t->mean, m->mean) == Approx(-10.0));
+    CHECK_FALSE(r.Mean("cornell", "svgf", "periphery", "relmse"));
+    CHECK_FALSE(PercentRelative(1.0, 0.0));
+    auto perFrame = r.PerFrame("cornell", "svgf", "whole", "relmse");
+    REQUIRE(perFrame.size() == 2u);
+    CHECK(perFrame[1].first == 1);
+    CHECK(perFrame[1].second == Approx(0.051));
+    CHECK(r.Variants("cornell") == std::vector<std::string>{"svgf", "two-history"});
+}
+
+TEST_CASE("per-frame CSV has the documented header and one row per value", "[app][report]") {
+    Results r = MakeResults();
+    r.Add({"other-scene", 0, 0, "svgf", "whole", "relmse", 1.0});
+    std::string csv = FrameCsv(r, "cornell");
+    CHECK(csv.rfind("frame,eye,variant,region,metric,value\n", 0) == 0);
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 32);
+    CHECK(csv.find("\n0,1,svgf,whole,relmse,0.042\n") != std::string::npos);
+    CHECK(csv.find("other-scene") == std::string::npos);
+    CHECK(FrameCsv(r, "cornell") == csv);  // deterministic
+}
+
+TEST_CASE("summary JSON and the thesis table", "[app][report]") {
+    Results r = MakeResults();
+    nlohmann::json j = SummaryJson(r);
+    CHECK(j["relmse_epsilon"].get<double>() == Approx(0.01));
+    CHECK(j["baseline"] == "svgf");
+    auto& th = j["scenes"]["cornell"]["variants"]["two-history"];
+    CHECK(th["fovea"]["relmse"]["percent_vs_baseline"].get<double>() == Approx(-10.0));
+    CHECK(th["whole"]["ssim"]["mean"].get<double>() == Approx(0.91));
+    CHECK(j["scenes"]["cornell"]["variants"]["svgf"]["whole"]["ssim"]["percent_vs_baseline"].get<double>() ==
+          Approx(0.0));
+
+    std::string table = SummaryTable(r);
+    INFO(table);
+    CHECK(table.find("Scene cornell") != std::string::npos);
+    CHECK(table.find("eps = 0.01") != std::string::npos);
+    CHECK(table.find("-10.000%") != std::string::npos);      // relMSE vs svgf
+    CHECK(table.find("+1.1111%") != std::string::npos);      // SSIM 0.91 vs 0.90
+    CHECK(table.find("+2.5000%") != std::string::npos);      // SSIM fovea 0.82 vs 0.80
+    CHECK(table.find("4.600e-02") != std::string::npos);     // svgf whole relMSE mean
+}
+
+TEST_CASE("base64, escaping and viridis building blocks", "[app][report]") {
+    CHECK(Base64({}) == "");
+    CHECK(Base64({'f'}) == "Zg==");
+    CHECK(Base64({'f', 'o'}) == "Zm8=");
+    CHECK(Base64({'f', 'o', 'o', 'b', 'a', 'r'}) == "Zm9vYmFy");
+    CHECK(HtmlEscape("<a & \"b\">") == "&lt;a &amp; &quot;b&quot;&gt;");
+    CHECK(Viridis(0.0f).r == Approx(0x44 / 255.0f));
+    CHECK(Viridis(1.0f).g == Approx(0xe7 / 255.0f));
+    CHECK(Viridis(0.5f).b == Approx(0x8c / 255.0f));
+    Plane<vec3> img(10, 8, vec3(0.0f));
+    img(9, 7) = vec3(1.0f);
+    Plane<vec3> crop = Crop(img, vec2(9.5f, 7.5f), 2);  // clamped to the corner
+    REQUIRE(crop.width() == 4);
+    CHECK(crop(3, 3).x == 1.0f);
+}
+
+TEST_CASE("HTML report is a single offline file with plots, images and tables", "[app][report]") {
+    Results r = MakeResults();
+    HtmlReport report;
+    report.title = "test <report>";
+    report.results = &r;
+    report.manifest = {{"seed", "42"}};
+    SceneVisuals v;
+    v.scene = "cornell";
+    v.width = 64;
+    v.height = 48;
+    v.gazePath = {{10, 10}, {20, 15}, {30, 30}};
+    v.gazePixel = {30, 30};
+    v.foveaRadiusPixels = 8;
+    v.sppMap = Plane<uint16_t>(64, 48, 1);
+    v.reference = Plane<vec3>(64, 48, vec3(0.5f));
+    v.noisy = Plane<vec3>(64, 48, vec3(0.7f));
+    v.variants = {{"svgf", Plane<vec3>(64, 48, vec3(0.55f))}};
+    report.scenes.push_back(std::move(v));
+    report.tables.push_back({"Memory", {"buffer", "MB"}, {{"two-history extra", "88 B/px"}}});
+    report.tables.push_back({"Timings", {"pass", "ms"}, {{"atrous", "1.25"}}});
+
+    const auto dir = std::filesystem::temp_directory_path() / "fovrt_app_report_test";
+    std::filesystem::create_directories(dir);
+    WriteHtmlReport(dir / "report.html", report);
+    std::string html = ReadFile(dir / "report.html");
+    CHECK(html.rfind("<!DOCTYPE html>", 0) == 0);
+    CHECK(html.find("test &lt;report&gt;") != std::string::npos);
+    CHECK(html.find("<style>") != std::string::npos);
+    CHECK(html.find("<polyline") != std::string::npos);
+    CHECK(html.find("10.0,10.0 20.0,15.0 30.0,30.0") != std::string::npos);  // gaze path
+    CHECK(html.find("data:image/png;base64,iVBORw0KGgo") != std::string::npos);  // PNG signature
+    CHECK(html.find("relmse — fovea") != std::string::npos);
+    CHECK(html.find("ssim by region") != std::string::npos);
+    CHECK(html.find("Memory") != std::string::npos);
+    CHECK(html.find("atrous") != std::string::npos);
+    CHECK(html.find("ε = 0.01") != std::string::npos);
+    // Offline: no external fetches, no scripts.
+    CHECK(html.find("http://") == html.find("http://www.w3.org/2000/svg"));
+    CHECK(html.find("https://") == std::string::npos);
+    CHECK(html.find("<script") == std::string::npos);
+    CHECK(html.find("<link") == std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("MetricsCollector: regions × metrics per variant, temporal from the second frame", "[app][report]") {
+    Results results;
+    MetricsCollector collector(results);
+    Fov fov;  // 90° × 90°
+    EyeCamera camera(Pose{}, fov, 64, 64);
+    Plane<vec3> ref(64, 64, vec3(0.5f)), a(64, 64, vec3(0.6f)), b(64, 64, vec3(0.4f));
+    for (int frame = 0; frame < 2; ++frame) {
+        EyeFrameImages images;
+        images.scene = "s";
+        images.frame = frame;
+        images.eye = 1;
+        images.camera = camera;
+        images.fovea = FoveaRadius::Pixels(10.0f);
+        images.reference = &ref;
+        images.outputs = {{"svgf", frame == 0 ? &a : &b}, {"noisy", &a}};
+        RegionSet regions = collector.Add(images);
+        CHECK(regions.Find("fovea")->pixelCount > 0u);
+    }
+    // 7 regions (whole, fovea, periphery, 4 bands) × (relmse, ssim, flip) on frame 0, + temporal on frame 1.
+    CHECK(results.rows().size() == 2u * 7u * 3u + 2u * 7u * 4u);
+    auto relmse = results.Mean("s", "svgf", "fovea", "relmse");
+    CHECK(relmse->mean == Approx(0.01 / 0.26).epsilon(1e-4));
+    auto temporal = results.Mean("s", "svgf", "whole", "temporal");
+    REQUIRE(temporal);
+    CHECK(temporal->count == 1u);
+    CHECK(temporal->mean == Approx(0.2).epsilon(1e-4));
+    CHECK(results.Mean("s", "noisy", "whole", "temporal")->mean == Approx(0.0).margin(1e-9));
+    CHECK(results.Mean("s", "svgf", "whole", "flip")->mean > 0.0);
+}
+
+TEST_CASE("the pixel fovea region is exactly the disc spp model's sppInside area", "[app][report]") {
+    // Off-axis eye, off-centre gaze: metrics and foveation must agree on which pixels are foveal.
+    Fov fov;
+    fov.angleLeft = Radians(-40.0f), fov.angleRight = Radians(50.0f);
+    fov.angleUp = Radians(35.0f), fov.angleDown = Radians(-30.0f);
+    EyeCamera camera(Pose{}, fov, 160, 120);
+    const vec3 gaze = camera.EyeDirection(vec2(101.3f, 47.8f));
+    FoveationParams params;  // disc, 8 inside / 1 outside, 200 px at 1280 wide
+    auto model = CreateSppModel(params);
+    Plane<uint16_t> spp;
+    model->Generate(camera, gaze, 0, spp);
+    const float radius = params.radiusPx * 160.0f / float(params.radiusReferenceWidth);  // 25 px
+    RegionSet regions = RegionSet::Build(camera, gaze, FoveaRadius::Pixels(radius));
+    const Region* fovea = regions.Find("fovea");
+    REQUIRE(fovea);
+    CHECK(fovea->pixelCount > 1000u);
+    for (size_t i = 0; i < spp.size(); ++i) REQUIRE((spp[i] == 8) == (fovea->mask[i] == 1));
+}

@@ -1,0 +1,114 @@
+// Synthetic FrameInputs for the SVGF tests: small images, fixed seeds, known clean signals.
+#pragma once
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "core/frame_inputs.h"
+#include "denoise/denoiser.h"
+
+namespace fovrt::test {
+
+// Static scene: rows < 4 background; left half object 1 (depth slope in x), right half object 2
+// (tilted normal), centre square object 3 (nearer, emissive). Clean illumination from
+// `direct(x, y)` / `indirect(x, y)`, plus Gaussian noise of standard deviation sigma(x, y) / sqrt(n).
+struct StaticScene {
+    int width = 64, height = 64;
+    std::function<float(int, int)> direct = [](int, int) { return 1.0f; };
+    std::function<float(int, int)> indirect = [](int, int) { return 0.5f; };
+    std::function<float(int, int)> sigma = [](int, int) { return 0.0f; };
+    std::function<uint16_t(int, int)> samples = [](int, int) { return uint16_t(1); };
+
+    uint32_t ObjectAt(int x, int y) const {
+        if (y < 4) return kNoObject;
+        if (std::abs(x - width / 2) < 8 && std::abs(y - height / 2) < 8) return 3;
+        return x < width / 2 ? 1u : 2u;
+    }
+
+    FrameInputs Frame(uint32_t frame, uint32_t seed = 1) const {
+        FrameInputs f;
+        f.Allocate(width, height);
+        f.frameIndex = frame;
+        std::mt19937 rng(seed * 7919u + frame);
+        std::normal_distribution<float> normal(0.0f, 1.0f);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                uint32_t id = ObjectAt(x, y);
+                f.prevPixel(x, y) = vec2(x + 0.5f, y + 0.5f);
+                uint16_t n = samples(x, y);
+                f.sampleCount(x, y) = n;
+                float s = sigma(x, y) / std::sqrt(float(n));
+                float nd = normal(rng), ni = normal(rng);
+                if (id == kNoObject) {
+                    f.emission(x, y) = vec3(0.2f, 0.3f, 0.4f);
+                    continue;
+                }
+                f.objectId(x, y) = id;
+                f.linearDepth(x, y) = id == 1 ? 5.0f + 0.01f * float(x) : id == 2 ? 6.0f : 3.0f;
+                f.depthGradient(x, y) = id == 1 ? vec2(0.01f, 0.0f) : vec2(0.0f);
+                f.normal(x, y) = id == 2 ? glm::normalize(vec3(0.3f, 0.0f, 1.0f)) : vec3(0, 0, 1);
+                f.worldPosition(x, y) = vec3(float(x), float(y), -f.linearDepth(x, y));
+                f.albedo(x, y) = id == 1 ? vec3(0.8f, 0.6f, 0.4f) : id == 2 ? vec3(0.5f) : vec3(0.9f, 0.9f, 0.2f);
+                f.emission(x, y) = id == 3 ? vec3(0.1f, 0.0f, 0.0f) : vec3(0.0f);
+                f.direct(x, y) = vec3(std::max(0.0f, direct(x, y) + s * nd));
+                f.indirect(x, y) = vec3(std::max(0.0f, indirect(x, y) + s * ni));
+            }
+        return f;
+    }
+};
+
+// Random inputs: random patches of object ids and depths, sub-pixel motion, HDR noise.
+inline FrameInputs RandomFrame(int w, int h, uint32_t seed, uint32_t frame) {
+    FrameInputs f;
+    f.Allocate(w, h);
+    f.frameIndex = frame;
+    std::mt19937 rng(seed);  // geometry: same every frame
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const int patch = 8;
+    std::vector<uint32_t> ids;
+    std::vector<float> depths;
+    std::vector<vec3> normals;
+    for (int i = 0; i < (w / patch + 1) * (h / patch + 1); ++i) {
+        ids.push_back(u(rng) < 0.1f ? kNoObject : uint32_t(u(rng) * 4));
+        depths.push_back(2.0f + 8.0f * u(rng));
+        normals.push_back(glm::normalize(vec3(u(rng) - 0.5f, u(rng) - 0.5f, 1.0f)));
+    }
+    std::mt19937 frameRng(seed * 31u + frame * 1013u + 7u);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            int pi = (y / patch) * (w / patch + 1) + x / patch;
+            uint32_t id = ids[size_t(pi)];
+            f.prevPixel(x, y) = vec2(x + 0.5f + 0.3f * std::sin(0.1f * float(y) + float(frame)),
+                                     y + 0.5f + 0.2f * std::cos(0.13f * float(x)));
+            f.sampleCount(x, y) = uint16_t(1 + (x * 7 + y * 3) % 8);
+            f.albedo(x, y) = vec3(0.2f + 0.6f * u(frameRng), 0.5f, 0.7f);
+            if (id == kNoObject) continue;
+            f.objectId(x, y) = id;
+            f.linearDepth(x, y) = depths[size_t(pi)] + 0.02f * float(x % patch);
+            f.depthGradient(x, y) = vec2(0.02f, 0.0f);
+            f.normal(x, y) = normals[size_t(pi)];
+            f.emission(x, y) = vec3(id == 3 ? 0.5f : 0.0f);
+            auto hdr = [&] { float v = u(frameRng); return v * v * 4.0f; };
+            f.direct(x, y) = vec3(hdr(), hdr(), hdr());
+            f.indirect(x, y) = vec3(hdr(), hdr(), hdr());
+        }
+    return f;
+}
+
+inline float TemporalError(const Plane<vec3>& a, const Plane<vec3>& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += std::abs(Luminance(a[i]) - Luminance(b[i]));
+    return float(sum / double(a.size()));
+}
+
+inline std::vector<float> AsFloats(const std::vector<uint8_t>& bytes) {
+    std::vector<float> out(bytes.size() / 4);
+    std::memcpy(out.data(), bytes.data(), out.size() * 4);
+    return out;
+}
+
+}  // namespace fovrt::test

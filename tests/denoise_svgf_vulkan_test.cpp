@@ -1,0 +1,263 @@
+// SVGF on Vulkan vs the C++ reference, pass by pass, on random FrameInputs (64×64, sub-pixel
+// motion, random objects, HDR values): reprojection (illumination, moments, history length,
+// colour history), filtered moments, each à-trous iteration, modulation; fp32 and fp16 histories;
+// the weighted and combined variants; allocator accounting == memory plan; behaviour checks
+// (disocclusion, camera cut, NaN); zero validation errors.
+// Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) (fp32; lavapipe's exp/pow differ from libm in the last
+// bits and a few taps near a threshold may flip); fp16 histories 1e-2·(1 + |ref|).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include <glm/gtc/packing.hpp>
+
+#include "denoise/denoiser_factory.h"
+#include "denoise/memory_plan.h"
+#include "denoise/svgf_cpu.h"
+#include "denoise/svgf_vk.h"
+#include "denoise_svgf_scenes.h"
+#include "test_support.h"
+#include "vk/context.h"
+
+using namespace fovrt;
+using namespace fovrt::test;
+
+namespace {
+
+std::shared_ptr<VulkanContext> TestContext() {
+    static std::shared_ptr<VulkanContext> ctx = [] {
+        VulkanContextOptions o;
+        o.validation = Validation::On;
+        return std::make_shared<VulkanContext>(VulkanContext::Create(o));
+    }();
+    return ctx;
+}
+
+struct ErrorStats {
+    double maxAbs = 0.0;
+    double maxRel = 0.0;  // |d| / (1 + |ref|)
+    size_t bad = 0;
+    void Add(float vk, float ref, double tol) {
+        double d = std::abs(double(vk) - double(ref));
+        if (!std::isfinite(vk)) d = INFINITY;
+        maxAbs = std::max(maxAbs, d);
+        double rel = d / (1.0 + std::abs(double(ref)));
+        maxRel = std::max(maxRel, rel);
+        if (rel > tol) ++bad;
+    }
+};
+
+// Compares a GPU plane (floats, `components` per pixel) with a reference plane.
+template <typename T>
+ErrorStats Compare(const std::vector<float>& vk, const Plane<T>& ref, int components, double tol) {
+    ErrorStats e;
+    REQUIRE(vk.size() >= ref.size() * size_t(components));
+    for (size_t i = 0; i < ref.size(); ++i)
+        for (int c = 0; c < components; ++c) {
+            const float* r = reinterpret_cast<const float*>(&ref[i]);
+            e.Add(vk[i * size_t(components) + size_t(c)], r[c], tol);
+        }
+    return e;
+}
+
+std::vector<float> HalfsToFloats(const std::vector<uint8_t>& bytes) {
+    std::vector<float> out(bytes.size() / 2);
+    for (size_t i = 0; i < out.size(); ++i) {
+        uint16_t h = uint16_t(bytes[2 * i] | (bytes[2 * i + 1] << 8));
+        out[i] = glm::unpackHalf1x16(h);
+    }
+    return out;
+}
+
+void RunPair(const DenoiserParams& params, const std::string& name, int frames, double tol,
+             bool checkIllum) {
+    auto ctx = TestContext();
+    SvgfVulkanDenoiser vk(name, ctx, params);
+    SvgfReferenceDenoiser ref(name, params);
+    Plane<vec3> outVk, outRef;
+    const bool fp16 = params.precision == Precision::Fp16;
+    auto read = [&](const std::string& buffer, bool history) {
+        auto bytes = vk.ReadBuffer(buffer);
+        return history && fp16 ? HalfsToFloats(bytes) : AsFloats(bytes);
+    };
+    for (int t = 0; t < frames; ++t) {
+        FrameInputs f = RandomFrame(64, 64, 1234, uint32_t(t));
+        vk.Denoise(f, outVk);
+        ref.Denoise(f, outRef);
+        const std::string side = vk.LastWrittenSide();
+        auto channels = SvgfChannels(params.svgf);
+        for (size_t c = 0; c < channels.size(); ++c) {
+            const std::string& ch = channels[c];
+            const SvgfHistory& h = ref.CurrentHistory(c);
+            INFO("frame " << t << " channel " << ch);
+            auto eM = Compare(read(ch + ".moments." + side, true), h.moments, 2, tol);
+            auto eL = Compare(read(ch + ".length." + side, true), h.length, 1, tol);
+            auto eC = Compare(read(ch + ".color." + side, true), h.color, 3, tol);
+            INFO("moments max rel " << eM.maxRel << ", length " << eL.maxRel << ", colour history "
+                                     << eC.maxRel);
+            CHECK(eM.bad == 0);
+            CHECK(eL.bad == 0);
+            CHECK(eC.bad == 0);
+            if (params.svgf.weightBySampleCount) {
+                auto eW = Compare(read(ch + ".weight." + side, true), h.weight, 1, tol);
+                INFO("weight max rel " << eW.maxRel);
+                CHECK(eW.bad == 0);
+            }
+            if (checkIllum)
+                for (int k = 0; k < 2; ++k) {
+                    auto eI = Compare(read(ch + ".illum" + std::to_string(k), false), ref.Illum(c, k), 4, tol);
+                    INFO("illum" << k << " max rel " << eI.maxRel << " max abs " << eI.maxAbs);
+                    CHECK(eI.bad == 0);
+                }
+        }
+        std::vector<float> o(outVk.size() * 3);
+        std::memcpy(o.data(), outVk.data(), o.size() * 4);
+        auto eO = Compare(o, outRef, 3, tol);
+        if (t + 1 == frames)
+            WARN(name << " iterations " << params.svgf.atrousIterations << (fp16 ? " fp16" : "")
+                      << (params.svgf.filterCombined ? " combined" : "") << ": output max rel error "
+                      << eO.maxRel << ", max abs " << eO.maxAbs << " (validation "
+                      << (ctx->validationEnabled() ? "on" : "off") << ")");
+        INFO("frame " << t << " output max rel " << eO.maxRel << " max abs " << eO.maxAbs);
+        CHECK(eO.bad == 0);
+    }
+    CHECK(vk.Stats().nonFiniteSamples == ref.Stats().nonFiniteSamples);
+    CHECK(ctx->validationErrors() == 0);
+}
+
+}  // namespace
+
+TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    DenoiserParams p;
+    SECTION("reproject + filter moments (no a-trous)") {
+        p.svgf.atrousIterations = 0;
+        RunPair(p, "svgf", 4, 2e-3, true);
+    }
+    SECTION("a-trous iteration 0 (feedback)") {
+        p.svgf.atrousIterations = 1;
+        RunPair(p, "svgf", 3, 2e-3, true);
+    }
+    SECTION("a-trous iterations 0-1") {
+        p.svgf.atrousIterations = 2;
+        RunPair(p, "svgf", 3, 2e-3, true);
+    }
+    SECTION("full svgf, 5 iterations, feedback of iteration 2 (Falcor)") {
+        p.svgf.feedbackIteration = 2;
+        RunPair(p, "svgf", 3, 2e-3, false);
+    }
+    SECTION("svgf-weighted") {
+        p.svgf.weightBySampleCount = true;
+        p.svgf.atrousIterations = 2;
+        RunPair(p, "svgf-weighted", 3, 2e-3, true);
+    }
+    SECTION("combined direct + indirect") {
+        p.svgf.filterCombined = true;
+        p.svgf.atrousIterations = 2;
+        RunPair(p, "svgf", 3, 2e-3, true);
+    }
+    SECTION("fp16 histories") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        p.precision = Precision::Fp16;
+        p.svgf.atrousIterations = 2;
+        RunPair(p, "svgf", 3, 1e-2, false);
+    }
+}
+
+TEST_CASE("vulkan allocator accounting equals the memory plan", "[vulkan][svgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    auto ctx = TestContext();
+    for (const char* name : {"svgf", "svgf-weighted"})
+        for (Precision prec : {Precision::Fp32, Precision::Fp16}) {
+            DenoiserParams p;
+            p.precision = prec;
+            size_t before = ctx->allocator().LiveBytes();
+            {
+                auto d = CreateDenoiser(name, "vulkan", p, ctx.get());
+                REQUIRE(d->Backend() == "vulkan");
+                Plane<vec3> out;
+                d->Denoise(RandomFrame(40, 24, 9, 0), out);
+                auto plan = PlanDenoiserMemory(name, 40, 24, p);
+                auto live = ctx->allocator().LiveAllocations();
+                REQUIRE(live.size() == plan.size());
+                std::sort(live.begin(), live.end(), [](auto& a, auto& b) { return a.name < b.name; });
+                std::sort(plan.begin(), plan.end(), [](auto& a, auto& b) { return a.name < b.name; });
+                for (size_t i = 0; i < plan.size(); ++i) {
+                    CHECK(live[i].name == plan[i].name);
+                    CHECK(live[i].bytes == plan[i].bytes);
+                }
+                CHECK(ctx->allocator().LiveBytes() - before == TotalBytes(plan));
+            }
+            CHECK(ctx->allocator().LiveBytes() == before);
+        }
+    CHECK(ctx->validationErrors() == 0);
+}
+
+TEST_CASE("vulkan svgf: disocclusion, camera cut, NaN never reaches history", "[vulkan][svgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    auto ctx = TestContext();
+    StaticScene scene;
+    scene.sigma = [](int, int) { return 0.3f; };
+    DenoiserParams p;
+    p.svgf.atrousIterations = 2;
+    SvgfVulkanDenoiser d("svgf", ctx, p);
+    Plane<vec3> out;
+    auto length = [&](int x, int y) {
+        return AsFloats(d.ReadBuffer("direct.length." + d.LastWrittenSide()))[size_t(y * 64 + x)];
+    };
+    for (uint32_t t = 0; t < 6; ++t) d.Denoise(scene.Frame(t), out);
+    CHECK(length(10, 20) == Approx(6.0f));
+    FrameInputs f = scene.Frame(6);
+    for (int y = 10; y < 14; ++y)
+        for (int x = 10; x < 14; ++x) f.objectId(x, y) = 7;
+    f.direct(40, 40) = vec3(std::nanf(""), 1.0f, 1.0f);
+    f.indirect(41, 40) = vec3(INFINITY, 0.0f, 0.0f);
+    f.direct(42, 40) = vec3(-1.0f, 0.5f, 0.5f);
+    d.Denoise(f, out);
+    CHECK(length(11, 11) == Approx(1.0f));
+    CHECK(length(20, 40) == Approx(7.0f));
+    CHECK(d.Stats().nonFiniteSamples == 2);
+    CHECK(d.Stats().negativeSamples == 1);
+    for (const char* buffer : {"direct.color.", "indirect.color.", "direct.moments.", "indirect.moments."}) {
+        auto values = AsFloats(d.ReadBuffer(buffer + d.LastWrittenSide()));
+        CHECK(std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); }));
+    }
+    for (size_t i = 0; i < out.size(); ++i) REQUIRE(IsFinite(out[i]));
+    f = scene.Frame(7);
+    f.cameraCut = true;
+    d.Denoise(f, out);
+    CHECK(length(20, 40) == Approx(1.0f));
+    auto timings = d.LastTimings();
+    if (ctx->supportsTimestamps()) {
+        REQUIRE(timings.size() == 1 + 2 + 2 + 1 + 1);  // upload, reproject, moments, 2 à-trous, modulate, download
+        CHECK(timings[1].pass == "reproject");
+    }
+    CHECK(ctx->validationErrors() == 0);
+}
+
+TEST_CASE("factory: cpu backend, auto picks vulkan when present", "[vulkan][svgf]") {
+    DenoiserParams p;
+    CHECK(CreateDenoiser("svgf", "cpu", p)->Backend() == "cpu");
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    CHECK(CreateDenoiser("svgf-weighted", "auto", p, TestContext().get())->Backend() == "vulkan");
+}
+
+TEST_CASE("vulkan svgf: parameter change resets histories and rebuilds buffers", "[vulkan][svgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    auto ctx = TestContext();
+    StaticScene scene;
+    DenoiserParams p;
+    p.svgf.atrousIterations = 1;
+    SvgfVulkanDenoiser d("svgf", ctx, p);
+    Plane<vec3> out;
+    for (uint32_t t = 0; t < 3; ++t) d.Denoise(scene.Frame(t), out);
+    CHECK(AsFloats(d.ReadBuffer("direct.length." + d.LastWrittenSide()))[20 * 64 + 10] == Approx(3.0f));
+    p.svgf.filterCombined = true;
+    d.SetParams(p);
+    d.Denoise(scene.Frame(3), out);
+    CHECK(AsFloats(d.ReadBuffer("combined.length." + d.LastWrittenSide()))[20 * 64 + 10] == Approx(1.0f));
+    auto plan = PlanSvgfMemory(64, 64, p);
+    CHECK(ctx->allocator().LiveBytes() == TotalBytes(plan));
+    CHECK(ctx->validationErrors() == 0);
+}

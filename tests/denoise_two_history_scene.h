@@ -1,0 +1,57 @@
+// Synthetic inputs shared by the two-history / A-SVGF / lag tests: a static fronto-parallel plane
+// (one object, constant depth and normal, static camera) whose illumination is a chosen truth plus
+// Monte-Carlo-like noise of variance σ²/n
+// (the project's SVGF is the reference the new denoisers must equal or beat).
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "core/frame_inputs.h"
+#include "denoise/params.h"
+#include "denoise/svgf_cpu.h"
+
+namespace fovrt::test {
+
+// Static plane: every pixel reprojects onto itself.
+inline void MakeStaticPlane(FrameInputs& f, int w, int h, uint32_t frameIndex) {
+    f.Allocate(w, h);
+    f.frameIndex = frameIndex;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            f.albedo(x, y) = vec3(1.0f);
+            f.normal(x, y) = vec3(0.0f, 0.0f, 1.0f);
+            f.linearDepth(x, y) = 2.0f;
+            f.depthGradient(x, y) = vec2(0.0f);
+            f.objectId(x, y) = 0;
+            f.prevPixel(x, y) = vec2(float(x) + 0.5f, float(y) + 0.5f);
+            f.seed(x, y) = frameIndex * 7919u + uint32_t(y * w + x);
+        }
+}
+
+// The project's plain SVGF (C++ reference backend, denoise/svgf_cpu.h).
+inline SvgfReferenceDenoiser MakeSvgf(const SvgfParams& svgf) {
+    DenoiserParams params;
+    params.svgf = svgf;
+    return SvgfReferenceDenoiser("svgf", params);
+}
+
+// relMSE (SPEC §8, ε = 0.01) over the pixels where mask(x, y) is true.
+inline double RelMse(const Plane<vec3>& y, const Plane<vec3>& r,
+                     const std::function<bool(int, int)>& mask) {
+    double sum = 0.0;
+    size_t count = 0;
+    for (int py = 0; py < y.height(); ++py)
+        for (int px = 0; px < y.width(); ++px) {
+            if (!mask(px, py)) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double d = double(y(px, py)[c]) - r(px, py)[c];
+                sum += d * d / (double(r(px, py)[c]) * r(px, py)[c] + 0.01);
+                ++count;
+            }
+        }
+    return count ? sum / double(count) : 0.0;
+}
+
+}  // namespace fovrt::test

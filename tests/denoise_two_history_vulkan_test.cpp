@@ -1,0 +1,239 @@
+// two-history, asvgf and two-history-asvgf on Vulkan vs the C++ reference, pass by pass, on random
+// FrameInputs (64×64, sub-pixel motion, random objects, per-frame random sample counts, random
+// gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, g,
+// moments), the colour histories fed back by à-trous iteration 1, two_history_gradient (q),
+// asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α, λ), and the final output (blend + remaining
+// iterations + modulation); fp32 and fp16 histories; zero validation errors. Also: with constant
+// n the Vulkan two-history equals the Vulkan SVGF.
+// Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) for ≥ 99.5 % of values (lavapipe's exp/pow differ from
+// libm in the last bits, so a few taps near a threshold may flip); fp16 histories 1e-2.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
+#include <memory>
+#include <random>
+
+#include "denoise/asvgf_ref.h"
+#include "denoise/denoiser_factory.h"
+#include "denoise/svgf_vk.h"
+#include "denoise/two_history_ref.h"
+#include "denoise/two_history_vk.h"
+#include "denoise_svgf_scenes.h"
+#include "test_support.h"
+#include "vk/context.h"
+
+using namespace fovrt;
+
+namespace {
+
+std::shared_ptr<VulkanContext> TestContext() {
+    static std::shared_ptr<VulkanContext> ctx = [] {
+        VulkanContextOptions o;
+        o.validation = Validation::On;
+        return std::make_shared<VulkanContext>(VulkanContext::Create(o));
+    }();
+    return ctx;
+}
+
+std::vector<float> Floats(const std::vector<uint8_t>& bytes, bool half) {
+    if (!half) return test::AsFloats(bytes);
+    std::vector<float> out(bytes.size() / 2);
+    for (size_t i = 0; i < out.size(); ++i)
+        out[i] = glm::unpackHalf1x16(uint16_t(bytes[2 * i] | (bytes[2 * i + 1] << 8)));
+    return out;
+}
+
+struct Mismatch {
+    double maxRel = 0.0;
+    size_t bad = 0, total = 0;
+};
+
+template <typename T>
+Mismatch Compare(const std::vector<float>& vk, const Plane<T>& ref, double tol) {
+    constexpr size_t kComponents = sizeof(T) / sizeof(float);
+    Mismatch m;
+    REQUIRE(vk.size() >= ref.size() * kComponents);
+    for (size_t i = 0; i < ref.size(); ++i) {
+        const float* r = reinterpret_cast<const float*>(&ref[i]);
+        for (size_t c = 0; c < kComponents; ++c) {
+            const float v = vk[i * kComponents + c];
+            double rel = std::abs(double(v) - r[c]) / (1.0 + std::abs(double(r[c])));
+            if (!std::isfinite(v)) rel = INFINITY;
+            m.maxRel = std::max(m.maxRel, rel);
+            m.bad += rel > tol;
+            ++m.total;
+        }
+    }
+    return m;
+}
+
+// Random frame with per-frame sample counts and gradient samples (some strata twice, some none,
+// one outside the grid).
+FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame) {
+    FrameInputs f = test::RandomFrame(w, h, 5, frame);
+    std::mt19937 rng(1000 + frame);
+    std::uniform_int_distribution<int> spp(1, 16), off(0, 2);
+    std::uniform_real_distribution<float> lum(0.0f, 4.0f), u(0.0f, 1.0f);
+    for (size_t i = 0; i < f.sampleCount.size(); ++i) f.sampleCount[i] = uint16_t(spp(rng));
+    const ivec2 grid = StratumGridSize(w, h);
+    for (int sy = 0; sy < grid.y; ++sy)
+        for (int sx = 0; sx < grid.x; ++sx) {
+            const int copies = u(rng) < 0.3f ? 0 : (u(rng) < 0.1f ? 2 : 1);
+            for (int k = 0; k < copies; ++k) {
+                GradientSample s;
+                s.stratum = ivec2(sx, sy);
+                s.pixel =
+                    glm::min(ivec2(sx * 3 + off(rng), sy * 3 + off(rng)), ivec2(w - 1, h - 1));
+                s.prevPixel = s.pixel;
+                s.newLuminance = lum(rng);
+                s.oldLuminance = u(rng) < 0.5f ? s.newLuminance : lum(rng);
+                f.gradientSamples.push_back(s);
+            }
+        }
+    GradientSample outside;
+    outside.stratum = ivec2(grid.x + 3, 0);
+    outside.pixel = ivec2(0, 0);
+    outside.newLuminance = 1.0f;
+    outside.oldLuminance = 0.0f;
+    f.gradientSamples.push_back(outside);
+    return f;
+}
+
+void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames) {
+    auto ctx = TestContext();
+    TwoHistoryVulkanDenoiser vk(variant, ctx, params);
+    TwoHistoryReferenceDenoiser ref(variant, params);
+    const bool half = params.precision == Precision::Fp16;
+    const double histTol = half ? 1e-2 : 2e-3, tol = half ? 1e-2 : 2e-3;
+    const bool two = variant != TwoHistoryVariant::Asvgf;
+    const bool asvgf = variant != TwoHistoryVariant::TwoHistory;
+    const std::vector<std::string> channels = params.svgf.filterCombined
+                                                  ? std::vector<std::string>{"combined"}
+                                                  : std::vector<std::string>{"direct", "indirect"};
+    Plane<vec3> outVk, outRef;
+    for (int frame = 0; frame < frames; ++frame) {
+        const FrameInputs f = RandomTwoHistoryFrame(64, 64, uint32_t(frame));
+        vk.Denoise(f, outVk);
+        ref.Denoise(f, outRef);
+        const std::string side = vk.LastWrittenSide();
+        const TwoHistoryState& st = ref.CurrentState();
+        auto check = [&](const char* what, const Mismatch& m) {
+            INFO(vk.Name() << (half ? " fp16" : " fp32") << " frame " << frame << " " << what
+                           << ": max rel " << m.maxRel << ", " << m.bad << "/" << m.total
+                           << " beyond tolerance");
+            CHECK(double(m.bad) <= 0.005 * double(m.total));
+        };
+        check("output", Compare(test::AsFloats(vk.ReadBuffer("output")), outRef, tol));
+        check("W_u", Compare(Floats(vk.ReadBuffer(channels[0] + ".length." + side), half), st.wu,
+                             histTol));
+        for (size_t c = 0; c < channels.size(); ++c) {
+            check("moments", Compare(Floats(vk.ReadBuffer(channels[c] + ".moments." + side), half),
+                                     st.moments[c], histTol));
+            check("I_u history",
+                  Compare(Floats(vk.ReadBuffer(channels[c] + ".color." + side), half), st.iu[c],
+                          histTol));
+            if (two)
+                check("I_w history",
+                      Compare(Floats(vk.ReadBuffer(channels[c] + ".wcolor." + side), half),
+                              st.iw[c], histTol));
+        }
+        if (two) {
+            check("W_w", Compare(Floats(vk.ReadBuffer("wweight." + side), half), st.ww, histTol));
+            check("power sums",
+                  Compare(Floats(vk.ReadBuffer("powerSums." + side), half), st.powerSums, histTol));
+            check("gradient",
+                  Compare(Floats(vk.ReadBuffer("gradient." + side), half), st.gradient, histTol));
+        }
+        if (variant == TwoHistoryVariant::TwoHistory)
+            check("q", Compare(test::AsFloats(vk.ReadBuffer("q")), ref.Q(), tol));
+        if (asvgf) {
+            check("alpha", Compare(test::AsFloats(vk.ReadBuffer("asvgf.alpha")), ref.Alpha(), tol));
+            check("lambda",
+                  Compare(test::AsFloats(vk.ReadBuffer("asvgf.lambda")), ref.Lambda(), tol));
+            if (frame > 0) {
+                const int gi = params.asvgf.gradientIterations;
+                const char* last = gi > 0 && (gi - 1) % 2 == 0 ? "asvgf.grad1" : "asvgf.grad0";
+                check("reconstructed gradient", Compare(test::AsFloats(vk.ReadBuffer(last)),
+                                                        ref.ReconstructedGradient(), tol));
+            }
+        }
+        if (frame == frames - 1) {
+            std::string passes;
+            for (const PassTiming& t : vk.LastTimings()) passes += t.pass + " ";
+            INFO("passes: " << passes);
+            CHECK(vk.LastTimings().size() >= 5);
+        }
+    }
+    CHECK(vk.Stats().negativeSamples == ref.Stats().negativeSamples);
+    CHECK(ctx->validationErrors() == 0);
+}
+
+}  // namespace
+
+TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
+          "[vulkan][two_history][asvgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    DenoiserParams params;
+    for (TwoHistoryVariant v : {TwoHistoryVariant::TwoHistory, TwoHistoryVariant::Asvgf,
+                                TwoHistoryVariant::TwoHistoryAsvgf}) {
+        SECTION(std::string("fp32 separate channels: ") + TwoHistoryVariantName(v)) {
+            RunPair(v, params, 4);
+        }
+    }
+    SECTION("fp32 combined, feedback 0, 2 iterations: two-history") {
+        params.svgf.filterCombined = true;
+        params.svgf.feedbackIteration = 0;
+        params.svgf.atrousIterations = 2;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+    }
+    SECTION("fp32, no a-trous: two-history-asvgf") {
+        params.svgf.atrousIterations = 0;
+        RunPair(TwoHistoryVariant::TwoHistoryAsvgf, params, 3);
+    }
+    SECTION("fp16 histories: two-history and asvgf") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+        RunPair(TwoHistoryVariant::Asvgf, params, 3);
+    }
+}
+
+TEST_CASE("vulkan two-history with constant n equals vulkan svgf", "[vulkan][two_history]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    auto ctx = TestContext();
+    DenoiserParams params;
+    TwoHistoryVulkanDenoiser th(TwoHistoryVariant::TwoHistory, ctx, params);
+    SvgfVulkanDenoiser svgf("svgf", ctx, params);
+    Plane<vec3> a, b;
+    double maxRel = 0.0;
+    for (uint32_t frame = 0; frame < 6; ++frame) {
+        FrameInputs f = test::RandomFrame(64, 64, 9, frame);
+        for (size_t i = 0; i < f.sampleCount.size(); ++i) f.sampleCount[i] = 4;
+        th.Denoise(f, a);
+        svgf.Denoise(f, b);
+        for (size_t i = 0; i < a.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                maxRel = std::max(maxRel,
+                                  double(std::abs(a[i][c] - b[i][c])) / (1.0 + std::abs(b[i][c])));
+    }
+    INFO("max relative difference " << maxRel);
+    CHECK(maxRel < 1e-4);
+    CHECK(ctx->validationErrors() == 0);
+}
+
+TEST_CASE("factory creates the two-history family on both backends", "[vulkan][two_history]") {
+    DenoiserParams params;
+    for (const char* name : {"two-history", "asvgf", "two-history-asvgf"}) {
+        auto cpu = CreateDenoiser(name, "cpu", params);
+        CHECK(cpu->Name() == name);
+        CHECK(cpu->Backend() == "cpu");
+        CHECK(!PlanDenoiserMemory(name, 64, 64, params).empty());
+    }
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    for (const char* name : {"two-history", "asvgf", "two-history-asvgf"}) {
+        auto vk = CreateDenoiser(name, "vulkan", params, TestContext().get());
+        CHECK(vk->Name() == name);
+        CHECK(vk->Backend() == "vulkan");
+    }
+}
