@@ -159,6 +159,8 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
             std::map<std::string, double> bytes;
             if (name == "svgf" || name == "svgf-weighted")
                 for (const PassBench& b : SvgfPassBytes(ParamsForDenoiser(name, o.params))) bytes[b.pass] = b.bytesPerPixel;
+            // Vulkan only: the guide packing pass reads depth, normal, object id and writes a vec4.
+            if ((name == "svgf" || name == "svgf-weighted") && r.backend == "vulkan") bytes["pack_guide"] = 4 + 12 + 4 + 16;
             for (const std::string& pass : order) {
                 PassBench pb{pass, sums[pass] / o.frames, bytes.count(pass) ? bytes[pass] : 0.0};
                 r.passes.push_back(pb);

@@ -45,6 +45,8 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
         add(ch + ".illum0", 16 * n, false);
         add(ch + ".illum1", 16 * n, false);
     }
+    // Edge-stopping guide of the Vulkan spatial filters (svgf_pack_guide: normal, depth; scratch).
+    add("geometry.guide", 16 * n, false);
     add("output", 12 * n, false);
     add("stats", 8, false);
     // Staging: every upload (inputs + this frame's depth/normal/objectId), then output + stats.

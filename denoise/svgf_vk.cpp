@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "denoise/memory_plan.h"
 #include "denoise/svgf_layout.h"
+#include "denoise/svgf_texel_formats.h"
 
 namespace fovrt {
 
@@ -30,12 +31,14 @@ void SvgfVulkanDenoiser::CreatePipelines() {
     channels_ = SvgfChannels(p);
     const std::string suffix = params_.precision == Precision::Fp16 ? "_fp16" : "";
     const uint32_t sets = 4 * uint32_t(channels_.size()) + 2;
+    guide_ = ComputePipeline(*context_, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
+                             SvgfGuideTexelFormats());
     reproject_ = ComputePipeline(*context_, "svgf_reproject" + suffix, SVGF_REPROJECT_BINDINGS,
-                                 sizeof(SvgfReprojectPush), sets);
+                                 sizeof(SvgfReprojectPush), sets, SvgfReprojectTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + suffix, SVGF_MOMENTS_BINDINGS,
-                               sizeof(SvgfFilterMomentsPush), sets);
+                               sizeof(SvgfFilterMomentsPush), sets, SvgfMomentsTexelFormats(params_.precision));
     atrous_ = ComputePipeline(*context_, "svgf_atrous" + suffix, SVGF_ATROUS_BINDINGS, sizeof(SvgfAtrousPush),
-                              sets);
+                              sets, SvgfAtrousTexelFormats());
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + suffix, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), 2);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
@@ -63,6 +66,7 @@ void SvgfVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void SvgfVulkanDenoiser::BuildSets() {
+    guide_.ResetSets();
     reproject_.ResetSets();
     moments_.ResetSets();
     atrous_.ResetSets();
@@ -72,6 +76,15 @@ void SvgfVulkanDenoiser::BuildSets() {
     reprojectSets_.assign(channels_.size(), {});
     momentsSets_.assign(channels_.size(), {});
     atrousSets_.assign(channels_.size(), {});
+    for (int parity = 0; parity < 2; ++parity) {
+        const std::string cur = Side(parity);
+        std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
+        g[SVGF_GUIDE_B_DEPTH] = &Buf("geometry.depth." + cur);
+        g[SVGF_GUIDE_B_NORMAL] = &Buf("geometry.normal." + cur);
+        g[SVGF_GUIDE_B_OBJECT] = &Buf("geometry.objectId." + cur);
+        g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
+        guideSets_[size_t(parity)] = guide_.MakeSet(g);
+    }
     for (size_t c = 0; c < channels_.size(); ++c) {
         const std::string& ch = channels_[c];
         for (int parity = 0; parity < 2; ++parity) {
@@ -103,9 +116,7 @@ void SvgfVulkanDenoiser::BuildSets() {
 
             std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
             m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(ch + ".illum0");
-            m[SVGF_MOMENTS_B_DEPTH] = &Buf("geometry.depth." + cur);
-            m[SVGF_MOMENTS_B_NORMAL] = &Buf("geometry.normal." + cur);
-            m[SVGF_MOMENTS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            m[SVGF_MOMENTS_B_GUIDE] = &Buf("geometry.guide");
             m[SVGF_MOMENTS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
             m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
             m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);
@@ -116,9 +127,7 @@ void SvgfVulkanDenoiser::BuildSets() {
                 // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
                 std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
                 a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(ch + (pp ? ".illum0" : ".illum1"));
-                a[SVGF_ATROUS_B_DEPTH] = &Buf("geometry.depth." + cur);
-                a[SVGF_ATROUS_B_NORMAL] = &Buf("geometry.normal." + cur);
-                a[SVGF_ATROUS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                a[SVGF_ATROUS_B_GUIDE] = &Buf("geometry.guide");
                 a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
                 a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(ch + (pp ? ".illum1" : ".illum0"));
                 a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(ch + ".color." + cur);
@@ -186,6 +195,12 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     off = rec.Upload(in.normal.data(), 12 * n, staging, off, Buf("geometry.normal." + cur));
     off = rec.Upload(in.objectId.data(), 4 * n, staging, off, Buf("geometry.objectId." + cur));
     rec.Fill(Buf("stats"), 0u);
+    rec.Barrier();
+    rec.EndPass();
+
+    rec.BeginPass("pack_guide");
+    const ivec2 size(w, h);
+    rec.Dispatch(guide_, guideSets_[size_t(parity_)], &size, sizeof(size), groups);
     rec.Barrier();
     rec.EndPass();
 

@@ -2,15 +2,53 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cstring>
 
 #include "core/error.h"
 #include "denoise/asvgf_ref.h"
 #include "denoise/memory_plan.h"
 #include "denoise/svgf_layout.h"
+#include "denoise/svgf_texel_formats.h"
 #include "shaders/common/two_history_constants.glsl"
 
 namespace fovrt {
+
+namespace {
+// Read-only planes of two_history_reproject bound as uniform texel buffers (common/access.glsl);
+// fp16 RGB histories, sample counts and α stay storage buffers (as the shader declares them).
+std::array<VkFormat, TH_REPROJECT_BINDINGS> ReprojectTexelFormats(Precision precision) {
+    const bool half = precision == Precision::Fp16;
+    std::array<VkFormat, TH_REPROJECT_BINDINGS> f{};
+    f.fill(VK_FORMAT_UNDEFINED);
+    for (int b : {TH_REPROJECT_B_COLOR, TH_REPROJECT_B_COLOR_OTHER, TH_REPROJECT_B_NORMAL, TH_REPROJECT_B_PREV_NORMAL})
+        f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
+    for (int b : {TH_REPROJECT_B_DEPTH, TH_REPROJECT_B_PREV_DEPTH}) f[size_t(b)] = VK_FORMAT_R32_SFLOAT;
+    for (int b : {TH_REPROJECT_B_OBJECT, TH_REPROJECT_B_PREV_OBJECT}) f[size_t(b)] = VK_FORMAT_R32_UINT;
+    for (int b : {TH_REPROJECT_B_DEPTH_GRAD, TH_REPROJECT_B_PREV_PIXEL}) f[size_t(b)] = VK_FORMAT_R32G32_SFLOAT;
+    if (!half)
+        for (int b : {TH_REPROJECT_B_PREV_IU, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW,
+                      TH_REPROJECT_B_PREV_S, TH_REPROJECT_B_PREV_G})
+            f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
+    f[TH_REPROJECT_B_PREV_M] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
+    f[TH_REPROJECT_B_PREV_WU] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    f[TH_REPROJECT_B_PREV_WW] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    return f;
+}
+
+std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
+    std::array<VkFormat, TH_GRADIENT_BINDINGS> f{};
+    f.fill(VK_FORMAT_UNDEFINED);
+    f[TH_GRADIENT_B_GRADIENT] = precision == Precision::Fp16 ? VK_FORMAT_UNDEFINED : VK_FORMAT_R32G32B32_SFLOAT;
+    f[TH_GRADIENT_B_ILLUM_U0] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[TH_GRADIENT_B_ILLUM_U1] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[TH_GRADIENT_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
+    f[TH_GRADIENT_B_NORMAL] = VK_FORMAT_R32G32B32_SFLOAT;
+    f[TH_GRADIENT_B_OBJECT] = VK_FORMAT_R32_UINT;
+    f[TH_GRADIENT_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
+    return f;
+}
+}  // namespace
 
 namespace {
 
@@ -92,17 +130,19 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     channels_ = SvgfChannels(params_.svgf);
     const std::string sfx = params_.precision == Precision::Fp16 ? "_fp16" : "";
     constexpr uint32_t kSets = 16;
+    guide_ = ComputePipeline(*context_, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
+                             SvgfGuideTexelFormats());
     reproject_ = ComputePipeline(*context_, "two_history_reproject" + sfx, TH_REPROJECT_BINDINGS,
-                                 sizeof(TwoHistoryReprojectPush), kSets);
+                                 sizeof(TwoHistoryReprojectPush), kSets, ReprojectTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
-                               sizeof(SvgfFilterMomentsPush), kSets);
+                               sizeof(SvgfFilterMomentsPush), kSets, SvgfMomentsTexelFormats(params_.precision));
     atrous_ = ComputePipeline(*context_, "svgf_atrous" + sfx, SVGF_ATROUS_BINDINGS,
-                              sizeof(SvgfAtrousPush), kSets);
+                              sizeof(SvgfAtrousPush), kSets, SvgfAtrousTexelFormats());
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), kSets);
     if (two_) {
         gradient_ = ComputePipeline(*context_, "two_history_gradient" + sfx, TH_GRADIENT_BINDINGS,
-                                    sizeof(TwoHistoryGradientPush), kSets);
+                                    sizeof(TwoHistoryGradientPush), kSets, GradientTexelFormats(params_.precision));
         blend_ = ComputePipeline(*context_, "two_history_blend" + sfx, TH_BLEND_BINDINGS,
                                  sizeof(TwoHistoryBlendPush), kSets);
     }
@@ -144,8 +184,8 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void TwoHistoryVulkanDenoiser::BuildSets() {
-    for (ComputePipeline* p : {&reproject_, &moments_, &atrous_, &modulate_, &gradient_, &blend_,
-                               &claim_, &gather_, &gradAtrous_, &alpha_})
+    for (ComputePipeline* p : {&guide_, &reproject_, &moments_, &atrous_, &modulate_, &gradient_,
+                               &blend_, &claim_, &gather_, &gradAtrous_, &alpha_})
         if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
     const size_t nch = channels_.size();
     const std::string& ch0 = channels_[0];
@@ -165,6 +205,13 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         const Buffer* dummyOut = &Buf("output");
         auto two = [&](const std::string& name) { return two_ ? &Buf(name) : dummyIn; };
         auto twoOut = [&](const std::string& name) { return two_ ? &Buf(name) : dummyOut; };
+
+        std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
+        g[SVGF_GUIDE_B_DEPTH] = &Buf("geometry.depth." + cur);
+        g[SVGF_GUIDE_B_NORMAL] = &Buf("geometry.normal." + cur);
+        g[SVGF_GUIDE_B_OBJECT] = &Buf("geometry.objectId." + cur);
+        g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
+        guideSets_[pi] = guide_.MakeSet(g);
 
         for (size_t c = 0; c < nch; ++c) {
             const std::string& ch = channels_[c];
@@ -208,9 +255,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             auto momentsSet = [&](const std::string& in, const std::string& out) {
                 std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
                 m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(in);
-                m[SVGF_MOMENTS_B_DEPTH] = &Buf("geometry.depth." + cur);
-                m[SVGF_MOMENTS_B_NORMAL] = &Buf("geometry.normal." + cur);
-                m[SVGF_MOMENTS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                m[SVGF_MOMENTS_B_GUIDE] = &Buf("geometry.guide");
                 m[SVGF_MOMENTS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
                 m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
                 m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);  // W_u
@@ -221,9 +266,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                                  const std::string& hist) {
                 std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
                 a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(in);
-                a[SVGF_ATROUS_B_DEPTH] = &Buf("geometry.depth." + cur);
-                a[SVGF_ATROUS_B_NORMAL] = &Buf("geometry.normal." + cur);
-                a[SVGF_ATROUS_B_OBJECT] = &Buf("geometry.objectId." + cur);
+                a[SVGF_ATROUS_B_GUIDE] = &Buf("geometry.guide");
                 a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
                 a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(out);
                 a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(hist);
@@ -396,6 +439,12 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
             rec.Barrier();
         }
     }
+
+    rec.BeginPass("pack_guide");
+    const ivec2 guideSize(w, h);
+    rec.Dispatch(guide_, guideSets_[size_t(parity_)], &guideSize, sizeof(guideSize), groups);
+    rec.Barrier();
+    rec.EndPass();
 
     rec.BeginPass("two_history_reproject");
     uint32_t flags = TH_REPROJECT_FLAG_HAS_PREV * (hasPrev_ ? 1u : 0u);

@@ -3,9 +3,10 @@
 #ifndef FOVRT_SHARED_CONSTANTS_H
 #define FOVRT_SHARED_CONSTANTS_H
 
-// Workgroup of every 2-D image pass: 8×8 invocations (lavapipe runs 8-wide subgroups).
-#define FOVRT_WORKGROUP_X 8
-#define FOVRT_WORKGROUP_Y 8
+// Workgroup of every 2-D image pass: 64×1 invocations (rows). On lavapipe (8-wide subgroups)
+// 64×1 measured faster than 8×8 for the texel-buffer gathers (denoise/svgf.md, "Speed").
+#define FOVRT_WORKGROUP_X 64
+#define FOVRT_WORKGROUP_Y 1
 
 // History length cap (frames). α = max(α, 1/length) makes lengths beyond 1/α irrelevant.
 #define FOVRT_MAX_HISTORY_LENGTH 64.0
@@ -53,26 +54,30 @@
 #define SVGF_REPROJECT_B_STATS 20          // uint[2]    non-finite, negative counters
 #define SVGF_REPROJECT_BINDINGS 21
 
+// svgf_pack_guide: this frame's edge-stopping guide (normal.xyz, depth), depth = −1 on background
+// pixels (object id kNoObject), so the spatial filters fetch one texel per tap instead of three.
+#define SVGF_GUIDE_B_DEPTH 0               // float[N]
+#define SVGF_GUIDE_B_NORMAL 1              // float[3N]
+#define SVGF_GUIDE_B_OBJECT 2              // uint[N]
+#define SVGF_GUIDE_B_OUT 3                 // vec4[N]
+#define SVGF_GUIDE_BINDINGS 4
+
 // svgf_filter_moments
 #define SVGF_MOMENTS_B_ILLUM_IN 0          // vec4[N]
-#define SVGF_MOMENTS_B_DEPTH 1             // float[N]
-#define SVGF_MOMENTS_B_NORMAL 2            // float[3N]
-#define SVGF_MOMENTS_B_OBJECT 3            // uint[N]
-#define SVGF_MOMENTS_B_DEPTH_GRAD 4        // float[2N]
-#define SVGF_MOMENTS_B_MOMENTS 5           // hfloat[2N] this frame's moments
-#define SVGF_MOMENTS_B_LENGTH 6            // hfloat[N]  this frame's history length
-#define SVGF_MOMENTS_B_ILLUM_OUT 7         // vec4[N]
-#define SVGF_MOMENTS_BINDINGS 8
+#define SVGF_MOMENTS_B_GUIDE 1             // vec4[N]   (normal, depth or −1 on background)
+#define SVGF_MOMENTS_B_DEPTH_GRAD 2        // float[2N]
+#define SVGF_MOMENTS_B_MOMENTS 3           // hfloat[2N] this frame's moments
+#define SVGF_MOMENTS_B_LENGTH 4            // hfloat[N]  this frame's history length
+#define SVGF_MOMENTS_B_ILLUM_OUT 5         // vec4[N]
+#define SVGF_MOMENTS_BINDINGS 6
 
 // svgf_atrous
 #define SVGF_ATROUS_B_ILLUM_IN 0           // vec4[N]
-#define SVGF_ATROUS_B_DEPTH 1              // float[N]
-#define SVGF_ATROUS_B_NORMAL 2             // float[3N]
-#define SVGF_ATROUS_B_OBJECT 3             // uint[N]
-#define SVGF_ATROUS_B_DEPTH_GRAD 4         // float[2N]
-#define SVGF_ATROUS_B_ILLUM_OUT 5          // vec4[N]
-#define SVGF_ATROUS_B_HIST_COLOR 6         // hfloat[3N] colour history (written on the feedback iteration)
-#define SVGF_ATROUS_BINDINGS 7
+#define SVGF_ATROUS_B_GUIDE 1              // vec4[N]   (normal, depth or −1 on background)
+#define SVGF_ATROUS_B_DEPTH_GRAD 2         // float[2N]
+#define SVGF_ATROUS_B_ILLUM_OUT 3          // vec4[N]
+#define SVGF_ATROUS_B_HIST_COLOR 4         // hfloat[3N] colour history (written on the feedback iteration)
+#define SVGF_ATROUS_BINDINGS 5
 
 // svgf_modulate
 #define SVGF_MODULATE_B_ILLUM0 0           // vec4[N]   filtered direct (or combined)

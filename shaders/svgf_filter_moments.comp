@@ -6,22 +6,22 @@
 // Purpose: where history length < threshold, replace illumination and variance by a 7×7 bilateral
 //   estimate (weights w_z·w_n): illum = Σw c / Σw, variance = max(0, m2 − m1²) of Σw m / Σw,
 //   boosted by threshold / length for the first frames. Elsewhere pass through.
-// Reads:  illumination + variance (vec4), depth, normal, object id, depth gradient,
+// Reads:  illumination + variance (vec4), guide (normal, depth, background), depth gradient,
 //         this frame's moments and history length.
 // Writes: illumination + variance (vec4).
 #include "shared_constants.h"
 #include "common/packing.glsl"
+#include "common/access.glsl"
 #include "common/edge_stopping.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = SVGF_MOMENTS_B_ILLUM_IN) readonly buffer IllumIn { vec4 illum_in[]; };
-layout(std430, binding = SVGF_MOMENTS_B_DEPTH) readonly buffer Depth { float depth[]; };
-layout(std430, binding = SVGF_MOMENTS_B_NORMAL) readonly buffer Normal { float normal[]; };
-layout(std430, binding = SVGF_MOMENTS_B_OBJECT) readonly buffer Object { uint object_id[]; };
-layout(std430, binding = SVGF_MOMENTS_B_DEPTH_GRAD) readonly buffer DepthGrad { float depth_grad[]; };
-layout(std430, binding = SVGF_MOMENTS_B_MOMENTS) readonly buffer Moments { hfloat moments[]; };
-layout(std430, binding = SVGF_MOMENTS_B_LENGTH) readonly buffer Length { hfloat hist_length[]; };
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h).
+PLANE(SVGF_MOMENTS_B_ILLUM_IN, illum_in);      // rgba32f
+PLANE(SVGF_MOMENTS_B_GUIDE, guide);            // rgba32f (normal, depth; svgf_pack_guide)
+PLANE(SVGF_MOMENTS_B_DEPTH_GRAD, depth_grad);  // rg32f
+PLANE(SVGF_MOMENTS_B_MOMENTS, moments);        // rg32f, or rg16f in _fp16
+PLANE(SVGF_MOMENTS_B_LENGTH, hist_length);     // r32f, or r16f in _fp16
 layout(std430, binding = SVGF_MOMENTS_B_ILLUM_OUT) writeonly buffer IllumOut { vec4 illum_out[]; };
 
 // Mirrors SvgfFilterMomentsPush in denoise/svgf_layout.h.
@@ -36,15 +36,16 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
-    vec4 result = illum_in[i];
-    float len = float(hist_length[i]);
-    bool spatial = object_id[i] != FOVRT_NO_OBJECT && len < pc.threshold;
+    vec4 result = FETCH4(illum_in, i);
+    float len = FETCH1(hist_length, i);
+    vec4 gc = FETCH4(guide, i);
+    bool spatial = !GUIDE_IS_BACKGROUND(gc) && len < pc.threshold;
     // A loop run at most once rather than an if: lavapipe executes both sides of a branch under
     // a lane mask, but skips a loop whose trip count is 0 on every lane (the steady state).
     [[dont_unroll]] for (int once = 0; once < (spatial ? 1 : 0); ++once) {
-        float zp = depth[i];
-        vec3 np = LOAD3(normal, i);
-        vec2 gp = LOAD2(depth_grad, i);
+        float zp = gc.w;
+        vec3 np = gc.xyz;
+        vec2 gp = FETCH2(depth_grad, i);
         float sum_w = 0.0;
         vec3 sum_c = vec3(0.0);
         vec2 sum_m = vec2(0.0);
@@ -53,12 +54,13 @@ void main() {
                 ivec2 q = p + ivec2(dx, dy);
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
                 int j = q.y * pc.size.x + q.x;
-                if (object_id[j] == FOVRT_NO_OBJECT) continue;
-                float w = geometry_weight(zp, depth[j], gp, vec2(dx, dy), pc.sigma_depth, np, LOAD3(normal, j),
+                vec4 gq = FETCH4(guide, j);
+                if (GUIDE_IS_BACKGROUND(gq)) continue;
+                float w = geometry_weight(zp, gq.w, gp, vec2(dx, dy), pc.sigma_depth, np, gq.xyz,
                                           pc.sigma_normal, 0.0);
                 sum_w += w;
-                sum_c += w * illum_in[j].rgb;
-                sum_m += w * LOAD2(moments, j);
+                sum_c += w * FETCH3(illum_in, j);
+                sum_m += w * FETCH2(moments, j);
             }
         }
         // The centre has weight 1, so sum_w ≥ 1.

@@ -12,26 +12,35 @@
 //         illumination + temporal variance (vec4), sanitising counters.
 #include "shared_constants.h"
 #include "common/packing.glsl"
+#include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = SVGF_REPROJECT_B_COLOR_IN) readonly buffer ColorIn { float color_in[]; };
-layout(std430, binding = SVGF_REPROJECT_B_COLOR_IN2) readonly buffer ColorIn2 { float color_in2[]; };
-layout(std430, binding = SVGF_REPROJECT_B_DEPTH) readonly buffer Depth { float depth[]; };
-layout(std430, binding = SVGF_REPROJECT_B_NORMAL) readonly buffer Normal { float normal[]; };
-layout(std430, binding = SVGF_REPROJECT_B_OBJECT) readonly buffer Object { uint object_id[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_DEPTH) readonly buffer PrevDepth { float prev_depth[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_NORMAL) readonly buffer PrevNormal { float prev_normal[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_OBJECT) readonly buffer PrevObject { uint prev_object[]; };
-layout(std430, binding = SVGF_REPROJECT_B_DEPTH_GRAD) readonly buffer DepthGrad { float depth_grad[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_PIXEL) readonly buffer PrevPixel { float prev_pixel[]; };
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h),
+// except the fp16 colour history (RGB16F texel buffers are not widely supported) and the sample counts.
+PLANE(SVGF_REPROJECT_B_COLOR_IN, color_in);            // rgb32f
+PLANE(SVGF_REPROJECT_B_COLOR_IN2, color_in2);          // rgb32f
+PLANE(SVGF_REPROJECT_B_DEPTH, depth);                  // r32f
+PLANE(SVGF_REPROJECT_B_NORMAL, normal);                // rgb32f
+UPLANE(SVGF_REPROJECT_B_OBJECT, object_id);            // r32ui
+PLANE(SVGF_REPROJECT_B_PREV_DEPTH, prev_depth);        // r32f
+PLANE(SVGF_REPROJECT_B_PREV_NORMAL, prev_normal);      // rgb32f
+UPLANE(SVGF_REPROJECT_B_PREV_OBJECT, prev_object);     // r32ui
+PLANE(SVGF_REPROJECT_B_DEPTH_GRAD, depth_grad);        // rg32f
+PLANE(SVGF_REPROJECT_B_PREV_PIXEL, prev_pixel);        // rg32f
 layout(std430, binding = SVGF_REPROJECT_B_SAMPLE_COUNT) readonly buffer SampleCount { uint sample_count[]; };
+#ifdef FOVRT_FP16
 layout(std430, binding = SVGF_REPROJECT_B_PREV_COLOR) readonly buffer PrevColor { hfloat hist_prev_color[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_MOMENTS) readonly buffer PrevMoments { hfloat hist_prev_moments[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_LENGTH) readonly buffer PrevLength { hfloat hist_prev_length[]; };
-layout(std430, binding = SVGF_REPROJECT_B_PREV_WEIGHT) readonly buffer PrevWeight { hfloat hist_prev_weight[]; };
+#define PREV_COLOR_LOAD LOAD3
+#else
+PLANE(SVGF_REPROJECT_B_PREV_COLOR, hist_prev_color);   // rgb32f
+#define PREV_COLOR_LOAD FETCH3
+#endif
+PLANE(SVGF_REPROJECT_B_PREV_MOMENTS, hist_prev_moments);  // rg32f / rg16f
+PLANE(SVGF_REPROJECT_B_PREV_LENGTH, hist_prev_length);    // r32f / r16f
+PLANE(SVGF_REPROJECT_B_PREV_WEIGHT, hist_prev_weight);    // r32f / r16f
 layout(std430, binding = SVGF_REPROJECT_B_CUR_COLOR) writeonly buffer CurColor { hfloat hist_color[]; };
 layout(std430, binding = SVGF_REPROJECT_B_CUR_MOMENTS) writeonly buffer CurMoments { hfloat hist_moments[]; };
 layout(std430, binding = SVGF_REPROJECT_B_CUR_LENGTH) writeonly buffer CurLength { hfloat hist_length[]; };
@@ -51,9 +60,9 @@ layout(push_constant) uniform Push {
 #define SVGF_REPROJECT_FLAG_COMBINED 2u
 #define SVGF_REPROJECT_FLAG_WRITE_COLOR 4u
 
-float reproj_prev_depth(int i) { return prev_depth[i]; }
-vec3 reproj_prev_normal(int i) { return LOAD3(prev_normal, i); }
-uint reproj_prev_object(int i) { return prev_object[i]; }
+float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
+vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
+uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -61,8 +70,8 @@ void main() {
     int i = p.y * pc.size.x + p.x;
 
     // Sanitise: a non-finite pixel becomes 0; negative components are clamped to 0.
-    vec3 c = LOAD3(color_in, i);
-    if ((pc.flags & SVGF_REPROJECT_FLAG_COMBINED) != 0u) c += LOAD3(color_in2, i);
+    vec3 c = FETCH3(color_in, i);
+    if ((pc.flags & SVGF_REPROJECT_FLAG_COMBINED) != 0u) c += FETCH3(color_in2, i);
     if (any(isnan(c)) || any(isinf(c))) {
         c = vec3(0.0);
         atomicAdd(stats[0], 1u);
@@ -73,19 +82,19 @@ void main() {
     float l = luminance(c);
     vec2 m = vec2(l, l * l);
 
-    uint id = object_id[i];
-    vec2 dzv = LOAD2(depth_grad, i);
-    ReprojTaps taps = find_reprojection_taps(LOAD2(prev_pixel, i), pc.size, depth[i], LOAD3(normal, i),
+    uint id = FETCH1(object_id, i);
+    vec2 dzv = FETCH2(depth_grad, i);
+    ReprojTaps taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH3(normal, i),
                                              id, max(abs(dzv.x), abs(dzv.y)));
     vec3 c_prev = vec3(0.0);
     vec2 m_prev = vec2(0.0);
     float len_prev = 0.0;
     float w_prev = 0.0;
     bool weighted = (pc.flags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
-    REPROJ_GATHER(hist_prev_color, taps, pc.size, LOAD3, vec3(0.0), c_prev);
-    REPROJ_GATHER(hist_prev_moments, taps, pc.size, LOAD2, vec2(0.0), m_prev);
-    REPROJ_GATHER(hist_prev_length, taps, pc.size, REPROJ_LOAD1, 0.0, len_prev);
-    if (weighted) REPROJ_GATHER(hist_prev_weight, taps, pc.size, REPROJ_LOAD1, 0.0, w_prev);
+    REPROJ_GATHER(hist_prev_color, taps, pc.size, PREV_COLOR_LOAD, vec3(0.0), c_prev);
+    REPROJ_GATHER(hist_prev_moments, taps, pc.size, FETCH2, vec2(0.0), m_prev);
+    REPROJ_GATHER(hist_prev_length, taps, pc.size, FETCH1, 0.0, len_prev);
+    if (weighted) REPROJ_GATHER(hist_prev_weight, taps, pc.size, FETCH1, 0.0, w_prev);
     bool success = taps.count > 0;
     float len = success ? min(len_prev + 1.0, FOVRT_MAX_HISTORY_LENGTH) : 1.0;
 

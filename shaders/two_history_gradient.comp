@@ -10,18 +10,27 @@
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
+#include "common/access.glsl"
 #include "common/edge_stopping.glsl"
 #include "common/two_history.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp),
+// except the fp16 gradient history (RGB16F texel buffers are rarely supported).
+#ifdef FOVRT_FP16
 layout(std430, binding = TH_GRADIENT_B_GRADIENT) readonly buffer Gradient { hfloat gradient[]; };
-layout(std430, binding = TH_GRADIENT_B_ILLUM_U0) readonly buffer IllumU0 { vec4 illum_u0[]; };
-layout(std430, binding = TH_GRADIENT_B_ILLUM_U1) readonly buffer IllumU1 { vec4 illum_u1[]; };
-layout(std430, binding = TH_GRADIENT_B_DEPTH) readonly buffer Depth { float depth[]; };
-layout(std430, binding = TH_GRADIENT_B_NORMAL) readonly buffer Normal { float normal[]; };
-layout(std430, binding = TH_GRADIENT_B_OBJECT) readonly buffer Object { uint object_id[]; };
-layout(std430, binding = TH_GRADIENT_B_DEPTH_GRAD) readonly buffer DepthGrad { float depth_grad[]; };
+#define GRADIENT_LOAD LOAD3
+#else
+PLANE(TH_GRADIENT_B_GRADIENT, gradient);        // rgb32f
+#define GRADIENT_LOAD FETCH3
+#endif
+PLANE(TH_GRADIENT_B_ILLUM_U0, illum_u0);        // rgba32f
+PLANE(TH_GRADIENT_B_ILLUM_U1, illum_u1);        // rgba32f
+PLANE(TH_GRADIENT_B_DEPTH, depth);              // r32f
+PLANE(TH_GRADIENT_B_NORMAL, normal);            // rgb32f
+UPLANE(TH_GRADIENT_B_OBJECT, object_id);        // r32ui
+PLANE(TH_GRADIENT_B_DEPTH_GRAD, depth_grad);    // rg32f
 layout(std430, binding = TH_GRADIENT_B_Q) writeonly buffer Q { float q_out[]; };
 
 // Mirrors TwoHistoryGradientPush in denoise/two_history_vk.cpp.
@@ -37,13 +46,13 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
-    if (object_id[i] == FOVRT_NO_OBJECT) {
+    if (FETCH1(object_id, i) == FOVRT_NO_OBJECT) {
         q_out[i] = 0.0;
         return;
     }
-    float zp = depth[i];
-    vec3 np = LOAD3(normal, i);
-    vec2 gp = LOAD2(depth_grad, i);
+    float zp = FETCH1(depth, i);
+    vec3 np = FETCH3(normal, i);
+    vec2 gp = FETCH2(depth_grad, i);
     vec3 sum = vec3(0.0);
     float wsum = 0.0;
     for (int ky = -2; ky <= 2; ++ky)
@@ -51,14 +60,14 @@ void main() {
             ivec2 q = p + ivec2(kx, ky);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
             int j = q.y * pc.size.x + q.x;
-            if (object_id[j] == FOVRT_NO_OBJECT) continue;
+            if (FETCH1(object_id, j) == FOVRT_NO_OBJECT) continue;
             float w = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
             if (kx != 0 || ky != 0)
-                w *= depth_weight(zp, depth[j], gp, vec2(kx, ky), pc.sigma_depth) *
-                     normal_weight(np, LOAD3(normal, j), pc.sigma_normal);
-            sum += w * LOAD3(gradient, j);
+                w *= depth_weight(zp, FETCH1(depth, j), gp, vec2(kx, ky), pc.sigma_depth) *
+                     normal_weight(np, FETCH3(normal, j), pc.sigma_normal);
+            sum += w * GRADIENT_LOAD(gradient, j);
             wsum += w;
         }
-    float variance = illum_u0[i].a + (pc.two_channels != 0u ? illum_u1[i].a : 0.0);
+    float variance = FETCH4(illum_u0, i).a + (pc.two_channels != 0u ? FETCH4(illum_u1, i).a : 0.0);
     q_out[i] = two_history_gradient_blend(sum / wsum, variance, pc.q_scale);
 }

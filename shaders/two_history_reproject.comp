@@ -15,32 +15,45 @@
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
+#include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
 #include "common/two_history.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = TH_REPROJECT_B_COLOR) readonly buffer Color { float color[]; };
-layout(std430, binding = TH_REPROJECT_B_COLOR_OTHER) readonly buffer ColorOther { float color_other[]; };
-layout(std430, binding = TH_REPROJECT_B_DEPTH) readonly buffer Depth { float depth[]; };
-layout(std430, binding = TH_REPROJECT_B_NORMAL) readonly buffer Normal { float normal[]; };
-layout(std430, binding = TH_REPROJECT_B_OBJECT) readonly buffer Object { uint object_id[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_DEPTH) readonly buffer PrevDepth { float prev_depth[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_NORMAL) readonly buffer PrevNormal { float prev_normal[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_OBJECT) readonly buffer PrevObject { uint prev_object[]; };
-layout(std430, binding = TH_REPROJECT_B_DEPTH_GRAD) readonly buffer DepthGrad { float depth_grad[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_PIXEL) readonly buffer PrevPixel { float prev_pixel[]; };
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp),
+// except the fp16 RGB histories (RGB16F texel buffers are rarely supported), sample counts and α.
+PLANE(TH_REPROJECT_B_COLOR, color);                // rgb32f
+PLANE(TH_REPROJECT_B_COLOR_OTHER, color_other);    // rgb32f
+PLANE(TH_REPROJECT_B_DEPTH, depth);                // r32f
+PLANE(TH_REPROJECT_B_NORMAL, normal);              // rgb32f
+UPLANE(TH_REPROJECT_B_OBJECT, object_id);          // r32ui
+PLANE(TH_REPROJECT_B_PREV_DEPTH, prev_depth);      // r32f
+PLANE(TH_REPROJECT_B_PREV_NORMAL, prev_normal);    // rgb32f
+UPLANE(TH_REPROJECT_B_PREV_OBJECT, prev_object);   // r32ui
+PLANE(TH_REPROJECT_B_DEPTH_GRAD, depth_grad);      // rg32f
+PLANE(TH_REPROJECT_B_PREV_PIXEL, prev_pixel);      // rg32f
 layout(std430, binding = TH_REPROJECT_B_SAMPLE_COUNT) readonly buffer SampleCount { uint sample_count[]; };
 layout(std430, binding = TH_REPROJECT_B_ALPHA) readonly buffer AlphaMap { float alpha_map[]; };
+#ifdef FOVRT_FP16
 layout(std430, binding = TH_REPROJECT_B_PREV_IU) readonly buffer PrevIu { hfloat prev_iu[]; };
 layout(std430, binding = TH_REPROJECT_B_PREV_IU_OTHER) readonly buffer PrevIuOther { hfloat prev_iu_other[]; };
 layout(std430, binding = TH_REPROJECT_B_PREV_IW) readonly buffer PrevIw { hfloat prev_iw[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_M) readonly buffer PrevM { hfloat prev_m[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_WU) readonly buffer PrevWu { hfloat prev_wu[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_WW) readonly buffer PrevWw { hfloat prev_ww[]; };
 layout(std430, binding = TH_REPROJECT_B_PREV_S) readonly buffer PrevS { hfloat prev_s[]; };
 layout(std430, binding = TH_REPROJECT_B_PREV_G) readonly buffer PrevG { hfloat prev_g[]; };
+#define HIST3_LOAD LOAD3
+#else
+PLANE(TH_REPROJECT_B_PREV_IU, prev_iu);            // rgb32f
+PLANE(TH_REPROJECT_B_PREV_IU_OTHER, prev_iu_other);
+PLANE(TH_REPROJECT_B_PREV_IW, prev_iw);
+PLANE(TH_REPROJECT_B_PREV_S, prev_s);
+PLANE(TH_REPROJECT_B_PREV_G, prev_g);
+#define HIST3_LOAD FETCH3
+#endif
+PLANE(TH_REPROJECT_B_PREV_M, prev_m);              // rg32f / rg16f
+PLANE(TH_REPROJECT_B_PREV_WU, prev_wu);            // r32f / r16f
+PLANE(TH_REPROJECT_B_PREV_WW, prev_ww);            // r32f / r16f
 layout(std430, binding = TH_REPROJECT_B_CUR_IU) writeonly buffer CurIu { hfloat cur_iu[]; };
 layout(std430, binding = TH_REPROJECT_B_CUR_IW) writeonly buffer CurIw { hfloat cur_iw[]; };
 layout(std430, binding = TH_REPROJECT_B_CUR_M) writeonly buffer CurM { hfloat cur_m[]; };
@@ -61,9 +74,9 @@ layout(push_constant) uniform Push {
     uint flags;  // TH_REPROJECT_FLAG_*
 } pc;
 
-float reproj_prev_depth(int i) { return prev_depth[i]; }
-vec3 reproj_prev_normal(int i) { return LOAD3(prev_normal, i); }
-uint reproj_prev_object(int i) { return prev_object[i]; }
+float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
+vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
+uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
 
 // NaN/Inf → 0, negative components → 0; counted only when `count` (each channel once).
 vec3 sanitize(vec3 c, bool count) {
@@ -79,9 +92,9 @@ vec3 sanitize(vec3 c, bool count) {
 }
 
 // Bilinear gather of one history plane over the taps (GLSL cannot pass buffer arrays).
-#define GATHER1(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, REPROJ_LOAD1, 0.0, out_)
-#define GATHER2(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, LOAD2, vec2(0.0), out_)
-#define GATHER3(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, LOAD3, vec3(0.0), out_)
+#define GATHER1(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, FETCH1, 0.0, out_)
+#define GATHER2(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, FETCH2, vec2(0.0), out_)
+#define GATHER3(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, HIST3_LOAD, vec3(0.0), out_)
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -95,8 +108,9 @@ void main() {
     ReprojTaps taps;
     taps.count = 0;
     if ((pc.flags & TH_REPROJECT_FLAG_HAS_PREV) != 0u) {
-        vec2 dzv = LOAD2(depth_grad, i);
-        taps = find_reprojection_taps(LOAD2(prev_pixel, i), pc.size, depth[i], LOAD3(normal, i), object_id[i],
+        vec2 dzv = FETCH2(depth_grad, i);
+        taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH3(normal, i),
+                                      FETCH1(object_id, i),
                                       max(abs(dzv.x), abs(dzv.y)));
     }
     bool success = taps.count > 0;
@@ -120,8 +134,8 @@ void main() {
     vec3 s = beta * beta * s_prev + vec3(1.0 / n, 1.0, n);
     float am = success ? max(alpha_m, 1.0 / wu) : 1.0;
 
-    vec3 raw = LOAD3(color, i);
-    if (combined) raw += LOAD3(color_other, i);
+    vec3 raw = FETCH3(color, i);
+    if (combined) raw += FETCH3(color_other, i);
     vec3 x = sanitize(raw, true);
     float l = luminance(x);
     vec3 iu_prev = x, iw_prev = x;
@@ -148,7 +162,7 @@ void main() {
         STORE3(cur_s, i, to_history(s), hfloat);
         vec3 x_sum = x, iu_prev_sum = iu_prev;
         if ((pc.flags & TH_REPROJECT_FLAG_OTHER) != 0u) {
-            vec3 xo = sanitize(LOAD3(color_other, i), false);
+            vec3 xo = sanitize(FETCH3(color_other, i), false);
             vec3 iuo = xo;
             if (success) GATHER3(prev_iu_other, taps, iuo);
             x_sum += xo;

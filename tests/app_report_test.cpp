@@ -50,6 +50,8 @@ TEST_CASE("results: means over frames and eyes, percent vs baseline", "[app][rep
     CHECK(*PercentRelative(t->mean, m->mean) == Approx(-10.0));
     CHECK_FALSE(r.Mean("cornell", "svgf", "periphery", "relmse"));
     CHECK_FALSE(PercentRelative(1.0, 0.0));
+    CHECK(FormatPercent(-0.00001, 4) == "+0.0000%");
+    CHECK(FormatPercent(-1.23456, 3) == "-1.235%");
     auto perFrame = r.PerFrame("cornell", "svgf", "whole", "relmse");
     REQUIRE(perFrame.size() == 2u);
     CHECK(perFrame[1].first == 1);

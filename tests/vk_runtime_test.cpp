@@ -11,6 +11,7 @@
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/recorder.h"
+#include "vk/vk_check.h"
 
 using namespace fovrt;
 
@@ -150,4 +151,19 @@ TEST_CASE("wrapping external handles does not take ownership", "[vk][vulkan]") {
     CHECK(v == 0x01020304u);
     CHECK(owner.validationErrors() == 0);
     CHECK_THROWS_AS(VulkanContext::Wrap(ExternalVulkan{}), Error);
+}
+
+TEST_CASE("the debug messenger counts validation errors", "[vk][vulkan]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    VulkanContext c = VulkanContext::Create(TestOptions());
+    if (!c.validationEnabled()) FOVRT_SKIP("VK_LAYER_KHRONOS_validation not installed");
+    // Deliberate misuse: a zero-sized buffer (VUID-VkBufferCreateInfo-size-00912).
+    auto info = VkInit<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+    info.size = 0;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    std::fprintf(stderr, "(the next validation error is expected)\n");
+    if (vkCreateBuffer(c.device(), &info, nullptr, &buffer) == VK_SUCCESS && buffer != VK_NULL_HANDLE)
+        vkDestroyBuffer(c.device(), buffer, nullptr);
+    CHECK(c.validationErrors() >= 1);
 }

@@ -144,11 +144,7 @@ void CompareWithEmbree(const BenchOptions& o) {
     // single point light under the ceiling lamp instead of the emissive quad.
     const vec3 lightPosition(0.0f, 1.9f, 0.0f), lightIntensity(3.0f);
     Scene scene = LoadScene(obj);
-    // The MTL's Ks = 0 materials (all non-metals here) are pure Lambert, as Embree renders them.
-    for (Material& m : scene.materials) {
-        m.emission = vec3(0.0f);
-        if (m.metallic == 0.0f) m.specular = 0.0f;
-    }
+    for (Material& m : scene.materials) m.emission = vec3(0.0f);
     Light light;
     light.name = "bench-point";
     light.position = lightPosition;

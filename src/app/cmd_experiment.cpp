@@ -10,11 +10,13 @@ void RegisterExperimentCommand(CLI::App& app) {
         "experiment", "Compare denoisers on identical foveated inputs against a high-spp reference");
     auto options = std::make_shared<ConfigOptions>();
     auto quick = std::make_shared<bool>(false);
+    auto scenes = std::make_shared<std::vector<std::string>>();
     cmd->add_option("file", options->configPath, "Experiment file (presets/*.toml)")->required();
     cmd->add_flag("--quick", *quick, "Apply the file's [experiment.quick] overrides (a smoke run)");
+    cmd->add_option("--scene", *scenes, "Run only these scenes (repeatable; replaces experiment.scenes)");
     cmd->add_option("--set", options->sets, "Override a config key: section.key=value (TOML value)");
     cmd->add_option("--memory-budget", options->memoryBudget, "Refuse to start above BYTES (e.g. 2GiB)");
-    cmd->callback([options, quick] { RunExperiment(LoadExperiment(*options, *quick)); });
+    cmd->callback([options, quick, scenes] { RunExperiment(LoadExperiment(*options, *quick, *scenes)); });
 }
 
 }  // namespace fovrt

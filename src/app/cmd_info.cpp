@@ -1,20 +1,25 @@
-// `fovrt info`: versions of fovrt and of the libraries it was built with.
+// `fovrt info`: versions of fovrt and the libraries it was built with, the Vulkan devices the
+// loader reports (the indices `--set denoise.device=<index>` accepts), and the CPU thread count.
 #include <cstdio>
+#include <thread>
 
-#include <embree3/rtcore.h>
-#include <vulkan/vulkan.h>
-
-#include "commands.h"
+#include "app/build_info.h"
+#include "app/commands.h"
+#include "vk/context.h"
 
 namespace fovrt {
 
 void RegisterInfoCommand(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand("info", "Print versions, devices and build settings");
+    CLI::App* cmd = app.add_subcommand("info", "Print versions, Vulkan devices and build settings");
     cmd->callback([] {
-        std::printf("fovrt %s\n", FOVRT_VERSION);
-        std::printf("embree %d.%d.%d\n", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
-        std::printf("vulkan headers %d.%d.%d\n", VK_API_VERSION_MAJOR(VK_HEADER_VERSION_COMPLETE),
-                    VK_API_VERSION_MINOR(VK_HEADER_VERSION_COMPLETE), VK_HEADER_VERSION);
+        const nlohmann::json build = BuildInfoJson();  // items() must not outlive its object
+        for (const auto& [key, value] : build.items())
+            std::printf("%-16s %s\n", key.c_str(), value.get<std::string>().c_str());
+        std::printf("%-16s %u\n", "cpu threads", std::thread::hardware_concurrency());
+        auto devices = VulkanContext::ListDevices();
+        if (devices.empty()) std::printf("vulkan devices   none (denoisers fall back to the C++ reference)\n");
+        for (const VulkanDeviceInfo& d : devices)
+            std::printf("vulkan device %u  %s (%s)\n", d.index, d.name.c_str(), d.type.c_str());
     });
 }
 

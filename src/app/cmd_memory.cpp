@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "app/config.h"
 #include "commands.h"
 #include "core/error.h"
 #include "denoise/denoiser.h"
@@ -21,7 +22,8 @@ struct MemoryOptions {
     int eyes = 2;
     std::string denoiser = "two-history";
     std::string precision = "fp32";
-    size_t budget = 0;
+    bool filterCombined = false;
+    std::string budget;  // bytes for all eyes, "2GiB" style accepted; empty = none
 };
 
 void PrintMemory(const MemoryOptions& o) {
@@ -30,10 +32,13 @@ void PrintMemory(const MemoryOptions& o) {
         params.precision = Precision::Fp16;
     else if (o.precision != "fp32")
         Fail("--precision '{}': expected fp32 or fp16", o.precision);
+    params.svgf.filterCombined = o.filterCombined;
+    const uint64_t budget = o.budget.empty() ? 0 : ParseByteSize(o.budget, "--memory-budget");
     auto plan = PlanDenoiserMemory(o.denoiser, o.width, o.height, params);
     const double pixels = double(o.width) * double(o.height);
-    std::printf("denoiser %s, %dx%d per eye, %s histories\n", o.denoiser.c_str(), o.width, o.height,
-                o.precision.c_str());
+    std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination\n", o.denoiser.c_str(),
+                o.width, o.height, o.precision.c_str(),
+                o.filterCombined ? "combined" : "direct + indirect separate");
     std::printf("%s", FormatMemoryPlan(plan, o.width, o.height).c_str());
     size_t total = TotalBytes(plan);
     std::printf("all %d eye(s): %zu bytes (%.1f MiB)\n", o.eyes, total * size_t(o.eyes),
@@ -48,12 +53,19 @@ void PrintMemory(const MemoryOptions& o) {
                     "%.1f MiB for %d eye(s)\n",
                     extraHist, extraAll, extraAll * pixels * o.eyes / 1048576.0, o.eyes);
         std::printf("  (thesis: +88 B/pixel in fp32 = 2x float3 weighted illum, 2x float2 total weights,\n"
-                    "   2x float3 gradient, 2x float3 power sums; fovrt filters direct and indirect\n"
-                    "   separately unless filterCombined, which doubles per-channel planes)\n");
+                    "   2x float3 gradient, 2x float3 power sums, for one combined illumination;\n"
+                    "   filtering direct and indirect separately doubles the weighted colour history:\n"
+                    "   compare with --filter-combined)\n");
     } catch (const Error& e) {
         std::printf("two-history over svgf: not available (%s)\n", e.what());
     }
-    EnforceMemoryBudget(plan, o.budget * size_t(1), o.denoiser);
+    std::vector<BufferPlan> all;
+    for (int eye = 0; eye < o.eyes; ++eye)
+        for (BufferPlan b : plan) {
+            b.name = fmt::format("eye{}.{}", eye, b.name);
+            all.push_back(b);
+        }
+    EnforceMemoryBudget(all, budget, o.denoiser);
 }
 
 }  // namespace
@@ -66,7 +78,8 @@ void RegisterMemoryCommand(CLI::App& app) {
     cmd->add_option("--eyes", o->eyes, "Eyes")->check(CLI::Range(1, 2));
     cmd->add_option("--denoiser", o->denoiser, "Denoiser name");
     cmd->add_option("--precision", o->precision, "History storage: fp32 or fp16");
-    cmd->add_option("--memory-budget", o->budget, "Fail when one eye's buffers exceed BYTES (0: none)");
+    cmd->add_flag("--filter-combined", o->filterCombined, "Plan for direct+indirect filtered together");
+    cmd->add_option("--memory-budget", o->budget, "Fail when all eyes' buffers exceed BYTES (e.g. 1GiB)");
     cmd->callback([o] { PrintMemory(*o); });
 }
 

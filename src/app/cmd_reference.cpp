@@ -25,9 +25,10 @@ void RenderReferences(const RunConfig& config) {
         pipeline.SetFrame(frame);
         StereoRig rig = pipeline.RigAt(frame);
         for (int eye = 0; eye < 2; ++eye) {
-            ReferenceKey key{fingerprint,     frame,           pipeline.TimeOf(frame),
-                             eye,             rig.Eye(eye),    config.reference.spp,
-                             config.run.maxDepth, config.run.seed};
+            ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
+                                                pipeline.TimeOf(frame), eye, rig.Eye(eye),
+                                                config.reference.spp, config.run.maxDepth,
+                                                config.run.seed);
             bool hit = false;
             cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
             (hit ? cached : rendered)++;

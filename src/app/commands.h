@@ -9,6 +9,7 @@ namespace fovrt {
 void RegisterInfoCommand(CLI::App& app);
 void RegisterConfigCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
+void RegisterExperimentCommand(CLI::App& app);
 void RegisterReferenceCommand(CLI::App& app);
 void RegisterBenchCommand(CLI::App& app);
 void RegisterMemoryCommand(CLI::App& app);

@@ -13,9 +13,9 @@
 //                fov_deg = [left, right, up, down]  per-eye FOV in degrees (left/down negative);
 //                    absent = symmetric from the scene's horizontal fov and width/height
 //                ipd = 0.063 (metres)
-//   [run]        frames = 60, first_frame = 0, fps = 0 (frame i at i/fps s; 0 = the scene's
+//   [run]        frames = 16, first_frame = 0, fps = 0 (frame i at i/fps s; 0 = the scene's
 //                frame_rate), seed = 1,
-//                threads = 0 (0 = all cores), max_depth = 5
+//                threads = 0 (0 = all cores), max_depth = 2 (1 = direct only, 2 = one bounce)
 //   [foveation]  model = "disc"|"linear"|"acuity"|"uniform", spp_inside = 8, spp_outside = 1,
 //                radius_px = 200, radius_reference_width = 1280, radius_deg = 0, spp_max = 8,
 //                spp_min = 1, foveal_deg = 5, peripheral_deg = 30, omega0_deg = 1/48,
@@ -30,7 +30,7 @@
 //                filter_combined, weight_by_sample_count          (denoise/params.h)
 //   [denoise.asvgf] alpha, gradient_iterations
 //   [denoise.two_history] gradient_beta, q_scale
-//   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = false,
+//   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = true,
 //                exposure = 0 (stops, PNG only), report = true
 //   [reference]  spp = 1024, cache_dir = "cache/reference"
 #pragma once
@@ -65,12 +65,12 @@ struct CameraConfig {
 };
 
 struct RunSettings {
-    int frames = 60;
+    int frames = 16;
     int firstFrame = 0;
     float fps = 0.0f;    // frame i is at time i / fps seconds; 0 = the scene's frame rate
     uint32_t seed = 1;
     int threads = 0;     // 0 = all cores
-    int maxDepth = 5;    // path vertices after the primary hit
+    int maxDepth = 2;    // path vertices after the camera: 1 = direct only, 2 = one indirect bounce
 };
 
 using FoveationConfig = FoveationParams;
@@ -86,7 +86,7 @@ struct OutputConfig {
     std::string dir = "out";
     bool writeExr = false;     // denoised HDR per eye per frame
     bool writePng = true;      // tonemapped previews
-    bool writeInputs = false;  // FrameInputs EXR dumps (large)
+    bool writeInputs = true;   // FrameInputs + spp map EXR per frame and eye (`run`'s product)
     float exposure = 0.0f;     // stops, PNG only
     bool report = true;        // HTML/JSON report at the end
 };

@@ -110,7 +110,8 @@ ReportTable MemoryTable(const RunConfig& config) {
 
 }  // namespace
 
-ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick) {
+ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
+                              const std::vector<std::string>& scenes) {
     if (options.configPath.empty()) Fail("fovrt experiment needs an experiment file (e.g. presets/thesis-foveated.toml)");
     ExperimentSpec spec;
     spec.file = options.configPath;
@@ -123,7 +124,7 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick) {
         if (k != "scenes" && k != "variants" && k != "visual_frame" && k != "quick")
             Fail("{}: unknown key experiment.{}", file, k);
     }
-    spec.scenes = StringArray(experiment, "scenes", file);
+    spec.scenes = scenes.empty() ? StringArray(experiment, "scenes", file) : scenes;
     spec.variants = StringArray(experiment, "variants", file);
     if (const toml::node* frame = experiment.get("visual_frame")) {
         auto value = frame->value<int64_t>();
@@ -194,8 +195,10 @@ Results RunExperiment(const ExperimentSpec& spec) {
                 EyeCamera camera = rig.Eye(eye);
 
                 auto start = std::chrono::steady_clock::now();
-                ReferenceKey key{fingerprint, index, frame.timeSeconds, eye, camera,
-                                 config.reference.spp, config.run.maxDepth, config.run.seed};
+                ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, index,
+                                                    frame.timeSeconds, eye, camera,
+                                                    config.reference.spp, config.run.maxDepth,
+                                                    config.run.seed);
                 bool hit = false;
                 Plane<vec3> reference = cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
                 referenceHits += hit ? 1 : 0;

@@ -25,7 +25,9 @@ struct ExperimentSpec {
     bool quick = false;
 };
 
-ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick);
+// `scenes`: when non-empty, replaces the file's experiment.scenes (e.g. `--scene veach-ajar`).
+ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
+                              const std::vector<std::string>& scenes = {});
 
 // Runs the experiment and writes its outputs under spec.config.output.dir. Returns the results.
 Results RunExperiment(const ExperimentSpec& spec);

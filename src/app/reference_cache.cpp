@@ -95,6 +95,22 @@ uint64_t SceneFingerprint(const Scene& scene) {
     return h.Digest();
 }
 
+bool IsStaticScene(const Scene& scene) {
+    for (const Instance& instance : scene.instances)
+        if (instance.keys.size() > 1) return false;
+    for (const Light& light : scene.lights)
+        if (light.path.size() > 1 || light.switchPeriod > 0.0f) return false;
+    return scene.emissionSwitches.empty();
+}
+
+ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t frame,
+                              double timeSeconds, int eye, const EyeCamera& camera, int spp,
+                              int maxDepth, uint32_t seed) {
+    bool timeless = IsStaticScene(scene);
+    return ReferenceKey{fingerprint, timeless ? 0u : frame, timeless ? 0.0 : timeSeconds, eye,
+                        camera, spp, maxDepth, seed};
+}
+
 std::string ReferenceKey::Hex() const {
     Fnv1a h;
     h.String("fovrt-reference-v1");

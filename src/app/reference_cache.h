@@ -30,6 +30,16 @@ struct ReferenceKey {
     std::string Hex() const;  // the file stem of the cache entry
 };
 
+// True when nothing in the scene changes with time (no instance motion, moving or switching
+// lights, flickering emitters). The camera is part of the key on its own.
+bool IsStaticScene(const Scene& scene);
+
+// The key of one reference frame. For a static scene the frame and time are left out, so every
+// frame seen from the same eye pose shares one reference (e.g. Veach Ajar's fixed camera).
+ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t frame,
+                              double timeSeconds, int eye, const EyeCamera& camera, int spp,
+                              int maxDepth, uint32_t seed);
+
 class ReferenceCache {
 public:
     explicit ReferenceCache(std::filesystem::path dir) : dir_(std::move(dir)) {}

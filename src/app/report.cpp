@@ -99,6 +99,11 @@ std::optional<double> PercentRelative(double value, std::optional<double> baseli
     return 100.0 * (value - *baseline) / *baseline;
 }
 
+std::string FormatPercent(double percent, int decimals) {
+    if (std::abs(percent) < 0.5 * std::pow(10.0, -decimals)) percent = 0.0;
+    return fmt::format("{:+.{}f}%", percent, decimals);
+}
+
 std::string FrameCsv(const Results& results, const std::string& scene) {
     std::string out = "frame,eye,variant,region,metric,value\n";
     for (const ResultRow& r : results.rows())
@@ -188,9 +193,7 @@ std::string SummaryTable(const Results& results, const std::string& baseline) {
                 auto b = results.Mean(scene, baseline, c.region, c.metric);
                 std::optional<double> pct;
                 if (m && variant != baseline) pct = PercentRelative(m->mean, b ? std::optional<double>(b->mean) : std::nullopt);
-                std::string cell = !pct ? "-"
-                                        : std::string(c.metric) == "relmse" ? fmt::format("{:+.3f}%", *pct)
-                                                                            : fmt::format("{:+.4f}%", *pct);
+                std::string cell = !pct ? "-" : FormatPercent(*pct, std::string(c.metric) == "relmse" ? 3 : 4);
                 out += fmt::format(" {:>14}", cell);
             }
             out += "\n";

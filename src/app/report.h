@@ -37,7 +37,7 @@ struct SummaryValue {
 
 class Results {
 public:
-    float relMseEpsilon = 0.01f;
+    double relMseEpsilon = 0.01;  // ε of relMSE, stated in every output
 
     void Add(ResultRow row);
     const std::vector<ResultRow>& rows() const { return rows_; }
@@ -60,6 +60,8 @@ private:
 
 // 100 (value − baseline) / baseline; nullopt when the baseline is 0 or missing.
 std::optional<double> PercentRelative(double value, std::optional<double> baseline);
+// "+1.234%" with `decimals` digits; values that round to zero print as "+0.000%" (no "-0.000%").
+std::string FormatPercent(double percent, int decimals);
 
 // CSV text of one scene: header `frame,eye,variant,region,metric,value`, rows in insertion order,
 // values with 9 significant digits (identical runs give identical bytes).

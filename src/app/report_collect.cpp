@@ -9,7 +9,7 @@ RegionSet MetricsCollector::Add(const EyeFrameImages& images) {
     RegionSet regions = RegionSet::Build(images.camera, images.gazeEye, images.fovea);
     MetricOptions options;
     options.pixelsPerDegree = images.camera.PixelsPerDegree();
-    options.relMseEpsilon = results_.relMseEpsilon;
+    options.relMseEpsilon = float(results_.relMseEpsilon);
     for (const auto& [variant, output] : images.outputs) {
         FOVRT_CHECK(output != nullptr);
         const auto key = std::make_tuple(images.scene, images.eye, variant);

@@ -67,7 +67,7 @@ std::string SummaryHtml(const Results& results, const std::string& baseline, con
             auto b = results.Mean(scene, baseline, cols[k].region, cols[k].metric);
             std::optional<double> pct;
             if (m && variant != baseline) pct = PercentRelative(m->mean, b ? std::optional<double>(b->mean) : std::nullopt);
-            row.push_back(!pct ? "–" : k < 2 ? fmt::format("{:+.3f}%", *pct) : fmt::format("{:+.4f}%", *pct));
+            row.push_back(!pct ? "–" : FormatPercent(*pct, k < 2 ? 3 : 4));
         }
         t.rows.push_back(std::move(row));
     }
@@ -341,7 +341,7 @@ std::string RenderHtmlReport(const HtmlReport& report) {
         "Gaussian σ = 1.5, K1 = 0.01, K2 = 0.03) on the luma of the tonemapped image (clamp to [0,1], sRGB "
         "encode). FLIP: LDR-FLIP on the same tonemap at the eye's pixels per degree. Regions: fovea = gaze-centred "
         "disc, periphery = its complement, eccentricity bands by view-ray angle to the gaze ray.</p>",
-        report.results ? report.results->relMseEpsilon : 0.01f);
+        report.results ? report.results->relMseEpsilon : 0.01);
     if (!report.manifest.empty()) {
         ReportTable t{"Run", {"key", "value"}, {}};
         for (const auto& [k, v] : report.manifest) t.rows.push_back({k, v});

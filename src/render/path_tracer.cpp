@@ -19,6 +19,11 @@
 //   clamped to [1e-3, 1] (per channel), so albedo * (L / albedo) reproduces L also for black
 //   dielectrics and metals (whose albedo is then their base colour).
 // - Samples with a non-finite value are dropped (contribute 0, counted in RenderStats).
+// - spp-map entries of 0 are taken as 1 (sampleCount records what was traced).
+// - Gradient samples are re-shaded separately (extra work ~ 1/9 of the previous frame's samples)
+//   rather than replacing the current pixel's own sample as the paper does, so the current frame
+//   keeps its fresh seeds and its noise-free pixel-centre primary visibility.
+// - Static instances (at most one transform key) are flattened into the top-level BVH.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -167,6 +172,7 @@ public:
             history.instance.width() == w && history.instance.height() == h)
             GradientSamples(eye, camera, history, out);
 
+        if (!settings_.gradientSamples) return;  // the history only feeds gradient samples
         history.valid = true;
         history.frame = frame_;
         history.instance = out.objectId;

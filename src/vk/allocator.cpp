@@ -50,8 +50,10 @@ Buffer VulkanAllocator::CreateBuffer(const std::string& name, size_t bytes, Memo
     size_t size = std::max<size_t>(4, (bytes + 3) & ~size_t(3));
     auto info = VkInit<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
     info.size = size;
-    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                 VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    // Texel-buffer usage too: read-only planes of the gather-heavy passes are bound as uniform
+    // texel buffers (lavapipe fetches those with vector gathers; see denoise/svgf.md "Speed").
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     Buffer b;
     FOVRT_VK(vkCreateBuffer(device_, &info, nullptr, &b.buffer_));

@@ -9,9 +9,29 @@
 
 namespace fovrt {
 
+namespace {
+VkDescriptorType TypeOf(VkFormat texelFormat) {
+    return texelFormat == VK_FORMAT_UNDEFINED ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                              : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+}
+}  // namespace
+
 ComputePipeline::ComputePipeline(VulkanContext& context, const std::string& shaderName,
-                                 uint32_t bindings, uint32_t pushBytes, uint32_t maxSets)
+                                 uint32_t bindings, uint32_t pushBytes, uint32_t maxSets,
+                                 std::span<const VkFormat> texelFormats)
     : device_(context.device()), bindings_(bindings), pushBytes_(pushBytes), name_(shaderName) {
+    if (!texelFormats.empty() && texelFormats.size() != bindings)
+        Fail("pipeline {}: {} texel formats given for {} bindings", shaderName, texelFormats.size(), bindings);
+    texelFormats_.assign(bindings, VK_FORMAT_UNDEFINED);
+    for (uint32_t b = 0; b < texelFormats.size(); ++b) {
+        texelFormats_[b] = texelFormats[b];
+        if (texelFormats[b] == VK_FORMAT_UNDEFINED) continue;
+        VkFormatProperties props;
+        vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), texelFormats[b], &props);
+        if (!(props.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
+            Fail("pipeline {}: Vulkan device '{}' cannot use format {} for uniform texel buffers (binding {})",
+                 shaderName, context.deviceName(), int(texelFormats[b]), b);
+    }
     std::span<const uint32_t> code = ShaderCode(shaderName);
     auto moduleInfo = VkInit<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     moduleInfo.codeSize = code.size_bytes();
@@ -21,7 +41,7 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const std::string& shad
     std::vector<VkDescriptorSetLayoutBinding> layoutBindings(bindings);
     for (uint32_t b = 0; b < bindings; ++b) {
         layoutBindings[b].binding = b;
-        layoutBindings[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        layoutBindings[b].descriptorType = TypeOf(texelFormats_[b]);
         layoutBindings[b].descriptorCount = 1;
         layoutBindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
@@ -46,11 +66,15 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const std::string& shad
     pipeInfo.layout = layout_;
     FOVRT_VK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &pipeline_));
 
-    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(1u, bindings) * maxSets};
+    uint32_t texels = 0;
+    for (VkFormat f : texelFormats_) texels += f != VK_FORMAT_UNDEFINED ? 1u : 0u;
+    VkDescriptorPoolSize poolSizes[2] = {
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(1u, bindings - texels) * maxSets},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, std::max(1u, texels) * maxSets}};
     auto poolInfo = VkInit<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = maxSets;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = poolSizes;
     FOVRT_VK(vkCreateDescriptorPool(device_, &poolInfo, nullptr, &pool_));
 }
 
@@ -65,6 +89,9 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
         pool_ = std::exchange(other.pool_, VK_NULL_HANDLE);
         bindings_ = other.bindings_;
         pushBytes_ = other.pushBytes_;
+        texelFormats_ = std::move(other.texelFormats_);
+        views_ = std::move(other.views_);
+        other.views_.clear();
         name_ = std::move(other.name_);
     }
     return *this;
@@ -74,6 +101,7 @@ ComputePipeline::~ComputePipeline() { Destroy(); }
 
 void ComputePipeline::Destroy() {
     if (device_ == VK_NULL_HANDLE) return;
+    DestroyViews();
     if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
     if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
     if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
@@ -92,6 +120,7 @@ VkDescriptorSet ComputePipeline::MakeSet(std::span<const Buffer* const> buffers)
     VkDescriptorSet set = VK_NULL_HANDLE;
     FOVRT_VK(vkAllocateDescriptorSets(device_, &info, &set));
     std::vector<VkDescriptorBufferInfo> infos(bindings_);
+    std::vector<VkBufferView> views(bindings_, VK_NULL_HANDLE);
     std::vector<VkWriteDescriptorSet> writes(bindings_);
     for (uint32_t b = 0; b < bindings_; ++b) {
         if (!buffers[b] || !buffers[b]->valid()) Fail("pipeline {}: binding {} has no buffer", name_, b);
@@ -100,13 +129,32 @@ VkDescriptorSet ComputePipeline::MakeSet(std::span<const Buffer* const> buffers)
         writes[b].dstSet = set;
         writes[b].dstBinding = b;
         writes[b].descriptorCount = 1;
-        writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[b].pBufferInfo = &infos[b];
+        writes[b].descriptorType = TypeOf(texelFormats_[b]);
+        if (texelFormats_[b] == VK_FORMAT_UNDEFINED) {
+            writes[b].pBufferInfo = &infos[b];
+        } else {
+            auto view = VkInit<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
+            view.buffer = buffers[b]->handle();
+            view.format = texelFormats_[b];
+            view.offset = 0;
+            view.range = VK_WHOLE_SIZE;
+            FOVRT_VK(vkCreateBufferView(device_, &view, nullptr, &views[b]));
+            views_.push_back(views[b]);
+            writes[b].pTexelBufferView = &views[b];
+        }
     }
     vkUpdateDescriptorSets(device_, bindings_, writes.data(), 0, nullptr);
     return set;
 }
 
-void ComputePipeline::ResetSets() { FOVRT_VK(vkResetDescriptorPool(device_, pool_, 0)); }
+void ComputePipeline::ResetSets() {
+    FOVRT_VK(vkResetDescriptorPool(device_, pool_, 0));
+    DestroyViews();
+}
+
+void ComputePipeline::DestroyViews() {
+    for (VkBufferView v : views_) vkDestroyBufferView(device_, v, nullptr);
+    views_.clear();
+}
 
 }  // namespace fovrt

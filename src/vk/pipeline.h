@@ -1,5 +1,6 @@
 // ComputePipeline: one compute shader (embedded SPIR-V from the fovrt_shaders registry), its
-// descriptor-set layout (N storage buffers at bindings 0..N−1, set 0), a push-constant range, and a
+// descriptor-set layout (N buffers at bindings 0..N−1, set 0: storage buffers, or read-only uniform
+// texel buffers where `texelFormats` names a format), a push-constant range, and a
 // descriptor pool from which binding sets are made once (histories are A/B pairs, so a frame
 // picks one of a few prebuilt sets instead of rewriting descriptors).
 #pragma once
@@ -21,9 +22,11 @@ class ComputePipeline {
 public:
     ComputePipeline() = default;
     // `shaderName` as in ShaderCode(); `bindings` storage buffers; `pushBytes` of push constants;
-    // `maxSets` descriptor sets may be allocated from this pipeline.
+    // `maxSets` descriptor sets may be allocated from this pipeline. `texelFormats` (empty, or one
+    // per binding): VK_FORMAT_UNDEFINED = storage buffer, else a uniform texel buffer (GLSL
+    // samplerBuffer) viewing the whole buffer with that format.
     ComputePipeline(VulkanContext& context, const std::string& shaderName, uint32_t bindings,
-                    uint32_t pushBytes, uint32_t maxSets = 16);
+                    uint32_t pushBytes, uint32_t maxSets = 16, std::span<const VkFormat> texelFormats = {});
     ComputePipeline(ComputePipeline&& other) noexcept { *this = std::move(other); }
     ComputePipeline& operator=(ComputePipeline&& other) noexcept;
     ComputePipeline(const ComputePipeline&) = delete;
@@ -50,6 +53,9 @@ private:
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     uint32_t bindings_ = 0;
     uint32_t pushBytes_ = 0;
+    std::vector<VkFormat> texelFormats_;  // per binding; UNDEFINED = storage buffer
+    std::vector<VkBufferView> views_;     // made by MakeSet, freed by ResetSets
+    void DestroyViews();
     std::string name_;
 };
 

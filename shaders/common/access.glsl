@@ -1,0 +1,23 @@
+// Access layer of the gather-heavy passes (à-trous, filter moments): their read-only per-pixel
+// planes are uniform texel buffers (samplerBuffer / usamplerBuffer) whose format is declared on the
+// host's VkBufferView (denoise/svgf_texel_formats.h), not std430 arrays. Same bytes, same buffers;
+// only the descriptor type differs. Why: lavapipe turns each std430 load into a per-lane loop with
+// a bounds check, but a texel fetch into one vector gather — measured ~3.3× faster for a 25-tap
+// gather at 1280×720 (denoise/svgf.md, "Speed"). fp16 history planes are R16/R16G16_SFLOAT views:
+// the fetch converts, so the _fp16 variants need no 16-bit arithmetic here.
+// Out-of-range texel fetches return 0 instead of reading out of bounds (callers still test).
+#ifndef FOVRT_ACCESS_GLSL
+#define FOVRT_ACCESS_GLSL
+
+#define PLANE(binding_, name) layout(binding = binding_) uniform samplerBuffer name
+#define UPLANE(binding_, name) layout(binding = binding_) uniform usamplerBuffer name
+#define FETCH1(name, i) texelFetch(name, (i)).x
+#define FETCH2(name, i) texelFetch(name, (i)).xy
+#define FETCH3(name, i) texelFetch(name, (i)).xyz
+#define FETCH4(name, i) texelFetch(name, (i))
+
+// Edge-stopping guide written by svgf_pack_guide: xyz = normal, w = linear depth, w = −1 on
+// background pixels (object id kNoObject).
+#define GUIDE_IS_BACKGROUND(g) ((g).w < 0.0)
+
+#endif

@@ -1,0 +1,29 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// svgf_pack_guide — packs this frame's edge-stopping guide for the spatial filters
+// (svgf_filter_moments, svgf_atrous): vec4(normal, depth), depth replaced by −1 on background
+// pixels (object id kNoObject; visible surfaces have linear depth > 0). One rgba32f fetch per tap
+// instead of three (depth, normal, object id): on lavapipe the filters are bound by fetch count.
+// Reads:  depth, normal, object id (this frame).
+// Writes: guide (vec4).
+#include "shared_constants.h"
+#include "common/access.glsl"
+
+layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+
+PLANE(SVGF_GUIDE_B_DEPTH, depth);          // r32f
+PLANE(SVGF_GUIDE_B_NORMAL, normal);        // rgb32f
+UPLANE(SVGF_GUIDE_B_OBJECT, object_id);    // r32ui
+layout(std430, binding = SVGF_GUIDE_B_OUT) writeonly buffer GuideOut { vec4 guide_out[]; };
+
+layout(push_constant) uniform Push {
+    ivec2 size;
+} pc;
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    int i = p.y * pc.size.x + p.x;
+    bool background = FETCH1(object_id, i) == FOVRT_NO_OBJECT;
+    guide_out[i] = vec4(FETCH3(normal, i), background ? -1.0 : FETCH1(depth, i));
+}

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# End-to-end checks of the fovrt executable (run by ctest as app_cli): `run` writes a multi-layer
+# EXR per frame and eye plus a complete manifest; bad input gives one clear error line naming the
+# file/key and a non-zero exit, and leaves no manifest behind.
+# Usage: cli_check.sh FOVRT WORK_DIR
+set -uo pipefail
+fovrt=$1; work=$2
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+passed=0; failed=0
+ok() { echo "ok: $1"; passed=$((passed + 1)); }
+bad() { echo "FAIL: $1"; failed=$((failed + 1)); }
+
+# expect_error NAME PATTERN ARGS...: non-zero exit, exactly one stderr line matching PATTERN.
+expect_error() {
+  local name=$1 pattern=$2; shift 2
+  if "$fovrt" "$@" >stdout.txt 2>stderr.txt; then bad "$name: exited 0"; return; fi
+  local lines; lines=$(grep -c . stderr.txt)
+  if [[ $lines -eq 1 ]] && grep -q -- "$pattern" stderr.txt; then ok "$name: $(cat stderr.txt)"
+  else bad "$name: expected one line matching '$pattern', got: $(cat stderr.txt)"; fi
+}
+
+small=(--set camera.width=48 --set camera.height=32 --set run.frames=2)
+if "$fovrt" run "${small[@]}" --set output.dir=run1 --set denoise.device=cpu >/dev/null 2>err.txt; then
+  n=$(ls run1/inputs/*.exr 2>/dev/null | wc -l)
+  [[ $n -eq 4 ]] && ok "run wrote 4 FrameInputs EXRs" || bad "run wrote $n EXRs, expected 4"
+  grep -q '"complete": true' run1/manifest.json && ok "run manifest complete" || bad "manifest"
+  ls run1/inputs/*.tmp-* >/dev/null 2>&1 && bad "temp files left behind" || ok "no temp files"
+else
+  bad "run failed: $(cat err.txt)"
+fi
+
+echo 'name = "broken"' > broken.toml
+echo '[camera]' >> broken.toml
+echo 'position = [0, 1, "x"]' >> broken.toml
+printf 'n,x,y\n0,1,2\n10,abc,3\n' > bad_trace.csv
+expect_error "missing scene file" "no_such_scene.toml" run --set scene.name=no_such_scene.toml --set output.dir=e1
+expect_error "corrupt scene file" "broken.toml" run --set scene.name=broken.toml --set output.dir=e2
+expect_error "unknown config key" "camera.widht" run --set camera.widht=3 --set output.dir=e3
+expect_error "zero resolution" "camera.width" run --set camera.width=0 --set output.dir=e4
+expect_error "negative spp" "foveation.spp_inside" run --set foveation.spp_inside=-2 --set output.dir=e5
+expect_error "garbage trace row" "bad_trace.csv:3" run --set gaze.source=trace --set gaze.trace_path=bad_trace.csv --set output.dir=e6
+expect_error "unknown device" "denoise.device\|device" run "${small[@]}" --set denoise.device=7 --set output.dir=e7
+expect_error "unknown denoiser" "svgf-typo" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
+expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --set output.dir=e9
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9; do
+  [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
+done
+ok "no manifest after any error"
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Acceptance check of `fovrt experiment presets/thesis-foveated.toml --quick` (run by ctest as
+# app_experiment_quick): the table shows every variant, the CSVs, summary JSON, HTML report and
+# manifest exist, a second run with the same config and seed gives byte-identical CSVs, and the
+# report renders in headless Chromium when it is installed (skipped with a message otherwise).
+# Usage: experiment_quick_check.sh FOVRT SOURCE_DIR WORK_DIR
+set -euo pipefail
+fovrt=$1; src=$2; work=$3
+if [[ ! -d "$src/../shared/scenes/veach-ajar" && -z "${FOVRT_SHARED_SCENES:-}" ]]; then
+  echo "skipped: ../shared/scenes is absent (the thesis preset renders Veach Ajar)"
+  exit 0
+fi
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+run() { "$fovrt" experiment "$src/presets/thesis-foveated.toml" --quick \
+          --set output.dir="$1" --set reference.cache_dir=cache; }
+run out > table.txt
+cat table.txt
+for variant in svgf svgf-weighted two-history asvgf two-history-asvgf; do
+  for scene in cornell veach-ajar; do
+    awk -v s="$scene" -v v="$variant" '$1=="Scene"{cur=$2} cur==s && $1==v{found=1} END{exit !found}' \
+      table.txt || { echo "FAIL: variant $variant missing from the $scene table"; exit 1; }
+  done
+done
+for f in out/frames-cornell.csv out/frames-veach-ajar.csv out/summary.json out/report.html out/manifest.json; do
+  [[ -s "$f" ]] || { echo "FAIL: $f missing or empty"; exit 1; }
+done
+grep -q '"complete": true' out/manifest.json || { echo "FAIL: manifest not marked complete"; exit 1; }
+run out2 > /dev/null
+cmp out/frames-cornell.csv out2/frames-cornell.csv
+cmp out/frames-veach-ajar.csv out2/frames-veach-ajar.csv
+echo "identical CSVs on rerun: yes"
+bash "$src/scripts/report-screenshot.sh" out/report.html "$work/report.png"
+echo "1 passed, 0 failed"
