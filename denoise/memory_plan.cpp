@@ -44,6 +44,10 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
         }
         add(ch + ".illum0", 16 * n, false);
         add(ch + ".illum1", 16 * n, false);
+        // Pixels needing the spatial variance estimate (Vulkan: svgf_moments_classify) + the
+        // indirect dispatch arguments (groups x, y, z, count).
+        add(ch + ".spatialList", 4 * n, false);
+        add(ch + ".spatialArgs", 16, false);
     }
     // Edge-stopping guide of the Vulkan spatial filters (svgf_pack_guide: normal, depth; scratch).
     add("geometry.guide", 16 * n, false);

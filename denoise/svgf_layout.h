@@ -31,6 +31,12 @@ struct SvgfFilterMomentsPush {
 };
 static_assert(sizeof(SvgfFilterMomentsPush) == 20);
 
+struct SvgfClassifyPush {
+    ivec2 size;
+    float threshold;
+};
+static_assert(sizeof(SvgfClassifyPush) == 12);
+
 struct SvgfAtrousPush {
     ivec2 size;
     int32_t step;

@@ -43,6 +43,14 @@ inline std::array<VkFormat, SVGF_GUIDE_BINDINGS> SvgfGuideTexelFormats() {
     return f;
 }
 
+inline std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> SvgfClassifyTexelFormats(Precision precision) {
+    std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> f{};
+    f.fill(VK_FORMAT_UNDEFINED);
+    f[SVGF_CLASSIFY_B_GUIDE] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[SVGF_CLASSIFY_B_LENGTH] = precision == Precision::Fp16 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    return f;
+}
+
 inline std::array<VkFormat, SVGF_MOMENTS_BINDINGS> SvgfMomentsTexelFormats(Precision precision) {
     const bool half = precision == Precision::Fp16;
     std::array<VkFormat, SVGF_MOMENTS_BINDINGS> f{};

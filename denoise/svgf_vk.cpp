@@ -35,6 +35,8 @@ void SvgfVulkanDenoiser::CreatePipelines() {
                              SvgfGuideTexelFormats());
     reproject_ = ComputePipeline(*context_, "svgf_reproject" + suffix, SVGF_REPROJECT_BINDINGS,
                                  sizeof(SvgfReprojectPush), sets, SvgfReprojectTexelFormats(params_.precision));
+    classify_ = ComputePipeline(*context_, "svgf_moments_classify" + suffix, SVGF_CLASSIFY_BINDINGS,
+                                sizeof(SvgfClassifyPush), sets, SvgfClassifyTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + suffix, SVGF_MOMENTS_BINDINGS,
                                sizeof(SvgfFilterMomentsPush), sets, SvgfMomentsTexelFormats(params_.precision));
     atrous_ = ComputePipeline(*context_, "svgf_atrous" + suffix, SVGF_ATROUS_BINDINGS, sizeof(SvgfAtrousPush),
@@ -69,12 +71,14 @@ void SvgfVulkanDenoiser::BuildSets() {
     guide_.ResetSets();
     reproject_.ResetSets();
     moments_.ResetSets();
+    classify_.ResetSets();
     atrous_.ResetSets();
     modulate_.ResetSets();
     const bool weighted = params_.svgf.weightBySampleCount;
     const bool combined = params_.svgf.filterCombined;
     reprojectSets_.assign(channels_.size(), {});
     momentsSets_.assign(channels_.size(), {});
+    classifySets_.assign(channels_.size(), {});
     atrousSets_.assign(channels_.size(), {});
     for (int parity = 0; parity < 2; ++parity) {
         const std::string cur = Side(parity);
@@ -121,7 +125,16 @@ void SvgfVulkanDenoiser::BuildSets() {
             m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
             m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);
             m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(ch + ".illum1");
+            m[SVGF_MOMENTS_B_ARGS] = &Buf(ch + ".spatialArgs");
+            m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
             momentsSets_[c][size_t(parity)] = moments_.MakeSet(m);
+
+            std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
+            k[SVGF_CLASSIFY_B_GUIDE] = &Buf("geometry.guide");
+            k[SVGF_CLASSIFY_B_LENGTH] = &Buf(ch + ".length." + cur);
+            k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
+            k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
+            classifySets_[c][size_t(parity)] = classify_.MakeSet(k);
 
             for (int pp = 0; pp < 2; ++pp) {
                 // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
@@ -215,9 +228,20 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     rec.EndPass();
 
     rec.BeginPass("filter_moments");
+    // Classify (list the pixels needing the spatial estimate), copy illum0 → illum1 for every
+    // pixel, then filter only the listed ones (indirect dispatch).
+    for (size_t c = 0; c < channels_.size(); ++c) rec.Fill(Buf(channels_[c] + ".spatialArgs"), 0u);
+    rec.Barrier();
+    const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
+    for (size_t c = 0; c < channels_.size(); ++c) {
+        rec.Dispatch(classify_, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
+        rec.Copy(Buf(channels_[c] + ".illum0"), Buf(channels_[c] + ".illum1"), 16 * n);
+    }
+    rec.Barrier();
     SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal, float(p.varianceHistoryThreshold)};
     for (size_t c = 0; c < channels_.size(); ++c)
-        rec.Dispatch(moments_, momentsSets_[c][size_t(parity_)], &mp, sizeof(mp), groups);
+        rec.DispatchIndirect(moments_, momentsSets_[c][size_t(parity_)], &mp, sizeof(mp),
+                             Buf(channels_[c] + ".spatialArgs"));
     rec.Barrier();
     rec.EndPass();
 

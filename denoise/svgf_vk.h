@@ -51,10 +51,10 @@ private:
     int parity_ = 0;          // history side written this frame: 0 → A, 1 → B
     bool needsClear_ = true;  // histories must be cleared before the next frame
     std::map<std::string, Buffer> buffers_;
-    ComputePipeline guide_, reproject_, moments_, atrous_, modulate_;
+    ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     // Descriptor sets: [channel][parity] (atrous: [channel][parity][pingpong]).
-    std::vector<std::array<VkDescriptorSet, 2>> reprojectSets_, momentsSets_;
+    std::vector<std::array<VkDescriptorSet, 2>> reprojectSets_, momentsSets_, classifySets_;
     std::vector<std::array<std::array<VkDescriptorSet, 2>, 2>> atrousSets_;
     VkDescriptorSet modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;

@@ -36,6 +36,18 @@ std::array<VkFormat, TH_REPROJECT_BINDINGS> ReprojectTexelFormats(Precision prec
     return f;
 }
 
+std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
+    std::array<VkFormat, ASVGF_ATROUS_BINDINGS> f{};
+    f.fill(VK_FORMAT_R32G32B32_SFLOAT);  // direct, indirect, albedo, emission, normal
+    f[ASVGF_ATROUS_B_GRAD_IN] = VK_FORMAT_R32G32_SFLOAT;
+    f[ASVGF_ATROUS_B_GUIDE] = VK_FORMAT_R32_SINT;
+    f[ASVGF_ATROUS_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
+    f[ASVGF_ATROUS_B_OBJECT] = VK_FORMAT_R32_UINT;
+    f[ASVGF_ATROUS_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
+    f[ASVGF_ATROUS_B_GRAD_OUT] = VK_FORMAT_UNDEFINED;
+    return f;
+}
+
 std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
     std::array<VkFormat, TH_GRADIENT_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);
@@ -134,6 +146,8 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                              SvgfGuideTexelFormats());
     reproject_ = ComputePipeline(*context_, "two_history_reproject" + sfx, TH_REPROJECT_BINDINGS,
                                  sizeof(TwoHistoryReprojectPush), kSets, ReprojectTexelFormats(params_.precision));
+    classify_ = ComputePipeline(*context_, "svgf_moments_classify" + sfx, SVGF_CLASSIFY_BINDINGS,
+                                sizeof(SvgfClassifyPush), kSets, SvgfClassifyTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
                                sizeof(SvgfFilterMomentsPush), kSets, SvgfMomentsTexelFormats(params_.precision));
     atrous_ = ComputePipeline(*context_, "svgf_atrous" + sfx, SVGF_ATROUS_BINDINGS,
@@ -152,7 +166,8 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
         gather_ = ComputePipeline(*context_, "asvgf_gradient_gather" + sfx, ASVGF_GATHER_BINDINGS,
                                   sizeof(AsvgfSamplesPush), kSets);
         gradAtrous_ = ComputePipeline(*context_, "asvgf_gradient_atrous" + sfx,
-                                      ASVGF_ATROUS_BINDINGS, sizeof(AsvgfAtrousPush), kSets);
+                                      ASVGF_ATROUS_BINDINGS, sizeof(AsvgfAtrousPush), kSets,
+                                      GradientAtrousTexelFormats());
         alpha_ = ComputePipeline(*context_, "asvgf_alpha" + sfx, ASVGF_ALPHA_BINDINGS,
                                  sizeof(AsvgfAlphaPush), kSets);
     }
@@ -184,7 +199,7 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void TwoHistoryVulkanDenoiser::BuildSets() {
-    for (ComputePipeline* p : {&guide_, &reproject_, &moments_, &atrous_, &modulate_, &gradient_,
+    for (ComputePipeline* p : {&guide_, &classify_, &reproject_, &moments_, &atrous_, &modulate_, &gradient_,
                                &blend_, &claim_, &gather_, &gradAtrous_, &alpha_})
         if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
     const size_t nch = channels_.size();
@@ -193,6 +208,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
     const int iterations = params_.svgf.atrousIterations;
     reprojectSets_.assign(nch, {});
     momentsU_.assign(nch, {});
+    classifySets_.assign(nch, {});
     momentsW_.assign(nch, {});
     atrousW_.assign(nch, {});
     blendSets_.assign(nch, {});
@@ -260,6 +276,8 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
                 m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);  // W_u
                 m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(out);
+                m[SVGF_MOMENTS_B_ARGS] = &Buf(ch + ".spatialArgs");
+                m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
                 return moments_.MakeSet(m);
             };
             auto atrousSet = [&](const std::string& in, const std::string& out,
@@ -273,6 +291,13 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 return atrous_.MakeSet(a);
             };
             momentsU_[c][pi] = momentsSet(ch + ".illum0", ch + ".illum1");
+            // One list per channel serves both histories: both test W_u (the channel's length).
+            std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
+            k[SVGF_CLASSIFY_B_GUIDE] = &Buf("geometry.guide");
+            k[SVGF_CLASSIFY_B_LENGTH] = &Buf(ch + ".length." + cur);
+            k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
+            k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
+            classifySets_[c][pi] = classify_.MakeSet(k);
             // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1 (as SVGF).
             atrousU_[c][pi][0] = atrousSet(ch + ".illum1", ch + ".illum0", ch + ".color." + cur);
             atrousU_[c][pi][1] = atrousSet(ch + ".illum0", ch + ".illum1", ch + ".color." + cur);
@@ -465,9 +490,21 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     rec.BeginPass("filter_moments");
     const SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal,
                                    float(p.varianceHistoryThreshold)};
+    // Classify, copy every pixel through, filter only the listed ones (as SVGF).
+    for (size_t c = 0; c < channels_.size(); ++c) rec.Fill(Buf(channels_[c] + ".spatialArgs"), 0u);
+    rec.Barrier();
+    const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
     for (size_t c = 0; c < channels_.size(); ++c) {
-        rec.Dispatch(moments_, momentsU_[c][size_t(parity_)], &mp, sizeof(mp), groups);
-        if (two_) rec.Dispatch(moments_, momentsW_[c][size_t(parity_)], &mp, sizeof(mp), groups);
+        const std::string& ch = channels_[c];
+        rec.Dispatch(classify_, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
+        rec.Copy(Buf(ch + ".illum0"), Buf(ch + ".illum1"), 16 * n);
+        if (two_) rec.Copy(Buf(ch + ".willum0"), Buf(ch + ".willum1"), 16 * n);
+    }
+    rec.Barrier();
+    for (size_t c = 0; c < channels_.size(); ++c) {
+        const Buffer& args = Buf(channels_[c] + ".spatialArgs");
+        rec.DispatchIndirect(moments_, momentsU_[c][size_t(parity_)], &mp, sizeof(mp), args);
+        if (two_) rec.DispatchIndirect(moments_, momentsW_[c][size_t(parity_)], &mp, sizeof(mp), args);
     }
     rec.Barrier();
     rec.EndPass();

@@ -53,11 +53,11 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     bool needsClear_ = true;
     bool hasPrev_ = false;
     std::map<std::string, Buffer> buffers_;
-    ComputePipeline guide_, reproject_, moments_, atrous_, modulate_, gradient_, blend_;
+    ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_, gradient_, blend_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     ComputePipeline claim_, gather_, gradAtrous_, alpha_;
     std::array<VkDescriptorSet, 2> gradientSets_{};
-    std::vector<std::array<VkDescriptorSet, 2>> reprojectSets_, momentsU_, momentsW_, atrousW_,
+    std::vector<std::array<VkDescriptorSet, 2>> classifySets_, reprojectSets_, momentsU_, momentsW_, atrousW_,
         blendSets_;
     std::vector<std::array<std::array<VkDescriptorSet, 2>, 2>> atrousU_;
     VkDescriptorSet claimSet_ = VK_NULL_HANDLE, gatherSet_ = VK_NULL_HANDLE;

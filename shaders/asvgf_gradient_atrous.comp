@@ -11,21 +11,23 @@
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
 #include "common/packing.glsl"
+#include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/edge_stopping.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = ASVGF_ATROUS_B_GRAD_IN) readonly buffer GradIn { vec2 grad_in[]; };
-layout(std430, binding = ASVGF_ATROUS_B_GUIDE) readonly buffer Guide { int guide[]; };
-layout(std430, binding = ASVGF_ATROUS_B_DEPTH) readonly buffer Depth { float depth[]; };
-layout(std430, binding = ASVGF_ATROUS_B_NORMAL) readonly buffer Normal { float normal[]; };
-layout(std430, binding = ASVGF_ATROUS_B_OBJECT) readonly buffer Object { uint object_id[]; };
-layout(std430, binding = ASVGF_ATROUS_B_DEPTH_GRAD) readonly buffer DepthGrad { float depth_grad[]; };
-layout(std430, binding = ASVGF_ATROUS_B_DIRECT) readonly buffer Direct { float direct[]; };
-layout(std430, binding = ASVGF_ATROUS_B_INDIRECT) readonly buffer Indirect { float indirect[]; };
-layout(std430, binding = ASVGF_ATROUS_B_ALBEDO) readonly buffer Albedo { float albedo[]; };
-layout(std430, binding = ASVGF_ATROUS_B_EMISSION) readonly buffer Emission { float emission[]; };
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp).
+PLANE(ASVGF_ATROUS_B_GRAD_IN, grad_in);        // rg32f
+IPLANE(ASVGF_ATROUS_B_GUIDE, guide);           // r32i (pixel index of each stratum's sample)
+PLANE(ASVGF_ATROUS_B_DEPTH, depth);            // r32f
+PLANE(ASVGF_ATROUS_B_NORMAL, normal);          // rgb32f
+UPLANE(ASVGF_ATROUS_B_OBJECT, object_id);      // r32ui
+PLANE(ASVGF_ATROUS_B_DEPTH_GRAD, depth_grad);  // rg32f
+PLANE(ASVGF_ATROUS_B_DIRECT, direct);          // rgb32f
+PLANE(ASVGF_ATROUS_B_INDIRECT, indirect);      // rgb32f
+PLANE(ASVGF_ATROUS_B_ALBEDO, albedo);          // rgb32f
+PLANE(ASVGF_ATROUS_B_EMISSION, emission);      // rgb32f
 layout(std430, binding = ASVGF_ATROUS_B_GRAD_OUT) writeonly buffer GradOut { vec2 grad_out[]; };
 
 layout(push_constant) uniform Push {
@@ -39,7 +41,7 @@ layout(push_constant) uniform Push {
 
 // Luminance of the noisy colour albedo·(direct + indirect) + emission at pixel j.
 float guide_luminance(int j) {
-    return luminance(LOAD3(albedo, j) * (LOAD3(direct, j) + LOAD3(indirect, j)) + LOAD3(emission, j));
+    return luminance(FETCH3(albedo, j) * (FETCH3(direct, j) + FETCH3(indirect, j)) + FETCH3(emission, j));
 }
 
 bool inside(ivec2 s) { return all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, pc.grid)); }
@@ -48,9 +50,9 @@ void main() {
     ivec2 s = ivec2(gl_GlobalInvocationID.xy);
     if (!inside(s)) return;
     int k = s.y * pc.grid.x + s.x;
-    int gp = guide[k];
-    if (object_id[gp] == FOVRT_NO_OBJECT) {
-        grad_out[k] = grad_in[k];
+    int gp = FETCH1(guide, k);
+    if (FETCH1(object_id, gp) == FOVRT_NO_OBJECT) {
+        grad_out[k] = FETCH2(grad_in, k);
         return;
     }
     float sum = 0.0, sum2 = 0.0, cnt = 0.0;
@@ -58,8 +60,8 @@ void main() {
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 t = s + ivec2(dx, dy);
             if (!inside(t)) continue;
-            int gq = guide[t.y * pc.grid.x + t.x];
-            if (object_id[gq] == FOVRT_NO_OBJECT) continue;
+            int gq = FETCH1(guide, t.y * pc.grid.x + t.x);
+            if (FETCH1(object_id, gq) == FOVRT_NO_OBJECT) continue;
             float l = guide_luminance(gq);
             sum += l;
             sum2 += l * l;
@@ -67,9 +69,9 @@ void main() {
         }
     float mean = sum / cnt;
     float sigma_l_std = pc.sigma_luminance * sqrt(max(0.0, sum2 / cnt - mean * mean));
-    float zp = depth[gp];
-    vec3 np = LOAD3(normal, gp);
-    vec2 dzp = LOAD2(depth_grad, gp);
+    float zp = FETCH1(depth, gp);
+    vec3 np = FETCH3(normal, gp);
+    vec2 dzp = FETCH2(depth_grad, gp);
     float lp = guide_luminance(gp);
     vec2 acc = vec2(0.0);
     float wsum = 0.0;
@@ -78,16 +80,16 @@ void main() {
             ivec2 t = s + ivec2(kx, ky) * pc.step;
             if (!inside(t)) continue;
             int kt = t.y * pc.grid.x + t.x;
-            int gq = guide[kt];
-            if (object_id[gq] == FOVRT_NO_OBJECT) continue;
+            int gq = FETCH1(guide, kt);
+            if (FETCH1(object_id, gq) == FOVRT_NO_OBJECT) continue;
             float w = 1.0;
             if (kx != 0 || ky != 0) {
                 vec2 offset_pixels = vec2(kx, ky) * float(pc.step * ASVGF_STRATUM_SIZE);
-                w = depth_weight(zp, depth[gq], dzp, offset_pixels, pc.sigma_depth) *
-                    normal_weight(np, LOAD3(normal, gq), pc.sigma_normal) *
+                w = depth_weight(zp, FETCH1(depth, gq), dzp, offset_pixels, pc.sigma_depth) *
+                    normal_weight(np, FETCH3(normal, gq), pc.sigma_normal) *
                     luminance_weight(lp, guide_luminance(gq), sigma_l_std);
             }
-            acc += w * grad_in[kt];
+            acc += w * FETCH2(grad_in, kt);
             wsum += w;
         }
     grad_out[k] = acc / wsum;

@@ -62,14 +62,27 @@
 #define SVGF_GUIDE_B_OUT 3                 // vec4[N]
 #define SVGF_GUIDE_BINDINGS 4
 
-// svgf_filter_moments
+// svgf_moments_classify: appends the pixels that need the spatial variance estimate (not
+// background, history length < threshold) to a list, and counts the 1-D workgroups of
+// svgf_filter_moments' indirect dispatch (lavapipe runs masked-off code anyway, so the 49-tap
+// filter is dispatched only over the listed pixels; the rest is a buffer copy).
+#define SVGF_CLASSIFY_B_GUIDE 0            // vec4[N]
+#define SVGF_CLASSIFY_B_LENGTH 1           // hfloat[N]  this frame's history length
+#define SVGF_CLASSIFY_B_ARGS 2             // uint[4]    (groups x, y, z, count), zeroed before
+#define SVGF_CLASSIFY_B_LIST 3             // uint[N]    pixel indices
+#define SVGF_CLASSIFY_BINDINGS 4
+#define FOVRT_SPATIAL_LIST_GROUP 64        // invocations per workgroup of the list dispatch
+
+// svgf_filter_moments (indirect, one invocation per listed pixel)
 #define SVGF_MOMENTS_B_ILLUM_IN 0          // vec4[N]
 #define SVGF_MOMENTS_B_GUIDE 1             // vec4[N]   (normal, depth or −1 on background)
 #define SVGF_MOMENTS_B_DEPTH_GRAD 2        // float[2N]
 #define SVGF_MOMENTS_B_MOMENTS 3           // hfloat[2N] this frame's moments
 #define SVGF_MOMENTS_B_LENGTH 4            // hfloat[N]  this frame's history length
-#define SVGF_MOMENTS_B_ILLUM_OUT 5         // vec4[N]
-#define SVGF_MOMENTS_BINDINGS 6
+#define SVGF_MOMENTS_B_ILLUM_OUT 5         // vec4[N]   (the other pixels: copied from ILLUM_IN)
+#define SVGF_MOMENTS_B_ARGS 6              // uint[4]   count at [3]
+#define SVGF_MOMENTS_B_LIST 7              // uint[N]
+#define SVGF_MOMENTS_BINDINGS 8
 
 // svgf_atrous
 #define SVGF_ATROUS_B_ILLUM_IN 0           // vec4[N]

@@ -6,6 +6,8 @@
 // Purpose: where history length < threshold, replace illumination and variance by a 7×7 bilateral
 //   estimate (weights w_z·w_n): illum = Σw c / Σw, variance = max(0, m2 − m1²) of Σw m / Σw,
 //   boosted by threshold / length for the first frames. Elsewhere pass through.
+// Dispatch: indirect, one invocation per pixel listed by svgf_moments_classify (not background,
+//   length < threshold); the host copies the input to the output for every other pixel first.
 // Reads:  illumination + variance (vec4), guide (normal, depth, background), depth gradient,
 //         this frame's moments and history length.
 // Writes: illumination + variance (vec4).
@@ -14,7 +16,7 @@
 #include "common/access.glsl"
 #include "common/edge_stopping.glsl"
 
-layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+layout(local_size_x = FOVRT_SPATIAL_LIST_GROUP) in;
 
 // Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h).
 PLANE(SVGF_MOMENTS_B_ILLUM_IN, illum_in);      // rgba32f
@@ -23,6 +25,8 @@ PLANE(SVGF_MOMENTS_B_DEPTH_GRAD, depth_grad);  // rg32f
 PLANE(SVGF_MOMENTS_B_MOMENTS, moments);        // rg32f, or rg16f in _fp16
 PLANE(SVGF_MOMENTS_B_LENGTH, hist_length);     // r32f, or r16f in _fp16
 layout(std430, binding = SVGF_MOMENTS_B_ILLUM_OUT) writeonly buffer IllumOut { vec4 illum_out[]; };
+layout(std430, binding = SVGF_MOMENTS_B_ARGS) readonly buffer Args { uint args[4]; };
+layout(std430, binding = SVGF_MOMENTS_B_LIST) readonly buffer List { uint list[]; };
 
 // Mirrors SvgfFilterMomentsPush in denoise/svgf_layout.h.
 layout(push_constant) uniform Push {
@@ -33,40 +37,34 @@ layout(push_constant) uniform Push {
 } pc;
 
 void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, pc.size))) return;
-    int i = p.y * pc.size.x + p.x;
-    vec4 result = FETCH4(illum_in, i);
+    uint k = gl_GlobalInvocationID.x;
+    if (k >= args[3]) return;
+    int i = int(list[k]);
+    ivec2 p = ivec2(i % pc.size.x, i / pc.size.x);
     float len = FETCH1(hist_length, i);
     vec4 gc = FETCH4(guide, i);
-    bool spatial = !GUIDE_IS_BACKGROUND(gc) && len < pc.threshold;
-    // A loop run at most once rather than an if: lavapipe executes both sides of a branch under
-    // a lane mask, but skips a loop whose trip count is 0 on every lane (the steady state).
-    [[dont_unroll]] for (int once = 0; once < (spatial ? 1 : 0); ++once) {
-        float zp = gc.w;
-        vec3 np = gc.xyz;
-        vec2 gp = FETCH2(depth_grad, i);
-        float sum_w = 0.0;
-        vec3 sum_c = vec3(0.0);
-        vec2 sum_m = vec2(0.0);
-        [[unroll]] for (int dy = -FOVRT_MOMENTS_RADIUS; dy <= FOVRT_MOMENTS_RADIUS; ++dy) {
-            [[unroll]] for (int dx = -FOVRT_MOMENTS_RADIUS; dx <= FOVRT_MOMENTS_RADIUS; ++dx) {
-                ivec2 q = p + ivec2(dx, dy);
-                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
-                int j = q.y * pc.size.x + q.x;
-                vec4 gq = FETCH4(guide, j);
-                if (GUIDE_IS_BACKGROUND(gq)) continue;
-                float w = geometry_weight(zp, gq.w, gp, vec2(dx, dy), pc.sigma_depth, np, gq.xyz,
-                                          pc.sigma_normal, 0.0);
-                sum_w += w;
-                sum_c += w * FETCH3(illum_in, j);
-                sum_m += w * FETCH2(moments, j);
-            }
+    float zp = gc.w;
+    vec3 np = gc.xyz;
+    vec2 gp = FETCH2(depth_grad, i);
+    float sum_w = 0.0;
+    vec3 sum_c = vec3(0.0);
+    vec2 sum_m = vec2(0.0);
+    [[unroll]] for (int dy = -FOVRT_MOMENTS_RADIUS; dy <= FOVRT_MOMENTS_RADIUS; ++dy) {
+        [[unroll]] for (int dx = -FOVRT_MOMENTS_RADIUS; dx <= FOVRT_MOMENTS_RADIUS; ++dx) {
+            ivec2 q = p + ivec2(dx, dy);
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
+            int j = q.y * pc.size.x + q.x;
+            vec4 gq = FETCH4(guide, j);
+            if (GUIDE_IS_BACKGROUND(gq)) continue;
+            float w = geometry_weight(zp, gq.w, gp, vec2(dx, dy), pc.sigma_depth, np, gq.xyz,
+                                      pc.sigma_normal, 0.0);
+            sum_w += w;
+            sum_c += w * FETCH3(illum_in, j);
+            sum_m += w * FETCH2(moments, j);
         }
-        // The centre has weight 1, so sum_w ≥ 1.
-        vec2 m = sum_m / sum_w;
-        float variance = max(0.0, m.y - m.x * m.x) * (pc.threshold / max(len, 1.0));
-        result = vec4(sum_c / sum_w, variance);
     }
-    illum_out[i] = result;
+    // The centre has weight 1, so sum_w ≥ 1.
+    vec2 m = sum_m / sum_w;
+    float variance = max(0.0, m.y - m.x * m.x) * (pc.threshold / max(len, 1.0));
+    illum_out[i] = vec4(sum_c / sum_w, variance);
 }

@@ -11,6 +11,7 @@
 #include "denoise/denoiser_factory.h"
 #include "test_support.h"
 #include "vk/context.h"
+#include "vk_test_support.h"
 
 using namespace fovrt;
 
@@ -38,9 +39,7 @@ TEST_CASE("vulkan denoisers match the C++ reference on real rendered frames", "[
     for (int f = 0; f < kFrames; ++f) pipeline.Render(uint32_t(f), frames[size_t(f)]);
     REQUIRE(frames[1].eyes[0].inputs.gradientSamples.size() > 0);
 
-    VulkanContextOptions options;
-    options.validation = Validation::On;
-    VulkanContext context = VulkanContext::Create(options);
+    VulkanContext& context = *test::TestContext();
     for (const std::string& name : DenoiserNames()) {
         DYNAMIC_SECTION(name) {
             DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});

@@ -19,20 +19,13 @@
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"
+#include "vk_test_support.h"
 
 using namespace fovrt;
+using fovrt::test::TestContext;
 using namespace fovrt::test;
 
 namespace {
-
-std::shared_ptr<VulkanContext> TestContext() {
-    static std::shared_ptr<VulkanContext> ctx = [] {
-        VulkanContextOptions o;
-        o.validation = Validation::On;
-        return std::make_shared<VulkanContext>(VulkanContext::Create(o));
-    }();
-    return ctx;
-}
 
 struct ErrorStats {
     double maxAbs = 0.0;

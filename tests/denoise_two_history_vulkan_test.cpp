@@ -22,19 +22,12 @@
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"
+#include "vk_test_support.h"
 
 using namespace fovrt;
+using fovrt::test::TestContext;
 
 namespace {
-
-std::shared_ptr<VulkanContext> TestContext() {
-    static std::shared_ptr<VulkanContext> ctx = [] {
-        VulkanContextOptions o;
-        o.validation = Validation::On;
-        return std::make_shared<VulkanContext>(VulkanContext::Create(o));
-    }();
-    return ctx;
-}
 
 std::vector<float> Floats(const std::vector<uint8_t>& bytes, bool half) {
     if (!half) return test::AsFloats(bytes);

@@ -9,16 +9,9 @@
 #include "test_support.h"
 
 using namespace fovrt;
+using fovrt::test::RandomImage;
 
 namespace {
-
-Plane<vec3> RandomImage(int w, int h, uint64_t seed, float scale = 1.0f) {
-    Pcg32 rng(seed);
-    Plane<vec3> img(w, h);
-    for (size_t i = 0; i < img.size(); ++i)
-        img[i] = scale * vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
-    return img;
-}
 
 // Direct 2D SSIM with the window cut at the border and renormalised (the documented definition),
 // in double precision, written independently of the separable implementation.

@@ -7,6 +7,10 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/image.h"
+#include "core/math.h"
+#include "core/rng.h"
+
 namespace fovrt::test {
 
 inline std::filesystem::path SourceDir() { return FOVRT_SOURCE_DIR; }
@@ -16,6 +20,15 @@ inline std::filesystem::path SharedScenes() {
     if (const char* env = std::getenv("FOVRT_SHARED_SCENES")) return env;
     auto dir = SourceDir().parent_path() / "shared" / "scenes";
     return std::filesystem::exists(dir) ? dir : std::filesystem::path();
+}
+
+// An HDR test image with uniform random channels in [0, scale).
+inline Plane<vec3> RandomImage(int w, int h, uint64_t seed, float scale = 1.0f) {
+    Pcg32 rng(seed);
+    Plane<vec3> img(w, h);
+    for (size_t i = 0; i < img.size(); ++i)
+        img[i] = scale * vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+    return img;
 }
 
 }  // namespace fovrt::test

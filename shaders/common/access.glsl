@@ -11,6 +11,7 @@
 
 #define PLANE(binding_, name) layout(binding = binding_) uniform samplerBuffer name
 #define UPLANE(binding_, name) layout(binding = binding_) uniform usamplerBuffer name
+#define IPLANE(binding_, name) layout(binding = binding_) uniform isamplerBuffer name
 #define FETCH1(name, i) texelFetch(name, (i)).x
 #define FETCH2(name, i) texelFetch(name, (i)).xy
 #define FETCH3(name, i) texelFetch(name, (i)).xyz

@@ -52,8 +52,10 @@ Buffer VulkanAllocator::CreateBuffer(const std::string& name, size_t bytes, Memo
     info.size = size;
     // Texel-buffer usage too: read-only planes of the gather-heavy passes are bound as uniform
     // texel buffers (lavapipe fetches those with vector gathers; see denoise/svgf.md "Speed").
+    // Indirect usage: dispatch arguments written by a shader (svgf_moments_classify).
     info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
-                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+                 VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     Buffer b;
     FOVRT_VK(vkCreateBuffer(device_, &info, nullptr, &b.buffer_));

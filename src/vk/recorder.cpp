@@ -121,14 +121,27 @@ void CommandRecorder::Dispatch(const ComputePipeline& pipeline, VkDescriptorSet 
     vkCmdDispatch(Cmd(), groups.x, groups.y, 1);
 }
 
+void CommandRecorder::DispatchIndirect(const ComputePipeline& pipeline, VkDescriptorSet set, const void* push,
+                                       size_t pushBytes, const Buffer& args) {
+    FOVRT_CHECK_OP(pushBytes, ==, size_t(pipeline.pushBytes()));
+    FOVRT_CHECK_OP(args.size(), >=, 3 * sizeof(uint32_t));
+    vkCmdBindPipeline(Cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+    vkCmdBindDescriptorSets(Cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+    if (pushBytes)
+        vkCmdPushConstants(Cmd(), pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, uint32_t(pushBytes), push);
+    vkCmdDispatchIndirect(Cmd(), args.handle(), 0);
+}
+
 void CommandRecorder::Barrier() {
     auto barrier = VkInit<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
     barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
     barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                            VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT;
+                            VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT |
+                            VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
     VkPipelineStageFlags stages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    vkCmdPipelineBarrier(Cmd(), stages, stages | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr,
-                         0, nullptr);
+    vkCmdPipelineBarrier(Cmd(), stages,
+                         stages | VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &barrier,
+                         0, nullptr, 0, nullptr);
 }
 
 void CommandRecorder::BufferBarrier(const Buffer& buffer) {

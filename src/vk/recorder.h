@@ -58,7 +58,12 @@ public:
     void Fill(Buffer& dst, uint32_t value);
     void Dispatch(const ComputePipeline& pipeline, VkDescriptorSet set, const void* push,
                   size_t pushBytes, uvec2 groups);
-    // Global barrier: all earlier compute/transfer writes visible to later compute/transfer/host.
+    // vkCmdDispatchIndirect with the (x, y, z) group counts at offset 0 of `args` (written by an
+    // earlier pass; Barrier() makes them visible to the indirect read).
+    void DispatchIndirect(const ComputePipeline& pipeline, VkDescriptorSet set, const void* push,
+                          size_t pushBytes, const Buffer& args);
+    // Global barrier: all earlier compute/transfer writes visible to later compute/transfer/host
+    // and to indirect-argument reads.
     void Barrier();
     // Barrier on one buffer (compute/transfer write → compute/transfer read/write).
     void BufferBarrier(const Buffer& buffer);

@@ -1,0 +1,37 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// svgf_moments_classify — lists the pixels whose variance svgf_filter_moments must estimate
+// spatially (not background, history length < threshold; paper §4.2, Falcor) and counts the
+// workgroups of its indirect dispatch. In the steady state the list is (nearly) empty.
+// Reads:  guide (background test), this frame's history length.
+// Writes: list of pixel indices, (groups x, 1, 1, count) — zeroed by the host before.
+#include "shared_constants.h"
+#include "common/packing.glsl"
+#include "common/access.glsl"
+
+layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+
+PLANE(SVGF_CLASSIFY_B_GUIDE, guide);           // rgba32f
+PLANE(SVGF_CLASSIFY_B_LENGTH, hist_length);    // r32f, or r16f in _fp16
+layout(std430, binding = SVGF_CLASSIFY_B_ARGS) buffer Args { uint args[4]; };
+layout(std430, binding = SVGF_CLASSIFY_B_LIST) writeonly buffer List { uint list[]; };
+
+// Mirrors SvgfClassifyPush in denoise/svgf_layout.h.
+layout(push_constant) uniform Push {
+    ivec2 size;
+    float threshold;
+} pc;
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    int i = p.y * pc.size.x + p.x;
+    if (GUIDE_IS_BACKGROUND(FETCH4(guide, i)) || !(FETCH1(hist_length, i) < pc.threshold)) return;
+    uint k = atomicAdd(args[3], 1u);
+    list[k] = uint(i);
+    if (k % FOVRT_SPATIAL_LIST_GROUP == 0u) atomicAdd(args[0], 1u);
+    if (k == 0u) {
+        args[1] = 1u;
+        args[2] = 1u;
+    }
+}
