@@ -72,6 +72,9 @@
 #define SVGF_CLASSIFY_B_LIST 3             // uint[N]    pixel indices
 #define SVGF_CLASSIFY_BINDINGS 4
 #define FOVRT_SPATIAL_LIST_GROUP 64        // invocations per workgroup of the list dispatch
+// Cap of the list dispatch's group count (Vulkan guarantees 65535); beyond it each invocation
+// loops over several list entries (images above 4.19 MPix, e.g. 2048×2048+ per eye).
+#define FOVRT_SPATIAL_LIST_MAX_GROUPS 65535u
 
 // svgf_filter_moments (indirect, one invocation per listed pixel)
 #define SVGF_MOMENTS_B_ILLUM_IN 0          // vec4[N]

@@ -36,10 +36,7 @@ layout(push_constant) uniform Push {
     float threshold;  // history length below which the spatial estimate is used
 } pc;
 
-void main() {
-    uint k = gl_GlobalInvocationID.x;
-    if (k >= args[3]) return;
-    int i = int(list[k]);
+void filter_pixel(int i) {
     ivec2 p = ivec2(i % pc.size.x, i / pc.size.x);
     float len = FETCH1(hist_length, i);
     vec4 gc = FETCH4(guide, i);
@@ -67,4 +64,10 @@ void main() {
     vec2 m = sum_m / sum_w;
     float variance = max(0.0, m.y - m.x * m.x) * (pc.threshold / max(len, 1.0));
     illum_out[i] = vec4(sum_c / sum_w, variance);
+}
+
+void main() {
+    // Grid-stride over the list: the group count is capped (FOVRT_SPATIAL_LIST_MAX_GROUPS).
+    const uint stride = gl_NumWorkGroups.x * FOVRT_SPATIAL_LIST_GROUP;
+    for (uint k = gl_GlobalInvocationID.x; k < args[3]; k += stride) filter_pixel(int(list[k]));
 }

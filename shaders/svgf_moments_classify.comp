@@ -29,7 +29,8 @@ void main() {
     if (GUIDE_IS_BACKGROUND(FETCH4(guide, i)) || !(FETCH1(hist_length, i) < pc.threshold)) return;
     uint k = atomicAdd(args[3], 1u);
     list[k] = uint(i);
-    if (k % FOVRT_SPATIAL_LIST_GROUP == 0u) atomicAdd(args[0], 1u);
+    if (k % FOVRT_SPATIAL_LIST_GROUP == 0u && k / FOVRT_SPATIAL_LIST_GROUP < FOVRT_SPATIAL_LIST_MAX_GROUPS)
+        atomicAdd(args[0], 1u);
     if (k == 0u) {
         args[1] = 1u;
         args[2] = 1u;
