@@ -48,20 +48,12 @@ void SvgfVulkanDenoiser::CreatePipelines() {
 
 SvgfVulkanDenoiser::~SvgfVulkanDenoiser() = default;
 
-Buffer& SvgfVulkanDenoiser::Buf(const std::string& name) {
-    auto it = buffers_.find(name);
-    if (it == buffers_.end()) Fail("svgf: no buffer '{}' in the memory plan", name);
-    return it->second;
-}
+Buffer& SvgfVulkanDenoiser::Buf(const std::string& name) { return buffers_[name]; }
 
 void SvgfVulkanDenoiser::Allocate(int width, int height) {
-    buffers_.clear();
     width_ = width;
     height_ = height;
-    for (const BufferPlan& b : PlanSvgfMemory(width, height, params_))
-        buffers_.emplace(b.name, context_->allocator().CreateBuffer(b.name, b.bytes,
-                                                                    b.name == "staging" ? MemoryUsage::Staging
-                                                                                        : MemoryUsage::Device));
+    buffers_.Allocate(*context_, PlanSvgfMemory(width, height, params_));
     BuildSets();
     parity_ = 0;
     needsClear_ = true;
@@ -162,7 +154,7 @@ void SvgfVulkanDenoiser::BuildSets() {
 void SvgfVulkanDenoiser::Reset() { needsClear_ = true; }
 
 void SvgfVulkanDenoiser::SetParams(const DenoiserParams& params) {
-    buffers_.clear();  // descriptor sets refer to them; rebuilt with the new layout
+    buffers_.Release();  // descriptor sets refer to them; rebuilt with the new layout
     params_ = params;
     CreatePipelines();
     width_ = height_ = 0;  // next Denoise() allocates
@@ -185,29 +177,12 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     Buffer& staging = Buf("staging");
     rec.BeginPass("upload");
     if (needsClear_) {
-        // Reset(): every history (and the previous geometry) dropped. Object id ~0 = background,
-        // so nothing reprojects on the next frame.
-        for (auto& [name, buf] : buffers_)
-            if (name.rfind("geometry.objectId.", 0) == 0)
-                rec.Fill(buf, 0xFFFFFFFFu);
-            else if (name != "staging")
-                rec.Fill(buf, 0u);
-        rec.Barrier();
+        buffers_.RecordClear(rec);  // Reset(): nothing reprojects on the next frame
         needsClear_ = false;
     }
-    size_t off = 0;
-    off = rec.Upload(in.direct.data(), 12 * n, staging, off, Buf("input.direct"));
-    off = rec.Upload(in.indirect.data(), 12 * n, staging, off, Buf("input.indirect"));
-    off = rec.Upload(in.albedo.data(), 12 * n, staging, off, Buf("input.albedo"));
-    off = rec.Upload(in.emission.data(), 12 * n, staging, off, Buf("input.emission"));
-    off = rec.Upload(in.depthGradient.data(), 8 * n, staging, off, Buf("input.depthGradient"));
-    off = rec.Upload(in.prevPixel.data(), 8 * n, staging, off, Buf("input.prevPixel"));
+    size_t off = buffers_.RecordUploadInputs(rec, in, cur);
     if (p.weightBySampleCount)
         off = rec.Upload(in.sampleCount.data(), 2 * n, staging, off, Buf("input.sampleCount"));
-    off = rec.Upload(in.linearDepth.data(), 4 * n, staging, off, Buf("geometry.depth." + cur));
-    off = rec.Upload(in.normal.data(), 12 * n, staging, off, Buf("geometry.normal." + cur));
-    off = rec.Upload(in.objectId.data(), 4 * n, staging, off, Buf("geometry.objectId." + cur));
-    rec.Fill(Buf("stats"), 0u);
     rec.Barrier();
     rec.EndPass();
 
@@ -262,35 +237,16 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     rec.EndPass();
 
     rec.BeginPass("download");
-    const size_t outOffset = off;
-    size_t statsOffset = rec.Download(Buf("output"), 12 * n, staging, outOffset);
-    rec.Download(Buf("stats"), 8, staging, statsOffset);
-    rec.Barrier();
+    buffers_.RecordDownloadOutput(rec, off, n);
     rec.EndPass();
     rec.Submit();
-
-    output.Resize(w, h);
-    const char* base = static_cast<const char*>(staging.mapped());
-    std::memcpy(output.data(), base + outOffset, 12 * n);
-    uint32_t counters[2];
-    std::memcpy(counters, base + statsOffset, sizeof(counters));
-    stats_.nonFiniteSamples += counters[0];
-    stats_.negativeSamples += counters[1];
-    timings_.clear();
-    for (auto& [pass, ms] : timestamps_.Results()) timings_.push_back({pass, ms});
+    buffers_.FinishOutput(w, h, output, stats_);
+    timings_ = PassTimings(timestamps_);
     parity_ ^= 1;
 }
 
 std::vector<uint8_t> SvgfVulkanDenoiser::ReadBuffer(const std::string& name) {
-    Buffer& src = Buf(name);
-    Buffer tmp = context_->allocator().CreateBuffer("readback:" + name, src.size(), MemoryUsage::Staging);
-    CommandRecorder rec(*context_);
-    rec.Download(src, src.size(), tmp, 0);
-    rec.Barrier();
-    rec.Submit();
-    std::vector<uint8_t> out(src.size());
-    std::memcpy(out.data(), tmp.mapped(), src.size());
-    return out;
+    return buffers_.Read(*context_, name);
 }
 
 }  // namespace fovrt

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
+#include "denoise/vk_denoiser_buffers.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/recorder.h"
@@ -50,7 +51,7 @@ private:
     int width_ = 0, height_ = 0;
     int parity_ = 0;          // history side written this frame: 0 → A, 1 → B
     bool needsClear_ = true;  // histories must be cleared before the next frame
-    std::map<std::string, Buffer> buffers_;
+    DenoiserBuffers buffers_{"svgf"};
     ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     // Descriptor sets: [channel][parity] (atrous: [channel][parity][pingpong]).

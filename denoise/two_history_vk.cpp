@@ -132,6 +132,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                                    const DenoiserParams& params)
     : variant_(variant), context_(std::move(context)), params_(params) {
     FOVRT_CHECK(context_ != nullptr);
+    buffers_ = DenoiserBuffers(Name());
     ValidateTwoHistoryParams(params_);
     params_.svgf.weightBySampleCount = false;  // the weighted history is this family's own
     if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
@@ -176,23 +177,13 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
 
 TwoHistoryVulkanDenoiser::~TwoHistoryVulkanDenoiser() = default;
 
-Buffer& TwoHistoryVulkanDenoiser::Buf(const std::string& name) {
-    auto it = buffers_.find(name);
-    if (it == buffers_.end()) Fail("{}: no buffer '{}' in the memory plan", Name(), name);
-    return it->second;
-}
+Buffer& TwoHistoryVulkanDenoiser::Buf(const std::string& name) { return buffers_[name]; }
 
 void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
-    buffers_.clear();
     width_ = width;
     height_ = height;
     grid_ = StratumGridSize(width, height);
-    for (const BufferPlan& b : PlanTwoHistoryMemory(Name(), width, height, params_)) {
-        const bool staging = b.name.rfind("staging", 0) == 0;
-        buffers_.emplace(
-            b.name, context_->allocator().CreateBuffer(
-                        b.name, b.bytes, staging ? MemoryUsage::Staging : MemoryUsage::Device));
-    }
+    buffers_.Allocate(*context_, PlanTwoHistoryMemory(Name(), width, height, params_));
     BuildSets();
     parity_ = 0;
     needsClear_ = true;
@@ -393,31 +384,14 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
              sampleCount, GradientSampleCapacity(w, h));
 
     CommandRecorder rec(*context_, &timestamps_);
-    Buffer& staging = Buf("staging");
     Buffer& stagingExtra = Buf("staging.extra");
     rec.BeginPass("upload");
     if (needsClear_) {
-        // Every history and the previous geometry dropped; object id ~0 = background: nothing
-        // reprojects on the next frame.
-        for (auto& [name, buf] : buffers_)
-            if (name.rfind("geometry.objectId.", 0) == 0)
-                rec.Fill(buf, 0xFFFFFFFFu);
-            else if (name.rfind("staging", 0) != 0)
-                rec.Fill(buf, 0u);
-        rec.Barrier();
+        buffers_.RecordClear(rec);  // nothing reprojects on the next frame
         needsClear_ = false;
         hasPrev_ = false;
     }
-    size_t off = 0;
-    off = rec.Upload(in.direct.data(), 12 * n, staging, off, Buf("input.direct"));
-    off = rec.Upload(in.indirect.data(), 12 * n, staging, off, Buf("input.indirect"));
-    off = rec.Upload(in.albedo.data(), 12 * n, staging, off, Buf("input.albedo"));
-    off = rec.Upload(in.emission.data(), 12 * n, staging, off, Buf("input.emission"));
-    off = rec.Upload(in.depthGradient.data(), 8 * n, staging, off, Buf("input.depthGradient"));
-    off = rec.Upload(in.prevPixel.data(), 8 * n, staging, off, Buf("input.prevPixel"));
-    off = rec.Upload(in.linearDepth.data(), 4 * n, staging, off, Buf("geometry.depth." + cur));
-    off = rec.Upload(in.normal.data(), 12 * n, staging, off, Buf("geometry.normal." + cur));
-    off = rec.Upload(in.objectId.data(), 4 * n, staging, off, Buf("geometry.objectId." + cur));
+    const size_t off = buffers_.RecordUploadInputs(rec, in, cur);
     size_t offExtra = 0;
     if (two_)
         offExtra = rec.Upload(in.sampleCount.data(), 2 * n, stagingExtra, offExtra,
@@ -425,7 +399,6 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     if (sampleCount > 0)
         rec.Upload(in.gradientSamples.data(), sampleCount * sizeof(GradientSample), stagingExtra,
                    offExtra, Buf("asvgf.samples"));
-    rec.Fill(Buf("stats"), 0u);
     rec.Barrier();
     rec.EndPass();
 
@@ -550,37 +523,17 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     rec.EndPass();
 
     rec.BeginPass("download");
-    const size_t outOffset = off;
-    const size_t statsOffset = rec.Download(Buf("output"), 12 * n, staging, outOffset);
-    rec.Download(Buf("stats"), 8, staging, statsOffset);
-    rec.Barrier();
+    buffers_.RecordDownloadOutput(rec, off, n);
     rec.EndPass();
     rec.Submit();
-
-    output.Resize(w, h);
-    const char* base = static_cast<const char*>(staging.mapped());
-    std::memcpy(output.data(), base + outOffset, 12 * n);
-    uint32_t counters[2];
-    std::memcpy(counters, base + statsOffset, sizeof(counters));
-    stats_.nonFiniteSamples += counters[0];
-    stats_.negativeSamples += counters[1];
-    timings_.clear();
-    for (auto& [pass, ms] : timestamps_.Results()) timings_.push_back({pass, ms});
+    buffers_.FinishOutput(w, h, output, stats_);
+    timings_ = PassTimings(timestamps_);
     hasPrev_ = true;
     parity_ ^= 1;
 }
 
 std::vector<uint8_t> TwoHistoryVulkanDenoiser::ReadBuffer(const std::string& name) {
-    Buffer& src = Buf(name);
-    Buffer tmp =
-        context_->allocator().CreateBuffer("readback:" + name, src.size(), MemoryUsage::Staging);
-    CommandRecorder rec(*context_);
-    rec.Download(src, src.size(), tmp, 0);
-    rec.Barrier();
-    rec.Submit();
-    std::vector<uint8_t> out(src.size());
-    std::memcpy(out.data(), tmp.mapped(), src.size());
-    return out;
+    return buffers_.Read(*context_, name);
 }
 
 }  // namespace fovrt

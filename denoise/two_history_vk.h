@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
+#include "denoise/vk_denoiser_buffers.h"
 #include "denoise/two_history_ref.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
@@ -52,7 +53,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     int parity_ = 0;
     bool needsClear_ = true;
     bool hasPrev_ = false;
-    std::map<std::string, Buffer> buffers_;
+    DenoiserBuffers buffers_;
     ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_, gradient_, blend_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     ComputePipeline claim_, gather_, gradAtrous_, alpha_;

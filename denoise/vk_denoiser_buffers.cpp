@@ -1,0 +1,92 @@
+#include "denoise/vk_denoiser_buffers.h"
+
+#include <cstring>
+
+#include "core/error.h"
+
+namespace fovrt {
+namespace {
+
+bool IsStaging(const std::string& name) { return name.rfind("staging", 0) == 0; }
+
+}  // namespace
+
+void DenoiserBuffers::Allocate(VulkanContext& context, const std::vector<BufferPlan>& plan) {
+    buffers_.clear();
+    for (const BufferPlan& b : plan)
+        buffers_.emplace(b.name, context.allocator().CreateBuffer(
+                                     b.name, b.bytes,
+                                     IsStaging(b.name) ? MemoryUsage::Staging : MemoryUsage::Device));
+}
+
+Buffer& DenoiserBuffers::operator[](const std::string& name) {
+    auto it = buffers_.find(name);
+    if (it == buffers_.end()) Fail("{}: no buffer '{}' in the memory plan", owner_, name);
+    return it->second;
+}
+
+void DenoiserBuffers::RecordClear(CommandRecorder& rec) {
+    for (auto& [name, buffer] : buffers_)
+        if (name.rfind("geometry.objectId.", 0) == 0)
+            rec.Fill(buffer, 0xFFFFFFFFu);
+        else if (!IsStaging(name))
+            rec.Fill(buffer, 0u);
+    rec.Barrier();
+}
+
+size_t DenoiserBuffers::RecordUploadInputs(CommandRecorder& rec, const FrameInputs& in,
+                                           const std::string& side) {
+    const size_t n = size_t(in.width()) * size_t(in.height());
+    Buffer& staging = (*this)["staging"];
+    size_t off = 0;
+    off = rec.Upload(in.direct.data(), 12 * n, staging, off, (*this)["input.direct"]);
+    off = rec.Upload(in.indirect.data(), 12 * n, staging, off, (*this)["input.indirect"]);
+    off = rec.Upload(in.albedo.data(), 12 * n, staging, off, (*this)["input.albedo"]);
+    off = rec.Upload(in.emission.data(), 12 * n, staging, off, (*this)["input.emission"]);
+    off = rec.Upload(in.depthGradient.data(), 8 * n, staging, off, (*this)["input.depthGradient"]);
+    off = rec.Upload(in.prevPixel.data(), 8 * n, staging, off, (*this)["input.prevPixel"]);
+    off = rec.Upload(in.linearDepth.data(), 4 * n, staging, off, (*this)["geometry.depth." + side]);
+    off = rec.Upload(in.normal.data(), 12 * n, staging, off, (*this)["geometry.normal." + side]);
+    off = rec.Upload(in.objectId.data(), 4 * n, staging, off, (*this)["geometry.objectId." + side]);
+    rec.Fill((*this)["stats"], 0u);
+    return off;
+}
+
+void DenoiserBuffers::RecordDownloadOutput(CommandRecorder& rec, size_t stagingOffset,
+                                           size_t pixels) {
+    Buffer& staging = (*this)["staging"];
+    outputOffset_ = stagingOffset;
+    statsOffset_ = rec.Download((*this)["output"], 12 * pixels, staging, outputOffset_);
+    rec.Download((*this)["stats"], 8, staging, statsOffset_);
+    rec.Barrier();
+}
+
+void DenoiserBuffers::FinishOutput(int width, int height, Plane<vec3>& output, DenoiseStats& stats) {
+    output.Resize(width, height);
+    const char* base = static_cast<const char*>((*this)["staging"].mapped());
+    std::memcpy(output.data(), base + outputOffset_, output.bytes());
+    uint32_t counters[2];
+    std::memcpy(counters, base + statsOffset_, sizeof(counters));
+    stats.nonFiniteSamples += counters[0];
+    stats.negativeSamples += counters[1];
+}
+
+std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const std::string& name) {
+    Buffer& src = (*this)[name];
+    Buffer tmp = context.allocator().CreateBuffer("readback:" + name, src.size(), MemoryUsage::Staging);
+    CommandRecorder rec(context);
+    rec.Download(src, src.size(), tmp, 0);
+    rec.Barrier();
+    rec.Submit();
+    std::vector<uint8_t> out(src.size());
+    std::memcpy(out.data(), tmp.mapped(), src.size());
+    return out;
+}
+
+std::vector<PassTiming> PassTimings(const TimestampPool& timestamps) {
+    std::vector<PassTiming> timings;
+    for (auto& [pass, ms] : timestamps.Results()) timings.push_back({pass, ms});
+    return timings;
+}
+
+}  // namespace fovrt
