@@ -79,11 +79,12 @@ Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int s
 
 void PrintThroughput(const char* label, const Throughput& t, int frames) {
     const RenderStats& s = t.stats;
-    std::printf("  %s: %.1f ms/frame, %.2f Mrays/s (primary %.2fM, shadow %.2fM, bounce %.2fM per frame), "
-                "%.2f Msamples/s (%.2f per CPU-second), %llu dropped samples\n",
+    std::printf("  %s: %.1f ms/frame, %.2f Mrays/s traced (primary %.2fM, shadow %.2fM of which %.2fM "
+                "reused per pixel, bounce %.2fM per frame), %.2f Msamples/s (%.2f per CPU-second), "
+                "%llu dropped samples\n",
                 label, 1e3 * t.seconds / frames, 1e-6 * double(s.Rays()) / t.seconds,
                 1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.shadowRays) / frames,
-                1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
+                1e-6 * double(s.shadowRaysReused) / frames, 1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
                 1e-6 * double(s.samples) / t.cpuSeconds,
                 static_cast<unsigned long long>(s.droppedSamples));
 }
@@ -194,8 +195,8 @@ void CompareWithEmbree(const BenchOptions& o) {
                 "  one point light (%.1f, %.1f, %.1f) in both\n",
                 o.width, o.height, o.compareSpp, o.maxDepth, o.maxDepth - 1, lightPosition.x,
                 lightPosition.y, lightPosition.z);
-    std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s; primary rays "
-                "once per pixel, not per sample)\n",
+    std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s traced; primary "
+                "rays and primary-vertex point-light shadow rays once per pixel, not per sample)\n",
                 1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds);
     std::printf("  embree: %.2f Msamples/s wall, %.2f Msamples per CPU-second (%s: %.3f s / %.3f s CPU at "
                 "%d spp, %.3f s / %.3f s CPU at %d spp)\n",

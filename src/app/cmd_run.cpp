@@ -136,7 +136,8 @@ void Run(const RunConfig& config) {
     manifest["counters"] = {{"samples", totalSamples},
                             {"rays", stats.Rays()},
                             {"primary_rays", stats.primaryRays},
-                            {"shadow_rays", stats.shadowRays},
+                            {"shadow_tests", stats.shadowRays},
+                            {"shadow_rays_reused", stats.shadowRaysReused},
                             {"bounce_rays", stats.bounceRays},
                             {"dropped_nonfinite_samples", stats.droppedSamples}};
     nlohmann::json replaced = nlohmann::json::object();

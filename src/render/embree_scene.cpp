@@ -199,10 +199,10 @@ bool EmbreeScene::Intersect(const vec3& origin, const vec3& dir, float tFar, Sur
 }
 
 void EmbreeScene::Intersect8(const vec3& origin, const vec3* dirs, const bool* valid,
-                             SurfaceSample* hits, float* ts) const {
+                             SurfaceSample* hits, float* ts, bool coherent) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     alignas(32) int mask[8];
     alignas(32) RTCRayHit8 rh;
     for (int i = 0; i < 8; ++i) {

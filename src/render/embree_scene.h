@@ -44,9 +44,10 @@ public:
     // Closest hit along o + t d, t in (0, tFar). Returns false on a miss.
     bool Intersect(const vec3& origin, const vec3& dir, float tFar, SurfaceSample& hit,
                    float& t, bool coherent = false) const;
-    // Eight rays at once (primary-ray packets); valid[i] = false lanes are ignored.
+    // Eight rays from one origin at once (primary rays, first bounces); valid[i] = false lanes are
+    // ignored (their hits are SurfaceSample{}).
     void Intersect8(const vec3& origin, const vec3* dirs, const bool* valid, SurfaceSample* hits,
-                    float* ts) const;
+                    float* ts, bool coherent) const;
     // True when something blocks o + t d for t in (0, tFar).
     bool Occluded(const vec3& origin, const vec3& dir, float tFar) const;
 

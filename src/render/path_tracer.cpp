@@ -24,6 +24,10 @@
 //   rather than replacing the current pixel's own sample as the paper does, so the current frame
 //   keeps its fresh seeds and its noise-free pixel-centre primary visibility.
 // - Static instances (at most one transform key) are flattened into the top-level BVH.
+// - Throughput (same results as tracing every ray one at a time, bit for bit): the point/spot/
+//   directional-light shadow rays of the primary vertex are traced once per pixel and reused by
+//   its n samples (RenderStats::shadowRaysReused), and the first bounce rays of up to 8 samples
+//   (all leaving the primary vertex) are traced as one rtcIntersect8 packet when n >= 2.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -54,7 +58,15 @@ constexpr uint32_t kReferenceStream = 0x52454631u;  // decorrelates reference se
 constexpr uint32_t kGradientStream = 0x47524144u;   // random pixel per stratum
 
 struct RayCounts {
-    uint64_t primary = 0, shadow = 0, bounce = 0, samples = 0, dropped = 0;
+    uint64_t primary = 0, shadow = 0, shadowReused = 0, bounce = 0, samples = 0, dropped = 0;
+};
+
+// The point/spot/directional-light part of NEE at the primary vertex: it does not depend on the
+// sample (same origin, same light direction), so it is computed and traced once per pixel and
+// reused by all n samples (bit-identical: the same sum in the same order).
+struct DeterministicLights {
+    vec3 sum = vec3(0.0f);
+    uint64_t shadowTests = 0;
 };
 
 // Material parameters resolved at one surface point (textures applied).
@@ -114,6 +126,13 @@ public:
             if (m.baseColorTexture >= int(scene_.textures.size()) ||
                 m.metallicRoughnessTexture >= int(scene_.textures.size()))
                 Fail("scene {}: material '{}' names a texture that does not exist", scene_.name, m.name);
+        }
+        for (const Material& m : scene_.materials) {
+            ResolvedMaterial r;
+            r.textured = m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0;
+            r.bsdf = MakeBsdfParams(m.baseColor, m.roughness, m.metallic, m.specular);
+            r.albedo = glm::clamp(r.bsdf.diffuse + r.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
+            materials_.push_back(r);
         }
         embree_ = std::make_unique<EmbreeScene>(scene_);
         for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
@@ -221,6 +240,7 @@ public:
         RenderStats s;
         s.primaryRays = primaryRays_.load();
         s.shadowRays = shadowRays_.load();
+        s.shadowRaysReused = shadowRaysReused_.load();
         s.bounceRays = bounceRays_.load();
         s.samples = samples_.load();
         s.droppedSamples = dropped_.load();
@@ -229,6 +249,7 @@ public:
     void ResetStats() override {
         primaryRays_ = 0;
         shadowRays_ = 0;
+        shadowRaysReused_ = 0;
         bounceRays_ = 0;
         samples_ = 0;
         dropped_ = 0;
@@ -239,6 +260,13 @@ private:
 
     struct EmissiveTriangle {
         uint32_t instance, primitive;
+    };
+
+    // BSDF parameters of an untextured material, made once instead of at every hit.
+    struct ResolvedMaterial {
+        bool textured = false;
+        BsdfParams bsdf;
+        vec3 albedo;
     };
 
     // Runs fn over fixed 16×16 tiles in parallel; each tile's counters are summed afterwards.
@@ -258,6 +286,7 @@ private:
     void AddStats(const RayCounts& c) const {
         primaryRays_ += c.primary;
         shadowRays_ += c.shadow;
+        shadowRaysReused_ += c.shadowReused;
         bounceRays_ += c.bounce;
         samples_ += c.samples;
         dropped_ += c.dropped;
@@ -284,6 +313,13 @@ private:
         ShadingPoint p;
         p.hit = embree_->Surface(s);
         const Material& m = scene_.materials[p.hit.material];
+        const ResolvedMaterial& r = materials_[p.hit.material];
+        p.emission = m.emission * embree_->xforms()[s.instance].emissionScale;
+        if (!r.textured) {
+            p.bsdf = r.bsdf;
+            p.albedo = r.albedo;
+            return p;
+        }
         vec3 base = m.baseColor;
         float roughness = m.roughness, metallic = m.metallic;
         if (m.baseColorTexture >= 0) base *= vec3(scene_.textures[m.baseColorTexture].Sample(p.hit.uv));
@@ -294,7 +330,6 @@ private:
         }
         p.bsdf = MakeBsdfParams(base, roughness, metallic, m.specular);
         p.albedo = glm::clamp(p.bsdf.diffuse + p.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
-        p.emission = m.emission * embree_->xforms()[s.instance].emissionScale;
         return p;
     }
 
@@ -306,13 +341,14 @@ private:
         return lum / lightPower_ * t * t / cosL;
     }
 
-    // Next-event estimation at one vertex. `mis`: weight emitter samples against BSDF sampling.
-    vec3 SampleLights(const PathVertex& v, const PathSampler& sampler, int vertex, const vec2& sel,
-                      bool mis, RayCounts& counts) const {
+    // Point/spot/directional lights at one vertex (one shadow ray each): the sample-independent
+    // first part of SampleLights.
+    DeterministicLights SampleDeterministicLights(const PathVertex& v) const {
         const ShadingPoint& p = v.p;
         const vec3& ng = v.ng;
         const vec3& origin = v.origin;
-        vec3 result(0.0f);
+        DeterministicLights out;
+        vec3& result = out.sum;
         for (const LightState& light : state_.lights) {
             if (light.radiantIntensity == vec3(0.0f)) continue;
             vec3 wi;
@@ -340,9 +376,30 @@ private:
             if (glm::dot(wi, ng) <= 0.0f) continue;
             BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
             if (e.fCos == vec3(0.0f)) continue;
-            ++counts.shadow;
+            ++out.shadowTests;
             if (embree_->Occluded(origin, wi, tFar)) continue;
             result += e.fCos * li;
+        }
+        return out;
+    }
+
+    // Next-event estimation at one vertex. `mis`: weight emitter samples against BSDF sampling.
+    // `cached`: the vertex's SampleDeterministicLights() computed earlier (its shadow tests are
+    // counted again here, as reused).
+    vec3 SampleLights(const PathVertex& v, const PathSampler& sampler, int vertex, const vec2& sel,
+                      bool mis, RayCounts& counts, const DeterministicLights* cached = nullptr) const {
+        const ShadingPoint& p = v.p;
+        const vec3& ng = v.ng;
+        const vec3& origin = v.origin;
+        vec3 result(0.0f);
+        if (cached) {
+            result = cached->sum;
+            counts.shadow += cached->shadowTests;
+            counts.shadowReused += cached->shadowTests;
+        } else {
+            DeterministicLights fresh = SampleDeterministicLights(v);
+            result = fresh.sum;
+            counts.shadow += fresh.shadowTests;
         }
         if (lightPower_ > 0.0f) {
             size_t index = size_t(std::upper_bound(lightCdf_.begin(), lightCdf_.end(), sel.x * lightPower_) -
@@ -386,9 +443,11 @@ private:
                           OffsetRayOrigin(p.hit.position, ng)};
     }
 
-    // One path sample from the primary vertex; adds radiance to direct / indirect.
-    void TracePath(const PathVertex& primary, const PathSampler& sampler, vec3& direct, vec3& indirect,
-                   RayCounts& counts) const {
+    // One path sample from the primary vertex, one ray at a time; adds radiance to direct /
+    // indirect. Same arithmetic as Advance/Land below, kept for single samples (1 spp), where
+    // the packet bookkeeping measured slower.
+    void TracePath(const PathVertex& primary, const DeterministicLights& primaryLights,
+                   const PathSampler& sampler, vec3& direct, vec3& indirect, RayCounts& counts) const {
         const PathVertex* v = &primary;
         std::optional<PathVertex> storage;
         vec3 throughput(1.0f);
@@ -396,8 +455,11 @@ private:
             int vertex = depth - 1;
             vec3& target = depth == 1 ? direct : indirect;
             bool last = depth >= settings_.maxDepth;
-            vec2 sel = sampler.Selectors(vertex);
-            target += throughput * SampleLights(*v, sampler, vertex, sel, !last, counts);
+            // The selectors pick the emitter and the BSDF lobe: not needed by a last vertex
+            // without emissive triangles.
+            vec2 sel = !last || lightPower_ > 0.0f ? sampler.Selectors(vertex) : vec2(0.0f);
+            target += throughput * SampleLights(*v, sampler, vertex, sel, !last, counts,
+                                                depth == 1 ? &primaryLights : nullptr);
             if (last) return;
 
             BsdfSample bs;
@@ -423,6 +485,73 @@ private:
         }
     }
 
+    // One path sample in flight: the vertex it is at and its next bounce ray.
+    struct PathState {
+        const PathVertex* v = nullptr;
+        std::optional<PathVertex> storage;
+        vec3 throughput = vec3(1.0f);
+        int depth = 1;
+        BsdfSample bs;
+        vec3 wi = vec3(0.0f);
+        vec3 direct = vec3(0.0f), indirect = vec3(0.0f);
+    };
+
+    // NEE at the path's current vertex and its BSDF continuation. Returns true when a bounce
+    // ray st.v->origin + t st.wi is to be traced (then Land), false when the path has ended.
+    bool Advance(PathState& st, const PathSampler& sampler, const DeterministicLights& primaryLights,
+                 RayCounts& counts) const {
+        const PathVertex* v = st.v;
+        int vertex = st.depth - 1;
+        vec3& target = st.depth == 1 ? st.direct : st.indirect;
+        bool last = st.depth >= settings_.maxDepth;
+        // The selectors pick the emitter and the BSDF lobe: not needed by a last vertex
+        // without emissive triangles.
+        vec2 sel = !last || lightPower_ > 0.0f ? sampler.Selectors(vertex) : vec2(0.0f);
+        target += st.throughput * SampleLights(*v, sampler, vertex, sel, !last, counts,
+                                               st.depth == 1 ? &primaryLights : nullptr);
+        if (last) return false;
+
+        if (!SampleBsdf(v->p.bsdf, v->wo, sampler.BsdfDirection(vertex), sel.y, st.bs)) return false;
+        st.wi = v->frame.ToWorld(st.bs.wi);
+        if (glm::dot(st.wi, v->ng) <= 0.0f) return false;  // below the geometric surface
+        ++counts.bounce;
+        return true;
+    }
+
+    // The bounce ray's result (next.instance == kNoObject: a miss). Returns true when the path
+    // goes on from the new vertex.
+    bool Land(PathState& st, const SurfaceSample& next, float t) const {
+        vec3& target = st.depth == 1 ? st.direct : st.indirect;
+        const vec3& wi = st.wi;
+        const BsdfSample& bs = st.bs;
+        if (next.instance == kNoObject) {
+            target += st.throughput * bs.weight * scene_.background;
+            return false;
+        }
+        st.throughput *= bs.weight;
+        ShadingPoint p = Resolve(next);
+        if (p.emission != vec3(0.0f)) {
+            float pdfLight = LightPdf(p.emission, p.hit.geomNormal, t, wi);
+            float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
+            target += st.throughput * p.emission * weight;
+        }
+        st.storage.emplace(MakeVertex(p, -wi));
+        st.v = &*st.storage;
+        ++st.depth;
+        return true;
+    }
+
+    // Continues a path one bounce ray at a time until it ends.
+    void Finish(PathState& st, const PathSampler& sampler, const DeterministicLights& primaryLights,
+                RayCounts& counts) const {
+        while (Advance(st, sampler, primaryLights, counts)) {
+            SurfaceSample next;
+            float t = kInf;
+            if (!embree_->Intersect(st.v->origin, st.wi, kInf, next, t)) next = SurfaceSample{};
+            if (!Land(st, next, t)) return;
+        }
+    }
+
     // n samples at one primary surface sample seen from eyePos.
     PixelShade ShadePixel(const vec3& eyePos, const SurfaceSample& s, uint32_t seed, int n,
                           RayCounts& counts, SurfaceHit* hitOut = nullptr) const {
@@ -431,17 +560,60 @@ private:
         PathVertex primary = MakeVertex(p, glm::normalize(eyePos - p.hit.position));
         vec3 direct(0.0f), indirect(0.0f);
         PixelSampler pixelSampler(seed, uint32_t(settings_.maxDepth) * PathSampler::kPairsPerVertex);
-        for (int i = 0; i < n; ++i) {
-            vec3 d(0.0f), ind(0.0f);
-            TracePath(primary, PathSampler(pixelSampler, uint32_t(i)), d, ind, counts);
+        DeterministicLights primaryLights;
+        if (n > 0) primaryLights = SampleDeterministicLights(primary);
+        // Samples in groups of 8: the first bounce rays all leave the primary vertex's origin,
+        // so they are traced as one 8-wide packet; the rest of each path goes one ray at a time.
+        constexpr int kGroup = 8;
+        auto accumulate = [&](const PathState& st) {
             ++counts.samples;
-            if (!IsFinite(d) || !IsFinite(ind)) {
+            if (!IsFinite(st.direct) || !IsFinite(st.indirect)) {
                 ++counts.dropped;
+                return;
+            }
+            direct += st.direct;
+            indirect += st.indirect;
+        };
+        for (int base = 0; base < n; base += kGroup) {
+            int m = std::min(kGroup, n - base);
+            if (m == 1) {  // one sample (1 spp): no packet bookkeeping
+                PathState one;
+                TracePath(primary, primaryLights, PathSampler(pixelSampler, uint32_t(base)), one.direct,
+                          one.indirect, counts);
+                accumulate(one);
                 continue;
             }
-            direct += d;
-            indirect += ind;
+            PathState st[kGroup];
+            vec3 dirs[kGroup];
+            bool active[kGroup];
+            SurfaceSample hits[kGroup];
+            float ts[kGroup];
+            int activeCount = 0;
+            for (int j = 0; j < kGroup; ++j) {
+                st[j].v = &primary;
+                active[j] = j < m && Advance(st[j], PathSampler(pixelSampler, uint32_t(base + j)),
+                                             primaryLights, counts);
+                dirs[j] = active[j] ? st[j].wi : vec3(0.0f, 0.0f, 1.0f);
+                activeCount += active[j] ? 1 : 0;
+            }
+            if (activeCount >= 2) {
+                embree_->Intersect8(primary.origin, dirs, active, hits, ts, false);
+            } else {
+                // A packet of one ray is slower than a single ray (1 spp); same hits either way.
+                for (int j = 0; j < m; ++j) {
+                    if (!active[j]) continue;
+                    ts[j] = kInf;
+                    if (!embree_->Intersect(primary.origin, dirs[j], kInf, hits[j], ts[j])) hits[j] = SurfaceSample{};
+                }
+            }
+            for (int j = 0; j < m; ++j) {
+                PathSampler sampler(pixelSampler, uint32_t(base + j));
+                if (active[j] && Land(st[j], hits[j], ts[j])) Finish(st[j], sampler, primaryLights, counts);
+                accumulate(st[j]);
+            }
         }
+        // Traced once above; every sample counted the tests as reused, so one set is not.
+        if (n > 0) counts.shadowReused -= primaryLights.shadowTests;
         PixelShade out;
         float inv = n > 0 ? 1.0f / float(n) : 0.0f;
         direct *= inv;
@@ -501,7 +673,7 @@ private:
                     dirs[i] = glm::normalize(rays.worldFromEye * rays.Eye(xs + i, y));
                     counts.primary += valid[i] ? 1 : 0;
                 }
-                embree_->Intersect8(eyePos, dirs, valid, hits, ts);
+                embree_->Intersect8(eyePos, dirs, valid, hits, ts, true);
                 for (int i = 0; i < 8 && xs + i < x1; ++i) {
                     int x = xs + i;
                     uint32_t seed = PixelSeed(settings_.seed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
@@ -614,10 +786,12 @@ private:
     SceneState state_, prevState_;
     std::vector<InstanceXform> prevXforms_;
     std::vector<EmissiveTriangle> emissive_;
+    std::vector<ResolvedMaterial> materials_;
     std::vector<float> lightCdf_;
     float lightPower_ = 0.0f;
     EyeHistory history_[2];
-    mutable std::atomic<uint64_t> primaryRays_{0}, shadowRays_{0}, bounceRays_{0}, samples_{0}, dropped_{0};
+    mutable std::atomic<uint64_t> primaryRays_{0}, shadowRays_{0}, shadowRaysReused_{0},
+        bounceRays_{0}, samples_{0}, dropped_{0};
 };
 
 }  // namespace

@@ -19,15 +19,20 @@ struct RenderSettings {
     bool gradientSamples = false;  // A-SVGF: fill FrameInputs::gradientSamples
 };
 
-// Work counters since the last ResetStats(): every ray traced (primary, shadow, bounce) and every
-// path sample taken. Samples whose value was NaN/Inf are dropped (counted, contribute 0).
+// Work counters since the last ResetStats(): rays (primary, shadow, bounce) and every path sample
+// taken. Samples whose value was NaN/Inf are dropped (counted, contribute 0). shadowRays counts
+// the shadow tests of every sample (one per light sample); those of point/spot/directional lights
+// at the primary vertex do not depend on the sample, so they are traced once per pixel and the
+// other samples reuse the answer (shadowRaysReused of shadowRays were not traced).
 struct RenderStats {
     uint64_t primaryRays = 0;
     uint64_t shadowRays = 0;
+    uint64_t shadowRaysReused = 0;
     uint64_t bounceRays = 0;
     uint64_t samples = 0;
     uint64_t droppedSamples = 0;
-    uint64_t Rays() const { return primaryRays + shadowRays + bounceRays; }
+    // Rays actually traced.
+    uint64_t Rays() const { return primaryRays + shadowRays - shadowRaysReused + bounceRays; }
 };
 
 // The surface sample a visibility-buffer entry names.
