@@ -42,6 +42,7 @@ expect_error "garbage trace row" "bad_trace.csv:3" run --set gaze.source=trace -
 expect_error "unknown device" "denoise.device\|device" run "${small[@]}" --set denoise.device=7 --set output.dir=e7
 expect_error "unknown denoiser" "svgf-typo" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
 expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --set output.dir=e9
+expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
 for d in e1 e2 e3 e4 e5 e6 e7 e8 e9; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
 done

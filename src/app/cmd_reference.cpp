@@ -9,11 +9,17 @@
 #include "app/frame_pipeline.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
+#include "denoise/memory_plan.h"
 
 namespace fovrt {
 namespace {
 
 void RenderReferences(const RunConfig& config) {
+    // The reference path holds one HDR image per eye in flight.
+    const size_t imageBytes = size_t(config.camera.width) * size_t(config.camera.height) * sizeof(vec3);
+    EnforceMemoryBudget({{"reference.image.eye0", imageBytes, false},
+                         {"reference.image.eye1", imageBytes, false}},
+                        config.memoryBudget, "reference");
     FramePipeline pipeline(config);
     ReferenceCache cache(config.reference.cacheDir);
     uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
