@@ -58,5 +58,10 @@ TEST_CASE("reference cache renders once, then reads back the same pixels", "[app
     CHECK(hit);
     REQUIRE(second.size() == first.size());
     for (size_t i = 0; i < first.size(); ++i) REQUIRE(second[i] == first[i]);
+    // A new cache (a later run) finds the entry on disk, bit-exact.
+    ReferenceCache later(dir);
+    Plane<vec3> third = later.GetOrRender(key, *renderer, &hit);
+    CHECK(hit);
+    for (size_t i = 0; i < first.size(); ++i) REQUIRE(third[i] == first[i]);
     std::filesystem::remove_all(dir);
 }

@@ -94,10 +94,8 @@ void Run(const RunConfig& config) {
             if (config.output.writeInputs)
                 WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap);
             if (config.output.writePng) {
-                Plane<vec3> noisy(e.inputs.width(), e.inputs.height());
-                for (int y = 0; y < noisy.height(); ++y)
-                    for (int x = 0; x < noisy.width(); ++x) noisy(x, y) = e.inputs.NoisyColor(x, y);
-                WritePng(outDir / "noisy" / (stem + ".png"), noisy, config.output.exposure);
+                WritePng(outDir / "noisy" / (stem + ".png"), e.inputs.NoisyImage(),
+                         config.output.exposure);
             }
             eyeRecord["write_inputs_ms"] = MsSince(writeStart);
 

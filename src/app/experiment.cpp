@@ -57,13 +57,6 @@ FoveaRadius FoveaOf(const RunConfig& config) {
     return FoveaRadius::Degrees(5.0f);  // the first eccentricity band
 }
 
-Plane<vec3> NoisyImage(const FrameInputs& inputs) {
-    Plane<vec3> noisy(inputs.width(), inputs.height());
-    for (int y = 0; y < noisy.height(); ++y)
-        for (int x = 0; x < noisy.width(); ++x) noisy(x, y) = inputs.NoisyColor(x, y);
-    return noisy;
-}
-
 // Mean per-pass milliseconds per variant, over every frame and eye.
 class TimingTable {
 public:
@@ -233,7 +226,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                         visuals.gazePixel = e.gazePixel;
                         visuals.sppMap = e.sppMap;
                         visuals.reference = reference;
-                        visuals.noisy = NoisyImage(e.inputs);
+                        visuals.noisy = e.inputs.NoisyImage();
                         visuals.variants.clear();
                         for (size_t v = 0; v < denoisers.size(); ++v)
                             visuals.variants.emplace_back(denoisers.Name(v), outputs[v]);

@@ -95,14 +95,6 @@ uint64_t SceneFingerprint(const Scene& scene) {
     return h.Digest();
 }
 
-bool IsStaticScene(const Scene& scene) {
-    for (const Instance& instance : scene.instances)
-        if (instance.keys.size() > 1) return false;
-    for (const Light& light : scene.lights)
-        if (light.path.size() > 1 || light.switchPeriod > 0.0f) return false;
-    return scene.emissionSwitches.empty();
-}
-
 ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t frame,
                               double timeSeconds, int eye, const EyeCamera& camera, int spp,
                               int maxDepth, uint32_t seed) {
@@ -134,15 +126,24 @@ std::filesystem::path ReferenceCache::PathOf(const ReferenceKey& key) const {
 }
 
 Plane<vec3> ReferenceCache::GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit) {
+    const std::string hex = key.Hex();
+    for (const auto& [recentHex, image] : recent_)
+        if (recentHex == hex) {
+            if (hit) *hit = true;
+            return image;
+        }
     std::filesystem::path path = PathOf(key);
+    Plane<vec3> image;
     if (std::filesystem::exists(path)) {
         if (hit) *hit = true;
-        return ReadRgbExr(path);
+        image = ReadRgbExr(path);
+    } else {
+        if (hit) *hit = false;
+        renderer.RenderReference(key.eye, key.camera, key.spp, image);
+        WriteRgbExr(path, image);
     }
-    if (hit) *hit = false;
-    Plane<vec3> image;
-    renderer.RenderReference(key.eye, key.camera, key.spp, image);
-    WriteRgbExr(path, image);
+    if (recent_.size() == kInMemoryEntries) recent_.erase(recent_.begin());
+    recent_.emplace_back(hex, image);
     return image;
 }
 

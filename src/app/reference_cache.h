@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/image.h"
@@ -30,10 +32,6 @@ struct ReferenceKey {
     std::string Hex() const;  // the file stem of the cache entry
 };
 
-// True when nothing in the scene changes with time (no instance motion, moving or switching
-// lights, flickering emitters). The camera is part of the key on its own.
-bool IsStaticScene(const Scene& scene);
-
 // The key of one reference frame. For a static scene the frame and time are left out, so every
 // frame seen from the same eye pose shares one reference (e.g. Veach Ajar's fixed camera).
 ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t frame,
@@ -46,11 +44,14 @@ public:
 
     std::filesystem::path PathOf(const ReferenceKey& key) const;
     // Returns the cached image, or renders it with `renderer` (already at the key's frame) and
-    // stores it. `hit` (optional) says which happened.
+    // stores it. `hit` (optional) says which happened. The most recent entries also stay in
+    // memory, so a static scene's reference is read from disk once per eye, not once per frame.
     Plane<vec3> GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit = nullptr);
 
 private:
+    static constexpr size_t kInMemoryEntries = 2;  // one per eye
     std::filesystem::path dir_;
+    std::vector<std::pair<std::string, Plane<vec3>>> recent_;  // most recent last
 };
 
 }  // namespace fovrt

@@ -23,7 +23,14 @@ void FrameInputs::Allocate(int width, int height) {
 }
 
 vec3 FrameInputs::NoisyColor(int x, int y) const {
-    return albedo(x, y) * (direct(x, y) + indirect(x, y)) + emission(x, y);
+    return Remodulate(albedo(x, y), direct(x, y), indirect(x, y), emission(x, y));
+}
+
+Plane<vec3> FrameInputs::NoisyImage() const {
+    Plane<vec3> image(width(), height());
+    for (int y = 0; y < height(); ++y)
+        for (int x = 0; x < width(); ++x) image(x, y) = NoisyColor(x, y);
+    return image;
 }
 
 size_t FrameInputs::Bytes() const {

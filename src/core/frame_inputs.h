@@ -27,6 +27,13 @@ struct GradientSample {
 
 inline constexpr int kGradientStratumSize = 3;
 
+// Remodulation (SVGF §3): the displayed colour from demodulated illumination. The one definition
+// the renderer, FrameInputs and the A-SVGF re-shading use, so their luminances match bit for bit.
+inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indirect,
+                       const vec3& emission) {
+    return albedo * (direct + indirect) + emission;
+}
+
 struct FrameInputs {
     int eye = 0;                 // 0 left, 1 right
     uint32_t frameIndex = 0;
@@ -61,6 +68,8 @@ struct FrameInputs {
     void Allocate(int width, int height);
     // The noisy colour the renderer would display: albedo * (direct + indirect) + emission.
     vec3 NoisyColor(int x, int y) const;
+    // NoisyColor of every pixel.
+    Plane<vec3> NoisyImage() const;
     // Bytes held by all planes (for memory budgets).
     size_t Bytes() const;
     // Names of the planes, in a fixed order (EXR layers, memory tables).

@@ -96,8 +96,8 @@ struct PixelShade {
     vec3 radiance = vec3(0.0f);  // emission + direct + indirect, not demodulated
 };
 
-// Same expression as FrameInputs::NoisyColor, so re-shaded and stored luminances match bit for bit.
-vec3 Remodulate(const PixelShade& s) { return s.albedo * (s.direct + s.indirect) + s.emission; }
+// core's Remodulate, as FrameInputs::NoisyColor uses: re-shaded and stored luminances match bit for bit.
+vec3 Remodulate(const PixelShade& s) { return fovrt::Remodulate(s.albedo, s.direct, s.indirect, s.emission); }
 
 struct EyeHistory {
     bool valid = false;

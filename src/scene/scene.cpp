@@ -180,4 +180,12 @@ std::filesystem::path ResolveSceneName(const std::string& nameOrPath) {
     Fail("scene '{}': no such file and not a built-in scene ({})", nameOrPath, names);
 }
 
+bool IsStaticScene(const Scene& scene) {
+    for (const Instance& instance : scene.instances)
+        if (instance.keys.size() > 1) return false;
+    for (const Light& light : scene.lights)
+        if (light.path.size() > 1 || light.switchPeriod > 0.0f) return false;
+    return scene.emissionSwitches.empty();
+}
+
 }  // namespace fovrt

@@ -156,4 +156,8 @@ bool SwitchedOn(float time, float period, float onDuration, float offset);
 size_t CountEmissiveTriangles(const Scene& scene);
 size_t CountTriangles(const Scene& scene);
 
+// True when nothing in the scene changes with time (no instance motion, moving or switching
+// lights, flickering emitters). The camera path is not part of this: it moves the eyes only.
+bool IsStaticScene(const Scene& scene);
+
 }  // namespace fovrt
