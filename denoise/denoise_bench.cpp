@@ -11,8 +11,9 @@
 
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
-#include "denoise/memory_plan.h"
-#include "denoise/svgf_layout.h"
+#include "denoise/asvgf_ref.h"
+#include "denoise/pass_bytes.h"
+#include "vk/bandwidth.h"
 #include "vk/context.h"
 
 namespace fovrt {
@@ -70,33 +71,6 @@ double MeasureMemcpyBandwidth(size_t megabytes) {
     return 2.0 * double(bytes) / best / 1e9;
 }
 
-std::vector<PassBench> SvgfPassBytes(const DenoiserParams& params) {
-    const SvgfParams& p = params.svgf;
-    const double hs = double(HistoryScalarBytes(params.precision));
-    const double channels = p.filterCombined ? 1 : 2;
-    const bool weighted = p.weightBySampleCount;
-    const int iterations = p.atrousIterations;
-    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
-    const double geometry = 4 + 12 + 4;  // depth, normal, object id
-    std::vector<PassBench> out;
-    double uploads = 12 * 4 + 8 + 8 + geometry + (weighted ? 2 : 0);
-    out.push_back({"upload", 0.0, 2 * uploads});  // staging read + device write
-    double reproject = (p.filterCombined ? 24 : 12) + geometry * 2 + 8 + 8 + (weighted ? 2 : 0) +
-                       hs * (3 + 2 + 1 + (weighted ? 1 : 0)) +                       // history read
-                       hs * (2 + 1 + (weighted ? 1 : 0) + (atrousFeedback ? 0 : 3)) +  // history write
-                       16;
-    out.push_back({"reproject", 0.0, channels * reproject});
-    double moments = 16 + geometry + 8 + hs * (2 + 1) + 16;
-    out.push_back({"filter_moments", 0.0, channels * moments});
-    for (int i = 0; i < iterations; ++i) {
-        double atrous = 16 + geometry + 8 + 16 + (atrousFeedback && i + 1 == p.feedbackIteration ? 3 * hs : 0);
-        out.push_back({fmt::format("atrous{}", i), 0.0, channels * atrous});
-    }
-    out.push_back({"modulate", 0.0, 16 * channels + 12 + 12 + 12});
-    out.push_back({"download", 0.0, 2 * 12});
-    return out;
-}
-
 DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
     DenoiserBenchReport report;
     FILE* out = o.out;
@@ -115,10 +89,24 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
             report.deviceName = context->deviceName();
         }
     }
+    if (context) report.device = MeasureDeviceBandwidth(*context);
     fmt::print(out, "denoiser bench: {}x{}, {} timed frame(s) after {} warm-up frame(s); Vulkan device: {}\n",
                o.width, o.height, o.frames, o.warmup, context ? context->deviceName() : std::string("none"));
-    fmt::print(out, "memcpy bandwidth: {:.1f} GB/s (bytes read + written per second, 256 MiB buffers)\n",
+    fmt::print(out, "bandwidth (bytes read + written per second, best of a few runs):\n");
+    fmt::print(out, "  host memcpy            {:7.1f} GB/s  (256 MiB buffers; the bound of the C++ reference)\n",
                report.memcpyGBps);
+    if (context)
+        fmt::print(out, "  device streaming copy  {:7.1f} GB/s  (shaders/bandwidth_copy.comp on {}, {} MiB, GPU "
+                        "timestamps: rgba32f texel-buffer read -> std430 write, the passes' access layer; "
+                        "std430 -> std430: {:.1f} GB/s)\n",
+                   report.device.texelGBps, context->deviceName(), report.device.bytes >> 20,
+                   report.device.storageGBps);
+    fmt::print(out, "bytes/pixel: what each pass reads + writes per pixel per frame, every plane counted once per "
+                    "dispatch (gather taps assumed to hit cache; sizes from the memory plan; steady state: no pixel "
+                    "below the variance threshold): a lower bound on the traffic\n");
+    fmt::print(out, "bound = bytes / bandwidth; x = measured / bound. Vulkan passes: against memcpy and against the "
+                    "device copy; on a GPU both are device memory, on lavapipe the device copy is the compute "
+                    "path's real ceiling. C++ reference: against memcpy only\n");
     fmt::print(out, "C++ reference: scalar per-pixel loops, rows in parallel with TBB\n");
 
     std::vector<FrameInputs> frames;
@@ -156,46 +144,47 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
                 }
             }
             r.wallMs = wall / o.frames;
+            PassBytesOptions bo;
+            const ivec2 grid = StratumGridSize(o.width, o.height);
+            bo.gradientSamplesPerStratum =
+                double(frames[0].gradientSamples.size()) / (double(grid.x) * double(grid.y));
             std::map<std::string, double> bytes;
-            if (name == "svgf" || name == "svgf-weighted")
-                for (const PassBench& b : SvgfPassBytes(ParamsForDenoiser(name, o.params))) bytes[b.pass] = b.bytesPerPixel;
-            // Vulkan only: the guide packing pass reads depth, normal, object id and writes a vec4.
-            if ((name == "svgf" || name == "svgf-weighted") && r.backend == "vulkan") bytes["pack_guide"] = 4 + 12 + 4 + 16;
+            for (const PassBytes& b :
+                 DenoiserPassBytes(name, r.backend, o.width, o.height, ParamsForDenoiser(name, o.params), bo))
+                bytes[b.pass] = b.bytesPerPixel;
             for (const std::string& pass : order) {
-                PassBench pb{pass, sums[pass] / o.frames, bytes.count(pass) ? bytes[pass] : 0.0};
+                if (!bytes.count(pass)) Fail("denoiser bench: no byte model for pass '{}' of {} ({})", pass, name, r.backend);
+                PassBench pb{pass, sums[pass] / o.frames, bytes[pass]};
                 r.passes.push_back(pb);
                 if (IsComputePass(pass)) {
                     r.computeMs += pb.ms;
                     r.bytesPerPixel += pb.bytesPerPixel;
                 }
             }
-            bool compulsoryOnly = false;
-            if (r.bytesPerPixel == 0.0) {
-                // No per-pass model for this denoiser: bound it by its compulsory traffic from the
-                // memory plan — every history read once and written once (an A/B pair is one read
-                // and one write), inputs written, output written. A lower bound on bytes moved.
-                double bytes = 0.0;
-                for (const BufferPlan& b : PlanDenoiserMemory(name, o.width, o.height, ParamsForDenoiser(name, o.params)))
-                    if (b.history || b.name.rfind("input.", 0) == 0 || b.name == "output") bytes += double(b.bytes);
-                r.bytesPerPixel = bytes / pixels;
-                compulsoryOnly = true;
-            }
-            r.boundMs = r.bytesPerPixel * pixels / (report.memcpyGBps * 1e9) * 1e3;
+            const bool onDevice = r.backend == "vulkan" && report.device.texelGBps > 0.0;
+            auto boundMs = [&](double bytesPerPixel, double gbps) { return bytesPerPixel * pixels / (gbps * 1e9) * 1e3; };
+            auto times = [](double ms, double bound) {
+                return bound > 0 ? fmt::format("{:.1f}", ms / bound) : std::string("-");
+            };
+            r.boundMs = boundMs(r.bytesPerPixel, report.memcpyGBps);
+            r.deviceBoundMs = onDevice ? boundMs(r.bytesPerPixel, report.device.texelGBps) : 0.0;
             fmt::print(out, "\n{} [{}]\n", name, r.backend);
-            fmt::print(out, "  {:<16} {:>10} {:>12} {:>12} {:>10}\n", "pass", "ms", "bytes/pixel", "bound ms",
-                       "x bound");
+            fmt::print(out, "  {:<22} {:>9} {:>11} {:>12} {:>9} {:>12} {:>9}\n", "pass", "ms", "bytes/pixel",
+                       "memcpy bound", "x memcpy", "device bound", "x device");
             for (const PassBench& p : r.passes) {
-                double bound = p.bytesPerPixel * pixels / (report.memcpyGBps * 1e9) * 1e3;
-                fmt::print(out, "  {:<16} {:>10.2f} {:>12.1f} {:>12.2f} {:>10}\n", p.pass, p.ms, p.bytesPerPixel,
-                           bound, bound > 0 ? fmt::format("{:.1f}", p.ms / bound) : std::string("-"));
+                const double host = boundMs(p.bytesPerPixel, report.memcpyGBps);
+                const double dev = onDevice ? boundMs(p.bytesPerPixel, report.device.texelGBps) : 0.0;
+                fmt::print(out, "  {:<22} {:>9.2f} {:>11.1f} {:>12.2f} {:>9} {:>12} {:>9}\n", p.pass, p.ms,
+                           p.bytesPerPixel, host, times(p.ms, host), onDevice ? fmt::format("{:.2f}", dev) : "-",
+                           times(p.ms, dev));
             }
-            fmt::print(out, "  compute total {:.2f} ms ({:.1f} MPix/s), {:.0f} B/pixel moved, bandwidth bound "
-                            "{:.2f} ms ({:.1f}x); Denoise() wall {:.2f} ms incl. transfers\n",
+            fmt::print(out, "  compute total {:.2f} ms ({:.1f} MPix/s), {:.0f} B/pixel moved; bound at memcpy {:.2f} ms "
+                            "({}x)",
                        r.computeMs, pixels / (r.computeMs * 1e3), r.bytesPerPixel, r.boundMs,
-                       r.boundMs > 0 ? r.computeMs / r.boundMs : 0.0, r.wallMs);
-            if (compulsoryOnly)
-                fmt::print(out, "  (no per-pass byte model: B/pixel is the compulsory traffic of the memory "
-                                "plan — histories read and written once, inputs, output — a lower bound)\n");
+                       times(r.computeMs, r.boundMs));
+            if (onDevice)
+                fmt::print(out, ", at device copy {:.2f} ms ({}x)", r.deviceBoundMs, times(r.computeMs, r.deviceBoundMs));
+            fmt::print(out, "; Denoise() wall {:.2f} ms incl. transfers\n", r.wallMs);
             report.results.push_back(std::move(r));
         }
     }

@@ -1,7 +1,8 @@
 // Denoiser benchmark (`fovrt bench --denoisers`): for each denoiser at W×H on the Vulkan device in
 // use and for the C++ reference: per-pass ms, total ms, MPix/s, bytes moved per pixel per frame
-// (reads + writes of every pass, each plane counted once per pass), and the machine's memcpy
-// bandwidth giving the bandwidth bound of each pass.
+// (reads + writes of every pass, each plane counted once per pass: denoise/pass_bytes.h), and the
+// bandwidth bound of each pass against the host memcpy bandwidth and against the Vulkan device's
+// own streaming-copy bandwidth (vk/bandwidth.h).
 #pragma once
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
+#include "vk/bandwidth.h"
 
 namespace fovrt {
 
@@ -40,20 +42,18 @@ struct DenoiserBenchResult {
     double wallMs = 0.0;          // Denoise() wall clock, transfers included
     double bytesPerPixel = 0.0;   // compute passes
     double boundMs = 0.0;         // bytes / memcpy bandwidth
+    double deviceBoundMs = 0.0;   // bytes / device streaming-copy bandwidth (Vulkan only)
 };
 
 struct DenoiserBenchReport {
     double memcpyGBps = 0.0;      // (read + write) bytes per second of a large memcpy
+    DeviceBandwidth device;       // streaming copy on the Vulkan device (zero without one)
     std::string deviceName;
     std::vector<DenoiserBenchResult> results;
 };
 
 // Measures memcpy bandwidth (bytes read + written per second) on `megabytes`-sized buffers.
 double MeasureMemcpyBandwidth(size_t megabytes = 256);
-
-// Bytes read + written per pixel by each SVGF pass ("reproject", "filter_moments", "atrous<i>",
-// "modulate", "upload", "download") for these params.
-std::vector<PassBench> SvgfPassBytes(const DenoiserParams& params);
 
 DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& options);
 

@@ -18,6 +18,7 @@ SvgfVulkanDenoiser::SvgfVulkanDenoiser(std::string name, std::shared_ptr<VulkanC
                                        const DenoiserParams& params)
     : name_(std::move(name)), context_(std::move(context)), params_(params) {
     FOVRT_CHECK(context_ != nullptr);
+    commands_ = CommandSlot(*context_);
     CreatePipelines();
 }
 
@@ -173,7 +174,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
     const std::string cur = Side(parity_);
 
-    CommandRecorder rec(*context_, &timestamps_);
+    CommandRecorder rec(*context_, commands_, &timestamps_);
     Buffer& staging = Buf("staging");
     rec.BeginPass("upload");
     if (needsClear_) {

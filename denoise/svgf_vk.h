@@ -59,6 +59,7 @@ private:
     std::vector<std::array<std::array<VkDescriptorSet, 2>, 2>> atrousSets_;
     VkDescriptorSet modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
+    CommandSlot commands_;  // reused by every Denoise()
     std::vector<PassTiming> timings_;
     DenoiseStats stats_;
 };

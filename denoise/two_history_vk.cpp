@@ -132,6 +132,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                                    const DenoiserParams& params)
     : variant_(variant), context_(std::move(context)), params_(params) {
     FOVRT_CHECK(context_ != nullptr);
+    commands_ = CommandSlot(*context_);
     buffers_ = DenoiserBuffers(Name());
     ValidateTwoHistoryParams(params_);
     params_.svgf.weightBySampleCount = false;  // the weighted history is this family's own
@@ -383,7 +384,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
         Fail("{}: {} gradient samples exceed the capacity {} (two per 3x3 stratum)", Name(),
              sampleCount, GradientSampleCapacity(w, h));
 
-    CommandRecorder rec(*context_, &timestamps_);
+    CommandRecorder rec(*context_, commands_, &timestamps_);
     Buffer& stagingExtra = Buf("staging.extra");
     rec.BeginPass("upload");
     if (needsClear_) {

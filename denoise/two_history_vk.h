@@ -65,6 +65,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     std::array<std::array<VkDescriptorSet, 2>, 2> gradAtrousSets_{};  // [parity][pingpong]
     VkDescriptorSet alphaSet_ = VK_NULL_HANDLE, modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
+    CommandSlot commands_;  // reused by every Denoise()
     std::vector<PassTiming> timings_;
     DenoiseStats stats_;
 };

@@ -62,6 +62,13 @@
 #define SVGF_GUIDE_B_OUT 3                 // vec4[N]
 #define SVGF_GUIDE_BINDINGS 4
 
+// bandwidth_copy (src/vk/bandwidth.cpp): the device's streaming copy through the passes' access
+// layer — read as an rgba32f uniform texel buffer (mode 0) or std430 vec4 (mode 1), write std430.
+#define BANDWIDTH_B_TEXEL_IN 0             // vec4[N] (uniform texel buffer view of the source)
+#define BANDWIDTH_B_STORAGE_IN 1           // vec4[N] (the same source as a storage buffer)
+#define BANDWIDTH_B_OUT 2                  // vec4[N]
+#define BANDWIDTH_BINDINGS 3
+
 // svgf_moments_classify: appends the pixels that need the spatial variance estimate (not
 // background, history length < threshold) to a list, and counts the 1-D workgroups of
 // svgf_filter_moments' indirect dispatch (lavapipe runs masked-off code anyway, so the 49-tap

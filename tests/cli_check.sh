@@ -43,6 +43,21 @@ expect_error "unknown device" "denoise.device\|device" run "${small[@]}" --set d
 expect_error "unknown denoiser" "svgf-typo" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
 expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --set output.dir=e9
 expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
+# The denoiser bench at a small size: every denoiser has a per-pass byte model and a bound.
+if "$fovrt" bench --denoisers --width 64 --height 48 --frames 1 >bench.txt 2>err.txt; then
+  for name in svgf svgf-weighted asvgf two-history two-history-asvgf; do
+    grep -q "^$name \[" bench.txt && ok "bench times $name" || bad "bench lacks $name"
+  done
+  grep -q "no per-pass byte model" bench.txt && bad "bench: a denoiser lacks a byte model" || ok "bench: byte models"
+  grep -q "host memcpy .* GB/s" bench.txt && ok "bench: memcpy bandwidth" || bad "bench: no memcpy bandwidth"
+  if grep -q "Vulkan device: none" bench.txt || grep -q "device streaming copy .* GB/s" bench.txt; then
+    ok "bench: device bandwidth"
+  else
+    bad "bench: no device streaming-copy bandwidth"
+  fi
+else
+  bad "bench --denoisers failed: $(cat err.txt)"
+fi
 for d in e1 e2 e3 e4 e5 e6 e7 e8 e9; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
 done

@@ -6,18 +6,7 @@
 
 using namespace fovrt;
 
-TEST_CASE("bytes per pixel of the SVGF passes", "[svgf]") {
-    DenoiserParams p;
-    auto passes = SvgfPassBytes(p);
-    REQUIRE(passes.size() == 1 + 1 + 1 + 5 + 1 + 1);
-    CHECK(passes[1].pass == "reproject");
-    // One à-trous iteration, two channels: illum in/out 32 B + geometry 20 B + gradient 8 B;
-    // iteration 0 also writes the fp32 colour history (12 B).
-    CHECK(passes[3].bytesPerPixel == Approx(2 * (32 + 20 + 8 + 12)));
-    CHECK(passes[4].bytesPerPixel == Approx(2 * (32 + 20 + 8)));
-    p.precision = Precision::Fp16;
-    CHECK(SvgfPassBytes(p)[1].bytesPerPixel < passes[1].bytesPerPixel);
-}
+// The byte models themselves: denoise_pass_bytes_test.cpp.
 
 TEST_CASE("denoiser bench reports every pass", "[svgf]") {
     DenoiserBenchOptions o;
@@ -30,11 +19,14 @@ TEST_CASE("denoiser bench reports every pass", "[svgf]") {
     CHECK(report.memcpyGBps > 0.1);
     size_t expected = VulkanContext::Available() ? 4 : 2;
     REQUIRE(report.results.size() == expected);
+    if (VulkanContext::Available()) CHECK(report.device.texelGBps > 0.0);
     for (const auto& r : report.results) {
         CHECK(r.passes.size() >= 7);
         CHECK(r.bytesPerPixel > 100.0);
         CHECK(r.computeMs > 0.0);
         CHECK(r.boundMs > 0.0);
+        for (const auto& p : r.passes) CHECK(p.bytesPerPixel > 0.0);
+        CHECK((r.deviceBoundMs > 0.0) == (r.backend == "vulkan"));
     }
 }
 

@@ -50,22 +50,58 @@ std::vector<std::pair<std::string, double>> TimestampPool::Results() const {
     return out;
 }
 
-CommandRecorder::CommandRecorder(VulkanContext& context, TimestampPool* timestamps)
-    : context_(context), timestamps_(timestamps && timestamps->enabled() ? timestamps : nullptr) {
+CommandSlot::CommandSlot(VulkanContext& context) : device_(context.device()), pool_(context.commandPool()) {
     auto info = VkInit<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-    info.commandPool = context.commandPool();
+    info.commandPool = pool_;
     info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     info.commandBufferCount = 1;
-    FOVRT_VK(vkAllocateCommandBuffers(context.device(), &info, &cmd_));
+    FOVRT_VK(vkAllocateCommandBuffers(device_, &info, &cmd_));
     auto fenceInfo = VkInit<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
-    FOVRT_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &fence_));
+    FOVRT_VK(vkCreateFence(device_, &fenceInfo, nullptr, &fence_));
+}
+
+CommandSlot& CommandSlot::operator=(CommandSlot&& other) noexcept {
+    if (this != &other) {
+        Destroy();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        pool_ = std::exchange(other.pool_, VK_NULL_HANDLE);
+        cmd_ = std::exchange(other.cmd_, VK_NULL_HANDLE);
+        fence_ = std::exchange(other.fence_, VK_NULL_HANDLE);
+    }
+    return *this;
+}
+
+CommandSlot::~CommandSlot() { Destroy(); }
+
+void CommandSlot::Destroy() {
+    if (fence_) vkDestroyFence(device_, fence_, nullptr);
+    if (cmd_) vkFreeCommandBuffers(device_, pool_, 1, &cmd_);
+    fence_ = VK_NULL_HANDLE;
+    cmd_ = VK_NULL_HANDLE;
+}
+
+CommandRecorder::CommandRecorder(VulkanContext& context, TimestampPool* timestamps)
+    : context_(context), timestamps_(timestamps && timestamps->enabled() ? timestamps : nullptr), owned_(context) {
+    cmd_ = owned_.cmd_;
+    fence_ = owned_.fence_;
+    Begin();
+}
+
+CommandRecorder::CommandRecorder(VulkanContext& context, CommandSlot& slot, TimestampPool* timestamps)
+    : context_(context), timestamps_(timestamps && timestamps->enabled() ? timestamps : nullptr) {
+    FOVRT_CHECK(slot.valid());
+    cmd_ = slot.cmd_;
+    fence_ = slot.fence_;
     Begin();
 }
 
 CommandRecorder::~CommandRecorder() {
-    if (recording_) vkEndCommandBuffer(cmd_);
-    vkDestroyFence(context_.device(), fence_, nullptr);
-    vkFreeCommandBuffers(context_.device(), context_.commandPool(), 1, &cmd_);
+    // Unsubmitted work is dropped; the command buffer goes back to the initial state so a slot
+    // can record again (the owned slot frees it).
+    if (recording_) {
+        vkEndCommandBuffer(cmd_);
+        vkResetCommandBuffer(cmd_, 0);
+    }
 }
 
 void CommandRecorder::Begin() {

@@ -1,5 +1,7 @@
 // CommandRecorder: records uploads (through a staging buffer), dispatches, barriers, copies and
-// timestamps into one command buffer, then submits and waits on a fence. TimestampPool turns
+// timestamps into one command buffer, then submits and waits on a fence. The command buffer and
+// fence come from a CommandSlot: one owned by the recorder, or a long-lived one (a denoiser's,
+// reused every frame instead of allocating a command buffer and creating a fence per Denoise()). TimestampPool turns
 // pairs of GPU timestamps into per-pass milliseconds (timestampPeriod).
 #pragma once
 
@@ -40,10 +42,36 @@ private:
     std::vector<std::string> names_;
 };
 
+// A primary command buffer (from the context's resettable pool) and a fence, reused by every
+// CommandRecorder made on it. One recorder at a time per slot; the context must outlive it.
+class CommandSlot {
+public:
+    CommandSlot() = default;
+    explicit CommandSlot(VulkanContext& context);
+    CommandSlot(CommandSlot&& other) noexcept { *this = std::move(other); }
+    CommandSlot& operator=(CommandSlot&& other) noexcept;
+    CommandSlot(const CommandSlot&) = delete;
+    CommandSlot& operator=(const CommandSlot&) = delete;
+    ~CommandSlot();
+
+    bool valid() const { return cmd_ != VK_NULL_HANDLE; }
+
+private:
+    friend class CommandRecorder;
+    void Destroy();
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkCommandPool pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+};
+
 class CommandRecorder {
 public:
     // `timestamps` may be null (no timing). The recorder starts recording at construction.
+    // This form allocates its own command buffer and fence (one-off work: tests, read-backs).
     explicit CommandRecorder(VulkanContext& context, TimestampPool* timestamps = nullptr);
+    // Records into `slot` (reset, not freed, when the recorder ends): per-frame work.
+    CommandRecorder(VulkanContext& context, CommandSlot& slot, TimestampPool* timestamps = nullptr);
     CommandRecorder(const CommandRecorder&) = delete;
     CommandRecorder& operator=(const CommandRecorder&) = delete;
     ~CommandRecorder();
@@ -79,6 +107,7 @@ private:
     VkCommandBuffer Cmd();  // begins recording when needed
     VulkanContext& context_;
     TimestampPool* timestamps_;
+    CommandSlot owned_;  // valid only for the one-off form
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     uint32_t nextQuery_ = 0;
