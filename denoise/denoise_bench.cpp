@@ -95,18 +95,20 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
     fmt::print(out, "bandwidth (bytes read + written per second, best of a few runs):\n");
     fmt::print(out, "  host memcpy            {:7.1f} GB/s  (256 MiB buffers; the bound of the C++ reference)\n",
                report.memcpyGBps);
-    if (context)
-        fmt::print(out, "  device streaming copy  {:7.1f} GB/s  (shaders/bandwidth_copy.comp on {}, {} MiB, GPU "
-                        "timestamps: rgba32f texel-buffer read -> std430 write, the passes' access layer; "
-                        "std430 -> std430: {:.1f} GB/s)\n",
-                   report.device.texelGBps, context->deviceName(), report.device.bytes >> 20,
+    if (context) {
+        fmt::print(out, "  device streaming copy  {:7.1f} GB/s  (rgba32f texel-buffer read -> std430 vec4 write: the "
+                        "passes' access layer)\n", report.device.texelGBps);
+        fmt::print(out, "  device streaming copy  {:7.1f} GB/s  (std430 vec4 read -> std430 vec4 write)\n",
                    report.device.storageGBps);
+        fmt::print(out, "  (device copies: shaders/bandwidth_copy.comp on {}, {} MiB, GPU timestamps)\n",
+                   context->deviceName(), report.device.bytes >> 20);
+    }
     fmt::print(out, "bytes/pixel: what each pass reads + writes per pixel per frame, every plane counted once per "
                     "dispatch (gather taps assumed to hit cache; sizes from the memory plan; steady state: no pixel "
                     "below the variance threshold): a lower bound on the traffic\n");
     fmt::print(out, "bound = bytes / bandwidth; x = measured / bound. Vulkan passes: against memcpy and against the "
-                    "device copy; on a GPU both are device memory, on lavapipe the device copy is the compute "
-                    "path's real ceiling. C++ reference: against memcpy only\n");
+                    "texel-buffer device copy; on a GPU both are device memory, on lavapipe the device copy is the compute "
+                    "path's real ceiling. C++ reference: against memcpy only. upload/download are transfer copies, not in the compute total\n");
     fmt::print(out, "C++ reference: scalar per-pixel loops, rows in parallel with TBB\n");
 
     std::vector<FrameInputs> frames;

@@ -18,6 +18,6 @@ struct DeviceBandwidth {
 
 // Copies a `megabytes` buffer (clamped to the device's texel-buffer limit) `runs` times per mode
 // after one warm-up; keeps the fastest run. GB/s = (bytes read + bytes written) / s / 1e9.
-DeviceBandwidth MeasureDeviceBandwidth(VulkanContext& context, size_t megabytes = 256, int runs = 3);
+DeviceBandwidth MeasureDeviceBandwidth(VulkanContext& context, size_t megabytes = 256, int runs = 5);
 
 }  // namespace fovrt
