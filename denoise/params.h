@@ -27,7 +27,7 @@ struct AsvgfParams {
 
 struct TwoHistoryParams {
     float gradientBeta = 0.8f;     // β_g of the gradient EMA
-    float qScale = 1.0f;           // S in q = clamp(S·lum|g| / std(lum I_u), 0, 1)
+    float qScale = 1.0f;           // S in q = clamp(S·|lum g| / std(lum I_u), 0, 1)
 };
 
 struct DenoiserParams {

@@ -1,6 +1,7 @@
 // Two-history SVGF per-pixel maths (SPEC §5, Tu 2024): the unweighted (I_u, W_u) and
 // sample-count-weighted (I_w, W_w) exponential histories, the power sums S_k of the sample counts,
-// the variance-optimal blend factor p, the gradient EMA and the gradient-guided factor q.
+// the variance-optimal blend factor p, the (luminance) gradient EMA and the gradient-guided
+// factor q.
 // Header-only and templated on the colour type so the CPU reference, the tests and the GLSL
 // (shaders/common/two_history.glsl, same formulas) agree line by line.
 #pragma once
@@ -81,18 +82,27 @@ inline float TwoHistoryOptimalBlend(const TwoHistoryWeights& w) {
 }
 
 // Gradient EMA g ← β_g g + (1 − β_g)(x − I_u,prev); g = 0 where the history was dropped.
+// Templated for the tests; fovrt stores the signed luminance g = lum(x − I_u,prev) EMA (one float
+// per pixel, LuminanceGradient below) instead of RGB: lum() is linear, so the EMA and the linear
+// edge-aware filter give exactly lum() of the RGB gradient's EMA and filter.
 template <typename T>
 T AccumulateGradient(const T& gPrev, const T& x, const T& iuPrev, float betaG, bool hasHistory) {
     if (!hasHistory) return x * 0.0f;
     return gPrev * betaG + (x - iuPrev) * (1.0f - betaG);
 }
 
-// q = clamp(S · lum(|g|) / std(lum(I_u)), 0, 1).
-inline float TwoHistoryGradientBlend(const vec3& g, float varianceLumIu, float scale) {
-    const float lumAbsG = Luminance(glm::abs(g));
+// The stored gradient's per-frame input: lum(x − I_u,prev), signed.
+inline float LuminanceGradient(const vec3& x, const vec3& iuPrev) { return Luminance(x - iuPrev); }
+
+// q = clamp(S · |g| / std(lum(I_u)), 0, 1) with g the (filtered) luminance gradient. SPEC §5 writes
+// lum(|g|) for an RGB g; |lum(g)| equals it where the R, G, B gradients share a sign (e.g. a light
+// switching on or off) and is smaller otherwise (a hue change at constant luminance
+// gives q ≈ 0).
+inline float TwoHistoryGradientBlend(float g, float varianceLumIu, float scale) {
+    const float absG = std::abs(g);
     const float sd = std::sqrt(std::max(varianceLumIu, 0.0f));
-    if (lumAbsG <= 0.0f) return 0.0f;
-    return std::clamp(scale * lumAbsG / std::max(sd, 1e-8f), 0.0f, 1.0f);
+    if (absG <= 0.0f) return 0.0f;
+    return std::clamp(scale * absG / std::max(sd, 1e-8f), 0.0f, 1.0f);
 }
 
 // I_b = lerp(I_opt, I_u, q) = lerp(I_w, I_u, t) with t = p + q − pq.

@@ -13,7 +13,8 @@
 
 namespace fovrt {
 
-void TwoHistoryState::Allocate(int width, int height, int channels, bool twoHistory) {
+void TwoHistoryState::Allocate(int width, int height, int channels, bool twoHistory,
+                               bool withGradient) {
     for (int c = 0; c < 2; ++c) {
         const bool used = c < channels;
         iu[size_t(c)].Resize(used ? width : 0, used ? height : 0, vec3(0.0f));
@@ -24,7 +25,7 @@ void TwoHistoryState::Allocate(int width, int height, int channels, bool twoHist
     wu.Resize(width, height, 0.0f);
     ww.Resize(twoHistory ? width : 0, twoHistory ? height : 0, 0.0f);
     powerSums.Resize(twoHistory ? width : 0, twoHistory ? height : 0, vec3(0.0f));
-    gradient.Resize(twoHistory ? width : 0, twoHistory ? height : 0, vec3(0.0f));
+    gradient.Resize(withGradient ? width : 0, withGradient ? height : 0, 0.0f);
 }
 
 void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int channels,
@@ -37,6 +38,7 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
     const int w = frame.width(), h = frame.height();
     const Precision prec = options.precision;
     const bool two = options.twoHistory;
+    const bool withGradient = two && options.gradient;
     for (int c = 0; c < channels; ++c) {
         illumU[size_t(c)].Resize(w, h);
         if (two) illumW[size_t(c)].Resize(w, h);
@@ -93,43 +95,58 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
             if (two) {
                 cur.ww[i] = QuantizeHistory(wNew.ww, prec);
                 cur.powerSums[i] = QuantizeHistory(vec3(wNew.sMinus1, wNew.s0, wNew.s1), prec);
-                const vec3 gPrev = success ? GatherTaps(prev.gradient, taps) : vec3(0.0f);
+            }
+            if (withGradient) {
+                const float gPrev = success ? GatherTaps(prev.gradient, taps) : 0.0f;
                 cur.gradient[i] = QuantizeHistory(
-                    AccumulateGradient(gPrev, xSum, iuPrevSum, options.gradientBeta, success),
+                    AccumulateGradient(gPrev, LuminanceGradient(xSum, iuPrevSum), 0.0f,
+                                       options.gradientBeta, success),
                     prec);
             }
         }
 }
 
-void TwoHistoryGradientRef(const Plane<vec3>& gradient, const std::array<Plane<vec4>, 2>& illumU,
+template <typename T>
+T FilterTwoHistoryGradient(const Plane<T>& gradient, const FrameInputs& frame,
+                           const SvgfParams& svgf, int x, int y) {
+    static constexpr float kKernel[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
+    const float zp = frame.linearDepth(x, y);
+    const vec3 np = frame.normal(x, y);
+    const vec2 gp = frame.depthGradient(x, y);
+    T sum{};
+    float wsum = 0.0f;
+    for (int ky = -2; ky <= 2; ++ky)
+        for (int kx = -2; kx <= 2; ++kx) {
+            const int qx = x + kx, qy = y + ky;
+            if (!gradient.InBounds(qx, qy) || frame.objectId(qx, qy) == kNoObject) continue;
+            float wgt = kKernel[kx + 2] * kKernel[ky + 2];
+            if (kx != 0 || ky != 0)
+                wgt *= DepthWeight(zp, frame.linearDepth(qx, qy), gp, vec2(kx, ky),
+                                   svgf.sigmaDepth) *
+                       NormalWeight(np, frame.normal(qx, qy), svgf.sigmaNormal);
+            sum += wgt * gradient(qx, qy);
+            wsum += wgt;
+        }
+    return sum / wsum;
+}
+
+template float FilterTwoHistoryGradient(const Plane<float>&, const FrameInputs&, const SvgfParams&,
+                                        int, int);
+template vec3 FilterTwoHistoryGradient(const Plane<vec3>&, const FrameInputs&, const SvgfParams&,
+                                       int, int);
+
+void TwoHistoryGradientRef(const Plane<float>& gradient, const std::array<Plane<vec4>, 2>& illumU,
                            int channels, const FrameInputs& frame, const SvgfParams& svgf,
                            float qScale, Plane<float>& qOut) {
-    static constexpr float kKernel[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
     const int w = frame.width(), h = frame.height();
     qOut.Resize(w, h, 0.0f);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             if (frame.objectId(x, y) == kNoObject) continue;
-            const float zp = frame.linearDepth(x, y);
-            const vec3 np = frame.normal(x, y);
-            const vec2 gp = frame.depthGradient(x, y);
-            vec3 sum(0.0f);
-            float wsum = 0.0f;
-            for (int ky = -2; ky <= 2; ++ky)
-                for (int kx = -2; kx <= 2; ++kx) {
-                    const int qx = x + kx, qy = y + ky;
-                    if (!gradient.InBounds(qx, qy) || frame.objectId(qx, qy) == kNoObject) continue;
-                    float wgt = kKernel[kx + 2] * kKernel[ky + 2];
-                    if (kx != 0 || ky != 0)
-                        wgt *= DepthWeight(zp, frame.linearDepth(qx, qy), gp, vec2(kx, ky),
-                                           svgf.sigmaDepth) *
-                               NormalWeight(np, frame.normal(qx, qy), svgf.sigmaNormal);
-                    sum += wgt * gradient(qx, qy);
-                    wsum += wgt;
-                }
             float var = 0.0f;
             for (int c = 0; c < channels; ++c) var += illumU[size_t(c)](x, y).a;
-            qOut(x, y) = TwoHistoryGradientBlend(sum / wsum, var, qScale);
+            qOut(x, y) = TwoHistoryGradientBlend(
+                FilterTwoHistoryGradient(gradient, frame, svgf, x, y), var, qScale);
         }
 }
 
@@ -216,7 +233,8 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     if (frame.cameraCut || w != width_ || h != height_) {
         width_ = w, height_ = h;
         hasPrev_ = false;
-        for (auto& st : state_) st.Allocate(w, h, channels, two);
+        for (auto& st : state_)
+            st.Allocate(w, h, channels, two, variant_ == TwoHistoryVariant::TwoHistory);
         prevGeometry_.Allocate(w, h);
     }
     TwoHistoryState& prev = state_[parity_];
@@ -245,6 +263,7 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     ro.alphaMoments = s.alphaMoments;
     ro.gradientBeta = params_.twoHistory.gradientBeta;
     ro.twoHistory = two;
+    ro.gradient = variant_ == TwoHistoryVariant::TwoHistory;  // two-history-asvgf: q = λ̂
     ro.writeColorHistory = feedback == 0;
     ro.precision = params_.precision;
     const std::array<const Plane<vec3>*, 2> colors = {&frame.direct, &frame.indirect};
@@ -337,7 +356,9 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
         for (const char* side : {"A", "B"}) {
             add(std::string("wweight.") + side, hs * n, true);
             add(std::string("powerSums.") + side, 3 * hs * n, true);
-            add(std::string("gradient.") + side, 3 * hs * n, true);
+            // g as one float (its luminance); two-history-asvgf takes q from A-SVGF instead.
+            if (v == TwoHistoryVariant::TwoHistory)
+                add(std::string("gradient.") + side, hs * n, true);
         }
         add("q", 4 * n, false);
         if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);

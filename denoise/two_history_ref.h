@@ -15,7 +15,12 @@
 //   an A-SVGF α near 1 (history dropped) falls back to the spatial variance estimate by itself.
 // - Both histories use the unweighted moments' variance as their à-trous guide; the blend's
 //   variance is lerp(Var_w, Var_u, t), an upper bound of the variance of the lerp.
-// - g is one float3 EMA of the summed illumination (direct + indirect); q uses Σ_c Var_c.
+// - g is one EMA of the summed illumination (direct + indirect); q uses Σ_c Var_c. g is stored
+//   as one float, the signed luminance of the gradient (exact for the EMA and the linear filter,
+//   lum() being linear); q uses |lum(g)| for the SPEC's lum(|g|) (equal where R, G, B change
+//   with one sign, smaller otherwise). This keeps the extra history at the thesis's 88 B/pixel
+//   with direct and indirect filtered separately.
+// - two-history-asvgf does not keep g (its q is λ̂).
 // - g is filtered by one 5×5 à-trous-kernel pass with w_z·w_n (no luminance term).
 // - two-history-asvgf: β = 1 − α_i(p) (α_i from the A-SVGF gradient, base α = asvgf.alpha) for
 //   both histories and their moments, and q = λ̂(p) (the same 3×3-strata max that gives α_i):
@@ -49,15 +54,16 @@ struct TwoHistoryState {
     Plane<float> wu;                     // W_u (also the "history length" of the variance test)
     Plane<float> ww;                     // W_w (two-history only)
     Plane<vec3> powerSums;               // (S_{-1}, S_0, S_1) (two-history only)
-    Plane<vec3> gradient;                // EMA gradient g of the summed illumination (two-history)
-    void Allocate(int width, int height, int channels, bool twoHistory);
+    Plane<float> gradient;  // EMA luminance gradient g of the summed illumination (two-history)
+    void Allocate(int width, int height, int channels, bool twoHistory, bool gradient);
 };
 
 struct TwoHistoryReprojectOptions {
     float alpha = 0.2f;              // temporal α of colour (ignored where alphaMap is given)
     float alphaMoments = 0.2f;       // temporal α of moments (ignored where alphaMap is given)
     float gradientBeta = 0.8f;       // β_g
-    bool twoHistory = true;          // also accumulate I_w, W_w, S_k and g
+    bool twoHistory = true;          // also accumulate I_w, W_w and S_k
+    bool gradient = true;            // and g (two-history only)
     bool writeColorHistory = false;  // feed back the unfiltered accumulation (no à-trous feedback)
     Precision precision = Precision::Fp32;
 };
@@ -76,11 +82,17 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                             const TwoHistoryReprojectOptions& options, DenoiseStats& stats);
 
 // Stage two_history_gradient: 5×5 à-trous-kernel filter of g with w_z·w_n (edge-aware, no
-// luminance term), then q = clamp(S·lum(|g|)/std(lum(I_u)), 0, 1) with Var(lum I_u) = Σ_c
+// luminance term), then q = clamp(S·|g|/std(lum(I_u)), 0, 1) with Var(lum I_u) = Σ_c
 // illumU[c].a.
-void TwoHistoryGradientRef(const Plane<vec3>& gradient, const std::array<Plane<vec4>, 2>& illumU,
+void TwoHistoryGradientRef(const Plane<float>& gradient, const std::array<Plane<vec4>, 2>& illumU,
                            int channels, const FrameInputs& frame, const SvgfParams& svgf,
                            float qScale, Plane<float>& qOut);
+
+// The filter of that stage at pixel (x, y) (not a background pixel). Instantiated for float (the
+// stored luminance gradient) and vec3 (tests: the RGB gradient the SPEC writes).
+template <typename T>
+T FilterTwoHistoryGradient(const Plane<T>& gradient, const FrameInputs& frame,
+                           const SvgfParams& svgf, int x, int y);
 
 // Stage two_history_blend: p from (W_u, W_w, S_k), t = p + q − pq,
 // out = lerp(illumW, illumU, t) for colour and variance (lerp of variances bounds the variance of
@@ -134,7 +146,8 @@ bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant);
 
 // Buffers of the named denoiser beyond SVGF's, W×H, one eye, named as the Vulkan path allocates
 // them. History (A/B pairs): <channel>.wcolor (I_w, float3), wweight (W_w), powerSums (S_{-1},
-// S_0, S_1), gradient (g, float3); W_u lives in SVGF's <channel>.length. Scratch: weighted
+// S_0, S_1), gradient (g, one float: its luminance; two-history only); W_u lives in SVGF's
+// <channel>.length. Scratch: weighted
 // illumination ping-pong, q, sample counts, A-SVGF strata/α/λ, extra staging.
 std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
                                                   const DenoiserParams& params);

@@ -28,11 +28,12 @@ std::array<VkFormat, TH_REPROJECT_BINDINGS> ReprojectTexelFormats(Precision prec
     for (int b : {TH_REPROJECT_B_DEPTH_GRAD, TH_REPROJECT_B_PREV_PIXEL}) f[size_t(b)] = VK_FORMAT_R32G32_SFLOAT;
     if (!half)
         for (int b : {TH_REPROJECT_B_PREV_IU, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW,
-                      TH_REPROJECT_B_PREV_S, TH_REPROJECT_B_PREV_G})
+                      TH_REPROJECT_B_PREV_S})
             f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
     f[TH_REPROJECT_B_PREV_M] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
     f[TH_REPROJECT_B_PREV_WU] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
     f[TH_REPROJECT_B_PREV_WW] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    f[TH_REPROJECT_B_PREV_G] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;  // lum(g)
     return f;
 }
 
@@ -51,7 +52,8 @@ std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
 std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
     std::array<VkFormat, TH_GRADIENT_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);
-    f[TH_GRADIENT_B_GRADIENT] = precision == Precision::Fp16 ? VK_FORMAT_UNDEFINED : VK_FORMAT_R32G32B32_SFLOAT;
+    f[TH_GRADIENT_B_GRADIENT] =  // one float per pixel: lum(g)
+        precision == Precision::Fp16 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
     f[TH_GRADIENT_B_ILLUM_U0] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[TH_GRADIENT_B_ILLUM_U1] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[TH_GRADIENT_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
@@ -213,6 +215,8 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         const Buffer* dummyOut = &Buf("output");
         auto two = [&](const std::string& name) { return two_ ? &Buf(name) : dummyIn; };
         auto twoOut = [&](const std::string& name) { return two_ ? &Buf(name) : dummyOut; };
+        // g exists for two-history only (two-history-asvgf takes q from A-SVGF).
+        const bool withGradient = variant_ == TwoHistoryVariant::TwoHistory;
 
         std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
         g[SVGF_GUIDE_B_DEPTH] = &Buf("geometry.depth." + cur);
@@ -244,14 +248,14 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             r[TH_REPROJECT_B_PREV_WU] = &Buf(ch + ".length." + prev);
             r[TH_REPROJECT_B_PREV_WW] = two("wweight." + prev);
             r[TH_REPROJECT_B_PREV_S] = two("powerSums." + prev);
-            r[TH_REPROJECT_B_PREV_G] = two("gradient." + prev);
+            r[TH_REPROJECT_B_PREV_G] = withGradient ? &Buf("gradient." + prev) : dummyIn;
             r[TH_REPROJECT_B_CUR_IU] = &Buf(ch + ".color." + cur);
             r[TH_REPROJECT_B_CUR_IW] = twoOut(ch + ".wcolor." + cur);
             r[TH_REPROJECT_B_CUR_M] = &Buf(ch + ".moments." + cur);
             r[TH_REPROJECT_B_CUR_WU] = &Buf(ch + ".length." + cur);
             r[TH_REPROJECT_B_CUR_WW] = twoOut("wweight." + cur);
             r[TH_REPROJECT_B_CUR_S] = twoOut("powerSums." + cur);
-            r[TH_REPROJECT_B_CUR_G] = twoOut("gradient." + cur);
+            r[TH_REPROJECT_B_CUR_G] = withGradient ? &Buf("gradient." + cur) : dummyOut;
             r[TH_REPROJECT_B_ILLUM_U] = &Buf(ch + ".illum0");
             r[TH_REPROJECT_B_ILLUM_W] = twoOut(ch + ".willum0");
             r[TH_REPROJECT_B_STATS] = &Buf("stats");
@@ -448,6 +452,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     rec.BeginPass("two_history_reproject");
     uint32_t flags = TH_REPROJECT_FLAG_HAS_PREV * (hasPrev_ ? 1u : 0u);
     if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
+    if (variant_ == TwoHistoryVariant::TwoHistory) flags |= TH_REPROJECT_FLAG_GRADIENT;
     flags |= channels_.size() == 2 ? TH_REPROJECT_FLAG_OTHER : TH_REPROJECT_FLAG_COMBINED;
     if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
     if (feedback == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;

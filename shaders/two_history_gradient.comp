@@ -3,8 +3,9 @@
 // two_history_gradient — edge-aware filter of the gradient EMA and the gradient blend factor q
 // (SPEC §5). Mirrors TwoHistoryGradientRef.
 // Purpose: g' = Σ h(k) w_z w_n g / Σ h(k) w_z w_n over a 5×5 à-trous kernel (step 1, no
-//   luminance term: g itself is what is being estimated); q = clamp(S·lum(|g'|)/std, 0, 1) with
-//   std² = Σ_channels Var of the unweighted history (after the variance estimate).
+//   luminance term: g itself is what is being estimated); q = clamp(S·|g'|/std, 0, 1) with
+//   std² = Σ_channels Var of the unweighted history (after the variance estimate). g is the
+//   signed luminance of the gradient, one float (denoise/two_history_math.h).
 // Reads:  gradient EMA (this frame), (I_u, Var) per channel, geometry, depth gradient.
 // Writes: q (float per pixel).
 #include "shared_constants.h"
@@ -16,15 +17,8 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp),
-// except the fp16 gradient history (RGB16F texel buffers are rarely supported).
-#ifdef FOVRT_FP16
-layout(std430, binding = TH_GRADIENT_B_GRADIENT) readonly buffer Gradient { hfloat gradient[]; };
-#define GRADIENT_LOAD LOAD3
-#else
-PLANE(TH_GRADIENT_B_GRADIENT, gradient);        // rgb32f
-#define GRADIENT_LOAD FETCH3
-#endif
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp).
+PLANE(TH_GRADIENT_B_GRADIENT, gradient);        // r32f / r16f
 PLANE(TH_GRADIENT_B_ILLUM_U0, illum_u0);        // rgba32f
 PLANE(TH_GRADIENT_B_ILLUM_U1, illum_u1);        // rgba32f
 PLANE(TH_GRADIENT_B_DEPTH, depth);              // r32f
@@ -53,7 +47,7 @@ void main() {
     float zp = FETCH1(depth, i);
     vec3 np = FETCH3(normal, i);
     vec2 gp = FETCH2(depth_grad, i);
-    vec3 sum = vec3(0.0);
+    float sum = 0.0;
     float wsum = 0.0;
     for (int ky = -2; ky <= 2; ++ky)
         for (int kx = -2; kx <= 2; ++kx) {
@@ -65,7 +59,7 @@ void main() {
             if (kx != 0 || ky != 0)
                 w *= depth_weight(zp, FETCH1(depth, j), gp, vec2(kx, ky), pc.sigma_depth) *
                      normal_weight(np, FETCH3(normal, j), pc.sigma_normal);
-            sum += w * GRADIENT_LOAD(gradient, j);
+            sum += w * FETCH1(gradient, j);
             wsum += w;
         }
     float variance = FETCH4(illum_u0, i).a + (pc.two_channels != 0u ? FETCH4(illum_u1, i).a : 0.0);

@@ -6,8 +6,9 @@
 // Purpose: sanitise the illumination (NaN/Inf → 0, negative → 0, counted); back-project every
 //   history with SVGF's tested taps (common/reprojection.glsl); β = min(1, (1/α − 1)/W_u,prev)
 //   (0 on disocclusion); W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
-//   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)(Σx − ΣI_u,prev)
-//   over both channels (SHARED dispatch only).
+//   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)·lum(Σx − ΣI_u,prev)
+//   over both channels (SHARED dispatch with the GRADIENT flag; g is one float, the signed
+//   luminance of the gradient).
 // Reads:  illumination, geometry of both frames, depth gradient, previous pixel, sample counts,
 //         per-pixel α (A-SVGF), previous histories.
 // Writes: this frame's histories (moments, W_u into the channel's length; W_w, S, g when SHARED;
@@ -41,16 +42,15 @@ layout(std430, binding = TH_REPROJECT_B_PREV_IU) readonly buffer PrevIu { hfloat
 layout(std430, binding = TH_REPROJECT_B_PREV_IU_OTHER) readonly buffer PrevIuOther { hfloat prev_iu_other[]; };
 layout(std430, binding = TH_REPROJECT_B_PREV_IW) readonly buffer PrevIw { hfloat prev_iw[]; };
 layout(std430, binding = TH_REPROJECT_B_PREV_S) readonly buffer PrevS { hfloat prev_s[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_G) readonly buffer PrevG { hfloat prev_g[]; };
 #define HIST3_LOAD LOAD3
 #else
 PLANE(TH_REPROJECT_B_PREV_IU, prev_iu);            // rgb32f
 PLANE(TH_REPROJECT_B_PREV_IU_OTHER, prev_iu_other);
 PLANE(TH_REPROJECT_B_PREV_IW, prev_iw);
 PLANE(TH_REPROJECT_B_PREV_S, prev_s);
-PLANE(TH_REPROJECT_B_PREV_G, prev_g);
 #define HIST3_LOAD FETCH3
 #endif
+PLANE(TH_REPROJECT_B_PREV_G, prev_g);              // r32f / r16f (luminance gradient)
 PLANE(TH_REPROJECT_B_PREV_M, prev_m);              // rg32f / rg16f
 PLANE(TH_REPROJECT_B_PREV_WU, prev_wu);            // r32f / r16f
 PLANE(TH_REPROJECT_B_PREV_WW, prev_ww);            // r32f / r16f
@@ -160,17 +160,21 @@ void main() {
     if (two && shared_state) {
         cur_ww[i] = hfloat(to_history(ww));
         STORE3(cur_s, i, to_history(s), hfloat);
-        vec3 x_sum = x, iu_prev_sum = iu_prev;
-        if ((pc.flags & TH_REPROJECT_FLAG_OTHER) != 0u) {
-            vec3 xo = sanitize(FETCH3(color_other, i), false);
-            vec3 iuo = xo;
-            if (success) GATHER3(prev_iu_other, taps, iuo);
-            x_sum += xo;
-            iu_prev_sum += iuo;
+        if ((pc.flags & TH_REPROJECT_FLAG_GRADIENT) != 0u) {
+            vec3 x_sum = x, iu_prev_sum = iu_prev;
+            if ((pc.flags & TH_REPROJECT_FLAG_OTHER) != 0u) {
+                vec3 xo = sanitize(FETCH3(color_other, i), false);
+                vec3 iuo = xo;
+                if (success) GATHER3(prev_iu_other, taps, iuo);
+                x_sum += xo;
+                iu_prev_sum += iuo;
+            }
+            float g_prev = 0.0;
+            if (success) GATHER1(prev_g, taps, g_prev);
+            float g = success ? g_prev * pc.gradient_beta +
+                                    luminance(x_sum - iu_prev_sum) * (1.0 - pc.gradient_beta)
+                              : 0.0;
+            cur_g[i] = hfloat(to_history(g));
         }
-        vec3 g_prev = vec3(0.0);
-        if (success) GATHER3(prev_g, taps, g_prev);
-        vec3 g = success ? g_prev * pc.gradient_beta + (x_sum - iu_prev_sum) * (1.0 - pc.gradient_beta) : vec3(0.0);
-        STORE3(cur_g, i, to_history(g), hfloat);
     }
 }

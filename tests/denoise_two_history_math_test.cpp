@@ -221,10 +221,25 @@ TEST_CASE("gradient EMA and q", "[two_history]") {
         CHECK(g.y == Approx(2.0f * (1.0f - std::pow(0.8f, float(k)))).epsilon(1e-5));
     }
     CHECK(AccumulateGradient(g, x, iu, 0.8f, false).x == 0.0f);
-    CHECK(TwoHistoryGradientBlend(vec3(0.1f), 0.04f, 1.0f) == Approx(0.5f));
-    CHECK(TwoHistoryGradientBlend(vec3(-0.1f), 0.04f, 1.0f) == Approx(0.5f));  // |g|
-    CHECK(TwoHistoryGradientBlend(vec3(1.0f), 0.04f, 1.0f) == 1.0f);
-    CHECK(TwoHistoryGradientBlend(vec3(0.0f), 0.0f, 1.0f) == 0.0f);
+    // The stored scalar: the EMA of lum(x − I_u) is lum of the RGB EMA (lum is linear).
+    float gl = 0.0f;
+    vec3 g3(0.0f);
+    const vec3 steps[3] = {vec3(0.3f, -0.2f, 0.9f), vec3(-1.0f, 0.5f, 0.1f), vec3(2.0f)};
+    for (const vec3& d : steps) {
+        g3 = AccumulateGradient(g3, iu + d, iu, 0.8f, true);
+        gl = AccumulateGradient(gl, LuminanceGradient(iu + d, iu), 0.0f, 0.8f, true);
+        CHECK(gl == Approx(Luminance(g3)).margin(1e-6));
+    }
+    CHECK(TwoHistoryGradientBlend(0.1f, 0.04f, 1.0f) == Approx(0.5f));
+    CHECK(TwoHistoryGradientBlend(-0.1f, 0.04f, 1.0f) == Approx(0.5f));  // |g|
+    CHECK(TwoHistoryGradientBlend(1.0f, 0.04f, 1.0f) == 1.0f);
+    CHECK(TwoHistoryGradientBlend(0.0f, 0.0f, 1.0f) == 0.0f);
+    // |lum g| = lum |g| when R, G, B share a sign; smaller otherwise (a hue change).
+    const vec3 same(-0.05f, -0.1f, -0.02f), mixed(0.3f, -0.1f, 0.2f);
+    CHECK(TwoHistoryGradientBlend(Luminance(same), 0.04f, 1.0f) ==
+          Approx(Luminance(glm::abs(same)) / 0.2f));
+    CHECK(TwoHistoryGradientBlend(Luminance(mixed), 0.04f, 1.0f) <
+          0.5f * Luminance(glm::abs(mixed)) / 0.2f);
     CHECK(TwoHistoryFinalBlend(0.3f, 0.0f) == Approx(0.3f));
     CHECK(TwoHistoryFinalBlend(0.3f, 1.0f) == Approx(1.0f));
     CHECK(TwoHistoryFinalBlend(0.5f, 0.5f) == Approx(0.75f));

@@ -1,10 +1,16 @@
 // Two-history SVGF CPU reference (SPEC §5): equals SVGF when n is constant; beats SVGF in a moving
-// fovea (n = 8 inside, 1 outside) on a static scene; stage-level checks of blend and gradient.
+// fovea (n = 8 inside, 1 outside) on a static scene; stage-level checks of blend and gradient;
+// the stored luminance gradient against the SPEC's RGB one; the memory plan's 88 B/pixel.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
 
 #include "core/error.h"
+#include "denoise/denoiser_factory.h"
+#include "denoise/memory_plan.h"
+#include "denoise/svgf_layout.h"
 #include "denoise/two_history_math.h"
 #include "denoise/two_history_ref.h"
 #include "denoise_two_history_scene.h"
@@ -159,19 +165,145 @@ TEST_CASE("two-history gradient stage: a step raises q, noise alone keeps it low
           "[two_history]") {
     FrameInputs f;
     MakeStaticPlane(f, 16, 16, 0);
-    Plane<vec3> g(16, 16, vec3(0.0f));
+    Plane<float> g(16, 16, 0.0f);
     std::array<Plane<vec4>, 2> u;
     u[0].Resize(16, 16, vec4(1.0f, 1.0f, 1.0f, 0.04f));  // std(lum I_u) = 0.2
     u[1].Resize(16, 16, vec4(0.0f));
     Plane<float> q;
     for (int y = 0; y < 16; ++y)
-        for (int x = 8; x < 16; ++x) g(x, y) = vec3(0.5f);  // right half changed by 0.5
+        for (int x = 8; x < 16; ++x) g(x, y) = 0.5f;  // right half's luminance changed by 0.5
     TwoHistoryGradientRef(g, u, 2, f, SvgfParams{}, 1.0f, q);
     CHECK(q(12, 8) == Approx(1.0f));
     CHECK(q(2, 8) == Approx(0.0f));
     // The edge-aware filter spreads g across the (geometrically flat) border: partial q.
     CHECK(q(7, 8) > 0.1f);
     CHECK(q(7, 8) < 1.0f);
+}
+
+namespace {
+
+// The gradient as fovrt stores it (one float, lum of the gradient) against the SPEC's RGB
+// gradient, recomputed here from the planes: a static plane (every pixel reprojects onto itself
+// with weight 1) lit by tint0 for 8 frames, then by light1·tint1 for one frame. Returns both
+// gradients of that last frame; checks on every frame that the stored one is lum() of
+// g ← β_g g + (1 − β_g)(x − I_u,prev) with x the summed input and I_u,prev the fed-back history.
+struct GradientEvent {
+    FrameInputs frame;
+    Plane<vec3> rgb;      // the SPEC's RGB EMA
+    Plane<float> stored;  // the denoiser's plane
+};
+
+GradientEvent RunGradientEvent(const vec3& tint0, const vec3& tint1, float light1) {
+    constexpr int kW = 24, kH = 24, kEvent = 8;
+    const DenoiserParams params;
+    const float beta = params.twoHistory.gradientBeta;
+    TwoHistoryReferenceDenoiser th(TwoHistoryVariant::TwoHistory, params);
+    std::mt19937 rng(77);
+    std::normal_distribution<float> noise(0.0f, 0.02f);
+    GradientEvent ev;
+    ev.rgb.Resize(kW, kH, vec3(0.0f));
+    std::array<Plane<vec3>, 2> iuPrev;
+    Plane<vec3> out;
+    for (int frame = 0; frame <= kEvent; ++frame) {
+        const vec3 light = frame == kEvent ? light1 * tint1 : tint0;
+        MakeStaticPlane(ev.frame, kW, kH, uint32_t(frame));
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const vec3 n3(noise(rng), noise(rng), noise(rng));
+                ev.frame.direct(x, y) = light * Truth(x, y) + n3;
+                ev.frame.indirect(x, y) = 0.5f * light * Truth(x, y) + 0.5f * n3;
+            }
+        th.Denoise(ev.frame, out);
+        const TwoHistoryState& st = th.CurrentState();
+        float maxErr = 0.0f;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                if (frame == 0) continue;  // no history yet: g = 0
+                vec3& g = ev.rgb(x, y);
+                const vec3 xSum = ev.frame.direct(x, y) + ev.frame.indirect(x, y);
+                g = AccumulateGradient(g, xSum, iuPrev[0](x, y) + iuPrev[1](x, y), beta, true);
+                maxErr = std::max(maxErr, std::abs(st.gradient(x, y) - Luminance(g)) /
+                                              (1.0f + std::abs(Luminance(g))));
+            }
+        INFO("frame " << frame << ": max |stored g - lum(RGB g)| / (1 + |lum g|) = " << maxErr);
+        CHECK(maxErr < 1e-5f);
+        iuPrev = st.iu;  // what the next frame gathers as I_u,prev
+        ev.stored = st.gradient;
+    }
+    return ev;
+}
+
+struct QPair {
+    Plane<float> stored;      // the stage's q, from the stored luminance gradient
+    Plane<float> rgb;         // the SPEC's clamp(S·lum(|g|)/std, 0, 1) from the RGB gradient
+    Plane<vec3> rgbFiltered;  // the RGB gradient after the stage's edge-aware filter
+};
+
+// Both q of an event, at std(lum I_u) = 1 (Σ_c Var_c; keeps q away from the clamp).
+QPair BothQ(const GradientEvent& ev) {
+    const SvgfParams svgf;
+    const float qScale = DenoiserParams{}.twoHistory.qScale;
+    const int w = ev.frame.width(), h = ev.frame.height();
+    std::array<Plane<vec4>, 2> illumU;
+    illumU[0].Resize(w, h, vec4(0.0f, 0.0f, 0.0f, 0.75f));
+    illumU[1].Resize(w, h, vec4(0.0f, 0.0f, 0.0f, 0.25f));
+    QPair r;
+    TwoHistoryGradientRef(ev.stored, illumU, 2, ev.frame, svgf, qScale, r.stored);
+    r.rgb.Resize(w, h);
+    r.rgbFiltered.Resize(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const vec3 g = FilterTwoHistoryGradient(ev.rgb, ev.frame, svgf, x, y);
+            r.rgbFiltered(x, y) = g;
+            r.rgb(x, y) = std::clamp(qScale * Luminance(glm::abs(g)) / 1.0f, 0.0f, 1.0f);
+        }
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("two-history luminance gradient: q equals the SPEC's lum(|g|) when R, G, B share a sign",
+          "[two_history]") {
+    SECTION("a light getting brighter: every component rises, same q") {
+        const vec3 tint(0.9f, 0.7f, 0.5f);
+        const QPair q = BothQ(RunGradientEvent(tint, tint, 1.5f));
+        size_t sameSign = 0;
+        float maxRel = 0.0f, meanQ = 0.0f;
+        for (size_t i = 0; i < q.rgb.size(); ++i) {
+            const vec3 g = q.rgbFiltered[i];
+            CHECK(q.stored[i] <= q.rgb[i] + 1e-6f);  // |lum g| ≤ lum |g| always
+            meanQ += q.stored[i] / float(q.rgb.size());
+            if (!((g.x > 0 && g.y > 0 && g.z > 0) || (g.x < 0 && g.y < 0 && g.z < 0))) continue;
+            ++sameSign;
+            maxRel = std::max(maxRel, std::abs(q.stored[i] - q.rgb[i]) / q.rgb[i]);
+        }
+        INFO("same-sign pixels " << sameSign << "/" << q.rgb.size()
+                                 << ", max relative q difference " << maxRel << ", mean q "
+                                 << meanQ);
+        CHECK(sameSign == q.rgb.size());  // the step dominates the noise everywhere
+        CHECK(maxRel < 1e-4f);
+        CHECK(meanQ > 0.1f);  // unclamped, away from 0 and 1
+        CHECK(meanQ < 0.9f);
+    }
+    SECTION("a hue change at nearly constant luminance: |lum g| is far below lum |g|") {
+        // R and B rise, G falls; lum(tint) 0.600 → 0.613.
+        const QPair q = BothQ(RunGradientEvent(vec3(0.6f), vec3(1.2f, 0.4f, 1.0f), 1.0f));
+        double sumStored = 0.0, sumRgb = 0.0;
+        size_t mixed = 0;
+        for (size_t i = 0; i < q.rgb.size(); ++i) {
+            const vec3 g = q.rgbFiltered[i];
+            mixed += g.x > 0 && g.y < 0 && g.z > 0;
+            CHECK(q.stored[i] <= q.rgb[i] + 1e-6f);
+            sumStored += q.stored[i];
+            sumRgb += q.rgb[i];
+        }
+        std::printf("hue change at constant luminance: mean q %.4f (|lum g|, fovrt) vs %.4f "
+                    "(lum |g|, SPEC)\n",
+                    sumStored / double(q.rgb.size()), sumRgb / double(q.rgb.size()));
+        CHECK(mixed == q.rgb.size());
+        CHECK(sumRgb > 0.1 * double(q.rgb.size()));  // the SPEC's q sees the change
+        CHECK(sumStored < 0.2 * sumRgb);             // fovrt's q barely does
+    }
 }
 
 TEST_CASE("two-history resets on camera cuts and rejects bad parameters", "[two_history]") {
@@ -195,37 +327,54 @@ TEST_CASE("two-history resets on camera cuts and rejects bad parameters", "[two_
     CHECK_THROWS_AS(CreateTwoHistoryCpuDenoiser(TwoHistoryVariant::TwoHistory, params), Error);
 }
 
-TEST_CASE("two-history memory plan stays within the thesis's 88 B/pixel", "[two_history]") {
+TEST_CASE("two-history memory plan: the thesis's 88 B/pixel (44 fp16) with separate channels",
+          "[two_history]") {
     // Extra history bytes per pixel beyond SVGF's (W_u reuses SVGF's history length).
-    auto perPixel = [](bool combined, Precision prec) {
+    auto perPixel = [](const std::string& name, bool combined, Precision prec) {
         DenoiserParams params;
         params.svgf.filterCombined = combined;
         params.precision = prec;
         size_t bytes = 0;
-        for (const BufferPlan& b : PlanTwoHistoryExtraMemory("two-history", 100, 10, params))
+        for (const BufferPlan& b : PlanTwoHistoryExtraMemory(name, 100, 10, params))
             if (b.history) bytes += b.bytes;
         return double(bytes) / 1000.0;
     };
     std::printf(
-        "two-history extra history bytes/pixel: combined illumination fp32 %.0f, fp16 %.0f; "
-        "direct+indirect separately fp32 %.0f, fp16 %.0f\n",
-        perPixel(true, Precision::Fp32), perPixel(true, Precision::Fp16),
-        perPixel(false, Precision::Fp32), perPixel(false, Precision::Fp16));
-    // The thesis's 88 B assume one (combined) illumination, as Falcor's SVGF.
-    CHECK(perPixel(true, Precision::Fp32) <= 88.0);
-    CHECK(perPixel(true, Precision::Fp16) <= 44.0);
-    // Separate channels add one weighted colour history per extra channel (2 × float3).
-    CHECK(perPixel(false, Precision::Fp32) == perPixel(true, Precision::Fp32) + 24.0);
-    // The full plan is SVGF's plus these.
-    DenoiserParams params;
-    const auto full = PlanTwoHistoryMemory("two-history", 64, 64, params);
-    bool hasSvgfColor = false, hasWeighted = false;
-    for (const BufferPlan& b : full) {
-        hasSvgfColor |= b.name == "direct.color.A";
-        hasWeighted |= b.name == "direct.wcolor.A";
+        "two-history extra history bytes/pixel: direct+indirect separately fp32 %.0f, fp16 %.0f; "
+        "combined illumination fp32 %.0f, fp16 %.0f\n",
+        perPixel("two-history", false, Precision::Fp32),
+        perPixel("two-history", false, Precision::Fp16),
+        perPixel("two-history", true, Precision::Fp32),
+        perPixel("two-history", true, Precision::Fp16));
+    // Per A/B side: 2 channels × float3 I_w + W_w + g (one float) + float3 S_k = 44 B.
+    CHECK(perPixel("two-history", false, Precision::Fp32) == 88.0);
+    CHECK(perPixel("two-history", false, Precision::Fp16) == 44.0);
+    // One combined illumination: one weighted colour history less (2 × float3).
+    CHECK(perPixel("two-history", true, Precision::Fp32) == 64.0);
+    CHECK(perPixel("two-history", true, Precision::Fp16) == 32.0);
+    // two-history-asvgf takes q from A-SVGF: no gradient plane.
+    CHECK(perPixel("two-history-asvgf", false, Precision::Fp32) == 80.0);
+    CHECK(perPixel("asvgf", false, Precision::Fp32) == 0.0);
+
+    // The full plans, as `fovrt memory` compares them: two-history's history minus svgf's.
+    for (Precision prec : {Precision::Fp32, Precision::Fp16}) {
+        DenoiserParams params;
+        params.precision = prec;
+        const auto two = PlanDenoiserMemory("two-history", 64, 64, params);
+        const auto svgf = PlanDenoiserMemory("svgf", 64, 64, params);
+        const double extra = (double(HistoryBytes(two)) - double(HistoryBytes(svgf))) / 4096.0;
+        CHECK(extra == (prec == Precision::Fp32 ? 88.0 : 44.0));
+        bool hasSvgfColor = false, hasWeighted = false;
+        size_t gradientBytes = 0;
+        for (const BufferPlan& b : two) {
+            hasSvgfColor |= b.name == "direct.color.A";
+            hasWeighted |= b.name == "direct.wcolor.A";
+            if (b.name == "gradient.A") gradientBytes = b.bytes;
+        }
+        CHECK(hasSvgfColor);
+        CHECK(hasWeighted);
+        CHECK(gradientBytes == 4096 * HistoryScalarBytes(prec));  // one scalar per pixel
     }
-    CHECK(hasSvgfColor);
-    CHECK(hasWeighted);
 }
 
 TEST_CASE("two-history: disocclusion restarts every history, NaN never reaches them",
@@ -256,9 +405,9 @@ TEST_CASE("two-history: disocclusion restarts every history, NaN never reaches t
     CHECK(st.wu(2, 5) == 1.0f);
     CHECK(st.ww(2, 5) == 5.0f);
     CHECK(st.powerSums(2, 5) == vec3(0.2f, 1.0f, 5.0f));
-    CHECK(st.gradient(2, 5) == vec3(0.0f));
+    CHECK(st.gradient(2, 5) == 0.0f);
     CHECK(st.wu(12, 5) > 3.0f);  // kept its history
-    CHECK(st.gradient(12, 5).x > 0.0f);  // and saw the step up
+    CHECK(st.gradient(12, 5) > 0.0f);  // and saw the step up
     CHECK(th.Stats().nonFiniteSamples == 1);
     for (size_t i = 0; i < st.iu[0].size(); ++i) {
         CHECK(IsFinite(st.iu[0][i]));

@@ -1,10 +1,10 @@
 // two-history, asvgf and two-history-asvgf on Vulkan vs the C++ reference, pass by pass, on random
 // FrameInputs (64×64, sub-pixel motion, random objects, per-frame random sample counts, random
-// gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, g,
-// moments), the colour histories fed back by à-trous iteration 1, two_history_gradient (q),
-// asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α, λ), and the final output (blend + remaining
-// iterations + modulation); fp32 and fp16 histories; zero validation errors. Also: with constant
-// n the Vulkan two-history equals the Vulkan SVGF.
+// gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
+// luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
+// two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α, λ), and the final output
+// (blend + remaining iterations + modulation); fp32 and fp16 histories; zero validation errors.
+// Also: with constant n the Vulkan two-history equals the Vulkan SVGF.
 // Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) for ≥ 99.5 % of values (lavapipe's exp/pow differ from
 // libm in the last bits, so a few taps near a threshold may flip); fp16 histories 1e-2.
 #include <algorithm>
@@ -135,9 +135,10 @@ void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames
             check("W_w", Compare(Floats(vk.ReadBuffer("wweight." + side), half), st.ww, histTol));
             check("power sums",
                   Compare(Floats(vk.ReadBuffer("powerSums." + side), half), st.powerSums, histTol));
+        }
+        if (variant == TwoHistoryVariant::TwoHistory)  // one float per pixel: lum of g
             check("gradient",
                   Compare(Floats(vk.ReadBuffer("gradient." + side), half), st.gradient, histTol));
-        }
         if (variant == TwoHistoryVariant::TwoHistory)
             check("q", Compare(test::AsFloats(vk.ReadBuffer("q")), ref.Q(), tol));
         if (asvgf) {

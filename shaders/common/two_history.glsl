@@ -23,12 +23,12 @@ float two_history_optimal_blend(float wu, float ww, vec3 s) {
     return clamp((a - b) / den, 0.0, 1.0);
 }
 
-// q = clamp(S · lum(|g|) / std(lum I_u), 0, 1).
-float two_history_gradient_blend(vec3 g, float variance_lum_iu, float scale) {
-    float lum_abs_g = luminance(abs(g));
+// q = clamp(S · |g| / std(lum I_u), 0, 1), g the filtered signed luminance gradient.
+float two_history_gradient_blend(float g, float variance_lum_iu, float scale) {
+    float abs_g = abs(g);
     float sd = sqrt(max(variance_lum_iu, 0.0));
-    if (lum_abs_g <= 0.0) return 0.0;
-    return clamp(scale * lum_abs_g / max(sd, 1e-8), 0.0, 1.0);
+    if (abs_g <= 0.0) return 0.0;
+    return clamp(scale * abs_g / max(sd, 1e-8), 0.0, 1.0);
 }
 
 #endif

@@ -8,7 +8,8 @@
 
 // two_history_reproject: one dispatch per channel (lavapipe allows 32 storage buffers per
 // stage). The per-pixel shared state (W_w, S_k, g) is written by the SHARED dispatch (channel 0),
-// which also reads the other channel to form g on the summed illumination.
+// which also reads the other channel to form g on the summed illumination (g: one float, the
+// signed luminance of the gradient; two-history only, GRADIENT flag).
 #define TH_REPROJECT_B_COLOR 0         // float[3N] this channel's illumination
 #define TH_REPROJECT_B_COLOR_OTHER 1   // float[3N] the other channel (added when combined)
 #define TH_REPROJECT_B_DEPTH 2
@@ -41,13 +42,14 @@
 #define TH_REPROJECT_B_STATS 29
 #define TH_REPROJECT_BINDINGS 30
 
-#define TH_REPROJECT_FLAG_TWO_HISTORY 1u   // accumulate I_w, W_w, S_k, g
+#define TH_REPROJECT_FLAG_TWO_HISTORY 1u   // accumulate I_w, W_w, S_k
 #define TH_REPROJECT_FLAG_COMBINED 2u      // this channel = direct + indirect
 #define TH_REPROJECT_FLAG_ALPHA_MAP 4u     // α from the per-pixel map
 #define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
 #define TH_REPROJECT_FLAG_HAS_PREV 16u     // a previous frame exists
 #define TH_REPROJECT_FLAG_SHARED 32u       // write W_w, S_k, g (once per pixel)
 #define TH_REPROJECT_FLAG_OTHER 64u        // a second channel exists (g sums both)
+#define TH_REPROJECT_FLAG_GRADIENT 128u    // accumulate g (two-history; not two-history-asvgf)
 
 // two_history_gradient: edge-aware filter of g, then q.
 #define TH_GRADIENT_B_GRADIENT 0

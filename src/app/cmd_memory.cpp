@@ -1,5 +1,6 @@
 // `fovrt memory`: every buffer a denoiser allocates at W×H (per eye, then × eyes), with bytes and
-// bytes/pixel, the totals, and what two-history adds over svgf (the thesis: 88 B/pixel in fp32).
+// bytes/pixel, the totals, and what two-history adds over svgf (the thesis: 88 B/pixel in fp32;
+// fovrt's default, direct and indirect separate, matches it).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -52,10 +53,15 @@ void PrintMemory(const MemoryOptions& o) {
         std::printf("two-history over svgf: +%.1f B/pixel of history (+%.1f B/pixel with scratch), "
                     "%.1f MiB for %d eye(s)\n",
                     extraHist, extraAll, extraAll * pixels * o.eyes / 1048576.0, o.eyes);
-        std::printf("  (thesis: +88 B/pixel in fp32 = 2x float3 weighted illum, 2x float2 total weights,\n"
-                    "   2x float3 gradient, 2x float3 power sums, for one combined illumination;\n"
-                    "   filtering direct and indirect separately doubles the weighted colour history:\n"
-                    "   compare with --filter-combined)\n");
+        std::printf(
+            "  (thesis: +88 B/pixel in fp32, +44 in fp16 = per A/B side float3 weighted\n"
+            "   illumination, float2 total weights, float3 gradient, float3 power sums, for one\n"
+            "   illumination. fovrt per side: a float3 weighted illumination per filtered\n"
+            "   channel, one total weight W_w (W_u is svgf's history length, already counted in\n"
+            "   svgf), the gradient as one float (its signed luminance; q uses |lum g|, equal to\n"
+            "   the thesis's lum|g| where R, G, B change with one sign, smaller otherwise), float3\n"
+            "   power sums: 24+4+4+12 = 44 B with direct and indirect separate (= thesis),\n"
+            "   12+4+4+12 = 32 B with --filter-combined; fp16 halves both)\n");
     } catch (const Error& e) {
         std::printf("two-history over svgf: not available (%s)\n", e.what());
     }
