@@ -197,8 +197,11 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
             reproject += b(ch + ".wcolor") + b("wweight") + b("powerSums");  // W_w and S gathered by every channel
             reproject += b(ch + ".willum0") + (feedback == 0 ? b(ch + ".wcolor") : 0.0);
             if (shared) {
-                reproject += (nch == 2 ? b(channels[1] + ".color") : 0.0) + b("gradient");
-                reproject += b("wweight") + b("powerSums") + b("gradient");
+                reproject += b("wweight") + b("powerSums");
+                // The EMA gradient (two-history only; two-history-asvgf takes A-SVGF's λ̂): the
+                // other channel's colour history for g, the previous g gathered, this frame's g.
+                if (variant == TwoHistoryVariant::TwoHistory)
+                    reproject += (nch == 2 ? b(channels[1] + ".color") : 0.0) + 2 * b("gradient");
             }
         }
     }
