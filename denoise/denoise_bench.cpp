@@ -89,8 +89,9 @@ std::vector<PassBench> SvgfPassBytes(const DenoiserParams& params) {
     double moments = 16 + geometry + 8 + hs * (2 + 1) + 16;
     out.push_back({"filter_moments", 0.0, channels * moments});
     for (int i = 0; i < iterations; ++i) {
-        double atrous = 16 + geometry + 8 + 16 + (atrousFeedback && i + 1 == p.feedbackIteration ? 3 * hs : 0);
-        out.push_back({fmt::format("atrous{}", i), 0.0, channels * atrous});
+        // Both channels in one pass: the geometry and depth gradient are read once per pixel.
+        double perChannel = 16 + 16 + (atrousFeedback && i + 1 == p.feedbackIteration ? 3 * hs : 0);
+        out.push_back({fmt::format("atrous{}", i), 0.0, geometry + 8 + channels * perChannel});
     }
     out.push_back({"modulate", 0.0, 16 * channels + 12 + 12 + 12});
     out.push_back({"download", 0.0, 2 * 12});

@@ -63,10 +63,12 @@ inline std::array<VkFormat, SVGF_MOMENTS_BINDINGS> SvgfMomentsTexelFormats(Preci
     return f;
 }
 
-inline std::array<VkFormat, SVGF_ATROUS_BINDINGS> SvgfAtrousTexelFormats() {
-    std::array<VkFormat, SVGF_ATROUS_BINDINGS> f{};
+// Formats of "svgf_atrous_pair"; the one-channel "svgf_atrous" uses the first SVGF_ATROUS_BINDINGS.
+inline std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> SvgfAtrousTexelFormats() {
+    std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);
     f[SVGF_ATROUS_B_ILLUM_IN] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[SVGF_ATROUS_B_ILLUM_IN2] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[SVGF_ATROUS_B_GUIDE] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[SVGF_ATROUS_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
     return f;

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
+#include "denoise/svgf_atrous_vk.h"
 #include "denoise/svgf_layout.h"
 #include "denoise/svgf_texel_formats.h"
 
@@ -39,8 +40,8 @@ void SvgfVulkanDenoiser::CreatePipelines() {
                                 sizeof(SvgfClassifyPush), sets, SvgfClassifyTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + suffix, SVGF_MOMENTS_BINDINGS,
                                sizeof(SvgfFilterMomentsPush), sets, SvgfMomentsTexelFormats(params_.precision));
-    atrous_ = ComputePipeline(*context_, "svgf_atrous" + suffix, SVGF_ATROUS_BINDINGS, sizeof(SvgfAtrousPush),
-                              sets, SvgfAtrousTexelFormats());
+    // Direct and indirect in one dispatch (svgf_atrous_pair); combined: one channel.
+    atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, sets);
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + suffix, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), 2);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
@@ -71,7 +72,6 @@ void SvgfVulkanDenoiser::BuildSets() {
     reprojectSets_.assign(channels_.size(), {});
     momentsSets_.assign(channels_.size(), {});
     classifySets_.assign(channels_.size(), {});
-    atrousSets_.assign(channels_.size(), {});
     for (int parity = 0; parity < 2; ++parity) {
         const std::string cur = Side(parity);
         std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
@@ -127,19 +127,18 @@ void SvgfVulkanDenoiser::BuildSets() {
             k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
             k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
             classifySets_[c][size_t(parity)] = classify_.MakeSet(k);
-
-            for (int pp = 0; pp < 2; ++pp) {
-                // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
-                std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
-                a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(ch + (pp ? ".illum0" : ".illum1"));
-                a[SVGF_ATROUS_B_GUIDE] = &Buf("geometry.guide");
-                a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-                a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(ch + (pp ? ".illum1" : ".illum0"));
-                a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(ch + ".color." + cur);
-                atrousSets_[c][size_t(parity)][size_t(pp)] = atrous_.MakeSet(a);
-            }
         }
     }
+    for (int parity = 0; parity < 2; ++parity)
+        for (int pp = 0; pp < 2; ++pp) {
+            // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
+            std::vector<AtrousChannel> a;
+            for (const std::string& ch : channels_)
+                a.push_back({&Buf(ch + (pp ? ".illum0" : ".illum1")), &Buf(ch + (pp ? ".illum1" : ".illum0")),
+                             &Buf(ch + ".color." + Side(parity))});
+            atrousSets_[size_t(parity)][size_t(pp)] =
+                MakeAtrousSet(atrous_, Buf("geometry.guide"), Buf("input.depthGradient"), a);
+        }
     const int iterations = params_.svgf.atrousIterations;
     const std::string last = iterations == 0 ? ".illum1" : ((iterations - 1) & 1) ? ".illum1" : ".illum0";
     std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
@@ -224,8 +223,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
         rec.BeginPass(fmt::format("atrous{}", i));
         SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance,
                           atrousFeedback && i + 1 == p.feedbackIteration ? 1u : 0u};
-        for (size_t c = 0; c < channels_.size(); ++c)
-            rec.Dispatch(atrous_, atrousSets_[c][size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
+        rec.Dispatch(atrous_, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
         rec.Barrier();
         rec.EndPass();
     }

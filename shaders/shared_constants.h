@@ -93,7 +93,12 @@
 #define SVGF_ATROUS_B_DEPTH_GRAD 2         // float[2N]
 #define SVGF_ATROUS_B_ILLUM_OUT 3          // vec4[N]
 #define SVGF_ATROUS_B_HIST_COLOR 4         // hfloat[3N] colour history (written on the feedback iteration)
-#define SVGF_ATROUS_BINDINGS 5
+#define SVGF_ATROUS_BINDINGS 5             // one channel ("svgf_atrous")
+// second channel of "svgf_atrous_pair" (FOVRT_CHANNELS 2; guide and depth gradient shared)
+#define SVGF_ATROUS_B_ILLUM_IN2 5          // vec4[N]
+#define SVGF_ATROUS_B_ILLUM_OUT2 6         // vec4[N]
+#define SVGF_ATROUS_B_HIST_COLOR2 7        // hfloat[3N]
+#define SVGF_ATROUS_PAIR_BINDINGS 8
 
 // svgf_modulate
 #define SVGF_MODULATE_B_ILLUM0 0           // vec4[N]   filtered direct (or combined)

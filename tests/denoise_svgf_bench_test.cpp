@@ -11,10 +11,13 @@ TEST_CASE("bytes per pixel of the SVGF passes", "[svgf]") {
     auto passes = SvgfPassBytes(p);
     REQUIRE(passes.size() == 1 + 1 + 1 + 5 + 1 + 1);
     CHECK(passes[1].pass == "reproject");
-    // One à-trous iteration, two channels: illum in/out 32 B + geometry 20 B + gradient 8 B;
-    // iteration 0 also writes the fp32 colour history (12 B).
-    CHECK(passes[3].bytesPerPixel == Approx(2 * (32 + 20 + 8 + 12)));
-    CHECK(passes[4].bytesPerPixel == Approx(2 * (32 + 20 + 8)));
+    // One à-trous iteration, both channels in one pass: per channel illum in/out 32 B, once
+    // geometry 20 B + gradient 8 B; iteration 0 also writes each fp32 colour history (12 B).
+    CHECK(passes[3].bytesPerPixel == Approx(2 * (32 + 12) + 20 + 8));
+    CHECK(passes[4].bytesPerPixel == Approx(2 * 32 + 20 + 8));
+    p.svgf.filterCombined = true;
+    CHECK(SvgfPassBytes(p)[4].bytesPerPixel == Approx(32 + 20 + 8));
+    p.svgf.filterCombined = false;
     p.precision = Precision::Fp16;
     CHECK(SvgfPassBytes(p)[1].bytesPerPixel < passes[1].bytesPerPixel);
 }
