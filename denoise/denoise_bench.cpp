@@ -81,11 +81,14 @@ std::vector<PassBench> SvgfPassBytes(const DenoiserParams& params) {
     std::vector<PassBench> out;
     double uploads = 12 * 4 + 8 + 8 + geometry + (weighted ? 2 : 0);
     out.push_back({"upload", 0.0, 2 * uploads});  // staging read + device write
-    double reproject = (p.filterCombined ? 24 : 12) + geometry * 2 + 8 + 8 + (weighted ? 2 : 0) +
-                       hs * (3 + 2 + 1 + (weighted ? 1 : 0)) +                       // history read
-                       hs * (2 + 1 + (weighted ? 1 : 0) + (atrousFeedback ? 0 : 3)) +  // history write
-                       16;
-    out.push_back({"reproject", 0.0, channels * reproject});
+    // Both channels in one pass: geometry of both frames, depth gradient, motion and sample counts
+    // are read once per pixel; colour in, histories and illumination per channel.
+    double reprojectShared = geometry * 2 + 8 + 8 + (weighted ? 2 : 0);
+    double reprojectChannel = (p.filterCombined ? 24 : 12) +
+                              hs * (3 + 2 + 1 + (weighted ? 1 : 0)) +                       // history read
+                              hs * (2 + 1 + (weighted ? 1 : 0) + (atrousFeedback ? 0 : 3)) +  // history write
+                              16;
+    out.push_back({"reproject", 0.0, reprojectShared + channels * reprojectChannel});
     double moments = 16 + geometry + 8 + hs * (2 + 1) + 16;
     out.push_back({"filter_moments", 0.0, channels * moments});
     for (int i = 0; i < iterations; ++i) {

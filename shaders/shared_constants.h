@@ -52,7 +52,18 @@
 #define SVGF_REPROJECT_B_CUR_WEIGHT 18     // hfloat[N]  total weight (written; weighted mode)
 #define SVGF_REPROJECT_B_ILLUM_OUT 19      // vec4[N]    accumulated illumination + variance
 #define SVGF_REPROJECT_B_STATS 20          // uint[2]    non-finite, negative counters
-#define SVGF_REPROJECT_BINDINGS 21
+#define SVGF_REPROJECT_BINDINGS 21         // one channel ("svgf_reproject")
+// second channel of "svgf_reproject_pair" (FOVRT_CHANNELS 2: colour in = COLOR_IN2; taps shared)
+#define SVGF_REPROJECT_B_PREV_COLOR2 21
+#define SVGF_REPROJECT_B_PREV_MOMENTS2 22
+#define SVGF_REPROJECT_B_PREV_LENGTH2 23
+#define SVGF_REPROJECT_B_PREV_WEIGHT2 24
+#define SVGF_REPROJECT_B_CUR_COLOR2 25
+#define SVGF_REPROJECT_B_CUR_MOMENTS2 26
+#define SVGF_REPROJECT_B_CUR_LENGTH2 27
+#define SVGF_REPROJECT_B_CUR_WEIGHT2 28
+#define SVGF_REPROJECT_B_ILLUM_OUT2 29
+#define SVGF_REPROJECT_PAIR_BINDINGS 30
 
 // svgf_pack_guide: this frame's edge-stopping guide (normal.xyz, depth), depth = −1 on background
 // pixels (object id kNoObject), so the spatial filters fetch one texel per tap instead of three.

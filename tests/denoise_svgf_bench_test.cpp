@@ -11,6 +11,10 @@ TEST_CASE("bytes per pixel of the SVGF passes", "[svgf]") {
     auto passes = SvgfPassBytes(p);
     REQUIRE(passes.size() == 1 + 1 + 1 + 5 + 1 + 1);
     CHECK(passes[1].pass == "reproject");
+    // Reprojection, both channels in one pass: geometry of both frames 2·20 B, gradient and motion
+    // 16 B once; per channel colour 12 B, fp32 history read 24 B and write 12 B (no colour: the
+    // à-trous feedback writes it), illumination 16 B.
+    CHECK(passes[1].bytesPerPixel == Approx(56 + 2 * (12 + 24 + 12 + 16)));
     // One à-trous iteration, both channels in one pass: per channel illum in/out 32 B, once
     // geometry 20 B + gradient 8 B; iteration 0 also writes each fp32 colour history (12 B).
     CHECK(passes[3].bytesPerPixel == Approx(2 * (32 + 12) + 20 + 8));
