@@ -64,12 +64,18 @@ double FilterMomentsBytes(const PlanBytes& b, const std::string& ch, const std::
     return bytes;
 }
 
-// One svgf_atrous dispatch of one channel: illumination in/out, guide and depth gradient (shared
-// by the channels of one dispatch), the colour history when this iteration feeds back.
-double AtrousBytes(const PlanBytes& b, const std::string& ch, const std::string& illum, const std::string& history,
-                   bool feedback) {
-    return 2 * b(ch + "." + illum + "0") + (b("geometry.guide") + b("input.depthGradient")) / kAtrousChannelsPerDispatch +
-           (feedback ? b(ch + "." + history) : 0.0);
+// One history's share of an à-trous iteration: illumination in/out, the colour history when this
+// iteration feeds back. The guide and depth gradient: AtrousSharedBytes, once per dispatch.
+double AtrousChannelBytes(const PlanBytes& b, const std::string& ch, const std::string& illum,
+                          const std::string& history, bool feedback) {
+    return 2 * b(ch + "." + illum + "0") + (feedback ? b(ch + "." + history) : 0.0);
+}
+
+// Guide and depth gradient of the dispatches that filter `histories` illumination planes, up to
+// kAtrousChannelsPerDispatch per dispatch (svgf_atrous_pair: they are fetched once for the pair).
+double AtrousSharedBytes(const PlanBytes& b, int histories) {
+    const int dispatches = (histories + kAtrousChannelsPerDispatch - 1) / kAtrousChannelsPerDispatch;
+    return dispatches * (b("geometry.guide") + b("input.depthGradient"));
 }
 
 // svgf_modulate: every channel's filtered illumination, albedo, emission → output.
@@ -106,15 +112,13 @@ std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams
     std::vector<PassBytes> out;
     out.push_back({"upload", 2 * (UploadBytes(b) + (weighted ? b("input.sampleCount") : 0.0))});
     out.push_back({"pack_guide", PackGuideBytes(b)});
-    double reproject = 0.0;
-    for (size_t c = 0; c < channels.size(); ++c) {
-        const std::string& ch = channels[c];
-        // Colour in (both when combined), geometry of both frames, depth gradient, previous
-        // pixel, sample counts; previous colour/moments/length/weight; this frame's moments,
-        // length, weight, colour (no feedback), illumination.
-        reproject += b(c == 0 ? "input.direct" : "input.indirect") + (p.filterCombined ? b("input.indirect") : 0.0) +
-                     2 * GeometryBytes(b) + b("input.depthGradient") + b("input.prevPixel") +
-                     (weighted ? b("input.sampleCount") : 0.0);
+    // One dispatch for both channels (svgf_reproject_pair; combined: one channel, colour = direct +
+    // indirect): geometry of both frames, depth gradient, previous pixel and sample counts once;
+    // per channel colour in, previous colour/moments/length/weight, this frame's moments, length,
+    // weight, colour (no feedback), illumination.
+    double reproject = b("input.direct") + b("input.indirect") + 2 * GeometryBytes(b) + b("input.depthGradient") +
+                       b("input.prevPixel") + (weighted ? b("input.sampleCount") : 0.0);
+    for (const std::string& ch : channels) {
         double history = b(ch + ".color") + b(ch + ".moments") + b(ch + ".length") + (weighted ? b(ch + ".weight") : 0);
         reproject += history + history - (atrousFeedback ? b(ch + ".color") : 0.0) + b(ch + ".illum0");
     }
@@ -123,9 +127,9 @@ std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams
     for (const std::string& ch : channels) moments += FilterMomentsBytes(b, ch, "illum", true, o.spatialFraction);
     out.push_back({"filter_moments", moments});
     for (int i = 0; i < iterations; ++i) {
-        double atrous = 0.0;
+        double atrous = AtrousSharedBytes(b, int(channels.size()));
         for (const std::string& ch : channels)
-            atrous += AtrousBytes(b, ch, "illum", "color", atrousFeedback && i + 1 == p.feedbackIteration);
+            atrous += AtrousChannelBytes(b, ch, "illum", "color", atrousFeedback && i + 1 == p.feedbackIteration);
         out.push_back({fmt::format("atrous{}", i), atrous});
     }
     out.push_back({"modulate", ModulateBytes(b, channels)});
@@ -230,10 +234,10 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
                      b("powerSums") + b(variant == TwoHistoryVariant::TwoHistory ? "q" : "asvgf.lambda");
     if (two && iterations == 0) out.push_back({"two_history_blend", blend});
     for (int i = 0; i < iterations; ++i) {
-        double atrous = 0.0;
+        double atrous = AtrousSharedBytes(b, int(channels.size()) * (two && i == 0 ? 2 : 1));
         for (const std::string& ch : channels) {
-            atrous += AtrousBytes(b, ch, "illum", "color", i + 1 == feedback);
-            if (two && i == 0) atrous += AtrousBytes(b, ch, "willum", "wcolor", i + 1 == feedback);
+            atrous += AtrousChannelBytes(b, ch, "illum", "color", i + 1 == feedback);
+            if (two && i == 0) atrous += AtrousChannelBytes(b, ch, "willum", "wcolor", i + 1 == feedback);
         }
         out.push_back({fmt::format("atrous{}", i), atrous});
         if (two && i == 0) out.push_back({"two_history_blend", blend});

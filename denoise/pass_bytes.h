@@ -30,9 +30,10 @@ struct PassBytesOptions {
     double gradientSamplesPerStratum = 1.0;
 };
 
-// One dispatch of svgf_atrous filters this many channels: the guide and the depth gradient are
-// read once per dispatch. 1 while direct and indirect are separate dispatches; 2 when fused.
-inline constexpr int kAtrousChannelsPerDispatch = 1;
+// One dispatch of svgf_atrous_pair filters up to this many illumination planes (direct + indirect,
+// or two-history's unweighted + weighted when combined): the guide and depth gradient are read
+// once per dispatch.
+inline constexpr int kAtrousChannelsPerDispatch = 2;
 
 // svgf and svgf-weighted (params.svgf.weightBySampleCount), Vulkan pass names in recording order:
 // upload, pack_guide, reproject, filter_moments, atrous<i>, modulate, download. The C++ reference

@@ -12,9 +12,10 @@
 
 namespace fovrt {
 
-inline std::array<VkFormat, SVGF_REPROJECT_BINDINGS> SvgfReprojectTexelFormats(Precision precision) {
+// Formats of "svgf_reproject_pair"; the one-channel "svgf_reproject" uses the first SVGF_REPROJECT_BINDINGS.
+inline std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> SvgfReprojectTexelFormats(Precision precision) {
     const bool half = precision == Precision::Fp16;
-    std::array<VkFormat, SVGF_REPROJECT_BINDINGS> f{};
+    std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);
     f[SVGF_REPROJECT_B_COLOR_IN] = VK_FORMAT_R32G32B32_SFLOAT;
     f[SVGF_REPROJECT_B_COLOR_IN2] = VK_FORMAT_R32G32B32_SFLOAT;
@@ -31,6 +32,10 @@ inline std::array<VkFormat, SVGF_REPROJECT_BINDINGS> SvgfReprojectTexelFormats(P
     f[SVGF_REPROJECT_B_PREV_MOMENTS] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
     f[SVGF_REPROJECT_B_PREV_LENGTH] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
     f[SVGF_REPROJECT_B_PREV_WEIGHT] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    f[SVGF_REPROJECT_B_PREV_COLOR2] = f[SVGF_REPROJECT_B_PREV_COLOR];
+    f[SVGF_REPROJECT_B_PREV_MOMENTS2] = f[SVGF_REPROJECT_B_PREV_MOMENTS];
+    f[SVGF_REPROJECT_B_PREV_LENGTH2] = f[SVGF_REPROJECT_B_PREV_LENGTH];
+    f[SVGF_REPROJECT_B_PREV_WEIGHT2] = f[SVGF_REPROJECT_B_PREV_WEIGHT];
     return f;
 }
 
@@ -63,10 +68,12 @@ inline std::array<VkFormat, SVGF_MOMENTS_BINDINGS> SvgfMomentsTexelFormats(Preci
     return f;
 }
 
-inline std::array<VkFormat, SVGF_ATROUS_BINDINGS> SvgfAtrousTexelFormats() {
-    std::array<VkFormat, SVGF_ATROUS_BINDINGS> f{};
+// Formats of "svgf_atrous_pair"; the one-channel "svgf_atrous" uses the first SVGF_ATROUS_BINDINGS.
+inline std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> SvgfAtrousTexelFormats() {
+    std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);
     f[SVGF_ATROUS_B_ILLUM_IN] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[SVGF_ATROUS_B_ILLUM_IN2] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[SVGF_ATROUS_B_GUIDE] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[SVGF_ATROUS_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
     return f;

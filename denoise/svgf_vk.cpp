@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cstring>
+#include <span>
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
+#include "denoise/svgf_atrous_vk.h"
 #include "denoise/svgf_layout.h"
 #include "denoise/svgf_texel_formats.h"
 
@@ -34,14 +36,19 @@ void SvgfVulkanDenoiser::CreatePipelines() {
     const uint32_t sets = 4 * uint32_t(channels_.size()) + 2;
     guide_ = ComputePipeline(*context_, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
                              SvgfGuideTexelFormats());
-    reproject_ = ComputePipeline(*context_, "svgf_reproject" + suffix, SVGF_REPROJECT_BINDINGS,
-                                 sizeof(SvgfReprojectPush), sets, SvgfReprojectTexelFormats(params_.precision));
+    // Direct and indirect in one dispatch (svgf_reproject_pair: the taps are found once per pixel).
+    const bool pair = channels_.size() == 2;
+    const uint32_t reprojectBindings = pair ? SVGF_REPROJECT_PAIR_BINDINGS : SVGF_REPROJECT_BINDINGS;
+    const auto reprojectFormats = SvgfReprojectTexelFormats(params_.precision);
+    reproject_ = ComputePipeline(*context_, (pair ? "svgf_reproject_pair" : "svgf_reproject") + suffix,
+                                 reprojectBindings, sizeof(SvgfReprojectPush), sets,
+                                 std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
     classify_ = ComputePipeline(*context_, "svgf_moments_classify" + suffix, SVGF_CLASSIFY_BINDINGS,
                                 sizeof(SvgfClassifyPush), sets, SvgfClassifyTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + suffix, SVGF_MOMENTS_BINDINGS,
                                sizeof(SvgfFilterMomentsPush), sets, SvgfMomentsTexelFormats(params_.precision));
-    atrous_ = ComputePipeline(*context_, "svgf_atrous" + suffix, SVGF_ATROUS_BINDINGS, sizeof(SvgfAtrousPush),
-                              sets, SvgfAtrousTexelFormats());
+    // Direct and indirect in one dispatch (svgf_atrous_pair); combined: one channel.
+    atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, sets);
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + suffix, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), 2);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
@@ -68,11 +75,8 @@ void SvgfVulkanDenoiser::BuildSets() {
     atrous_.ResetSets();
     modulate_.ResetSets();
     const bool weighted = params_.svgf.weightBySampleCount;
-    const bool combined = params_.svgf.filterCombined;
-    reprojectSets_.assign(channels_.size(), {});
     momentsSets_.assign(channels_.size(), {});
     classifySets_.assign(channels_.size(), {});
-    atrousSets_.assign(channels_.size(), {});
     for (int parity = 0; parity < 2; ++parity) {
         const std::string cur = Side(parity);
         std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
@@ -82,34 +86,46 @@ void SvgfVulkanDenoiser::BuildSets() {
         g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
         guideSets_[size_t(parity)] = guide_.MakeSet(g);
     }
+    for (int parity = 0; parity < 2; ++parity) {
+        // One reprojection dispatch: channel 0 (direct, or combined: direct + indirect summed) at
+        // the base bindings, indirect at the *2 bindings of svgf_reproject_pair.
+        const std::string cur = Side(parity), prev = Side(parity ^ 1);
+        std::array<const Buffer*, SVGF_REPROJECT_PAIR_BINDINGS> r{};
+        r[SVGF_REPROJECT_B_COLOR_IN] = &Buf("input.direct");
+        r[SVGF_REPROJECT_B_COLOR_IN2] = &Buf("input.indirect");
+        r[SVGF_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
+        r[SVGF_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
+        r[SVGF_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
+        r[SVGF_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
+        r[SVGF_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
+        r[SVGF_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
+        r[SVGF_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+        r[SVGF_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
+        // Unused bindings (unweighted mode) point at a buffer of the plan that is never read.
+        r[SVGF_REPROJECT_B_SAMPLE_COUNT] = &Buf(weighted ? "input.sampleCount" : "input.prevPixel");
+        r[SVGF_REPROJECT_B_STATS] = &Buf("stats");
+        const std::string weight = weighted ? ".weight." : ".length.";
+        for (size_t c = 0; c < channels_.size(); ++c) {
+            const std::string& ch = channels_[c];
+            // Binding of channel 0, or its *2 twin for channel 1.
+            auto b = [&](int first, int second) { return size_t(c == 0 ? first : second); };
+            r[b(SVGF_REPROJECT_B_PREV_COLOR, SVGF_REPROJECT_B_PREV_COLOR2)] = &Buf(ch + ".color." + prev);
+            r[b(SVGF_REPROJECT_B_PREV_MOMENTS, SVGF_REPROJECT_B_PREV_MOMENTS2)] = &Buf(ch + ".moments." + prev);
+            r[b(SVGF_REPROJECT_B_PREV_LENGTH, SVGF_REPROJECT_B_PREV_LENGTH2)] = &Buf(ch + ".length." + prev);
+            r[b(SVGF_REPROJECT_B_PREV_WEIGHT, SVGF_REPROJECT_B_PREV_WEIGHT2)] = &Buf(ch + weight + prev);
+            r[b(SVGF_REPROJECT_B_CUR_COLOR, SVGF_REPROJECT_B_CUR_COLOR2)] = &Buf(ch + ".color." + cur);
+            r[b(SVGF_REPROJECT_B_CUR_MOMENTS, SVGF_REPROJECT_B_CUR_MOMENTS2)] = &Buf(ch + ".moments." + cur);
+            r[b(SVGF_REPROJECT_B_CUR_LENGTH, SVGF_REPROJECT_B_CUR_LENGTH2)] = &Buf(ch + ".length." + cur);
+            r[b(SVGF_REPROJECT_B_CUR_WEIGHT, SVGF_REPROJECT_B_CUR_WEIGHT2)] = &Buf(ch + weight + cur);
+            r[b(SVGF_REPROJECT_B_ILLUM_OUT, SVGF_REPROJECT_B_ILLUM_OUT2)] = &Buf(ch + ".illum0");
+        }
+        const size_t bindings = channels_.size() == 2 ? SVGF_REPROJECT_PAIR_BINDINGS : SVGF_REPROJECT_BINDINGS;
+        reprojectSets_[size_t(parity)] = reproject_.MakeSet(std::span<const Buffer* const>(r).first(bindings));
+    }
     for (size_t c = 0; c < channels_.size(); ++c) {
         const std::string& ch = channels_[c];
         for (int parity = 0; parity < 2; ++parity) {
-            const std::string cur = Side(parity), prev = Side(parity ^ 1);
-            std::array<const Buffer*, SVGF_REPROJECT_BINDINGS> r{};
-            r[SVGF_REPROJECT_B_COLOR_IN] = &Buf(combined || c == 0 ? "input.direct" : "input.indirect");
-            r[SVGF_REPROJECT_B_COLOR_IN2] = &Buf("input.indirect");
-            r[SVGF_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
-            r[SVGF_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
-            r[SVGF_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
-            r[SVGF_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
-            r[SVGF_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
-            r[SVGF_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
-            r[SVGF_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-            r[SVGF_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
-            // Unused bindings (unweighted mode) point at a buffer of the plan that is never read.
-            r[SVGF_REPROJECT_B_SAMPLE_COUNT] = &Buf(weighted ? "input.sampleCount" : "input.prevPixel");
-            r[SVGF_REPROJECT_B_PREV_COLOR] = &Buf(ch + ".color." + prev);
-            r[SVGF_REPROJECT_B_PREV_MOMENTS] = &Buf(ch + ".moments." + prev);
-            r[SVGF_REPROJECT_B_PREV_LENGTH] = &Buf(ch + ".length." + prev);
-            r[SVGF_REPROJECT_B_PREV_WEIGHT] = &Buf(ch + (weighted ? ".weight." : ".length.") + prev);
-            r[SVGF_REPROJECT_B_CUR_COLOR] = &Buf(ch + ".color." + cur);
-            r[SVGF_REPROJECT_B_CUR_MOMENTS] = &Buf(ch + ".moments." + cur);
-            r[SVGF_REPROJECT_B_CUR_LENGTH] = &Buf(ch + ".length." + cur);
-            r[SVGF_REPROJECT_B_CUR_WEIGHT] = &Buf(ch + (weighted ? ".weight." : ".length.") + cur);
-            r[SVGF_REPROJECT_B_ILLUM_OUT] = &Buf(ch + ".illum0");
-            r[SVGF_REPROJECT_B_STATS] = &Buf("stats");
-            reprojectSets_[c][size_t(parity)] = reproject_.MakeSet(r);
+            const std::string cur = Side(parity);
 
             std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
             m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(ch + ".illum0");
@@ -128,19 +144,18 @@ void SvgfVulkanDenoiser::BuildSets() {
             k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
             k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
             classifySets_[c][size_t(parity)] = classify_.MakeSet(k);
-
-            for (int pp = 0; pp < 2; ++pp) {
-                // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
-                std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
-                a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(ch + (pp ? ".illum0" : ".illum1"));
-                a[SVGF_ATROUS_B_GUIDE] = &Buf("geometry.guide");
-                a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-                a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(ch + (pp ? ".illum1" : ".illum0"));
-                a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(ch + ".color." + cur);
-                atrousSets_[c][size_t(parity)][size_t(pp)] = atrous_.MakeSet(a);
-            }
         }
     }
+    for (int parity = 0; parity < 2; ++parity)
+        for (int pp = 0; pp < 2; ++pp) {
+            // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1.
+            std::vector<AtrousChannel> a;
+            for (const std::string& ch : channels_)
+                a.push_back({&Buf(ch + (pp ? ".illum0" : ".illum1")), &Buf(ch + (pp ? ".illum1" : ".illum0")),
+                             &Buf(ch + ".color." + Side(parity))});
+            atrousSets_[size_t(parity)][size_t(pp)] =
+                MakeAtrousSet(atrous_, Buf("geometry.guide"), Buf("input.depthGradient"), a);
+        }
     const int iterations = params_.svgf.atrousIterations;
     const std::string last = iterations == 0 ? ".illum1" : ((iterations - 1) & 1) ? ".illum1" : ".illum0";
     std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
@@ -198,8 +213,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
                          (p.weightBySampleCount ? kSvgfReprojectWeighted : 0u) |
                              (p.filterCombined ? kSvgfReprojectCombined : 0u) |
                              (atrousFeedback ? 0u : kSvgfReprojectWriteColor)};
-    for (size_t c = 0; c < channels_.size(); ++c)
-        rec.Dispatch(reproject_, reprojectSets_[c][size_t(parity_)], &rp, sizeof(rp), groups);
+    rec.Dispatch(reproject_, reprojectSets_[size_t(parity_)], &rp, sizeof(rp), groups);
     rec.Barrier();
     rec.EndPass();
 
@@ -225,8 +239,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
         rec.BeginPass(fmt::format("atrous{}", i));
         SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance,
                           atrousFeedback && i + 1 == p.feedbackIteration ? 1u : 0u};
-        for (size_t c = 0; c < channels_.size(); ++c)
-            rec.Dispatch(atrous_, atrousSets_[c][size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
+        rec.Dispatch(atrous_, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
         rec.Barrier();
         rec.EndPass();
     }

@@ -1,7 +1,8 @@
 // SVGF on Vulkan compute: shaders/svgf_*.comp composed as in the paper, one dispatch per stage
-// and channel, GPU timestamps per pass. Buffers are allocated by iterating PlanSvgfMemory(), so
-// `fovrt memory` lists exactly what is allocated. Histories (and the geometry of the previous
-// frame) are A/B pairs selected by a parity bit; descriptor sets are built once per size.
+// and channel except reprojection and à-trous (both channels in one dispatch: svgf_*_pair), GPU
+// timestamps per pass. Buffers are allocated by iterating PlanSvgfMemory(), so `fovrt memory`
+// lists exactly what is allocated. Histories (and the geometry of the previous frame) are A/B
+// pairs selected by a parity bit; descriptor sets are built once per size.
 #pragma once
 
 #include <map>
@@ -54,9 +55,11 @@ private:
     DenoiserBuffers buffers_{"svgf"};
     ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
-    // Descriptor sets: [channel][parity] (atrous: [channel][parity][pingpong]).
-    std::vector<std::array<VkDescriptorSet, 2>> reprojectSets_, momentsSets_, classifySets_;
-    std::vector<std::array<std::array<VkDescriptorSet, 2>, 2>> atrousSets_;
+    // Descriptor sets: [channel][parity]; reproject: [parity] and atrous: [parity][pingpong], both
+    // channels in one set.
+    std::vector<std::array<VkDescriptorSet, 2>> momentsSets_, classifySets_;
+    std::array<VkDescriptorSet, 2> reprojectSets_{};
+    std::array<std::array<VkDescriptorSet, 2>, 2> atrousSets_{};
     VkDescriptorSet modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()

@@ -9,6 +9,7 @@
 #include "denoise/asvgf_ref.h"
 #include "denoise/memory_plan.h"
 #include "denoise/svgf_layout.h"
+#include "denoise/svgf_atrous_vk.h"
 #include "denoise/svgf_texel_formats.h"
 #include "shaders/common/two_history_constants.glsl"
 
@@ -154,8 +155,10 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                 sizeof(SvgfClassifyPush), kSets, SvgfClassifyTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
                                sizeof(SvgfFilterMomentsPush), kSets, SvgfMomentsTexelFormats(params_.precision));
-    atrous_ = ComputePipeline(*context_, "svgf_atrous" + sfx, SVGF_ATROUS_BINDINGS,
-                              sizeof(SvgfAtrousPush), kSets, SvgfAtrousTexelFormats());
+    // Both channels per dispatch (svgf_atrous_pair); combined: one channel, and iteration 0 of
+    // the two-history variants filters I_u and I_w of it as a pair.
+    atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, kSets);
+    if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_.precision, kSets);
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), kSets);
     if (two_) {
@@ -193,8 +196,8 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void TwoHistoryVulkanDenoiser::BuildSets() {
-    for (ComputePipeline* p : {&guide_, &classify_, &reproject_, &moments_, &atrous_, &modulate_, &gradient_,
-                               &blend_, &claim_, &gather_, &gradAtrous_, &alpha_})
+    for (ComputePipeline* p : {&guide_, &classify_, &reproject_, &moments_, &atrous_, &atrousPair_, &modulate_,
+                               &gradient_, &blend_, &claim_, &gather_, &gradAtrous_, &alpha_})
         if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
     const size_t nch = channels_.size();
     const std::string& ch0 = channels_[0];
@@ -204,9 +207,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
     momentsU_.assign(nch, {});
     classifySets_.assign(nch, {});
     momentsW_.assign(nch, {});
-    atrousW_.assign(nch, {});
     blendSets_.assign(nch, {});
-    atrousU_.assign(nch, {});
     for (int parity = 0; parity < 2; ++parity) {
         const std::string cur = Side(parity), prev = Side(parity ^ 1);
         const size_t pi = size_t(parity);
@@ -276,16 +277,6 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
                 return moments_.MakeSet(m);
             };
-            auto atrousSet = [&](const std::string& in, const std::string& out,
-                                 const std::string& hist) {
-                std::array<const Buffer*, SVGF_ATROUS_BINDINGS> a{};
-                a[SVGF_ATROUS_B_ILLUM_IN] = &Buf(in);
-                a[SVGF_ATROUS_B_GUIDE] = &Buf("geometry.guide");
-                a[SVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-                a[SVGF_ATROUS_B_ILLUM_OUT] = &Buf(out);
-                a[SVGF_ATROUS_B_HIST_COLOR] = &Buf(hist);
-                return atrous_.MakeSet(a);
-            };
             momentsU_[c][pi] = momentsSet(ch + ".illum0", ch + ".illum1");
             // One list per channel serves both histories: both test W_u (the channel's length).
             std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
@@ -294,13 +285,8 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
             k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
             classifySets_[c][pi] = classify_.MakeSet(k);
-            // pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1 (as SVGF).
-            atrousU_[c][pi][0] = atrousSet(ch + ".illum1", ch + ".illum0", ch + ".color." + cur);
-            atrousU_[c][pi][1] = atrousSet(ch + ".illum0", ch + ".illum1", ch + ".color." + cur);
             if (two_) {
                 momentsW_[c][pi] = momentsSet(ch + ".willum0", ch + ".willum1");
-                atrousW_[c][pi] =
-                    atrousSet(ch + ".willum1", ch + ".willum0", ch + ".wcolor." + cur);
                 std::array<const Buffer*, TH_BLEND_BINDINGS> b{};
                 b[TH_BLEND_B_ILLUM_U] = &Buf(ch + (iterations == 0 ? ".illum1" : ".illum0"));
                 b[TH_BLEND_B_ILLUM_W] = &Buf(ch + (iterations == 0 ? ".willum1" : ".willum0"));
@@ -312,6 +298,28 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 blendSets_[c][pi] = blend_.MakeSet(b);
             }
         }
+        // À-trous sets. pp = 0: illum1 → illum0 (even iterations); pp = 1: illum0 → illum1 (as SVGF).
+        const Buffer& guide = Buf("geometry.guide");
+        const Buffer& depthGrad = Buf("input.depthGradient");
+        std::vector<AtrousChannel> u[2], wts;
+        for (const std::string& ch : channels_) {
+            const Buffer* hist = &Buf(ch + ".color." + cur);
+            u[0].push_back({&Buf(ch + ".illum1"), &Buf(ch + ".illum0"), hist});
+            u[1].push_back({&Buf(ch + ".illum0"), &Buf(ch + ".illum1"), hist});
+            if (two_) wts.push_back({&Buf(ch + ".willum1"), &Buf(ch + ".willum0"), &Buf(ch + ".wcolor." + cur)});
+        }
+        for (int pp = 0; pp < 2; ++pp) atrousU_[pi][size_t(pp)] = MakeAtrousSet(atrous_, guide, depthGrad, u[pp]);
+        atrousFirst_[pi].clear();
+        if (!two_) {
+            atrousFirst_[pi].push_back({&atrous_, atrousU_[pi][0]});
+        } else if (nch == 2) {  // (I_u direct, I_u indirect), (I_w direct, I_w indirect)
+            atrousFirst_[pi].push_back({&atrous_, atrousU_[pi][0]});
+            atrousFirst_[pi].push_back({&atrous_, MakeAtrousSet(atrous_, guide, depthGrad, wts)});
+        } else {  // combined: (I_u, I_w)
+            const std::array<AtrousChannel, 2> uw{u[0][0], wts[0]};
+            atrousFirst_[pi].push_back({&atrousPair_, MakeAtrousSet(atrousPair_, guide, depthGrad, uw)});
+        }
+
         if (variant_ == TwoHistoryVariant::TwoHistory) {
             std::array<const Buffer*, TH_GRADIENT_BINDINGS> g{};
             g[TH_GRADIENT_B_GRADIENT] = &Buf("gradient." + cur);
@@ -511,12 +519,11 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
         const uint32_t writeHistory = i + 1 == feedback ? 1u : 0u;
         const SvgfAtrousPush ap{ivec2(w, h),   1 << i,           p.sigmaDepth,
                                 p.sigmaNormal, p.sigmaLuminance, writeHistory};
-        for (size_t c = 0; c < channels_.size(); ++c) {
-            rec.Dispatch(atrous_, atrousU_[c][size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
-                         groups);
-            if (two_ && i == 0)
-                rec.Dispatch(atrous_, atrousW_[c][size_t(parity_)], &ap, sizeof(ap), groups);
-        }
+        if (i == 0)
+            for (const auto& [pipeline, set] : atrousFirst_[size_t(parity_)])
+                rec.Dispatch(*pipeline, set, &ap, sizeof(ap), groups);
+        else
+            rec.Dispatch(atrous_, atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
         rec.Barrier();
         rec.EndPass();
         if (two_ && i == 0) blend();

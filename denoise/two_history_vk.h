@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "denoise/denoiser.h"
@@ -58,9 +59,13 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     ComputePipeline claim_, gather_, gradAtrous_, alpha_;
     std::array<VkDescriptorSet, 2> gradientSets_{};
-    std::vector<std::array<VkDescriptorSet, 2>> classifySets_, reprojectSets_, momentsU_, momentsW_, atrousW_,
-        blendSets_;
-    std::vector<std::array<std::array<VkDescriptorSet, 2>, 2>> atrousU_;
+    std::vector<std::array<VkDescriptorSet, 2>> classifySets_, reprojectSets_, momentsU_, momentsW_, blendSets_;
+    // À-trous on all channels' I_u in one dispatch: [parity][pingpong]. Iteration 0 of the
+    // two-history variants also filters I_w: [parity] → the dispatches of that iteration (separate
+    // channels: the I_u pair and the I_w pair; combined: one I_u + I_w pair on atrousPair_).
+    ComputePipeline atrousPair_;
+    std::array<std::array<VkDescriptorSet, 2>, 2> atrousU_{};
+    std::array<std::vector<std::pair<const ComputePipeline*, VkDescriptorSet>>, 2> atrousFirst_;
     VkDescriptorSet claimSet_ = VK_NULL_HANDLE, gatherSet_ = VK_NULL_HANDLE;
     std::array<std::array<VkDescriptorSet, 2>, 2> gradAtrousSets_{};  // [parity][pingpong]
     VkDescriptorSet alphaSet_ = VK_NULL_HANDLE, modulateSet_ = VK_NULL_HANDLE;

@@ -52,7 +52,18 @@
 #define SVGF_REPROJECT_B_CUR_WEIGHT 18     // hfloat[N]  total weight (written; weighted mode)
 #define SVGF_REPROJECT_B_ILLUM_OUT 19      // vec4[N]    accumulated illumination + variance
 #define SVGF_REPROJECT_B_STATS 20          // uint[2]    non-finite, negative counters
-#define SVGF_REPROJECT_BINDINGS 21
+#define SVGF_REPROJECT_BINDINGS 21         // one channel ("svgf_reproject")
+// second channel of "svgf_reproject_pair" (FOVRT_CHANNELS 2: colour in = COLOR_IN2; taps shared)
+#define SVGF_REPROJECT_B_PREV_COLOR2 21
+#define SVGF_REPROJECT_B_PREV_MOMENTS2 22
+#define SVGF_REPROJECT_B_PREV_LENGTH2 23
+#define SVGF_REPROJECT_B_PREV_WEIGHT2 24
+#define SVGF_REPROJECT_B_CUR_COLOR2 25
+#define SVGF_REPROJECT_B_CUR_MOMENTS2 26
+#define SVGF_REPROJECT_B_CUR_LENGTH2 27
+#define SVGF_REPROJECT_B_CUR_WEIGHT2 28
+#define SVGF_REPROJECT_B_ILLUM_OUT2 29
+#define SVGF_REPROJECT_PAIR_BINDINGS 30
 
 // svgf_pack_guide: this frame's edge-stopping guide (normal.xyz, depth), depth = −1 on background
 // pixels (object id kNoObject), so the spatial filters fetch one texel per tap instead of three.
@@ -100,7 +111,12 @@
 #define SVGF_ATROUS_B_DEPTH_GRAD 2         // float[2N]
 #define SVGF_ATROUS_B_ILLUM_OUT 3          // vec4[N]
 #define SVGF_ATROUS_B_HIST_COLOR 4         // hfloat[3N] colour history (written on the feedback iteration)
-#define SVGF_ATROUS_BINDINGS 5
+#define SVGF_ATROUS_BINDINGS 5             // one channel ("svgf_atrous")
+// second channel of "svgf_atrous_pair" (FOVRT_CHANNELS 2; guide and depth gradient shared)
+#define SVGF_ATROUS_B_ILLUM_IN2 5          // vec4[N]
+#define SVGF_ATROUS_B_ILLUM_OUT2 6         // vec4[N]
+#define SVGF_ATROUS_B_HIST_COLOR2 7        // hfloat[3N]
+#define SVGF_ATROUS_PAIR_BINDINGS 8
 
 // svgf_modulate
 #define SVGF_MODULATE_B_ILLUM0 0           // vec4[N]   filtered direct (or combined)

@@ -1,20 +1,30 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// svgf_reproject — SVGF temporal accumulation (paper §4.1, SPEC §3), one illumination channel.
+#extension GL_EXT_control_flow_attributes : require
+// svgf_reproject — SVGF temporal accumulation (paper §4.1, SPEC §3).
 // Purpose: sanitise the noisy demodulated illumination (NaN/Inf/negative → 0, counted), back-project
 //   the previous history with the tested 2×2 bilinear taps (3×3 fallback, else disocclusion), and
 //   blend: C' = lerp(C_prev, C, α_c) with α_c = max(α, 1/length) — or, in weighted mode (svgf-weighted,
 //   SPEC §5), W ← (1−α)·W_prev + n, C' = C_prev + n·(C − C_prev)/W. Moments (l, l²) use
 //   α_m = max(α_m, 1/length). History length is interpolated from the valid taps, +1, capped.
-// Reads:  colour in (+ second channel when combined), depth/normal/object of both frames, depth
-//         gradient, previous pixel, sample counts (weighted), previous colour/moments/length/weight.
-// Writes: this frame's moments/length/weight (and colour history when no à-trous feedback),
-//         illumination + temporal variance (vec4), sanitising counters.
+// Channels: FOVRT_CHANNELS (1: "svgf_reproject", one channel, or direct + indirect summed when
+//   combined; 2: "svgf_reproject_pair", direct = COLOR_IN and indirect = COLOR_IN2 with their own
+//   histories at the *2 bindings). The taps (consistency tests on the previous geometry) are found
+//   once per pixel for both channels; each channel's arithmetic is the one-channel arithmetic.
+// Reads:  colour in (+ second channel), depth/normal/object of both frames, depth gradient,
+//         previous pixel, sample counts (weighted), previous colour/moments/length/weight per channel.
+// Writes: per channel this frame's moments/length/weight (and colour history when no à-trous
+//         feedback), illumination + temporal variance (vec4); sanitising counters.
 #include "shared_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
+
+#ifndef FOVRT_CHANNELS
+#define FOVRT_CHANNELS 1
+#endif
+#define NCH FOVRT_CHANNELS
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
@@ -31,22 +41,38 @@ UPLANE(SVGF_REPROJECT_B_PREV_OBJECT, prev_object);     // r32ui
 PLANE(SVGF_REPROJECT_B_DEPTH_GRAD, depth_grad);        // rg32f
 PLANE(SVGF_REPROJECT_B_PREV_PIXEL, prev_pixel);        // rg32f
 layout(std430, binding = SVGF_REPROJECT_B_SAMPLE_COUNT) readonly buffer SampleCount { uint sample_count[]; };
+layout(std430, binding = SVGF_REPROJECT_B_STATS) buffer Stats { uint stats[]; };
+
+// The history planes of one channel: binding numbers of channel 0 or (pair) channel 1.
 #ifdef FOVRT_FP16
-layout(std430, binding = SVGF_REPROJECT_B_PREV_COLOR) readonly buffer PrevColor { hfloat hist_prev_color[]; };
+#define PREV_COLOR_PLANE(b, name) layout(std430, binding = b) readonly buffer name##_block { hfloat name[]; }
 #define PREV_COLOR_LOAD LOAD3
 #else
-PLANE(SVGF_REPROJECT_B_PREV_COLOR, hist_prev_color);   // rgb32f
+#define PREV_COLOR_PLANE(b, name) PLANE(b, name)  // rgb32f
 #define PREV_COLOR_LOAD FETCH3
 #endif
-PLANE(SVGF_REPROJECT_B_PREV_MOMENTS, hist_prev_moments);  // rg32f / rg16f
-PLANE(SVGF_REPROJECT_B_PREV_LENGTH, hist_prev_length);    // r32f / r16f
-PLANE(SVGF_REPROJECT_B_PREV_WEIGHT, hist_prev_weight);    // r32f / r16f
-layout(std430, binding = SVGF_REPROJECT_B_CUR_COLOR) writeonly buffer CurColor { hfloat hist_color[]; };
-layout(std430, binding = SVGF_REPROJECT_B_CUR_MOMENTS) writeonly buffer CurMoments { hfloat hist_moments[]; };
-layout(std430, binding = SVGF_REPROJECT_B_CUR_LENGTH) writeonly buffer CurLength { hfloat hist_length[]; };
-layout(std430, binding = SVGF_REPROJECT_B_CUR_WEIGHT) writeonly buffer CurWeight { hfloat hist_weight[]; };
-layout(std430, binding = SVGF_REPROJECT_B_ILLUM_OUT) writeonly buffer IllumOut { vec4 illum_out[]; };
-layout(std430, binding = SVGF_REPROJECT_B_STATS) buffer Stats { uint stats[]; };
+#define HISTORY_PLANES(k, b_prev_color, b_prev_moments, b_prev_length, b_prev_weight, b_color, b_moments,     \
+                       b_length, b_weight, b_illum)                                                           \
+    PREV_COLOR_PLANE(b_prev_color, hist_prev_color##k);                                                     \
+    PLANE(b_prev_moments, hist_prev_moments##k); /* rg32f / rg16f */                                        \
+    PLANE(b_prev_length, hist_prev_length##k);   /* r32f / r16f */                                          \
+    PLANE(b_prev_weight, hist_prev_weight##k);   /* r32f / r16f */                                          \
+    layout(std430, binding = b_color) writeonly buffer CurColor##k { hfloat hist_color##k[]; };             \
+    layout(std430, binding = b_moments) writeonly buffer CurMoments##k { hfloat hist_moments##k[]; };       \
+    layout(std430, binding = b_length) writeonly buffer CurLength##k { hfloat hist_length##k[]; };          \
+    layout(std430, binding = b_weight) writeonly buffer CurWeight##k { hfloat hist_weight##k[]; };          \
+    layout(std430, binding = b_illum) writeonly buffer IllumOut##k { vec4 illum_out##k[]; }
+
+HISTORY_PLANES(0, SVGF_REPROJECT_B_PREV_COLOR, SVGF_REPROJECT_B_PREV_MOMENTS, SVGF_REPROJECT_B_PREV_LENGTH,
+               SVGF_REPROJECT_B_PREV_WEIGHT, SVGF_REPROJECT_B_CUR_COLOR, SVGF_REPROJECT_B_CUR_MOMENTS,
+               SVGF_REPROJECT_B_CUR_LENGTH, SVGF_REPROJECT_B_CUR_WEIGHT, SVGF_REPROJECT_B_ILLUM_OUT);
+#if NCH == 2
+HISTORY_PLANES(1, SVGF_REPROJECT_B_PREV_COLOR2, SVGF_REPROJECT_B_PREV_MOMENTS2, SVGF_REPROJECT_B_PREV_LENGTH2,
+               SVGF_REPROJECT_B_PREV_WEIGHT2, SVGF_REPROJECT_B_CUR_COLOR2, SVGF_REPROJECT_B_CUR_MOMENTS2,
+               SVGF_REPROJECT_B_CUR_LENGTH2, SVGF_REPROJECT_B_CUR_WEIGHT2, SVGF_REPROJECT_B_ILLUM_OUT2);
+#elif NCH != 1
+#error "FOVRT_CHANNELS must be 1 or 2"
+#endif
 
 // Mirrors SvgfReprojectPush in denoise/svgf_layout.h.
 layout(push_constant) uniform Push {
@@ -64,56 +90,89 @@ float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
 uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
 
+// Sanitise: a non-finite pixel becomes 0 (stats[0]); negative components are clamped to 0 (stats[1]).
+vec3 sanitise(vec3 c) {
+    if (any(isnan(c)) || any(isinf(c))) {
+        atomicAdd(stats[0], 1u);
+        return vec3(0.0);
+    }
+    if (any(lessThan(c, vec3(0.0)))) {
+        atomicAdd(stats[1], 1u);
+        return max(c, vec3(0.0));
+    }
+    return c;
+}
+
+// Gathers channel k's previous history over the taps into c_prev[k], m_prev[k], len_prev[k], w_prev[k].
+#define GATHER_HISTORY(k)                                                                       \
+    do {                                                                                        \
+        REPROJ_GATHER(hist_prev_color##k, taps, pc.size, PREV_COLOR_LOAD, vec3(0.0), c_prev[k]); \
+        REPROJ_GATHER(hist_prev_moments##k, taps, pc.size, FETCH2, vec2(0.0), m_prev[k]);        \
+        REPROJ_GATHER(hist_prev_length##k, taps, pc.size, FETCH1, 0.0, len_prev[k]);             \
+        w_prev[k] = 0.0;                                                                        \
+        if (weighted) REPROJ_GATHER(hist_prev_weight##k, taps, pc.size, FETCH1, 0.0, w_prev[k]); \
+    } while (false)
+
+// Writes channel k's accumulated history and illumination.
+#define WRITE_HISTORY(k)                                                                                     \
+    do {                                                                                                     \
+        if (weighted) hist_weight##k[i] = hfloat(to_history(total[k]));                                      \
+        STORE2(hist_moments##k, i, to_history(m_acc[k]), hfloat);                                            \
+        hist_length##k[i] = hfloat(len[k]);                                                                  \
+        if ((pc.flags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u) STORE3(hist_color##k, i, to_history(c_acc[k]), hfloat); \
+        illum_out##k[i] = vec4(c_acc[k], max(0.0, m_acc[k].y - m_acc[k].x * m_acc[k].x));                   \
+    } while (false)
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
 
-    // Sanitise: a non-finite pixel becomes 0; negative components are clamped to 0.
-    vec3 c = FETCH3(color_in, i);
-    if ((pc.flags & SVGF_REPROJECT_FLAG_COMBINED) != 0u) c += FETCH3(color_in2, i);
-    if (any(isnan(c)) || any(isinf(c))) {
-        c = vec3(0.0);
-        atomicAdd(stats[0], 1u);
-    } else if (any(lessThan(c, vec3(0.0)))) {
-        c = max(c, vec3(0.0));
-        atomicAdd(stats[1], 1u);
-    }
-    float l = luminance(c);
-    vec2 m = vec2(l, l * l);
+    vec3 c[NCH];
+#if NCH == 2
+    c[0] = sanitise(FETCH3(color_in, i));
+    c[1] = sanitise(FETCH3(color_in2, i));
+#else
+    c[0] = FETCH3(color_in, i);
+    if ((pc.flags & SVGF_REPROJECT_FLAG_COMBINED) != 0u) c[0] += FETCH3(color_in2, i);
+    c[0] = sanitise(c[0]);
+#endif
 
     uint id = FETCH1(object_id, i);
     vec2 dzv = FETCH2(depth_grad, i);
     ReprojTaps taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH3(normal, i),
                                              id, max(abs(dzv.x), abs(dzv.y)));
-    vec3 c_prev = vec3(0.0);
-    vec2 m_prev = vec2(0.0);
-    float len_prev = 0.0;
-    float w_prev = 0.0;
     bool weighted = (pc.flags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
-    REPROJ_GATHER(hist_prev_color, taps, pc.size, PREV_COLOR_LOAD, vec3(0.0), c_prev);
-    REPROJ_GATHER(hist_prev_moments, taps, pc.size, FETCH2, vec2(0.0), m_prev);
-    REPROJ_GATHER(hist_prev_length, taps, pc.size, FETCH1, 0.0, len_prev);
-    if (weighted) REPROJ_GATHER(hist_prev_weight, taps, pc.size, FETCH1, 0.0, w_prev);
+    vec3 c_prev[NCH];
+    vec2 m_prev[NCH];
+    float len_prev[NCH], w_prev[NCH];
+    GATHER_HISTORY(0);
+#if NCH == 2
+    GATHER_HISTORY(1);
+#endif
     bool success = taps.count > 0;
-    float len = success ? min(len_prev + 1.0, FOVRT_MAX_HISTORY_LENGTH) : 1.0;
+    float n = weighted ? float(max(LOAD_U16(sample_count, i), 1u)) : 1.0;
 
-    vec3 c_acc;
-    if (weighted) {
-        float n = float(max(LOAD_U16(sample_count, i), 1u));
-        float total = (success ? (1.0 - pc.alpha_color) * w_prev : 0.0) + n;
-        c_acc = success ? c_prev + (n / total) * (c - c_prev) : c;
-        hist_weight[i] = hfloat(to_history(total));
-    } else {
-        float a = success ? max(pc.alpha_color, 1.0 / len) : 1.0;
-        c_acc = mix(c_prev, c, a);
+    vec3 c_acc[NCH];
+    vec2 m_acc[NCH];
+    float len[NCH], total[NCH];
+    [[unroll]] for (int k = 0; k < NCH; ++k) {
+        float l = luminance(c[k]);
+        vec2 m = vec2(l, l * l);
+        len[k] = success ? min(len_prev[k] + 1.0, FOVRT_MAX_HISTORY_LENGTH) : 1.0;
+        if (weighted) {
+            total[k] = (success ? (1.0 - pc.alpha_color) * w_prev[k] : 0.0) + n;
+            c_acc[k] = success ? c_prev[k] + (n / total[k]) * (c[k] - c_prev[k]) : c[k];
+        } else {
+            total[k] = 0.0;
+            float a = success ? max(pc.alpha_color, 1.0 / len[k]) : 1.0;
+            c_acc[k] = mix(c_prev[k], c[k], a);
+        }
+        float am = success ? max(pc.alpha_moments, 1.0 / len[k]) : 1.0;
+        m_acc[k] = mix(m_prev[k], m, am);
     }
-    float am = success ? max(pc.alpha_moments, 1.0 / len) : 1.0;
-    vec2 m_acc = mix(m_prev, m, am);
-
-    STORE2(hist_moments, i, to_history(m_acc), hfloat);
-    hist_length[i] = hfloat(len);
-    if ((pc.flags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u) STORE3(hist_color, i, to_history(c_acc), hfloat);
-    float variance = max(0.0, m_acc.y - m_acc.x * m_acc.x);
-    illum_out[i] = vec4(c_acc, variance);
+    WRITE_HISTORY(0);
+#if NCH == 2
+    WRITE_HISTORY(1);
+#endif
 }

@@ -93,10 +93,14 @@ TEST_CASE("SVGF pass bytes follow the shaders' bindings", "[bench]") {
     CHECK(passes[1].pass == "pack_guide");
     CHECK(passes[1].bytesPerPixel == Approx(4 + 12 + 4 + 16));
     CHECK(passes[2].pass == "reproject");
-    // One à-trous iteration, per channel: illumination in/out 32 B + guide 16 B + depth gradient
-    // 8 B; iteration 0 also writes the fp32 colour history (12 B).
-    CHECK(passes[4].bytesPerPixel == Approx(2 * (32 + 16 + 8 + 12)));
-    CHECK(passes[5].bytesPerPixel == Approx(2 * (32 + 16 + 8)));
+    // One à-trous iteration, both channels in one dispatch: per channel illumination in/out 32 B,
+    // once guide 16 B + depth gradient 8 B; iteration 0 also writes the fp32 colour histories (12 B).
+    CHECK(passes[4].bytesPerPixel == Approx(2 * (32 + 12) + 16 + 8));
+    CHECK(passes[5].bytesPerPixel == Approx(2 * 32 + 16 + 8));
+    // Reprojection, both channels in one dispatch: colour in 2·12, geometry of both frames 2·20,
+    // depth gradient 8, motion 8 once; per channel fp32 history read 24 + written 12 (the colour
+    // history is the à-trous feedback's), illumination 16.
+    CHECK(passes[2].bytesPerPixel == Approx(24 + 40 + 8 + 8 + 2 * (24 + 12 + 16)));
     // Steady state filter_moments: classify (guide 16 + length 4) + copy illum0 → illum1 (32).
     CHECK(passes[3].bytesPerPixel == Approx(2 * (16 + 4 + 32)));
     PassBytesOptions all;
@@ -126,8 +130,10 @@ TEST_CASE("two-history pass bytes follow the shaders' bindings", "[bench]") {
         if (b.name == "gradient.A") g = double(b.bytes) / (64 * 64);
     CHECK(g > 0.0);
     CHECK(at(model, "two_history_gradient") == Approx(g + 20 + 8 + 2 * 16 + 4));
-    // Iteration 0 filters both histories and writes both colour histories.
-    CHECK(at(model, "atrous0") == Approx(2 * 2 * (32 + 16 + 8 + 12)));
+    // Iteration 0 filters both histories of both channels (two pair dispatches: guide and depth
+    // gradient read twice) and writes all four colour histories.
+    CHECK(at(model, "atrous0") == Approx(2 * 2 * (32 + 12) + 2 * (16 + 8)));
+    CHECK(at(model, "atrous1") == Approx(2 * 32 + 16 + 8));
     // The reference's atrous_blend is the sum of the Vulkan passes it spans.
     const auto ref = DenoiserPassBytes("two-history", "cpu", 64, 64, p);
     double sum = at(model, "two_history_blend");

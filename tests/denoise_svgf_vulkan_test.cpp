@@ -156,6 +156,21 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
         p.svgf.atrousIterations = 2;
         RunPair(p, "svgf", 3, 1e-2, false);
     }
+    SECTION("fp16 histories, combined (one-channel a-trous)") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        p.precision = Precision::Fp16;
+        p.svgf.filterCombined = true;
+        p.svgf.atrousIterations = 2;
+        RunPair(p, "svgf", 3, 1e-2, false);
+    }
+    SECTION("fp16 svgf-weighted, feedback of iteration 2") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        p.precision = Precision::Fp16;
+        p.svgf.weightBySampleCount = true;
+        p.svgf.atrousIterations = 3;
+        p.svgf.feedbackIteration = 2;
+        RunPair(p, "svgf-weighted", 3, 1e-2, false);
+    }
 }
 
 TEST_CASE("vulkan allocator accounting equals the memory plan", "[vulkan][svgf]") {

@@ -181,6 +181,23 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.svgf.atrousIterations = 2;
         RunPair(TwoHistoryVariant::TwoHistory, params, 3);
     }
+    SECTION("fp32 combined, feedback 1, 3 iterations: two-history (I_u + I_w as one a-trous pair)") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 3;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+    }
+    SECTION("fp32 combined: asvgf (one-channel a-trous)") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 2;
+        RunPair(TwoHistoryVariant::Asvgf, params, 3);
+    }
+    SECTION("fp16 combined: two-history") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 2;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+    }
     SECTION("fp32, no a-trous: two-history-asvgf") {
         params.svgf.atrousIterations = 0;
         RunPair(TwoHistoryVariant::TwoHistoryAsvgf, params, 3);

@@ -21,11 +21,22 @@ float luminance_weight(float lp, float lq, float sigma_l_std) {
 
 // The product w_z·w_n(·w_l) as one exp2 (one transcendental pair per tap instead of three; same
 // value up to rounding): lavapipe executes every tap of every lane, so this is the hot path.
+// Split in terms so a multi-channel filter (svgf_atrous_pair) computes the geometric part once
+// per tap and only the luminance term per channel; geometry_weight is their composition.
+float geometry_depth_term(float zp, float zq, vec2 depth_grad, vec2 offset, float sigma_depth) {
+    float denom = sigma_depth * abs(dot(depth_grad, offset)) + FOVRT_ATROUS_DEPTH_EPSILON;
+    return abs(zp - zq) / denom;
+}
+float geometry_normal_log2(vec3 np, vec3 nq, float sigma_normal) {
+    return sigma_normal * log2(max(dot(np, nq), 1e-30));
+}
+float geometry_weight_from_terms(float depth_term, float normal_log2, float extra_exponent) {
+    return exp2(-(depth_term + extra_exponent) * 1.4426950408889634 + normal_log2);  // log2(e)
+}
 float geometry_weight(float zp, float zq, vec2 depth_grad, vec2 offset, float sigma_depth, vec3 np, vec3 nq,
                       float sigma_normal, float extra_exponent) {
-    float denom = sigma_depth * abs(dot(depth_grad, offset)) + FOVRT_ATROUS_DEPTH_EPSILON;
-    float e = -(abs(zp - zq) / denom + extra_exponent) * 1.4426950408889634;  // log2(e)
-    return exp2(e + sigma_normal * log2(max(dot(np, nq), 1e-30)));
+    return geometry_weight_from_terms(geometry_depth_term(zp, zq, depth_grad, offset, sigma_depth),
+                                      geometry_normal_log2(np, nq, sigma_normal), extra_exponent);
 }
 
 // À-trous 1-D kernel h = (1/16, 1/4, 3/8, 1/4, 1/16), indexed by offset + 2.

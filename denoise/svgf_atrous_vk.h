@@ -1,0 +1,58 @@
+// The à-trous pipelines and descriptor sets shared by the SVGF and two-history Vulkan hosts. One
+// dispatch filters one illumination channel ("svgf_atrous") or a pair ("svgf_atrous_pair": direct
+// + indirect, or two-history's unweighted + weighted history) that shares the per-tap guide fetch,
+// depth gradient and w_z·w_n exponent; each channel keeps its own w_l and variance
+// (shaders/svgf_atrous.comp), so a pair gives exactly the two one-channel results.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string>
+
+#include "core/check.h"
+#include "denoise/params.h"
+#include "denoise/svgf_layout.h"
+#include "denoise/svgf_texel_formats.h"
+#include "vk/pipeline.h"
+
+namespace fovrt {
+
+// The planes of one channel of an à-trous dispatch.
+struct AtrousChannel {
+    const Buffer* in;       // illumination + variance read
+    const Buffer* out;      // illumination + variance written
+    const Buffer* history;  // colour history written on the feedback iteration
+};
+
+// `channels` (1 or 2) illumination planes per dispatch.
+inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, Precision precision,
+                                          uint32_t maxSets) {
+    FOVRT_CHECK(channels == 1 || channels == 2);
+    const std::string name = std::string(channels == 2 ? "svgf_atrous_pair" : "svgf_atrous") +
+                             (precision == Precision::Fp16 ? "_fp16" : "");
+    const uint32_t bindings = channels == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS;
+    static const std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> kFormats = SvgfAtrousTexelFormats();
+    return ComputePipeline(context, name, bindings, sizeof(SvgfAtrousPush), maxSets,
+                           std::span<const VkFormat>(kFormats).first(bindings));
+}
+
+// A set of a pipeline from MakeAtrousPipeline with as many channels as `channels` holds.
+inline VkDescriptorSet MakeAtrousSet(ComputePipeline& pipeline, const Buffer& guide, const Buffer& depthGradient,
+                                     std::span<const AtrousChannel> channels) {
+    FOVRT_CHECK(channels.size() == 1 || channels.size() == 2);
+    std::array<const Buffer*, SVGF_ATROUS_PAIR_BINDINGS> a{};
+    a[SVGF_ATROUS_B_GUIDE] = &guide;
+    a[SVGF_ATROUS_B_DEPTH_GRAD] = &depthGradient;
+    a[SVGF_ATROUS_B_ILLUM_IN] = channels[0].in;
+    a[SVGF_ATROUS_B_ILLUM_OUT] = channels[0].out;
+    a[SVGF_ATROUS_B_HIST_COLOR] = channels[0].history;
+    if (channels.size() == 2) {
+        a[SVGF_ATROUS_B_ILLUM_IN2] = channels[1].in;
+        a[SVGF_ATROUS_B_ILLUM_OUT2] = channels[1].out;
+        a[SVGF_ATROUS_B_HIST_COLOR2] = channels[1].history;
+    }
+    return pipeline.MakeSet(
+        std::span<const Buffer* const>(a).first(channels.size() == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS));
+}
+
+}  // namespace fovrt
