@@ -57,6 +57,7 @@ private:
     // Descriptor sets: [channel][parity]; atrous: [parity][pingpong], both channels in one set.
     std::vector<std::array<VkDescriptorSet, 2>> reprojectSets_, momentsSets_, classifySets_;
     std::array<std::array<VkDescriptorSet, 2>, 2> atrousSets_{};
+    ComputePipeline atrousStep1_;  // iteration 0 (step 1), bound with atrousSets_
     VkDescriptorSet modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
     std::vector<PassTiming> timings_;
