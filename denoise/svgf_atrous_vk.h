@@ -3,8 +3,13 @@
 // + indirect, or two-history's unweighted + weighted history) that shares the per-tap guide fetch,
 // depth gradient and w_z·w_n exponent; each channel keeps its own w_l and variance
 // (shaders/svgf_atrous.comp), so a pair gives exactly the two one-channel results.
+// One invocation filters a 2×2 block of pixels at stride `step` (the four 5×5 windows share a 6×6
+// lattice of taps): dispatch AtrousBlockGroups(w, h, step), and the "_step1" pipeline at step 1
+// (its 3×3 variance windows form one 4×4 block). The step-1 and any-step pipelines have
+// identically defined set layouts, so a set made from one may be bound with the other.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <span>
 #include <string>
@@ -24,16 +29,25 @@ struct AtrousChannel {
     const Buffer* history;  // colour history written on the feedback iteration
 };
 
-// `channels` (1 or 2) illumination planes per dispatch.
+// `channels` (1 or 2) illumination planes per dispatch; `step1`: the variant for step 1 only.
 inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, Precision precision,
-                                          uint32_t maxSets) {
+                                          uint32_t maxSets, bool step1 = false) {
     FOVRT_CHECK(channels == 1 || channels == 2);
     const std::string name = std::string(channels == 2 ? "svgf_atrous_pair" : "svgf_atrous") +
-                             (precision == Precision::Fp16 ? "_fp16" : "");
+                             (step1 ? "_step1" : "") + (precision == Precision::Fp16 ? "_fp16" : "");
     const uint32_t bindings = channels == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS;
     static const std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> kFormats = SvgfAtrousTexelFormats();
     return ComputePipeline(context, name, bindings, sizeof(SvgfAtrousPush), maxSets,
                            std::span<const VkFormat>(kFormats).first(bindings));
+}
+
+// Blocks per axis of `n` pixels at stride `step`: pixels pair up (x, x + step) inside each run of
+// 2·step, and a last partial run of r pixels has min(r, step) blocks (partners past the edge).
+inline int AtrousBlocks(int n, int step) { return n / (2 * step) * step + std::min(n % (2 * step), step); }
+
+// Workgroups of an à-trous dispatch at `step` (one invocation per 2×2 block).
+inline uvec2 AtrousBlockGroups(int width, int height, int step) {
+    return DispatchGroups(AtrousBlocks(width, step), FOVRT_ATROUS_BLOCK_Y == 2 ? AtrousBlocks(height, step) : height);
 }
 
 // A set of a pipeline from MakeAtrousPipeline with as many channels as `channels` holds.

@@ -49,6 +49,7 @@ void SvgfVulkanDenoiser::CreatePipelines() {
                                sizeof(SvgfFilterMomentsPush), sets, SvgfMomentsTexelFormats(params_.precision));
     // Direct and indirect in one dispatch (svgf_atrous_pair); combined: one channel.
     atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, sets);
+    atrousStep1_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, 1, true);
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + suffix, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), 2);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
@@ -239,7 +240,8 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
         rec.BeginPass(fmt::format("atrous{}", i));
         SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance,
                           atrousFeedback && i + 1 == p.feedbackIteration ? 1u : 0u};
-        rec.Dispatch(atrous_, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
+        rec.Dispatch(i == 0 ? atrousStep1_ : atrous_, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+                     AtrousBlockGroups(w, h, 1 << i));
         rec.Barrier();
         rec.EndPass();
     }

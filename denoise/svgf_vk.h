@@ -60,6 +60,7 @@ private:
     std::vector<std::array<VkDescriptorSet, 2>> momentsSets_, classifySets_;
     std::array<VkDescriptorSet, 2> reprojectSets_{};
     std::array<std::array<VkDescriptorSet, 2>, 2> atrousSets_{};
+    ComputePipeline atrousStep1_;  // iteration 0 (step 1), bound with atrousSets_
     VkDescriptorSet modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()

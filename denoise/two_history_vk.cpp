@@ -157,8 +157,11 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                sizeof(SvgfFilterMomentsPush), kSets, SvgfMomentsTexelFormats(params_.precision));
     // Both channels per dispatch (svgf_atrous_pair); combined: one channel, and iteration 0 of
     // the two-history variants filters I_u and I_w of it as a pair.
+    // Iteration 0 (step 1) runs the _step1 variants: atrousStep1_ with atrous_'s sets, and
+    // atrousPair_, which only iteration 0 uses.
     atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, kSets);
-    if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_.precision, kSets);
+    atrousStep1_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, 1, true);
+    if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_.precision, kSets, true);
     modulate_ = ComputePipeline(*context_, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS,
                                 sizeof(SvgfModulatePush), kSets);
     if (two_) {
@@ -311,10 +314,10 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         for (int pp = 0; pp < 2; ++pp) atrousU_[pi][size_t(pp)] = MakeAtrousSet(atrous_, guide, depthGrad, u[pp]);
         atrousFirst_[pi].clear();
         if (!two_) {
-            atrousFirst_[pi].push_back({&atrous_, atrousU_[pi][0]});
+            atrousFirst_[pi].push_back({&atrousStep1_, atrousU_[pi][0]});
         } else if (nch == 2) {  // (I_u direct, I_u indirect), (I_w direct, I_w indirect)
-            atrousFirst_[pi].push_back({&atrous_, atrousU_[pi][0]});
-            atrousFirst_[pi].push_back({&atrous_, MakeAtrousSet(atrous_, guide, depthGrad, wts)});
+            atrousFirst_[pi].push_back({&atrousStep1_, atrousU_[pi][0]});
+            atrousFirst_[pi].push_back({&atrousStep1_, MakeAtrousSet(atrous_, guide, depthGrad, wts)});
         } else {  // combined: (I_u, I_w)
             const std::array<AtrousChannel, 2> uw{u[0][0], wts[0]};
             atrousFirst_[pi].push_back({&atrousPair_, MakeAtrousSet(atrousPair_, guide, depthGrad, uw)});
@@ -521,9 +524,10 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
                                 p.sigmaNormal, p.sigmaLuminance, writeHistory};
         if (i == 0)
             for (const auto& [pipeline, set] : atrousFirst_[size_t(parity_)])
-                rec.Dispatch(*pipeline, set, &ap, sizeof(ap), groups);
+                rec.Dispatch(*pipeline, set, &ap, sizeof(ap), AtrousBlockGroups(w, h, 1));
         else
-            rec.Dispatch(atrous_, atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap), groups);
+            rec.Dispatch(atrous_, atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+                         AtrousBlockGroups(w, h, 1 << i));
         rec.Barrier();
         rec.EndPass();
         if (two_ && i == 0) blend();

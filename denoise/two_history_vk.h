@@ -63,7 +63,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     // À-trous on all channels' I_u in one dispatch: [parity][pingpong]. Iteration 0 of the
     // two-history variants also filters I_w: [parity] → the dispatches of that iteration (separate
     // channels: the I_u pair and the I_w pair; combined: one I_u + I_w pair on atrousPair_).
-    ComputePipeline atrousPair_;
+    ComputePipeline atrousPair_, atrousStep1_;  // step-1 variants (iteration 0)
     std::array<std::array<VkDescriptorSet, 2>, 2> atrousU_{};
     std::array<std::vector<std::pair<const ComputePipeline*, VkDescriptorSet>>, 2> atrousFirst_;
     VkDescriptorSet claimSet_ = VK_NULL_HANDLE, gatherSet_ = VK_NULL_HANDLE;

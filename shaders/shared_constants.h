@@ -106,6 +106,7 @@
 #define SVGF_MOMENTS_BINDINGS 8
 
 // svgf_atrous
+#define FOVRT_ATROUS_BLOCK_Y 2             // an invocation filters 2×this pixels at stride step (1: measured slower on lavapipe)
 #define SVGF_ATROUS_B_ILLUM_IN 0           // vec4[N]
 #define SVGF_ATROUS_B_GUIDE 1              // vec4[N]   (normal, depth or −1 on background)
 #define SVGF_ATROUS_B_DEPTH_GRAD 2         // float[2N]

@@ -10,6 +10,10 @@
 //   per-tap guide fetch, background test, depth gradient and w_z·w_n exponent are shared; each
 //   channel keeps its own w_l and variance, so every channel gets exactly the 1-channel result.
 //   A compile-time count, not a run-time flag: lavapipe executes both sides of every branch.
+// Blocks: one invocation filters a 2×2 block of pixels at stride 2^i (see main), fetching the
+//   6×6 tap lattice they share once: per pixel 9 (guide + channels) tap fetches instead of 25.
+//   FOVRT_ATROUS_STEP1 ("…_step1", iteration 0 only): the four 3×3 variance windows are one 4×4
+//   block, 4 fetches per pixel instead of 9. The host dispatches AtrousBlockGroups (svgf_atrous_vk.h).
 // Reads:  per channel illumination + variance (vec4); guide (normal, depth, background), depth gradient.
 // Writes: per channel illumination + variance (vec4); colour history when write_history != 0.
 #include "shared_constants.h"
@@ -54,77 +58,150 @@ layout(push_constant) uniform Push {
 
 bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, pc.size)); }
 
+// 2×2 pixel blocks at stride s = step: one invocation filters P_k = base + s·(k & 1, k >> 1),
+// k = 0..3, where base has bit i (s = 2^i) of x and y cleared. The 5×5 windows of the four pixels
+// cover a 6×6 lattice of stride s, so each lattice texel (guide + channels) is fetched once for
+// four pixels: 36 instead of 100 tap fetches. Per pixel the maths and the summation order (rows,
+// then columns) are those of the 1-pixel filter and of SvgfAtrousRef. Blocks per axis:
+// (n / 2s)·s + min(n mod 2s, s) (AtrousBlockGroups). FOVRT_ATROUS_BLOCK_Y = 1 (shared_constants.h)
+// gives 2×1 blocks (pairs along x, a 6×5 lattice), measured slower on lavapipe (denoise/svgf.md).
+#define BY FOVRT_ATROUS_BLOCK_Y     // block rows (1: 2×1 blocks, pairs along x)
+#define BK (2 * BY)                  // pixels per block
+int block_base(int b, int s) { return ((b / s) * 2 * s) + (b % s); }
+
 void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (!inside(p)) return;
-    int i = p.y * pc.size.x + p.x;
-    vec4 center[NCH];
-    FETCH_ILLUM(center, i);
-    vec4 result[NCH] = center;
-    vec4 gc = FETCH4(guide, i);
-    if (!GUIDE_IS_BACKGROUND(gc)) {
-        // 3×3 Gaussian of the variance, only to steer w_l.
-        float var_sum[NCH], var_w = 0.0;
-        [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[c] = 0.0;
+    ivec2 b = ivec2(gl_GlobalInvocationID.xy);
+    const int s = pc.step;
+#if BY == 2
+    ivec2 base = ivec2(block_base(b.x, s), block_base(b.y, s));
+#else
+    ivec2 base = ivec2(block_base(b.x, s), b.y);
+#endif
+    if (!inside(base)) return;  // the group round-up past the last block
+    ivec2 pix[BK];
+    bool valid[BK];
+    [[unroll]] for (int k = 0; k < BK; ++k) {
+        pix[k] = base + ivec2(k & 1, k >> 1) * s;
+        valid[k] = inside(pix[k]);
+    }
+    // Centre texels: captured by the variance prefilter below (the centre is one of its taps).
+    // Pixels outside the image keep a background guide, so they are never filtered or stored.
+    vec4 gc[BK], center[BK][NCH];
+    float var_sum[BK][NCH], var_w[BK];
+    [[unroll]] for (int k = 0; k < BK; ++k) {
+        gc[k] = vec4(0.0, 0.0, 0.0, -1.0);
+        var_w[k] = 0.0;
+        [[unroll]] for (int c = 0; c < NCH; ++c) {
+            center[k][c] = vec4(0.0);
+            var_sum[k][c] = 0.0;
+        }
+    }
+    // 3×3 Gaussian of the variance (always step 1), only to steer w_l.
+#if FOVRT_ATROUS_STEP1
+    // s = 1: the four 3×3 windows are one 4×4 block (16 fetches instead of 36).
+    [[unroll]] for (int vy = 0; vy < 2 + BY; ++vy)
+        [[unroll]] for (int vx = 0; vx < 4; ++vx) {
+            ivec2 q = base + ivec2(vx - 1, vy - 1);
+            if (!inside(q)) continue;
+            int j = q.y * pc.size.x + q.x;
+            vec4 gq = FETCH4(guide, j);
+            vec4 v[NCH];
+            FETCH_ILLUM(v, j);
+            bool bg = GUIDE_IS_BACKGROUND(gq);
+            [[unroll]] for (int k = 0; k < BK; ++k) {
+                const int dx = vx - 1 - (k & 1), dy = vy - 1 - (k >> 1);
+                if (dx < -1 || dx > 1 || dy < -1 || dy > 1) continue;  // compile-time
+                if (dx == 0 && dy == 0) {
+                    gc[k] = gq;
+                    center[k] = v;
+                }
+                if (bg) continue;
+                float g = gauss3(dx, dy);
+                [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[k][c] += g * v[c].a;
+                var_w[k] += g;
+            }
+        }
+#else
+    // s ≥ 2: the four 3×3 windows do not share a row and a column at once; fetch each.
+    [[unroll]] for (int k = 0; k < BK; ++k)
         [[unroll]] for (int dy = -1; dy <= 1; ++dy)
             [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
-                ivec2 q = p + ivec2(dx, dy);
-                if (!inside(q)) continue;
-                int j = q.y * pc.size.x + q.x;
-                if (GUIDE_IS_BACKGROUND(FETCH4(guide, j))) continue;
-                float g = gauss3(dx, dy);
-                vec4 v[NCH];
-                FETCH_ILLUM(v, j);
-                [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[c] += g * v[c].a;
-                var_w += g;
-            }
-        float zp = gc.w;
-        vec3 np = gc.xyz;
-        vec2 gp = FETCH2(depth_grad, i);
-        float lp[NCH], inv_l_den[NCH], sum_w[NCH], sum_v[NCH];
-        vec3 sum_c[NCH];
-        [[unroll]] for (int c = 0; c < NCH; ++c) {
-            float sigma_l_std = pc.sigma_luminance * sqrt(max(0.0, var_sum[c] / var_w));
-            lp[c] = luminance(center[c].rgb);
-            inv_l_den[c] = 1.0 / (sigma_l_std + FOVRT_ATROUS_LUMINANCE_EPSILON);
-            sum_w[c] = 0.0;
-            sum_c[c] = vec3(0.0);
-            sum_v[c] = 0.0;
-        }
-        [[unroll]] for (int ky = -2; ky <= 2; ++ky) {
-            [[unroll]] for (int kx = -2; kx <= 2; ++kx) {
-                ivec2 off = ivec2(kx, ky) * pc.step;
-                ivec2 q = p + off;
+                ivec2 q = pix[k] + ivec2(dx, dy);
                 if (!inside(q)) continue;
                 int j = q.y * pc.size.x + q.x;
                 vec4 gq = FETCH4(guide, j);
+                vec4 v[NCH];
+                FETCH_ILLUM(v, j);
+                if (dx == 0 && dy == 0) {
+                    gc[k] = gq;
+                    center[k] = v;
+                }
                 if (GUIDE_IS_BACKGROUND(gq)) continue;
-                vec4 cq[NCH];
-                FETCH_ILLUM(cq, j);
+                float g = gauss3(dx, dy);
+                [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[k][c] += g * v[c].a;
+                var_w[k] += g;
+            }
+#endif
+    bool filtered[BK];
+    vec2 gp[BK];
+    float lp[BK][NCH], inv_l_den[BK][NCH], sum_w[BK][NCH], sum_v[BK][NCH];
+    vec3 sum_c[BK][NCH];
+    [[unroll]] for (int k = 0; k < BK; ++k) {
+        filtered[k] = !GUIDE_IS_BACKGROUND(gc[k]);
+        gp[k] = valid[k] ? FETCH2(depth_grad, pix[k].y * pc.size.x + pix[k].x) : vec2(0.0);
+        [[unroll]] for (int c = 0; c < NCH; ++c) {
+            float sigma_l_std = pc.sigma_luminance * sqrt(max(0.0, var_sum[k][c] / var_w[k]));
+            lp[k][c] = luminance(center[k][c].rgb);
+            inv_l_den[k][c] = 1.0 / (sigma_l_std + FOVRT_ATROUS_LUMINANCE_EPSILON);
+            sum_w[k][c] = 0.0;
+            sum_c[k][c] = vec3(0.0);
+            sum_v[k][c] = 0.0;
+        }
+    }
+    // The 6×6 lattice row by row; lattice (lx, ly) is tap (lx − 2 − ax, ly − 2 − ay) of pixel
+    // (ax, ay) = (k & 1, k >> 1) when that lies in [−2, 2]² (resolved at compile time).
+    [[unroll]] for (int ly = 0; ly < 4 + BY; ++ly) {
+        [[unroll]] for (int lx = 0; lx < 6; ++lx) {
+            ivec2 q = base + ivec2(lx - 2, ly - 2) * s;
+            if (!inside(q)) continue;
+            int j = q.y * pc.size.x + q.x;
+            vec4 gq = FETCH4(guide, j);
+            if (GUIDE_IS_BACKGROUND(gq)) continue;
+            vec4 cq[NCH];
+            FETCH_ILLUM(cq, j);
+            [[unroll]] for (int k = 0; k < BK; ++k) {
+                const int kx = lx - 2 - (k & 1), ky = ly - 2 - (k >> 1);
+                if (kx < -2 || kx > 2 || ky < -2 || ky > 2) continue;  // compile-time
                 float h = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
-                // Geometric part of the exponent, once for all channels (kx, ky are unrolled
-                // constants: the centre test is resolved at compile time).
-                bool centre = kx == 0 && ky == 0;
-                float depth_term = centre ? 0.0 : geometry_depth_term(zp, gq.w, gp, vec2(off), pc.sigma_depth);
-                float normal_log2 = centre ? 0.0 : geometry_normal_log2(np, gq.xyz, pc.sigma_normal);
+                ivec2 off = ivec2(kx, ky) * s;
+                // Geometric part of the exponent, once for all channels.
+                const bool centre = kx == 0 && ky == 0;
+                float depth_term = centre ? 0.0 : geometry_depth_term(gc[k].w, gq.w, gp[k], vec2(off), pc.sigma_depth);
+                float normal_log2 = centre ? 0.0 : geometry_normal_log2(gc[k].xyz, gq.xyz, pc.sigma_normal);
                 [[unroll]] for (int c = 0; c < NCH; ++c) {
                     float w = centre ? 1.0
                                      : geometry_weight_from_terms(depth_term, normal_log2,
-                                                                  abs(lp[c] - luminance(cq[c].rgb)) * inv_l_den[c]);
+                                                                  abs(lp[k][c] - luminance(cq[c].rgb)) * inv_l_den[k][c]);
                     float hw = h * w;
-                    sum_w[c] += hw;
-                    sum_c[c] += hw * cq[c].rgb;
-                    sum_v[c] += hw * hw * cq[c].a;
+                    sum_w[k][c] += hw;
+                    sum_c[k][c] += hw * cq[c].rgb;
+                    sum_v[k][c] += hw * hw * cq[c].a;
                 }
             }
         }
-        [[unroll]] for (int c = 0; c < NCH; ++c)
-            result[c] = vec4(sum_c[c] / sum_w[c], sum_v[c] / (sum_w[c] * sum_w[c]));
     }
-    illum_out0[i] = result[0];
-    if (pc.write_history != 0u) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
+    [[unroll]] for (int k = 0; k < BK; ++k) {
+        if (!valid[k]) continue;
+        int i = pix[k].y * pc.size.x + pix[k].x;
+        vec4 result[NCH];
+        [[unroll]] for (int c = 0; c < NCH; ++c)
+            result[c] = filtered[k] ? vec4(sum_c[k][c] / sum_w[k][c], sum_v[k][c] / (sum_w[k][c] * sum_w[k][c]))
+                                  : center[k][c];
+        illum_out0[i] = result[0];
+        if (pc.write_history != 0u) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
 #if NCH == 2
-    illum_out1[i] = result[1];
-    if (pc.write_history != 0u) STORE3(hist_color1, i, to_history(result[1].rgb), hfloat);
+        illum_out1[i] = result[1];
+        if (pc.write_history != 0u) STORE3(hist_color1, i, to_history(result[1].rgb), hfloat);
 #endif
+    }
 }

@@ -1,4 +1,4 @@
-// SVGF on Vulkan vs the C++ reference, pass by pass, on random FrameInputs (64×64, sub-pixel
+// SVGF on Vulkan vs the C++ reference, pass by pass, on random FrameInputs (64×64 and odd sizes, sub-pixel
 // motion, random objects, HDR values): reprojection (illumination, moments, history length,
 // colour history), filtered moments, each à-trous iteration, modulation; fp32 and fp16 histories;
 // the weighted and combined variants; allocator accounting == memory plan; behaviour checks
@@ -64,7 +64,7 @@ std::vector<float> HalfsToFloats(const std::vector<uint8_t>& bytes) {
 }
 
 void RunPair(const DenoiserParams& params, const std::string& name, int frames, double tol,
-             bool checkIllum) {
+             bool checkIllum, int width = 64, int height = 64) {
     auto ctx = TestContext();
     SvgfVulkanDenoiser vk(name, ctx, params);
     SvgfReferenceDenoiser ref(name, params);
@@ -75,7 +75,7 @@ void RunPair(const DenoiserParams& params, const std::string& name, int frames, 
         return history && fp16 ? HalfsToFloats(bytes) : AsFloats(bytes);
     };
     for (int t = 0; t < frames; ++t) {
-        FrameInputs f = RandomFrame(64, 64, 1234, uint32_t(t));
+        FrameInputs f = RandomFrame(width, height, 1234, uint32_t(t));
         vk.Denoise(f, outVk);
         ref.Denoise(f, outRef);
         const std::string side = vk.LastWrittenSide();
@@ -108,7 +108,7 @@ void RunPair(const DenoiserParams& params, const std::string& name, int frames, 
         std::memcpy(o.data(), outVk.data(), o.size() * 4);
         auto eO = Compare(o, outRef, 3, tol);
         if (t + 1 == frames)
-            WARN(name << " iterations " << params.svgf.atrousIterations << (fp16 ? " fp16" : "")
+            WARN(name << " " << width << "x" << height << " iterations " << params.svgf.atrousIterations << (fp16 ? " fp16" : "")
                       << (params.svgf.filterCombined ? " combined" : "") << ": output max rel error "
                       << eO.maxRel << ", max abs " << eO.maxAbs << " (validation "
                       << (ctx->validationEnabled() ? "on" : "off") << ")");
@@ -170,6 +170,28 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
         p.svgf.atrousIterations = 3;
         p.svgf.feedbackIteration = 2;
         RunPair(p, "svgf-weighted", 3, 1e-2, false);
+    }
+    // Odd sizes: the à-trous filters 2×2 blocks at stride 2^i, so at the right and bottom edges a
+    // block's partners fall outside the image (67 = 4·16 + 3, 45 = 2·16 + 13, 13 = 8 + 5, 7 < 8).
+    SECTION("odd size 67x45, 5 iterations") {
+        p.svgf.atrousIterations = 5;
+        p.svgf.feedbackIteration = 2;
+        RunPair(p, "svgf", 3, 2e-3, true, 67, 45);
+    }
+    SECTION("odd size 67x45, combined, 4 iterations") {
+        p.svgf.filterCombined = true;
+        p.svgf.atrousIterations = 4;
+        RunPair(p, "svgf", 3, 2e-3, true, 67, 45);
+    }
+    SECTION("odd size 13x7, 4 iterations") {
+        p.svgf.atrousIterations = 4;
+        RunPair(p, "svgf", 3, 2e-3, true, 13, 7);
+    }
+    SECTION("fp16 histories, odd size 67x45, 3 iterations") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        p.precision = Precision::Fp16;
+        p.svgf.atrousIterations = 3;
+        RunPair(p, "svgf", 3, 1e-2, true, 67, 45);
     }
 }
 

@@ -1,5 +1,5 @@
 // two-history, asvgf and two-history-asvgf on Vulkan vs the C++ reference, pass by pass, on random
-// FrameInputs (64×64, sub-pixel motion, random objects, per-frame random sample counts, random
+// FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random sample counts, random
 // gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
 // luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
 // two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α, λ), and the final output
@@ -93,7 +93,8 @@ FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame) {
     return f;
 }
 
-void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames) {
+void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames, int width = 64,
+             int height = 64) {
     auto ctx = TestContext();
     TwoHistoryVulkanDenoiser vk(variant, ctx, params);
     TwoHistoryReferenceDenoiser ref(variant, params);
@@ -106,7 +107,7 @@ void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames
                                                   : std::vector<std::string>{"direct", "indirect"};
     Plane<vec3> outVk, outRef;
     for (int frame = 0; frame < frames; ++frame) {
-        const FrameInputs f = RandomTwoHistoryFrame(64, 64, uint32_t(frame));
+        const FrameInputs f = RandomTwoHistoryFrame(width, height, uint32_t(frame));
         vk.Denoise(f, outVk);
         ref.Denoise(f, outRef);
         const std::string side = vk.LastWrittenSide();
@@ -185,6 +186,16 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 3;
         RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+    }
+    // Odd size: 2×2 à-trous blocks whose partners fall outside the image at the borders.
+    SECTION("fp32 separate channels, odd size 67x45, 4 iterations: two-history") {
+        params.svgf.atrousIterations = 4;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 3, 67, 45);
+    }
+    SECTION("fp32 combined, odd size 67x45, 4 iterations: two-history") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 4;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 3, 67, 45);
     }
     SECTION("fp32 combined: asvgf (one-channel a-trous)") {
         params.svgf.filterCombined = true;
