@@ -172,7 +172,6 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
     const bool two = variant != TwoHistoryVariant::Asvgf;
     const bool asvgf = variant != TwoHistoryVariant::TwoHistory;
     const std::vector<std::string> channels = SvgfChannels(p);
-    const size_t nch = channels.size();
     const int iterations = p.atrousIterations;
     const int feedback = TwoHistoryFeedback(p, two);
     const double samples = asvgf ? b("asvgf.samples") * std::clamp(o.gradientSamplesPerStratum / 2.0, 0.0, 1.0) : 0.0;
@@ -182,32 +181,27 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
         for (PassBytes& pb : AsvgfPassBytes(name, width, height, dp, o)) out.push_back(pb);
     out.push_back({"pack_guide", PackGuideBytes(b)});
 
-    // two_history_reproject, one dispatch per channel; channel 0 (SHARED) also reads the other
-    // channel's colour and history for g and writes W_w, S, g.
-    double reproject = 0.0;
-    for (size_t c = 0; c < nch; ++c) {
-        const std::string& ch = channels[c];
-        const bool shared = c == 0;
-        const bool readOther = nch == 1 || (two && shared && nch == 2);  // combined: colour = direct + indirect
-        reproject += b(c == 0 ? "input.direct" : "input.indirect") + (readOther ? b("input.indirect") : 0.0) +
-                     2 * GeometryBytes(b) + b("input.depthGradient") + b("input.prevPixel");
-        // The sample count is loaded unconditionally (asvgf binds a dummy plane: 2 bytes a pixel).
-        reproject += two ? b("input.sampleCount") : 2.0;
-        if (asvgf) reproject += b("asvgf.alpha");
-        // Previous histories (gathered) and this frame's.
-        reproject += b(ch + ".color") + b(ch + ".moments") + b(ch + ".length");
+    // two_history_reproject: one dispatch for both channels (two_history_reproject_pair; combined:
+    // one channel, colour = direct + indirect). Once per pixel: both colours, geometry of both
+    // frames, depth gradient, previous pixel, sample count, α, W_u gathered (channel 0's length),
+    // W_w and S gathered and written, g gathered and written.
+    double reproject = b("input.direct") + b("input.indirect") + 2 * GeometryBytes(b) + b("input.depthGradient") +
+                       b("input.prevPixel");
+    // The sample count is loaded unconditionally (asvgf binds a dummy plane: 2 bytes a pixel).
+    reproject += two ? b("input.sampleCount") : 2.0;
+    if (asvgf) reproject += b("asvgf.alpha");
+    reproject += b(channels[0] + ".length");
+    if (two) {
+        reproject += 2 * (b("wweight") + b("powerSums"));
+        // The EMA gradient (two-history only; two-history-asvgf takes A-SVGF's λ̂).
+        if (variant == TwoHistoryVariant::TwoHistory) reproject += 2 * b("gradient");
+    }
+    // Per channel: previous I_u and moments (gathered), this frame's moments, W_u, (I_u, Var),
+    // I_u (no feedback); two-history: previous I_w, (I_w, Var), I_w (no feedback).
+    for (const std::string& ch : channels) {
+        reproject += b(ch + ".color") + b(ch + ".moments");
         reproject += b(ch + ".moments") + b(ch + ".length") + b(ch + ".illum0") + (feedback == 0 ? b(ch + ".color") : 0.0);
-        if (two) {
-            reproject += b(ch + ".wcolor") + b("wweight") + b("powerSums");  // W_w and S gathered by every channel
-            reproject += b(ch + ".willum0") + (feedback == 0 ? b(ch + ".wcolor") : 0.0);
-            if (shared) {
-                reproject += b("wweight") + b("powerSums");
-                // The EMA gradient (two-history only; two-history-asvgf takes A-SVGF's λ̂): the
-                // other channel's colour history for g, the previous g gathered, this frame's g.
-                if (variant == TwoHistoryVariant::TwoHistory)
-                    reproject += (nch == 2 ? b(channels[1] + ".color") : 0.0) + 2 * b("gradient");
-            }
-        }
+        if (two) reproject += b(ch + ".wcolor") + b(ch + ".willum0") + (feedback == 0 ? b(ch + ".wcolor") : 0.0);
     }
     out.push_back({"two_history_reproject", reproject});
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstring>
+#include <span>
 
 #include "core/error.h"
 #include "denoise/asvgf_ref.h"
@@ -18,9 +19,10 @@ namespace fovrt {
 namespace {
 // Read-only planes of two_history_reproject bound as uniform texel buffers (common/access.glsl);
 // fp16 RGB histories, sample counts and α stay storage buffers (as the shader declares them).
-std::array<VkFormat, TH_REPROJECT_BINDINGS> ReprojectTexelFormats(Precision precision) {
+// Formats of "two_history_reproject_pair"; the one-channel shader uses the first TH_REPROJECT_BINDINGS.
+std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> ReprojectTexelFormats(Precision precision) {
     const bool half = precision == Precision::Fp16;
-    std::array<VkFormat, TH_REPROJECT_BINDINGS> f{};
+    std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);
     for (int b : {TH_REPROJECT_B_COLOR, TH_REPROJECT_B_COLOR_OTHER, TH_REPROJECT_B_NORMAL, TH_REPROJECT_B_PREV_NORMAL})
         f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
@@ -29,10 +31,12 @@ std::array<VkFormat, TH_REPROJECT_BINDINGS> ReprojectTexelFormats(Precision prec
     for (int b : {TH_REPROJECT_B_DEPTH_GRAD, TH_REPROJECT_B_PREV_PIXEL}) f[size_t(b)] = VK_FORMAT_R32G32_SFLOAT;
     if (!half)
         for (int b : {TH_REPROJECT_B_PREV_IU, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW,
-                      TH_REPROJECT_B_PREV_S})
+                      TH_REPROJECT_B_PREV_IW2, TH_REPROJECT_B_PREV_S})
             f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[TH_REPROJECT_B_PREV_M] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
-    f[TH_REPROJECT_B_PREV_WU] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    for (int b : {TH_REPROJECT_B_PREV_M, TH_REPROJECT_B_PREV_M2})
+        f[size_t(b)] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
+    for (int b : {TH_REPROJECT_B_PREV_WU, TH_REPROJECT_B_PREV_WU2})
+        f[size_t(b)] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
     f[TH_REPROJECT_B_PREV_WW] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
     f[TH_REPROJECT_B_PREV_G] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;  // lum(g)
     return f;
@@ -149,8 +153,13 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     constexpr uint32_t kSets = 16;
     guide_ = ComputePipeline(*context_, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
                              SvgfGuideTexelFormats());
-    reproject_ = ComputePipeline(*context_, "two_history_reproject" + sfx, TH_REPROJECT_BINDINGS,
-                                 sizeof(TwoHistoryReprojectPush), kSets, ReprojectTexelFormats(params_.precision));
+    // Direct and indirect in one dispatch (two_history_reproject_pair: taps and per-pixel state once).
+    const bool pair = channels_.size() == 2;
+    const uint32_t reprojectBindings = pair ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
+    const auto reprojectFormats = ReprojectTexelFormats(params_.precision);
+    reproject_ = ComputePipeline(*context_, (pair ? "two_history_reproject_pair" : "two_history_reproject") + sfx,
+                                 reprojectBindings, sizeof(TwoHistoryReprojectPush), kSets,
+                                 std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
     classify_ = ComputePipeline(*context_, "svgf_moments_classify" + sfx, SVGF_CLASSIFY_BINDINGS,
                                 sizeof(SvgfClassifyPush), kSets, SvgfClassifyTexelFormats(params_.precision));
     moments_ = ComputePipeline(*context_, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
@@ -206,7 +215,6 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
     const std::string& ch0 = channels_[0];
     const std::string& ch1 = channels_.back();
     const int iterations = params_.svgf.atrousIterations;
-    reprojectSets_.assign(nch, {});
     momentsU_.assign(nch, {});
     classifySets_.assign(nch, {});
     momentsW_.assign(nch, {});
@@ -229,42 +237,45 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
         guideSets_[pi] = guide_.MakeSet(g);
 
+        // Channel 0 (direct, or combined) at the base bindings; the pair's indirect at
+        // COLOR_OTHER, PREV_IU_OTHER and the *2 bindings.
+        std::array<const Buffer*, TH_REPROJECT_PAIR_BINDINGS> r{};
+        r[TH_REPROJECT_B_COLOR] = &Buf("input.direct");
+        r[TH_REPROJECT_B_COLOR_OTHER] = &Buf("input.indirect");
+        r[TH_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
+        r[TH_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
+        r[TH_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
+        r[TH_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
+        r[TH_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
+        r[TH_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
+        r[TH_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+        r[TH_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
+        r[TH_REPROJECT_B_SAMPLE_COUNT] = two("input.sampleCount");
+        r[TH_REPROJECT_B_ALPHA] = asvgf_ ? &Buf("asvgf.alpha") : dummyIn;
+        r[TH_REPROJECT_B_PREV_IU] = &Buf(ch0 + ".color." + prev);
+        r[TH_REPROJECT_B_PREV_IU_OTHER] = &Buf(ch1 + ".color." + prev);  // unused when combined
+        r[TH_REPROJECT_B_PREV_WW] = two("wweight." + prev);
+        r[TH_REPROJECT_B_PREV_S] = two("powerSums." + prev);
+        r[TH_REPROJECT_B_PREV_G] = withGradient ? &Buf("gradient." + prev) : dummyIn;
+        r[TH_REPROJECT_B_CUR_WW] = twoOut("wweight." + cur);
+        r[TH_REPROJECT_B_CUR_S] = twoOut("powerSums." + cur);
+        r[TH_REPROJECT_B_CUR_G] = withGradient ? &Buf("gradient." + cur) : dummyOut;
+        r[TH_REPROJECT_B_STATS] = &Buf("stats");
         for (size_t c = 0; c < nch; ++c) {
             const std::string& ch = channels_[c];
-            const std::string& other = channels_[nch - 1 - c];
-            std::array<const Buffer*, TH_REPROJECT_BINDINGS> r{};
-            r[TH_REPROJECT_B_COLOR] = &Buf(c == 0 ? "input.direct" : "input.indirect");
-            r[TH_REPROJECT_B_COLOR_OTHER] = &Buf(c == 0 ? "input.indirect" : "input.direct");
-            r[TH_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
-            r[TH_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
-            r[TH_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
-            r[TH_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
-            r[TH_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
-            r[TH_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
-            r[TH_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-            r[TH_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
-            r[TH_REPROJECT_B_SAMPLE_COUNT] = two("input.sampleCount");
-            r[TH_REPROJECT_B_ALPHA] = asvgf_ ? &Buf("asvgf.alpha") : dummyIn;
-            r[TH_REPROJECT_B_PREV_IU] = &Buf(ch + ".color." + prev);
-            r[TH_REPROJECT_B_PREV_IU_OTHER] = &Buf(other + ".color." + prev);
-            r[TH_REPROJECT_B_PREV_IW] = two(ch + ".wcolor." + prev);
-            r[TH_REPROJECT_B_PREV_M] = &Buf(ch + ".moments." + prev);
-            r[TH_REPROJECT_B_PREV_WU] = &Buf(ch + ".length." + prev);
-            r[TH_REPROJECT_B_PREV_WW] = two("wweight." + prev);
-            r[TH_REPROJECT_B_PREV_S] = two("powerSums." + prev);
-            r[TH_REPROJECT_B_PREV_G] = withGradient ? &Buf("gradient." + prev) : dummyIn;
-            r[TH_REPROJECT_B_CUR_IU] = &Buf(ch + ".color." + cur);
-            r[TH_REPROJECT_B_CUR_IW] = twoOut(ch + ".wcolor." + cur);
-            r[TH_REPROJECT_B_CUR_M] = &Buf(ch + ".moments." + cur);
-            r[TH_REPROJECT_B_CUR_WU] = &Buf(ch + ".length." + cur);
-            r[TH_REPROJECT_B_CUR_WW] = twoOut("wweight." + cur);
-            r[TH_REPROJECT_B_CUR_S] = twoOut("powerSums." + cur);
-            r[TH_REPROJECT_B_CUR_G] = withGradient ? &Buf("gradient." + cur) : dummyOut;
-            r[TH_REPROJECT_B_ILLUM_U] = &Buf(ch + ".illum0");
-            r[TH_REPROJECT_B_ILLUM_W] = twoOut(ch + ".willum0");
-            r[TH_REPROJECT_B_STATS] = &Buf("stats");
-            reprojectSets_[c][pi] = reproject_.MakeSet(r);
+            auto b = [&](int base, int second) { return size_t(c == 0 ? base : second); };
+            r[b(TH_REPROJECT_B_PREV_IW, TH_REPROJECT_B_PREV_IW2)] = two(ch + ".wcolor." + prev);
+            r[b(TH_REPROJECT_B_PREV_M, TH_REPROJECT_B_PREV_M2)] = &Buf(ch + ".moments." + prev);
+            r[b(TH_REPROJECT_B_PREV_WU, TH_REPROJECT_B_PREV_WU2)] = &Buf(ch + ".length." + prev);
+            r[b(TH_REPROJECT_B_CUR_IU, TH_REPROJECT_B_CUR_IU2)] = &Buf(ch + ".color." + cur);
+            r[b(TH_REPROJECT_B_CUR_IW, TH_REPROJECT_B_CUR_IW2)] = twoOut(ch + ".wcolor." + cur);
+            r[b(TH_REPROJECT_B_CUR_M, TH_REPROJECT_B_CUR_M2)] = &Buf(ch + ".moments." + cur);
+            r[b(TH_REPROJECT_B_CUR_WU, TH_REPROJECT_B_CUR_WU2)] = &Buf(ch + ".length." + cur);
+            r[b(TH_REPROJECT_B_ILLUM_U, TH_REPROJECT_B_ILLUM_U2)] = &Buf(ch + ".illum0");
+            r[b(TH_REPROJECT_B_ILLUM_W, TH_REPROJECT_B_ILLUM_W2)] = twoOut(ch + ".willum0");
         }
+        const size_t reprojectBindings = nch == 2 ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
+        reprojectSets_[pi] = reproject_.MakeSet(std::span<const Buffer* const>(r).first(reprojectBindings));
 
         for (size_t c = 0; c < nch; ++c) {
             const std::string& ch = channels_[c];
@@ -464,16 +475,13 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     uint32_t flags = TH_REPROJECT_FLAG_HAS_PREV * (hasPrev_ ? 1u : 0u);
     if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
     if (variant_ == TwoHistoryVariant::TwoHistory) flags |= TH_REPROJECT_FLAG_GRADIENT;
-    flags |= channels_.size() == 2 ? TH_REPROJECT_FLAG_OTHER : TH_REPROJECT_FLAG_COMBINED;
+    if (channels_.size() == 1) flags |= TH_REPROJECT_FLAG_COMBINED;
     if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
     if (feedback == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
-    for (size_t c = 0; c < channels_.size(); ++c) {
-        // Channel 0 also writes the per-pixel shared state (W_w, S_k, g).
-        const TwoHistoryReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments,
-                                         params_.twoHistory.gradientBeta,
-                                         flags | (c == 0 ? TH_REPROJECT_FLAG_SHARED : 0u)};
-        rec.Dispatch(reproject_, reprojectSets_[c][size_t(parity_)], &rp, sizeof(rp), groups);
-    }
+    // One dispatch: both channels (pair) or the combined one.
+    const TwoHistoryReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments, params_.twoHistory.gradientBeta,
+                                     flags};
+    rec.Dispatch(reproject_, reprojectSets_[size_t(parity_)], &rp, sizeof(rp), groups);
     rec.Barrier();
     rec.EndPass();
 

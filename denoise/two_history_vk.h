@@ -59,7 +59,8 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     ComputePipeline claim_, gather_, gradAtrous_, alpha_;
     std::array<VkDescriptorSet, 2> gradientSets_{};
-    std::vector<std::array<VkDescriptorSet, 2>> classifySets_, reprojectSets_, momentsU_, momentsW_, blendSets_;
+    std::array<VkDescriptorSet, 2> reprojectSets_{};  // both channels (pair) or the combined one
+    std::vector<std::array<VkDescriptorSet, 2>> classifySets_, momentsU_, momentsW_, blendSets_;
     // À-trous on all channels' I_u in one dispatch: [parity][pingpong]. Iteration 0 of the
     // two-history variants also filters I_w: [parity] → the dispatches of that iteration (separate
     // channels: the I_u pair and the I_w pair; combined: one I_u + I_w pair on atrousPair_).

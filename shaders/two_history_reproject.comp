@@ -1,18 +1,21 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // two_history_reproject — temporal accumulation of the unweighted and the sample-count-weighted
-// histories (SPEC §5; A-SVGF's per-pixel α, SPEC §4), one channel per dispatch. Mirrors
-// TwoHistoryReprojectRef.
+// histories (SPEC §5; A-SVGF's per-pixel α, SPEC §4). Mirrors TwoHistoryReprojectRef.
 // Purpose: sanitise the illumination (NaN/Inf → 0, negative → 0, counted); back-project every
 //   history with SVGF's tested taps (common/reprojection.glsl); β = min(1, (1/α − 1)/W_u,prev)
 //   (0 on disocclusion); W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
 //   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)·lum(Σx − ΣI_u,prev)
-//   over both channels (SHARED dispatch with the GRADIENT flag; g is one float, the signed
-//   luminance of the gradient).
+//   over the channels (GRADIENT flag; g is one float, the signed luminance of the gradient).
+// Channels: FOVRT_CHANNELS (1: "two_history_reproject", one channel = direct + indirect summed
+//   (combined); 2: "two_history_reproject_pair", direct at the base bindings and indirect at
+//   COLOR_OTHER / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
+//   geometry) and the per-pixel state (W_u, W_w, S, g) are gathered and computed once per pixel;
+//   W_u is the same for both channels (as in the reference) and written into each channel's length.
 // Reads:  illumination, geometry of both frames, depth gradient, previous pixel, sample counts,
 //         per-pixel α (A-SVGF), previous histories.
-// Writes: this frame's histories (moments, W_u into the channel's length; W_w, S, g when SHARED;
-//         colours when no à-trous iteration feeds back), (I_u, Var) and (I_w, Var), counters.
+// Writes: this frame's histories (per channel moments, W_u into the channel's length, colours
+//         when no à-trous iteration feeds back; W_w, S, g once), (I_u, Var) and (I_w, Var), counters.
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
@@ -20,6 +23,11 @@
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
 #include "common/two_history.glsl"
+
+#ifndef FOVRT_CHANNELS
+#define FOVRT_CHANNELS 1
+#endif
+#define NCH FOVRT_CHANNELS
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
@@ -38,32 +46,44 @@ PLANE(TH_REPROJECT_B_PREV_PIXEL, prev_pixel);      // rg32f
 layout(std430, binding = TH_REPROJECT_B_SAMPLE_COUNT) readonly buffer SampleCount { uint sample_count[]; };
 layout(std430, binding = TH_REPROJECT_B_ALPHA) readonly buffer AlphaMap { float alpha_map[]; };
 #ifdef FOVRT_FP16
-layout(std430, binding = TH_REPROJECT_B_PREV_IU) readonly buffer PrevIu { hfloat prev_iu[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_IU_OTHER) readonly buffer PrevIuOther { hfloat prev_iu_other[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_IW) readonly buffer PrevIw { hfloat prev_iw[]; };
-layout(std430, binding = TH_REPROJECT_B_PREV_S) readonly buffer PrevS { hfloat prev_s[]; };
+#define HIST3_PLANE(b, name) layout(std430, binding = b) readonly buffer name##_block { hfloat name[]; }
 #define HIST3_LOAD LOAD3
 #else
-PLANE(TH_REPROJECT_B_PREV_IU, prev_iu);            // rgb32f
-PLANE(TH_REPROJECT_B_PREV_IU_OTHER, prev_iu_other);
-PLANE(TH_REPROJECT_B_PREV_IW, prev_iw);
-PLANE(TH_REPROJECT_B_PREV_S, prev_s);
+#define HIST3_PLANE(b, name) PLANE(b, name)  // rgb32f
 #define HIST3_LOAD FETCH3
 #endif
+HIST3_PLANE(TH_REPROJECT_B_PREV_S, prev_s);
 PLANE(TH_REPROJECT_B_PREV_G, prev_g);              // r32f / r16f (luminance gradient)
-PLANE(TH_REPROJECT_B_PREV_M, prev_m);              // rg32f / rg16f
-PLANE(TH_REPROJECT_B_PREV_WU, prev_wu);            // r32f / r16f
 PLANE(TH_REPROJECT_B_PREV_WW, prev_ww);            // r32f / r16f
-layout(std430, binding = TH_REPROJECT_B_CUR_IU) writeonly buffer CurIu { hfloat cur_iu[]; };
-layout(std430, binding = TH_REPROJECT_B_CUR_IW) writeonly buffer CurIw { hfloat cur_iw[]; };
-layout(std430, binding = TH_REPROJECT_B_CUR_M) writeonly buffer CurM { hfloat cur_m[]; };
-layout(std430, binding = TH_REPROJECT_B_CUR_WU) writeonly buffer CurWu { hfloat cur_wu[]; };
 layout(std430, binding = TH_REPROJECT_B_CUR_WW) writeonly buffer CurWw { hfloat cur_ww[]; };
 layout(std430, binding = TH_REPROJECT_B_CUR_S) writeonly buffer CurS { hfloat cur_s[]; };
 layout(std430, binding = TH_REPROJECT_B_CUR_G) writeonly buffer CurG { hfloat cur_g[]; };
-layout(std430, binding = TH_REPROJECT_B_ILLUM_U) writeonly buffer IllumU { vec4 illum_u[]; };
-layout(std430, binding = TH_REPROJECT_B_ILLUM_W) writeonly buffer IllumW { vec4 illum_w[]; };
 layout(std430, binding = TH_REPROJECT_B_STATS) buffer Stats { uint stats[]; };
+
+// The histories of one channel: binding numbers of channel 0 or (pair) channel 1.
+#define CHANNEL_PLANES(k, b_prev_iu, b_prev_iw, b_prev_m, b_prev_wu, b_cur_iu, b_cur_iw, b_cur_m, b_cur_wu,  \
+                       b_illum_u, b_illum_w)                                                               \
+    HIST3_PLANE(b_prev_iu, prev_iu##k);                                                                    \
+    HIST3_PLANE(b_prev_iw, prev_iw##k);                                                                    \
+    PLANE(b_prev_m, prev_m##k);   /* rg32f / rg16f */                                                      \
+    PLANE(b_prev_wu, prev_wu##k); /* r32f / r16f */                                                        \
+    layout(std430, binding = b_cur_iu) writeonly buffer CurIu##k { hfloat cur_iu##k[]; };                  \
+    layout(std430, binding = b_cur_iw) writeonly buffer CurIw##k { hfloat cur_iw##k[]; };                  \
+    layout(std430, binding = b_cur_m) writeonly buffer CurM##k { hfloat cur_m##k[]; };                     \
+    layout(std430, binding = b_cur_wu) writeonly buffer CurWu##k { hfloat cur_wu##k[]; };                  \
+    layout(std430, binding = b_illum_u) writeonly buffer IllumU##k { vec4 illum_u##k[]; };                 \
+    layout(std430, binding = b_illum_w) writeonly buffer IllumW##k { vec4 illum_w##k[]; }
+
+CHANNEL_PLANES(0, TH_REPROJECT_B_PREV_IU, TH_REPROJECT_B_PREV_IW, TH_REPROJECT_B_PREV_M, TH_REPROJECT_B_PREV_WU,
+               TH_REPROJECT_B_CUR_IU, TH_REPROJECT_B_CUR_IW, TH_REPROJECT_B_CUR_M, TH_REPROJECT_B_CUR_WU,
+               TH_REPROJECT_B_ILLUM_U, TH_REPROJECT_B_ILLUM_W);
+#if NCH == 2
+CHANNEL_PLANES(1, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW2, TH_REPROJECT_B_PREV_M2,
+               TH_REPROJECT_B_PREV_WU2, TH_REPROJECT_B_CUR_IU2, TH_REPROJECT_B_CUR_IW2, TH_REPROJECT_B_CUR_M2,
+               TH_REPROJECT_B_CUR_WU2, TH_REPROJECT_B_ILLUM_U2, TH_REPROJECT_B_ILLUM_W2);
+#elif NCH != 1
+#error "FOVRT_CHANNELS must be 1 or 2"
+#endif
 
 // Mirrors TwoHistoryReprojectPush in denoise/two_history_vk.cpp.
 layout(push_constant) uniform Push {
@@ -78,14 +98,14 @@ float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
 uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
 
-// NaN/Inf → 0, negative components → 0; counted only when `count` (each channel once).
-vec3 sanitize(vec3 c, bool count) {
+// NaN/Inf → 0, negative components → 0; counted (each channel once).
+vec3 sanitize(vec3 c) {
     if (any(isnan(c)) || any(isinf(c))) {
-        if (count) atomicAdd(stats[0], 1u);
+        atomicAdd(stats[0], 1u);
         return vec3(0.0);
     }
     if (any(lessThan(c, vec3(0.0)))) {
-        if (count) atomicAdd(stats[1], 1u);
+        atomicAdd(stats[1], 1u);
         return max(c, vec3(0.0));
     }
     return c;
@@ -96,13 +116,38 @@ vec3 sanitize(vec3 c, bool count) {
 #define GATHER2(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, FETCH2, vec2(0.0), out_)
 #define GATHER3(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, HIST3_LOAD, vec3(0.0), out_)
 
+// Channel k: gathers its histories, accumulates x[k] with the per-pixel W_u/W_w, writes its
+// histories and illumination; leaves the gathered I_u,prev in iu_prev[k] (for g).
+#define ACCUMULATE_CHANNEL(k)                                                                  \
+    do {                                                                                       \
+        float l_ = luminance(x[k]);                                                            \
+        iu_prev[k] = x[k];                                                                     \
+        vec3 iw_prev_ = x[k];                                                                  \
+        vec2 m_prev_ = vec2(l_, l_ * l_);                                                      \
+        if (success) {                                                                         \
+            GATHER3(prev_iu##k, taps, iu_prev[k]);                                             \
+            GATHER2(prev_m##k, taps, m_prev_);                                                 \
+            if (two) GATHER3(prev_iw##k, taps, iw_prev_);                                      \
+        }                                                                                      \
+        vec3 iu_ = iu_prev[k] + (x[k] - iu_prev[k]) * (1.0 / wu);                              \
+        vec2 m_ = mix(m_prev_, vec2(l_, l_ * l_), am);                                         \
+        float variance_ = max(0.0, m_.y - m_.x * m_.x);                                        \
+        STORE2(cur_m##k, i, to_history(m_), hfloat);                                           \
+        cur_wu##k[i] = hfloat(to_history(wu));                                                 \
+        illum_u##k[i] = vec4(iu_, variance_);                                                  \
+        if (write_color) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
+        if (two) {                                                                             \
+            vec3 iw_ = iw_prev_ + (x[k] - iw_prev_) * (n / ww);                                \
+            illum_w##k[i] = vec4(iw_, variance_);                                              \
+            if (write_color) STORE3(cur_iw##k, i, to_history(iw_), hfloat);                    \
+        }                                                                                      \
+    } while (false)
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
     bool two = (pc.flags & TH_REPROJECT_FLAG_TWO_HISTORY) != 0u;
-    bool combined = (pc.flags & TH_REPROJECT_FLAG_COMBINED) != 0u;
-    bool shared_state = (pc.flags & TH_REPROJECT_FLAG_SHARED) != 0u;
     bool write_color = (pc.flags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 
     ReprojTaps taps;
@@ -119,10 +164,11 @@ void main() {
     float alpha = alpha_map_on ? alpha_map[i] : pc.alpha;
     float alpha_m = alpha_map_on ? alpha_map[i] : pc.alpha_moments;
 
+    // Per-pixel state, once for all channels (W_u from channel 0's length: both channels hold the same).
     float wu_prev = 0.0, ww_prev = 0.0;
     vec3 s_prev = vec3(0.0);
     if (success) {
-        GATHER1(prev_wu, taps, wu_prev);
+        GATHER1(prev_wu0, taps, wu_prev);
         if (two) {
             GATHER1(prev_ww, taps, ww_prev);
             GATHER3(prev_s, taps, s_prev);
@@ -134,41 +180,28 @@ void main() {
     vec3 s = beta * beta * s_prev + vec3(1.0 / n, 1.0, n);
     float am = success ? max(alpha_m, 1.0 / wu) : 1.0;
 
+    vec3 x[NCH], iu_prev[NCH];
+#if NCH == 2
+    x[0] = sanitize(FETCH3(color, i));
+    x[1] = sanitize(FETCH3(color_other, i));
+#else
     vec3 raw = FETCH3(color, i);
-    if (combined) raw += FETCH3(color_other, i);
-    vec3 x = sanitize(raw, true);
-    float l = luminance(x);
-    vec3 iu_prev = x, iw_prev = x;
-    vec2 m_prev = vec2(l, l * l);
-    if (success) {
-        GATHER3(prev_iu, taps, iu_prev);
-        GATHER2(prev_m, taps, m_prev);
-        if (two) GATHER3(prev_iw, taps, iw_prev);
-    }
-    vec3 iu = iu_prev + (x - iu_prev) * (1.0 / wu);
-    vec2 m = mix(m_prev, vec2(l, l * l), am);
-    float variance = max(0.0, m.y - m.x * m.x);
-    STORE2(cur_m, i, to_history(m), hfloat);
-    cur_wu[i] = hfloat(to_history(wu));
-    illum_u[i] = vec4(iu, variance);
-    if (write_color) STORE3(cur_iu, i, to_history(iu), hfloat);
+    if ((pc.flags & TH_REPROJECT_FLAG_COMBINED) != 0u) raw += FETCH3(color_other, i);
+    x[0] = sanitize(raw);
+#endif
+    ACCUMULATE_CHANNEL(0);
+#if NCH == 2
+    ACCUMULATE_CHANNEL(1);
+#endif
     if (two) {
-        vec3 iw = iw_prev + (x - iw_prev) * (n / ww);
-        illum_w[i] = vec4(iw, variance);
-        if (write_color) STORE3(cur_iw, i, to_history(iw), hfloat);
-    }
-    if (two && shared_state) {
         cur_ww[i] = hfloat(to_history(ww));
         STORE3(cur_s, i, to_history(s), hfloat);
         if ((pc.flags & TH_REPROJECT_FLAG_GRADIENT) != 0u) {
-            vec3 x_sum = x, iu_prev_sum = iu_prev;
-            if ((pc.flags & TH_REPROJECT_FLAG_OTHER) != 0u) {
-                vec3 xo = sanitize(FETCH3(color_other, i), false);
-                vec3 iuo = xo;
-                if (success) GATHER3(prev_iu_other, taps, iuo);
-                x_sum += xo;
-                iu_prev_sum += iuo;
-            }
+            vec3 x_sum = x[0], iu_prev_sum = iu_prev[0];
+#if NCH == 2
+            x_sum += x[1];
+            iu_prev_sum += iu_prev[1];
+#endif
             float g_prev = 0.0;
             if (success) GATHER1(prev_g, taps, g_prev);
             float g = success ? g_prev * pc.gradient_beta +

@@ -24,9 +24,10 @@ VulkanContextOptions TestOptions() {
 }  // namespace
 
 TEST_CASE("shader registry embeds every stage in both precisions", "[vk]") {
-    // *_pair: the two-channel variants (FOVRT_CHANNELS 2) of the reprojection and the à-trous.
+    // *_pair: the two-channel variants (FOVRT_CHANNELS 2) of the reprojections and the à-trous.
     for (const char* name : {"svgf_reproject", "svgf_reproject_pair", "svgf_filter_moments", "svgf_atrous",
-                             "svgf_atrous_pair", "svgf_modulate"}) {
+                             "svgf_atrous_pair", "svgf_modulate", "two_history_reproject",
+                             "two_history_reproject_pair"}) {
         auto code = ShaderCode(name);
         REQUIRE(code.size() > 5);
         CHECK(code[0] == 0x07230203u);  // SPIR-V magic

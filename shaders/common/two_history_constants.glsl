@@ -6,12 +6,14 @@
 // 1-D passes (one invocation per gradient sample).
 #define FOVRT_WORKGROUP_1D 64
 
-// two_history_reproject: one dispatch per channel (lavapipe allows 32 storage buffers per
-// stage). The per-pixel shared state (W_w, S_k, g) is written by the SHARED dispatch (channel 0),
-// which also reads the other channel to form g on the summed illumination (g: one float, the
-// signed luminance of the gradient; two-history only, GRADIENT flag).
-#define TH_REPROJECT_B_COLOR 0         // float[3N] this channel's illumination
-#define TH_REPROJECT_B_COLOR_OTHER 1   // float[3N] the other channel (added when combined)
+// two_history_reproject: one channel (combined: direct + indirect); two_history_reproject_pair:
+// both channels in one dispatch (direct at the base bindings, indirect at COLOR_OTHER,
+// PREV_IU_OTHER and the *2 bindings), with the taps and the per-pixel state (W_u, W_w, S_k, g)
+// once per pixel (g: one float, the signed luminance of the gradient over both channels;
+// two-history only, GRADIENT flag). Lavapipe allows 32 storage buffers per stage: the pair
+// layout has 23 in fp16.
+#define TH_REPROJECT_B_COLOR 0         // float[3N] channel 0's illumination (direct, or combined)
+#define TH_REPROJECT_B_COLOR_OTHER 1   // float[3N] indirect (pair: channel 1; added when combined)
 #define TH_REPROJECT_B_DEPTH 2
 #define TH_REPROJECT_B_NORMAL 3
 #define TH_REPROJECT_B_OBJECT 4
@@ -23,7 +25,7 @@
 #define TH_REPROJECT_B_SAMPLE_COUNT 10 // uint[N/2] packed uint16
 #define TH_REPROJECT_B_ALPHA 11        // float[N] per-pixel α (A-SVGF)
 #define TH_REPROJECT_B_PREV_IU 12      // previous frame's histories
-#define TH_REPROJECT_B_PREV_IU_OTHER 13
+#define TH_REPROJECT_B_PREV_IU_OTHER 13 // pair: channel 1's I_u
 #define TH_REPROJECT_B_PREV_IW 14
 #define TH_REPROJECT_B_PREV_M 15
 #define TH_REPROJECT_B_PREV_WU 16      // the channel's "length" buffer holds W_u
@@ -40,15 +42,24 @@
 #define TH_REPROJECT_B_ILLUM_U 27      // vec4[N] (I_u, Var)
 #define TH_REPROJECT_B_ILLUM_W 28      // vec4[N] (I_w, Var)
 #define TH_REPROJECT_B_STATS 29
-#define TH_REPROJECT_BINDINGS 30
+#define TH_REPROJECT_BINDINGS 30      // one channel ("two_history_reproject")
+// Channel 1 of "two_history_reproject_pair".
+#define TH_REPROJECT_B_PREV_IW2 30
+#define TH_REPROJECT_B_PREV_M2 31
+#define TH_REPROJECT_B_PREV_WU2 32
+#define TH_REPROJECT_B_CUR_IU2 33
+#define TH_REPROJECT_B_CUR_IW2 34
+#define TH_REPROJECT_B_CUR_M2 35
+#define TH_REPROJECT_B_CUR_WU2 36
+#define TH_REPROJECT_B_ILLUM_U2 37
+#define TH_REPROJECT_B_ILLUM_W2 38
+#define TH_REPROJECT_PAIR_BINDINGS 39
 
 #define TH_REPROJECT_FLAG_TWO_HISTORY 1u   // accumulate I_w, W_w, S_k
 #define TH_REPROJECT_FLAG_COMBINED 2u      // this channel = direct + indirect
 #define TH_REPROJECT_FLAG_ALPHA_MAP 4u     // α from the per-pixel map
 #define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
 #define TH_REPROJECT_FLAG_HAS_PREV 16u     // a previous frame exists
-#define TH_REPROJECT_FLAG_SHARED 32u       // write W_w, S_k, g (once per pixel)
-#define TH_REPROJECT_FLAG_OTHER 64u        // a second channel exists (g sums both)
 #define TH_REPROJECT_FLAG_GRADIENT 128u    // accumulate g (two-history; not two-history-asvgf)
 
 // two_history_gradient: edge-aware filter of g, then q.
