@@ -213,8 +213,8 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
     out.push_back({"filter_moments", moments});
 
     if (variant == TwoHistoryVariant::TwoHistory) {
-        // 5×5 filter of g (this frame) on the raw geometry, the variance of each channel's I_u → q.
-        double gradient = b("gradient") + GeometryBytes(b) + b("input.depthGradient") + b("q");
+        // 5×5 filter of g (this frame) on the packed guide, the variance of each channel's I_u → q.
+        double gradient = b("gradient") + b("geometry.guide") + b("input.depthGradient") + b("q");
         for (const std::string& ch : channels) gradient += b(ch + ".illum1");
         out.push_back({"two_history_gradient", gradient});
     }

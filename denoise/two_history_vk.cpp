@@ -61,9 +61,7 @@ std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precis
         precision == Precision::Fp16 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
     f[TH_GRADIENT_B_ILLUM_U0] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[TH_GRADIENT_B_ILLUM_U1] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[TH_GRADIENT_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
-    f[TH_GRADIENT_B_NORMAL] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[TH_GRADIENT_B_OBJECT] = VK_FORMAT_R32_UINT;
+    f[TH_GRADIENT_B_GUIDE] = VK_FORMAT_R32G32B32A32_SFLOAT;
     f[TH_GRADIENT_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
     return f;
 }
@@ -339,9 +337,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             g[TH_GRADIENT_B_GRADIENT] = &Buf("gradient." + cur);
             g[TH_GRADIENT_B_ILLUM_U0] = &Buf(ch0 + ".illum1");
             g[TH_GRADIENT_B_ILLUM_U1] = &Buf(ch1 + ".illum1");
-            g[TH_GRADIENT_B_DEPTH] = &Buf("geometry.depth." + cur);
-            g[TH_GRADIENT_B_NORMAL] = &Buf("geometry.normal." + cur);
-            g[TH_GRADIENT_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            g[TH_GRADIENT_B_GUIDE] = &Buf("geometry.guide");
             g[TH_GRADIENT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
             g[TH_GRADIENT_B_Q] = &Buf("q");
             gradientSets_[pi] = gradient_.MakeSet(g);

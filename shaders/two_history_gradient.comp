@@ -1,12 +1,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // two_history_gradient — edge-aware filter of the gradient EMA and the gradient blend factor q
 // (SPEC §5). Mirrors TwoHistoryGradientRef.
 // Purpose: g' = Σ h(k) w_z w_n g / Σ h(k) w_z w_n over a 5×5 à-trous kernel (step 1, no
 //   luminance term: g itself is what is being estimated); q = clamp(S·|g'|/std, 0, 1) with
 //   std² = Σ_channels Var of the unweighted history (after the variance estimate). g is the
 //   signed luminance of the gradient, one float (denoise/two_history_math.h).
-// Reads:  gradient EMA (this frame), (I_u, Var) per channel, geometry, depth gradient.
+// Reads:  gradient EMA (this frame), (I_u, Var) per channel, the packed guide (normal, depth,
+//         background; svgf_pack_guide: one fetch per tap instead of three), depth gradient.
 // Writes: q (float per pixel).
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
@@ -21,9 +23,7 @@ layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 PLANE(TH_GRADIENT_B_GRADIENT, gradient);        // r32f / r16f
 PLANE(TH_GRADIENT_B_ILLUM_U0, illum_u0);        // rgba32f
 PLANE(TH_GRADIENT_B_ILLUM_U1, illum_u1);        // rgba32f
-PLANE(TH_GRADIENT_B_DEPTH, depth);              // r32f
-PLANE(TH_GRADIENT_B_NORMAL, normal);            // rgb32f
-UPLANE(TH_GRADIENT_B_OBJECT, object_id);        // r32ui
+PLANE(TH_GRADIENT_B_GUIDE, guide);              // rgba32f (normal, depth; svgf_pack_guide)
 PLANE(TH_GRADIENT_B_DEPTH_GRAD, depth_grad);    // rg32f
 layout(std430, binding = TH_GRADIENT_B_Q) writeonly buffer Q { float q_out[]; };
 
@@ -40,25 +40,24 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
-    if (FETCH1(object_id, i) == FOVRT_NO_OBJECT) {
+    vec4 gc = FETCH4(guide, i);
+    if (GUIDE_IS_BACKGROUND(gc)) {
         q_out[i] = 0.0;
         return;
     }
-    float zp = FETCH1(depth, i);
-    vec3 np = FETCH3(normal, i);
     vec2 gp = FETCH2(depth_grad, i);
     float sum = 0.0;
     float wsum = 0.0;
-    for (int ky = -2; ky <= 2; ++ky)
-        for (int kx = -2; kx <= 2; ++kx) {
+    [[unroll]] for (int ky = -2; ky <= 2; ++ky)
+        [[unroll]] for (int kx = -2; kx <= 2; ++kx) {
             ivec2 q = p + ivec2(kx, ky);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
             int j = q.y * pc.size.x + q.x;
-            if (FETCH1(object_id, j) == FOVRT_NO_OBJECT) continue;
+            vec4 gq = FETCH4(guide, j);
+            if (GUIDE_IS_BACKGROUND(gq)) continue;
             float w = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
-            if (kx != 0 || ky != 0)
-                w *= depth_weight(zp, FETCH1(depth, j), gp, vec2(kx, ky), pc.sigma_depth) *
-                     normal_weight(np, FETCH3(normal, j), pc.sigma_normal);
+            if (kx != 0 || ky != 0)  // w_z·w_n as one exp2, as in svgf_atrous
+                w *= geometry_weight(gc.w, gq.w, gp, vec2(kx, ky), pc.sigma_depth, gc.xyz, gq.xyz, pc.sigma_normal, 0.0);
             sum += w * FETCH1(gradient, j);
             wsum += w;
         }

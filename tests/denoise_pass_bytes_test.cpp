@@ -123,13 +123,13 @@ TEST_CASE("two-history pass bytes follow the shaders' bindings", "[bench]") {
     };
     // Blend per channel: (I_u, Var) read + written 32, (I_w, Var) 16, W_u 4, W_w 4, S 12, q 4.
     CHECK(at(model, "two_history_blend") == Approx(2 * (32 + 16 + 4 + 4 + 12 + 4)));
-    // The gradient filter: g (element size from the plan), geometry 20, depth gradient 8, each
+    // The gradient filter: g (element size from the plan), guide 16, depth gradient 8, each
     // channel's (I_u, Var) 16, q 4.
     double g = 0.0;
     for (const BufferPlan& b : PlanDenoiserMemory("two-history", 64, 64, p))
         if (b.name == "gradient.A") g = double(b.bytes) / (64 * 64);
     CHECK(g > 0.0);
-    CHECK(at(model, "two_history_gradient") == Approx(g + 20 + 8 + 2 * 16 + 4));
+    CHECK(at(model, "two_history_gradient") == Approx(g + 16 + 8 + 2 * 16 + 4));
     // Reprojection, one dispatch for both channels: direct + indirect 24, geometry of both frames
     // 40, depth gradient 8, previous pixel 8, sample count 2, W_u gathered once 4, W_w and S
     // gathered and written 2·16, g gathered and written; per channel previous I_u 12 and moments

@@ -66,12 +66,10 @@
 #define TH_GRADIENT_B_GRADIENT 0
 #define TH_GRADIENT_B_ILLUM_U0 1
 #define TH_GRADIENT_B_ILLUM_U1 2
-#define TH_GRADIENT_B_DEPTH 3
-#define TH_GRADIENT_B_NORMAL 4
-#define TH_GRADIENT_B_OBJECT 5
-#define TH_GRADIENT_B_DEPTH_GRAD 6
-#define TH_GRADIENT_B_Q 7
-#define TH_GRADIENT_BINDINGS 8
+#define TH_GRADIENT_B_GUIDE 3
+#define TH_GRADIENT_B_DEPTH_GRAD 4
+#define TH_GRADIENT_B_Q 5
+#define TH_GRADIENT_BINDINGS 6
 
 // two_history_blend: in place on the unweighted channel's à-trous output.
 #define TH_BLEND_B_ILLUM_U 0   // vec4[N] read and written
