@@ -69,4 +69,25 @@ inline VkDescriptorSet MakeAtrousSet(ComputePipeline& pipeline, const Buffer& gu
         std::span<const Buffer* const>(a).first(channels.size() == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS));
 }
 
+// The SVGF stages both Vulkan hosts (svgf_vk, two_history_vk) run unchanged, built one way for
+// both: the guide pack, the moments classify + spatial filter, à-trous (and its step-1 variant
+// for iteration 0) with `channels` planes per dispatch, and the remodulation.
+struct SvgfStagePipelines {
+    ComputePipeline guide, classify, moments, atrous, atrousStep1, modulate;
+
+    SvgfStagePipelines() = default;
+    SvgfStagePipelines(VulkanContext& context, int channels, Precision precision, uint32_t maxSets) {
+        const std::string sfx = precision == Precision::Fp16 ? "_fp16" : "";
+        guide = ComputePipeline(context, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
+                                SvgfGuideTexelFormats());
+        classify = ComputePipeline(context, "svgf_moments_classify" + sfx, SVGF_CLASSIFY_BINDINGS,
+                                   sizeof(SvgfClassifyPush), maxSets, SvgfClassifyTexelFormats(precision));
+        moments = ComputePipeline(context, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
+                                  sizeof(SvgfFilterMomentsPush), maxSets, SvgfMomentsTexelFormats(precision));
+        atrous = MakeAtrousPipeline(context, channels, precision, maxSets);
+        atrousStep1 = MakeAtrousPipeline(context, channels, precision, 1, true);  // bound with atrous's sets
+        modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2);
+    }
+};
+
 }  // namespace fovrt

@@ -34,8 +34,6 @@ void SvgfVulkanDenoiser::CreatePipelines() {
     channels_ = SvgfChannels(p);
     const std::string suffix = params_.precision == Precision::Fp16 ? "_fp16" : "";
     const uint32_t sets = 4 * uint32_t(channels_.size()) + 2;
-    guide_ = ComputePipeline(*context_, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
-                             SvgfGuideTexelFormats());
     // Direct and indirect in one dispatch (svgf_reproject_pair: the taps are found once per pixel).
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? SVGF_REPROJECT_PAIR_BINDINGS : SVGF_REPROJECT_BINDINGS;
@@ -43,15 +41,8 @@ void SvgfVulkanDenoiser::CreatePipelines() {
     reproject_ = ComputePipeline(*context_, (pair ? "svgf_reproject_pair" : "svgf_reproject") + suffix,
                                  reprojectBindings, sizeof(SvgfReprojectPush), sets,
                                  std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
-    classify_ = ComputePipeline(*context_, "svgf_moments_classify" + suffix, SVGF_CLASSIFY_BINDINGS,
-                                sizeof(SvgfClassifyPush), sets, SvgfClassifyTexelFormats(params_.precision));
-    moments_ = ComputePipeline(*context_, "svgf_filter_moments" + suffix, SVGF_MOMENTS_BINDINGS,
-                               sizeof(SvgfFilterMomentsPush), sets, SvgfMomentsTexelFormats(params_.precision));
-    // Direct and indirect in one dispatch (svgf_atrous_pair); combined: one channel.
-    atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, sets);
-    atrousStep1_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, 1, true);
-    modulate_ = ComputePipeline(*context_, "svgf_modulate" + suffix, SVGF_MODULATE_BINDINGS,
-                                sizeof(SvgfModulatePush), 2);
+    // Direct and indirect in one à-trous dispatch (svgf_atrous_pair); combined: one channel.
+    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_.precision, sets);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
 }
 
@@ -69,12 +60,12 @@ void SvgfVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void SvgfVulkanDenoiser::BuildSets() {
-    guide_.ResetSets();
+    stages_.guide.ResetSets();
     reproject_.ResetSets();
-    moments_.ResetSets();
-    classify_.ResetSets();
-    atrous_.ResetSets();
-    modulate_.ResetSets();
+    stages_.moments.ResetSets();
+    stages_.classify.ResetSets();
+    stages_.atrous.ResetSets();
+    stages_.modulate.ResetSets();
     const bool weighted = params_.svgf.weightBySampleCount;
     momentsSets_.assign(channels_.size(), {});
     classifySets_.assign(channels_.size(), {});
@@ -85,7 +76,7 @@ void SvgfVulkanDenoiser::BuildSets() {
         g[SVGF_GUIDE_B_NORMAL] = &Buf("geometry.normal." + cur);
         g[SVGF_GUIDE_B_OBJECT] = &Buf("geometry.objectId." + cur);
         g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
-        guideSets_[size_t(parity)] = guide_.MakeSet(g);
+        guideSets_[size_t(parity)] = stages_.guide.MakeSet(g);
     }
     for (int parity = 0; parity < 2; ++parity) {
         // One reprojection dispatch: channel 0 (direct, or combined: direct + indirect summed) at
@@ -137,14 +128,14 @@ void SvgfVulkanDenoiser::BuildSets() {
             m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(ch + ".illum1");
             m[SVGF_MOMENTS_B_ARGS] = &Buf(ch + ".spatialArgs");
             m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
-            momentsSets_[c][size_t(parity)] = moments_.MakeSet(m);
+            momentsSets_[c][size_t(parity)] = stages_.moments.MakeSet(m);
 
             std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
             k[SVGF_CLASSIFY_B_GUIDE] = &Buf("geometry.guide");
             k[SVGF_CLASSIFY_B_LENGTH] = &Buf(ch + ".length." + cur);
             k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
             k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
-            classifySets_[c][size_t(parity)] = classify_.MakeSet(k);
+            classifySets_[c][size_t(parity)] = stages_.classify.MakeSet(k);
         }
     }
     for (int parity = 0; parity < 2; ++parity)
@@ -155,7 +146,7 @@ void SvgfVulkanDenoiser::BuildSets() {
                 a.push_back({&Buf(ch + (pp ? ".illum0" : ".illum1")), &Buf(ch + (pp ? ".illum1" : ".illum0")),
                              &Buf(ch + ".color." + Side(parity))});
             atrousSets_[size_t(parity)][size_t(pp)] =
-                MakeAtrousSet(atrous_, Buf("geometry.guide"), Buf("input.depthGradient"), a);
+                MakeAtrousSet(stages_.atrous, Buf("geometry.guide"), Buf("input.depthGradient"), a);
         }
     const int iterations = params_.svgf.atrousIterations;
     const std::string last = iterations == 0 ? ".illum1" : ((iterations - 1) & 1) ? ".illum1" : ".illum0";
@@ -165,7 +156,7 @@ void SvgfVulkanDenoiser::BuildSets() {
     mod[SVGF_MODULATE_B_ALBEDO] = &Buf("input.albedo");
     mod[SVGF_MODULATE_B_EMISSION] = &Buf("input.emission");
     mod[SVGF_MODULATE_B_OUT] = &Buf("output");
-    modulateSet_ = modulate_.MakeSet(mod);
+    modulateSet_ = stages_.modulate.MakeSet(mod);
 }
 
 void SvgfVulkanDenoiser::Reset() { needsClear_ = true; }
@@ -205,7 +196,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
 
     rec.BeginPass("pack_guide");
     const ivec2 size(w, h);
-    rec.Dispatch(guide_, guideSets_[size_t(parity_)], &size, sizeof(size), groups);
+    rec.Dispatch(stages_.guide, guideSets_[size_t(parity_)], &size, sizeof(size), groups);
     rec.Barrier();
     rec.EndPass();
 
@@ -225,13 +216,13 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     rec.Barrier();
     const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
     for (size_t c = 0; c < channels_.size(); ++c) {
-        rec.Dispatch(classify_, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
+        rec.Dispatch(stages_.classify, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
         rec.Copy(Buf(channels_[c] + ".illum0"), Buf(channels_[c] + ".illum1"), 16 * n);
     }
     rec.Barrier();
     SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal, float(p.varianceHistoryThreshold)};
     for (size_t c = 0; c < channels_.size(); ++c)
-        rec.DispatchIndirect(moments_, momentsSets_[c][size_t(parity_)], &mp, sizeof(mp),
+        rec.DispatchIndirect(stages_.moments, momentsSets_[c][size_t(parity_)], &mp, sizeof(mp),
                              Buf(channels_[c] + ".spatialArgs"));
     rec.Barrier();
     rec.EndPass();
@@ -240,7 +231,8 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
         rec.BeginPass(fmt::format("atrous{}", i));
         SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance,
                           atrousFeedback && i + 1 == p.feedbackIteration ? 1u : 0u};
-        rec.Dispatch(i == 0 ? atrousStep1_ : atrous_, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+        ComputePipeline& atrous = i == 0 ? stages_.atrousStep1 : stages_.atrous;  // step 1: shared prefilter
+        rec.Dispatch(atrous, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
                      AtrousBlockGroups(w, h, 1 << i));
         rec.Barrier();
         rec.EndPass();
@@ -248,7 +240,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
 
     rec.BeginPass("modulate");
     SvgfModulatePush mo{ivec2(w, h), p.filterCombined ? 1u : 0u};
-    rec.Dispatch(modulate_, modulateSet_, &mo, sizeof(mo), groups);
+    rec.Dispatch(stages_.modulate, modulateSet_, &mo, sizeof(mo), groups);
     rec.Barrier();
     rec.EndPass();
 

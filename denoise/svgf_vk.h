@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
+#include "denoise/svgf_atrous_vk.h"
 #include "denoise/vk_denoiser_buffers.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
@@ -53,14 +54,14 @@ private:
     int parity_ = 0;          // history side written this frame: 0 → A, 1 → B
     bool needsClear_ = true;  // histories must be cleared before the next frame
     DenoiserBuffers buffers_{"svgf"};
-    ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_;
+    SvgfStagePipelines stages_;  // guide, moments, à-trous, modulate (svgf_atrous_vk.h)
+    ComputePipeline reproject_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     // Descriptor sets: [channel][parity]; reproject: [parity] and atrous: [parity][pingpong], both
     // channels in one set.
     std::vector<std::array<VkDescriptorSet, 2>> momentsSets_, classifySets_;
     std::array<VkDescriptorSet, 2> reprojectSets_{};
     std::array<std::array<VkDescriptorSet, 2>, 2> atrousSets_{};
-    ComputePipeline atrousStep1_;  // iteration 0 (step 1), bound with atrousSets_
     VkDescriptorSet modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()

@@ -149,8 +149,6 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     channels_ = SvgfChannels(params_.svgf);
     const std::string sfx = params_.precision == Precision::Fp16 ? "_fp16" : "";
     constexpr uint32_t kSets = 16;
-    guide_ = ComputePipeline(*context_, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
-                             SvgfGuideTexelFormats());
     // Direct and indirect in one dispatch (two_history_reproject_pair: taps and per-pixel state once).
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
@@ -158,19 +156,12 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     reproject_ = ComputePipeline(*context_, (pair ? "two_history_reproject_pair" : "two_history_reproject") + sfx,
                                  reprojectBindings, sizeof(TwoHistoryReprojectPush), kSets,
                                  std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
-    classify_ = ComputePipeline(*context_, "svgf_moments_classify" + sfx, SVGF_CLASSIFY_BINDINGS,
-                                sizeof(SvgfClassifyPush), kSets, SvgfClassifyTexelFormats(params_.precision));
-    moments_ = ComputePipeline(*context_, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
-                               sizeof(SvgfFilterMomentsPush), kSets, SvgfMomentsTexelFormats(params_.precision));
     // Both channels per dispatch (svgf_atrous_pair); combined: one channel, and iteration 0 of
     // the two-history variants filters I_u and I_w of it as a pair.
-    // Iteration 0 (step 1) runs the _step1 variants: atrousStep1_ with atrous_'s sets, and
+    // Iteration 0 (step 1) runs the _step1 variants: stages_.atrousStep1 with stages_.atrous's sets, and
     // atrousPair_, which only iteration 0 uses.
-    atrous_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, kSets);
-    atrousStep1_ = MakeAtrousPipeline(*context_, int(channels_.size()), params_.precision, 1, true);
+    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_.precision, kSets);
     if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_.precision, kSets, true);
-    modulate_ = ComputePipeline(*context_, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS,
-                                sizeof(SvgfModulatePush), kSets);
     if (two_) {
         gradient_ = ComputePipeline(*context_, "two_history_gradient" + sfx, TH_GRADIENT_BINDINGS,
                                     sizeof(TwoHistoryGradientPush), kSets, GradientTexelFormats(params_.precision));
@@ -206,8 +197,9 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void TwoHistoryVulkanDenoiser::BuildSets() {
-    for (ComputePipeline* p : {&guide_, &classify_, &reproject_, &moments_, &atrous_, &atrousPair_, &modulate_,
-                               &gradient_, &blend_, &claim_, &gather_, &gradAtrous_, &alpha_})
+    for (ComputePipeline* p : {&stages_.guide, &stages_.classify, &reproject_, &stages_.moments, &stages_.atrous,
+                               &atrousPair_, &stages_.modulate, &gradient_, &blend_, &claim_, &gather_,
+                               &gradAtrous_, &alpha_})
         if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
     const size_t nch = channels_.size();
     const std::string& ch0 = channels_[0];
@@ -233,7 +225,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         g[SVGF_GUIDE_B_NORMAL] = &Buf("geometry.normal." + cur);
         g[SVGF_GUIDE_B_OBJECT] = &Buf("geometry.objectId." + cur);
         g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
-        guideSets_[pi] = guide_.MakeSet(g);
+        guideSets_[pi] = stages_.guide.MakeSet(g);
 
         // Channel 0 (direct, or combined) at the base bindings; the pair's indirect at
         // COLOR_OTHER, PREV_IU_OTHER and the *2 bindings.
@@ -287,7 +279,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(out);
                 m[SVGF_MOMENTS_B_ARGS] = &Buf(ch + ".spatialArgs");
                 m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
-                return moments_.MakeSet(m);
+                return stages_.moments.MakeSet(m);
             };
             momentsU_[c][pi] = momentsSet(ch + ".illum0", ch + ".illum1");
             // One list per channel serves both histories: both test W_u (the channel's length).
@@ -296,7 +288,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             k[SVGF_CLASSIFY_B_LENGTH] = &Buf(ch + ".length." + cur);
             k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
             k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
-            classifySets_[c][pi] = classify_.MakeSet(k);
+            classifySets_[c][pi] = stages_.classify.MakeSet(k);
             if (two_) {
                 momentsW_[c][pi] = momentsSet(ch + ".willum0", ch + ".willum1");
                 std::array<const Buffer*, TH_BLEND_BINDINGS> b{};
@@ -320,13 +312,14 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             u[1].push_back({&Buf(ch + ".illum0"), &Buf(ch + ".illum1"), hist});
             if (two_) wts.push_back({&Buf(ch + ".willum1"), &Buf(ch + ".willum0"), &Buf(ch + ".wcolor." + cur)});
         }
-        for (int pp = 0; pp < 2; ++pp) atrousU_[pi][size_t(pp)] = MakeAtrousSet(atrous_, guide, depthGrad, u[pp]);
+        for (int pp = 0; pp < 2; ++pp)
+            atrousU_[pi][size_t(pp)] = MakeAtrousSet(stages_.atrous, guide, depthGrad, u[pp]);
         atrousFirst_[pi].clear();
         if (!two_) {
-            atrousFirst_[pi].push_back({&atrousStep1_, atrousU_[pi][0]});
+            atrousFirst_[pi].push_back({&stages_.atrousStep1, atrousU_[pi][0]});
         } else if (nch == 2) {  // (I_u direct, I_u indirect), (I_w direct, I_w indirect)
-            atrousFirst_[pi].push_back({&atrousStep1_, atrousU_[pi][0]});
-            atrousFirst_[pi].push_back({&atrousStep1_, MakeAtrousSet(atrous_, guide, depthGrad, wts)});
+            atrousFirst_[pi].push_back({&stages_.atrousStep1, atrousU_[pi][0]});
+            atrousFirst_[pi].push_back({&stages_.atrousStep1, MakeAtrousSet(stages_.atrous, guide, depthGrad, wts)});
         } else {  // combined: (I_u, I_w)
             const std::array<AtrousChannel, 2> uw{u[0][0], wts[0]};
             atrousFirst_[pi].push_back({&atrousPair_, MakeAtrousSet(atrousPair_, guide, depthGrad, uw)});
@@ -386,7 +379,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
     mod[SVGF_MODULATE_B_ALBEDO] = &Buf("input.albedo");
     mod[SVGF_MODULATE_B_EMISSION] = &Buf("input.emission");
     mod[SVGF_MODULATE_B_OUT] = &Buf("output");
-    modulateSet_ = modulate_.MakeSet(mod);
+    modulateSet_ = stages_.modulate.MakeSet(mod);
 }
 
 void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
@@ -463,7 +456,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
 
     rec.BeginPass("pack_guide");
     const ivec2 guideSize(w, h);
-    rec.Dispatch(guide_, guideSets_[size_t(parity_)], &guideSize, sizeof(guideSize), groups);
+    rec.Dispatch(stages_.guide, guideSets_[size_t(parity_)], &guideSize, sizeof(guideSize), groups);
     rec.Barrier();
     rec.EndPass();
 
@@ -490,15 +483,15 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
     for (size_t c = 0; c < channels_.size(); ++c) {
         const std::string& ch = channels_[c];
-        rec.Dispatch(classify_, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
+        rec.Dispatch(stages_.classify, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
         rec.Copy(Buf(ch + ".illum0"), Buf(ch + ".illum1"), 16 * n);
         if (two_) rec.Copy(Buf(ch + ".willum0"), Buf(ch + ".willum1"), 16 * n);
     }
     rec.Barrier();
     for (size_t c = 0; c < channels_.size(); ++c) {
         const Buffer& args = Buf(channels_[c] + ".spatialArgs");
-        rec.DispatchIndirect(moments_, momentsU_[c][size_t(parity_)], &mp, sizeof(mp), args);
-        if (two_) rec.DispatchIndirect(moments_, momentsW_[c][size_t(parity_)], &mp, sizeof(mp), args);
+        rec.DispatchIndirect(stages_.moments, momentsU_[c][size_t(parity_)], &mp, sizeof(mp), args);
+        if (two_) rec.DispatchIndirect(stages_.moments, momentsW_[c][size_t(parity_)], &mp, sizeof(mp), args);
     }
     rec.Barrier();
     rec.EndPass();
@@ -530,7 +523,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
             for (const auto& [pipeline, set] : atrousFirst_[size_t(parity_)])
                 rec.Dispatch(*pipeline, set, &ap, sizeof(ap), AtrousBlockGroups(w, h, 1));
         else
-            rec.Dispatch(atrous_, atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+            rec.Dispatch(stages_.atrous, atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
                          AtrousBlockGroups(w, h, 1 << i));
         rec.Barrier();
         rec.EndPass();
@@ -539,7 +532,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
 
     rec.BeginPass("modulate");
     const SvgfModulatePush mo{ivec2(w, h), channels_.size() == 1 ? 1u : 0u};
-    rec.Dispatch(modulate_, modulateSet_, &mo, sizeof(mo), groups);
+    rec.Dispatch(stages_.modulate, modulateSet_, &mo, sizeof(mo), groups);
     rec.Barrier();
     rec.EndPass();
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
+#include "denoise/svgf_atrous_vk.h"
 #include "denoise/vk_denoiser_buffers.h"
 #include "denoise/two_history_ref.h"
 #include "vk/context.h"
@@ -55,7 +56,8 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     bool needsClear_ = true;
     bool hasPrev_ = false;
     DenoiserBuffers buffers_;
-    ComputePipeline guide_, classify_, reproject_, moments_, atrous_, modulate_, gradient_, blend_;
+    SvgfStagePipelines stages_;  // guide, moments, à-trous, modulate (svgf_atrous_vk.h)
+    ComputePipeline reproject_, gradient_, blend_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     ComputePipeline claim_, gather_, gradAtrous_, alpha_;
     std::array<VkDescriptorSet, 2> gradientSets_{};
@@ -64,7 +66,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     // À-trous on all channels' I_u in one dispatch: [parity][pingpong]. Iteration 0 of the
     // two-history variants also filters I_w: [parity] → the dispatches of that iteration (separate
     // channels: the I_u pair and the I_w pair; combined: one I_u + I_w pair on atrousPair_).
-    ComputePipeline atrousPair_, atrousStep1_;  // step-1 variants (iteration 0)
+    ComputePipeline atrousPair_;  // step-1 pair variant (iteration 0, combined two-history)
     std::array<std::array<VkDescriptorSet, 2>, 2> atrousU_{};
     std::array<std::vector<std::pair<const ComputePipeline*, VkDescriptorSet>>, 2> atrousFirst_;
     VkDescriptorSet claimSet_ = VK_NULL_HANDLE, gatherSet_ = VK_NULL_HANDLE;
