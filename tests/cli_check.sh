@@ -58,6 +58,16 @@ if "$fovrt" bench --denoisers --width 64 --height 48 --frames 1 >bench.txt 2>err
 else
   bad "bench --denoisers failed: $(cat err.txt)"
 fi
+# One denoiser, no reference, fp16 histories.
+if "$fovrt" bench --denoisers --denoiser two-history --no-reference --precision fp16 --width 64 --height 48 \
+    --frames 1 >bench1.txt 2>err.txt; then
+  grep -q "^two-history \[" bench1.txt && ! grep -q "^svgf \[\|\[cpu\]" bench1.txt && ok "bench --denoiser selects" ||
+    bad "bench --denoiser ran other denoisers or the reference"
+else
+  bad "bench --denoiser failed: $(cat err.txt)"
+fi
+expect_error "unknown bench denoiser" "svgf-typo" bench --denoisers --denoiser svgf-typo
+expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
 for d in e1 e2 e3 e4 e5 e6 e7 e8 e9; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
 done

@@ -2,6 +2,7 @@
 // Msamples/s counting path samples) on stereo frames, then the side-by-side comparison with
 // Embree's own tutorial path tracer (Debian embree-tools, /usr/bin/pathtracer) on the same
 // Cornell box OBJ at equal resolution, spp and path length, both on 2 threads.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "denoise/denoise_bench.h"
+#include "denoise/denoiser_factory.h"
 
 namespace fovrt {
 namespace {
@@ -48,6 +50,10 @@ struct BenchOptions {
     int compareSpp = 4;
     std::string embreeBinary = "/usr/bin/pathtracer";
     bool denoisers = false;  // time the denoisers instead (denoise/denoise_bench.h)
+    std::vector<std::string> denoiserNames;  // --denoiser: empty = all
+    bool reference = true;
+    std::string precision = "fp32";
+    std::string device = "auto";
 };
 
 size_t TriangleCount(const Scene& scene) {
@@ -224,11 +230,25 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--compare-spp", o->compareSpp, "spp of the Embree comparison")->check(CLI::Range(1, 4096));
     cmd->add_option("--embree-bin", o->embreeBinary, "Embree's tutorial path tracer");
     cmd->add_flag("--denoisers", o->denoisers, "Time the denoisers (Vulkan and C++ reference) at --width x --height instead");
+    cmd->add_option("--denoiser", o->denoiserNames, "With --denoisers: only these (repeatable; default all)");
+    cmd->add_flag("!--no-reference", o->reference, "With --denoisers: skip the C++ reference");
+    cmd->add_option("--precision", o->precision, "With --denoisers: history storage (fp32 or fp16)");
+    cmd->add_option("--device", o->device, "With --denoisers: Vulkan device (auto, cpu or an index from `fovrt info`)");
     cmd->callback([o] {
         if (o->denoisers) {
             DenoiserBenchOptions options;  // named fields: no -Wmissing-field-initializers
             options.width = o->width;
             options.height = o->height;
+            const std::vector<std::string> known = DenoiserNames();
+            for (const std::string& name : o->denoiserNames)
+                if (std::find(known.begin(), known.end(), name) == known.end())
+                    Fail("bench --denoiser '{}': unknown denoiser (known: {})", name, fmt::join(known, ", "));
+            if (o->precision != "fp32" && o->precision != "fp16")
+                Fail("bench --precision '{}': must be fp32 or fp16", o->precision);
+            options.denoisers = o->denoiserNames;
+            options.reference = o->reference;
+            options.device = o->device;
+            options.params.precision = o->precision == "fp16" ? Precision::Fp16 : Precision::Fp32;
             (void)RunDenoiserBench(options);
             return;
         }
