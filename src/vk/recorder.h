@@ -1,8 +1,8 @@
 // CommandRecorder: records uploads (through a staging buffer), dispatches, barriers, copies and
 // timestamps into one command buffer, then submits and waits on a fence. The command buffer and
 // fence come from a CommandSlot: one owned by the recorder, or a long-lived one (a denoiser's,
-// reused every frame instead of allocating a command buffer and creating a fence per Denoise()). TimestampPool turns
-// pairs of GPU timestamps into per-pass milliseconds (timestampPeriod).
+// reused every frame instead of allocating a command buffer and a fence per Denoise()).
+// TimestampPool turns pairs of GPU timestamps into per-pass milliseconds (timestampPeriod).
 #pragma once
 
 #include <cstdint>
