@@ -1,4 +1,5 @@
-// The à-trous pipelines and descriptor sets shared by the SVGF and two-history Vulkan hosts. One
+// The SVGF stages shared by the SVGF and two-history Vulkan hosts: the à-trous pipelines and sets,
+// and SvgfStagePipelines (guide, moments, à-trous, modulate) with their descriptor sets. One
 // dispatch filters one illumination channel ("svgf_atrous") or a pair ("svgf_atrous_pair": direct
 // + indirect, or two-history's unweighted + weighted history) that shares the per-tap guide fetch,
 // depth gradient and w_z·w_n exponent; each channel keeps its own w_l and variance
@@ -18,6 +19,7 @@
 #include "denoise/params.h"
 #include "denoise/svgf_layout.h"
 #include "denoise/svgf_texel_formats.h"
+#include "denoise/vk_denoiser_buffers.h"
 #include "vk/pipeline.h"
 
 namespace fovrt {
@@ -87,6 +89,50 @@ struct SvgfStagePipelines {
         atrous = MakeAtrousPipeline(context, channels, precision, maxSets);
         atrousStep1 = MakeAtrousPipeline(context, channels, precision, 1, true);  // bound with atrous's sets
         modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2);
+    }
+
+    // Descriptor sets of these stages over the plan's buffers (names as in the memory plan);
+    // `side` is the history side ("A"/"B") of this frame.
+    VkDescriptorSet GuideSet(DenoiserBuffers& buf, const std::string& side) {
+        std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
+        g[SVGF_GUIDE_B_DEPTH] = &buf["geometry.depth." + side];
+        g[SVGF_GUIDE_B_NORMAL] = &buf["geometry.normal." + side];
+        g[SVGF_GUIDE_B_OBJECT] = &buf["geometry.objectId." + side];
+        g[SVGF_GUIDE_B_OUT] = &buf["geometry.guide"];
+        return guide.MakeSet(g);
+    }
+    // Lists the pixels of channel `ch` whose history length is below the variance threshold.
+    VkDescriptorSet ClassifySet(DenoiserBuffers& buf, const std::string& ch, const std::string& side) {
+        std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
+        k[SVGF_CLASSIFY_B_GUIDE] = &buf["geometry.guide"];
+        k[SVGF_CLASSIFY_B_LENGTH] = &buf[ch + ".length." + side];
+        k[SVGF_CLASSIFY_B_ARGS] = &buf[ch + ".spatialArgs"];
+        k[SVGF_CLASSIFY_B_LIST] = &buf[ch + ".spatialList"];
+        return classify.MakeSet(k);
+    }
+    // Spatial variance of the listed pixels: illumination `in` → `out`, with channel ch's moments.
+    VkDescriptorSet MomentsSet(DenoiserBuffers& buf, const std::string& ch, const std::string& side,
+                               const std::string& in, const std::string& out) {
+        std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
+        m[SVGF_MOMENTS_B_ILLUM_IN] = &buf[in];
+        m[SVGF_MOMENTS_B_GUIDE] = &buf["geometry.guide"];
+        m[SVGF_MOMENTS_B_DEPTH_GRAD] = &buf["input.depthGradient"];
+        m[SVGF_MOMENTS_B_MOMENTS] = &buf[ch + ".moments." + side];
+        m[SVGF_MOMENTS_B_LENGTH] = &buf[ch + ".length." + side];
+        m[SVGF_MOMENTS_B_ILLUM_OUT] = &buf[out];
+        m[SVGF_MOMENTS_B_ARGS] = &buf[ch + ".spatialArgs"];
+        m[SVGF_MOMENTS_B_LIST] = &buf[ch + ".spatialList"];
+        return moments.MakeSet(m);
+    }
+    // albedo · (illum0 + illum1) + emission → output (combined: both name the one channel, read once).
+    VkDescriptorSet ModulateSet(DenoiserBuffers& buf, const std::string& illum0, const std::string& illum1) {
+        std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
+        mod[SVGF_MODULATE_B_ILLUM0] = &buf[illum0];
+        mod[SVGF_MODULATE_B_ILLUM1] = &buf[illum1];
+        mod[SVGF_MODULATE_B_ALBEDO] = &buf["input.albedo"];
+        mod[SVGF_MODULATE_B_EMISSION] = &buf["input.emission"];
+        mod[SVGF_MODULATE_B_OUT] = &buf["output"];
+        return modulate.MakeSet(mod);
     }
 };
 

@@ -69,15 +69,7 @@ void SvgfVulkanDenoiser::BuildSets() {
     const bool weighted = params_.svgf.weightBySampleCount;
     momentsSets_.assign(channels_.size(), {});
     classifySets_.assign(channels_.size(), {});
-    for (int parity = 0; parity < 2; ++parity) {
-        const std::string cur = Side(parity);
-        std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
-        g[SVGF_GUIDE_B_DEPTH] = &Buf("geometry.depth." + cur);
-        g[SVGF_GUIDE_B_NORMAL] = &Buf("geometry.normal." + cur);
-        g[SVGF_GUIDE_B_OBJECT] = &Buf("geometry.objectId." + cur);
-        g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
-        guideSets_[size_t(parity)] = stages_.guide.MakeSet(g);
-    }
+    for (int parity = 0; parity < 2; ++parity) guideSets_[size_t(parity)] = stages_.GuideSet(buffers_, Side(parity));
     for (int parity = 0; parity < 2; ++parity) {
         // One reprojection dispatch: channel 0 (direct, or combined: direct + indirect summed) at
         // the base bindings, indirect at the *2 bindings of svgf_reproject_pair.
@@ -118,24 +110,8 @@ void SvgfVulkanDenoiser::BuildSets() {
         const std::string& ch = channels_[c];
         for (int parity = 0; parity < 2; ++parity) {
             const std::string cur = Side(parity);
-
-            std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
-            m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(ch + ".illum0");
-            m[SVGF_MOMENTS_B_GUIDE] = &Buf("geometry.guide");
-            m[SVGF_MOMENTS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-            m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
-            m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);
-            m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(ch + ".illum1");
-            m[SVGF_MOMENTS_B_ARGS] = &Buf(ch + ".spatialArgs");
-            m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
-            momentsSets_[c][size_t(parity)] = stages_.moments.MakeSet(m);
-
-            std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
-            k[SVGF_CLASSIFY_B_GUIDE] = &Buf("geometry.guide");
-            k[SVGF_CLASSIFY_B_LENGTH] = &Buf(ch + ".length." + cur);
-            k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
-            k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
-            classifySets_[c][size_t(parity)] = stages_.classify.MakeSet(k);
+            momentsSets_[c][size_t(parity)] = stages_.MomentsSet(buffers_, ch, cur, ch + ".illum0", ch + ".illum1");
+            classifySets_[c][size_t(parity)] = stages_.ClassifySet(buffers_, ch, cur);
         }
     }
     for (int parity = 0; parity < 2; ++parity)
@@ -150,13 +126,7 @@ void SvgfVulkanDenoiser::BuildSets() {
         }
     const int iterations = params_.svgf.atrousIterations;
     const std::string last = iterations == 0 ? ".illum1" : ((iterations - 1) & 1) ? ".illum1" : ".illum0";
-    std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
-    mod[SVGF_MODULATE_B_ILLUM0] = &Buf(channels_[0] + last);
-    mod[SVGF_MODULATE_B_ILLUM1] = &Buf(channels_.back() + last);
-    mod[SVGF_MODULATE_B_ALBEDO] = &Buf("input.albedo");
-    mod[SVGF_MODULATE_B_EMISSION] = &Buf("input.emission");
-    mod[SVGF_MODULATE_B_OUT] = &Buf("output");
-    modulateSet_ = stages_.modulate.MakeSet(mod);
+    modulateSet_ = stages_.ModulateSet(buffers_, channels_[0] + last, channels_.back() + last);
 }
 
 void SvgfVulkanDenoiser::Reset() { needsClear_ = true; }

@@ -220,12 +220,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         // g exists for two-history only (two-history-asvgf takes q from A-SVGF).
         const bool withGradient = variant_ == TwoHistoryVariant::TwoHistory;
 
-        std::array<const Buffer*, SVGF_GUIDE_BINDINGS> g{};
-        g[SVGF_GUIDE_B_DEPTH] = &Buf("geometry.depth." + cur);
-        g[SVGF_GUIDE_B_NORMAL] = &Buf("geometry.normal." + cur);
-        g[SVGF_GUIDE_B_OBJECT] = &Buf("geometry.objectId." + cur);
-        g[SVGF_GUIDE_B_OUT] = &Buf("geometry.guide");
-        guideSets_[pi] = stages_.guide.MakeSet(g);
+        guideSets_[pi] = stages_.GuideSet(buffers_, cur);
 
         // Channel 0 (direct, or combined) at the base bindings; the pair's indirect at
         // COLOR_OTHER, PREV_IU_OTHER and the *2 bindings.
@@ -269,28 +264,11 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
 
         for (size_t c = 0; c < nch; ++c) {
             const std::string& ch = channels_[c];
-            auto momentsSet = [&](const std::string& in, const std::string& out) {
-                std::array<const Buffer*, SVGF_MOMENTS_BINDINGS> m{};
-                m[SVGF_MOMENTS_B_ILLUM_IN] = &Buf(in);
-                m[SVGF_MOMENTS_B_GUIDE] = &Buf("geometry.guide");
-                m[SVGF_MOMENTS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-                m[SVGF_MOMENTS_B_MOMENTS] = &Buf(ch + ".moments." + cur);
-                m[SVGF_MOMENTS_B_LENGTH] = &Buf(ch + ".length." + cur);  // W_u
-                m[SVGF_MOMENTS_B_ILLUM_OUT] = &Buf(out);
-                m[SVGF_MOMENTS_B_ARGS] = &Buf(ch + ".spatialArgs");
-                m[SVGF_MOMENTS_B_LIST] = &Buf(ch + ".spatialList");
-                return stages_.moments.MakeSet(m);
-            };
-            momentsU_[c][pi] = momentsSet(ch + ".illum0", ch + ".illum1");
+            momentsU_[c][pi] = stages_.MomentsSet(buffers_, ch, cur, ch + ".illum0", ch + ".illum1");
             // One list per channel serves both histories: both test W_u (the channel's length).
-            std::array<const Buffer*, SVGF_CLASSIFY_BINDINGS> k{};
-            k[SVGF_CLASSIFY_B_GUIDE] = &Buf("geometry.guide");
-            k[SVGF_CLASSIFY_B_LENGTH] = &Buf(ch + ".length." + cur);
-            k[SVGF_CLASSIFY_B_ARGS] = &Buf(ch + ".spatialArgs");
-            k[SVGF_CLASSIFY_B_LIST] = &Buf(ch + ".spatialList");
-            classifySets_[c][pi] = stages_.classify.MakeSet(k);
+            classifySets_[c][pi] = stages_.ClassifySet(buffers_, ch, cur);
             if (two_) {
-                momentsW_[c][pi] = momentsSet(ch + ".willum0", ch + ".willum1");
+                momentsW_[c][pi] = stages_.MomentsSet(buffers_, ch, cur, ch + ".willum0", ch + ".willum1");
                 std::array<const Buffer*, TH_BLEND_BINDINGS> b{};
                 b[TH_BLEND_B_ILLUM_U] = &Buf(ch + (iterations == 0 ? ".illum1" : ".illum0"));
                 b[TH_BLEND_B_ILLUM_W] = &Buf(ch + (iterations == 0 ? ".willum1" : ".willum0"));
@@ -373,13 +351,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
     const std::string last = iterations == 0          ? ".illum1"
                              : ((iterations - 1) & 1) ? ".illum1"
                                                       : ".illum0";
-    std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
-    mod[SVGF_MODULATE_B_ILLUM0] = &Buf(ch0 + last);
-    mod[SVGF_MODULATE_B_ILLUM1] = &Buf(ch1 + last);
-    mod[SVGF_MODULATE_B_ALBEDO] = &Buf("input.albedo");
-    mod[SVGF_MODULATE_B_EMISSION] = &Buf("input.emission");
-    mod[SVGF_MODULATE_B_OUT] = &Buf("output");
-    modulateSet_ = stages_.modulate.MakeSet(mod);
+    modulateSet_ = stages_.ModulateSet(buffers_, ch0 + last, ch1 + last);
 }
 
 void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
