@@ -71,6 +71,25 @@ inline VkDescriptorSet MakeAtrousSet(ComputePipeline& pipeline, const Buffer& gu
         std::span<const Buffer* const>(a).first(channels.size() == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS));
 }
 
+// The inputs every reprojection shader binds at the same slots 0–9 (svgf_reproject and
+// two_history_reproject: SVGF_REPROJECT_B_COLOR_IN … PREV_PIXEL): both colour channels, the
+// geometry of this frame (`side`) and the previous one (`prevSide`), depth gradient and motion.
+template <size_t N>
+void BindReprojectionInputs(std::array<const Buffer*, N>& r, DenoiserBuffers& buf, const std::string& side,
+                            const std::string& prevSide) {
+    static_assert(N > SVGF_REPROJECT_B_PREV_PIXEL);
+    r[SVGF_REPROJECT_B_COLOR_IN] = &buf["input.direct"];
+    r[SVGF_REPROJECT_B_COLOR_IN2] = &buf["input.indirect"];
+    r[SVGF_REPROJECT_B_DEPTH] = &buf["geometry.depth." + side];
+    r[SVGF_REPROJECT_B_NORMAL] = &buf["geometry.normal." + side];
+    r[SVGF_REPROJECT_B_OBJECT] = &buf["geometry.objectId." + side];
+    r[SVGF_REPROJECT_B_PREV_DEPTH] = &buf["geometry.depth." + prevSide];
+    r[SVGF_REPROJECT_B_PREV_NORMAL] = &buf["geometry.normal." + prevSide];
+    r[SVGF_REPROJECT_B_PREV_OBJECT] = &buf["geometry.objectId." + prevSide];
+    r[SVGF_REPROJECT_B_DEPTH_GRAD] = &buf["input.depthGradient"];
+    r[SVGF_REPROJECT_B_PREV_PIXEL] = &buf["input.prevPixel"];
+}
+
 // The SVGF stages both Vulkan hosts (svgf_vk, two_history_vk) run unchanged, built one way for
 // both: the guide pack, the moments classify + spatial filter, à-trous (and its step-1 variant
 // for iteration 0) with `channels` planes per dispatch, and the remodulation.

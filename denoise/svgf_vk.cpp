@@ -75,16 +75,7 @@ void SvgfVulkanDenoiser::BuildSets() {
         // the base bindings, indirect at the *2 bindings of svgf_reproject_pair.
         const std::string cur = Side(parity), prev = Side(parity ^ 1);
         std::array<const Buffer*, SVGF_REPROJECT_PAIR_BINDINGS> r{};
-        r[SVGF_REPROJECT_B_COLOR_IN] = &Buf("input.direct");
-        r[SVGF_REPROJECT_B_COLOR_IN2] = &Buf("input.indirect");
-        r[SVGF_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
-        r[SVGF_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
-        r[SVGF_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
-        r[SVGF_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
-        r[SVGF_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
-        r[SVGF_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
-        r[SVGF_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-        r[SVGF_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
+        BindReprojectionInputs(r, buffers_, cur, prev);
         // Unused bindings (unweighted mode) point at a buffer of the plan that is never read.
         r[SVGF_REPROJECT_B_SAMPLE_COUNT] = &Buf(weighted ? "input.sampleCount" : "input.prevPixel");
         r[SVGF_REPROJECT_B_STATS] = &Buf("stats");

@@ -16,6 +16,18 @@
 
 namespace fovrt {
 
+// two_history_reproject binds colour, geometry and motion at svgf_reproject's slots 0–9
+// (BindReprojectionInputs).
+static_assert(TH_REPROJECT_B_COLOR == SVGF_REPROJECT_B_COLOR_IN &&
+              TH_REPROJECT_B_COLOR_OTHER == SVGF_REPROJECT_B_COLOR_IN2 &&
+              TH_REPROJECT_B_DEPTH == SVGF_REPROJECT_B_DEPTH && TH_REPROJECT_B_NORMAL == SVGF_REPROJECT_B_NORMAL &&
+              TH_REPROJECT_B_OBJECT == SVGF_REPROJECT_B_OBJECT &&
+              TH_REPROJECT_B_PREV_DEPTH == SVGF_REPROJECT_B_PREV_DEPTH &&
+              TH_REPROJECT_B_PREV_NORMAL == SVGF_REPROJECT_B_PREV_NORMAL &&
+              TH_REPROJECT_B_PREV_OBJECT == SVGF_REPROJECT_B_PREV_OBJECT &&
+              TH_REPROJECT_B_DEPTH_GRAD == SVGF_REPROJECT_B_DEPTH_GRAD &&
+              TH_REPROJECT_B_PREV_PIXEL == SVGF_REPROJECT_B_PREV_PIXEL);
+
 namespace {
 // Read-only planes of two_history_reproject bound as uniform texel buffers (common/access.glsl);
 // fp16 RGB histories, sample counts and α stay storage buffers (as the shader declares them).
@@ -225,16 +237,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         // Channel 0 (direct, or combined) at the base bindings; the pair's indirect at
         // COLOR_OTHER, PREV_IU_OTHER and the *2 bindings.
         std::array<const Buffer*, TH_REPROJECT_PAIR_BINDINGS> r{};
-        r[TH_REPROJECT_B_COLOR] = &Buf("input.direct");
-        r[TH_REPROJECT_B_COLOR_OTHER] = &Buf("input.indirect");
-        r[TH_REPROJECT_B_DEPTH] = &Buf("geometry.depth." + cur);
-        r[TH_REPROJECT_B_NORMAL] = &Buf("geometry.normal." + cur);
-        r[TH_REPROJECT_B_OBJECT] = &Buf("geometry.objectId." + cur);
-        r[TH_REPROJECT_B_PREV_DEPTH] = &Buf("geometry.depth." + prev);
-        r[TH_REPROJECT_B_PREV_NORMAL] = &Buf("geometry.normal." + prev);
-        r[TH_REPROJECT_B_PREV_OBJECT] = &Buf("geometry.objectId." + prev);
-        r[TH_REPROJECT_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-        r[TH_REPROJECT_B_PREV_PIXEL] = &Buf("input.prevPixel");
+        BindReprojectionInputs(r, buffers_, cur, prev);  // slots 0–9, as svgf_reproject
         r[TH_REPROJECT_B_SAMPLE_COUNT] = two("input.sampleCount");
         r[TH_REPROJECT_B_ALPHA] = asvgf_ ? &Buf("asvgf.alpha") : dummyIn;
         r[TH_REPROJECT_B_PREV_IU] = &Buf(ch0 + ".color." + prev);
