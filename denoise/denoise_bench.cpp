@@ -109,7 +109,7 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
     fmt::print(out, "bound = bytes / bandwidth; x = measured / bound. Vulkan passes: against memcpy and against the "
                     "texel-buffer device copy; on a GPU both are device memory, on lavapipe the device copy is the compute "
                     "path's real ceiling. C++ reference: against memcpy only. upload/download are transfer copies, not in the compute total\n");
-    fmt::print(out, "C++ reference: scalar per-pixel loops, rows in parallel with TBB\n");
+    if (o.reference) fmt::print(out, "C++ reference: scalar per-pixel loops, rows in parallel with TBB\n");
 
     std::vector<FrameInputs> frames;
     const int total = o.warmup + o.frames;
