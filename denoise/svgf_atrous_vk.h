@@ -32,15 +32,17 @@ struct AtrousChannel {
 };
 
 // `channels` (1 or 2) illumination planes per dispatch; `step1`: the variant for step 1 only.
-inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, Precision precision,
+inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, const DenoiserParams& params,
                                           uint32_t maxSets, bool step1 = false) {
+    const Precision precision = params.precision;
     FOVRT_CHECK(channels == 1 || channels == 2);
     const std::string name = std::string(channels == 2 ? "svgf_atrous_pair" : "svgf_atrous") +
                              (step1 ? "_step1" : "") + (precision == Precision::Fp16 ? "_fp16" : "");
     const uint32_t bindings = channels == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS;
     static const std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> kFormats = SvgfAtrousTexelFormats();
     return ComputePipeline(context, name, bindings, sizeof(SvgfAtrousPush), maxSets,
-                           std::span<const VkFormat>(kFormats).first(bindings));
+                           std::span<const VkFormat>(kFormats).first(bindings),
+                           EdgeStoppingSpecialization(params.svgf));
 }
 
 // Blocks per axis of `n` pixels at stride `step`: pixels pair up (x, x + step) inside each run of
@@ -97,16 +99,18 @@ struct SvgfStagePipelines {
     ComputePipeline guide, classify, moments, atrous, atrousStep1, modulate;
 
     SvgfStagePipelines() = default;
-    SvgfStagePipelines(VulkanContext& context, int channels, Precision precision, uint32_t maxSets) {
+    SvgfStagePipelines(VulkanContext& context, int channels, const DenoiserParams& params, uint32_t maxSets) {
+        const Precision precision = params.precision;
         const std::string sfx = precision == Precision::Fp16 ? "_fp16" : "";
         guide = ComputePipeline(context, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
                                 SvgfGuideTexelFormats());
         classify = ComputePipeline(context, "svgf_moments_classify" + sfx, SVGF_CLASSIFY_BINDINGS,
                                    sizeof(SvgfClassifyPush), maxSets, SvgfClassifyTexelFormats(precision));
         moments = ComputePipeline(context, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
-                                  sizeof(SvgfFilterMomentsPush), maxSets, SvgfMomentsTexelFormats(precision));
-        atrous = MakeAtrousPipeline(context, channels, precision, maxSets);
-        atrousStep1 = MakeAtrousPipeline(context, channels, precision, 1, true);  // bound with atrous's sets
+                                  sizeof(SvgfFilterMomentsPush), maxSets, SvgfMomentsTexelFormats(precision),
+                                  EdgeStoppingSpecialization(params.svgf));
+        atrous = MakeAtrousPipeline(context, channels, params, maxSets);
+        atrousStep1 = MakeAtrousPipeline(context, channels, params, 1, true);  // bound with atrous's sets
         modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2);
     }
 

@@ -2,6 +2,7 @@
 // shaders/svgf_*.comp) and the storage format of every plane (see shaders/common/packing.glsl).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -60,6 +61,18 @@ inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 
 inline uvec2 DispatchGroups(int width, int height) {
     return uvec2((width + FOVRT_WORKGROUP_X - 1) / FOVRT_WORKGROUP_X,
                  (height + FOVRT_WORKGROUP_Y - 1) / FOVRT_WORKGROUP_Y);
+}
+
+// Specialization constants of the edge-stopping shaders (shaders/common/edge_stopping.glsl), by
+// constant_id: FOVRT_SPEC_NORMAL_SQUARINGS = k when σn = 2^k exactly (0 ≤ k ≤ 12), else −1.
+inline int32_t NormalWeightSquarings(float sigmaNormal) {
+    for (int k = 0; k <= FOVRT_MAX_NORMAL_SQUARINGS; ++k)
+        if (sigmaNormal == float(1 << k)) return k;
+    return -1;
+}
+inline std::array<int32_t, 1> EdgeStoppingSpecialization(const SvgfParams& p) {
+    static_assert(FOVRT_SPEC_NORMAL_SQUARINGS == 0);
+    return {NormalWeightSquarings(p.sigmaNormal)};
 }
 
 }  // namespace fovrt

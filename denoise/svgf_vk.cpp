@@ -42,7 +42,7 @@ void SvgfVulkanDenoiser::CreatePipelines() {
                                  reprojectBindings, sizeof(SvgfReprojectPush), sets,
                                  std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
     // Direct and indirect in one à-trous dispatch (svgf_atrous_pair); combined: one channel.
-    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_.precision, sets);
+    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, sets);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
 }
 

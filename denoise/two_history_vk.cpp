@@ -172,11 +172,13 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     // the two-history variants filters I_u and I_w of it as a pair.
     // Iteration 0 (step 1) runs the _step1 variants: stages_.atrousStep1 with stages_.atrous's sets, and
     // atrousPair_, which only iteration 0 uses.
-    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_.precision, kSets);
-    if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_.precision, kSets, true);
+    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, kSets);
+    if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_, kSets, true);
+    const auto edgeStopping = EdgeStoppingSpecialization(params_.svgf);
     if (two_) {
         gradient_ = ComputePipeline(*context_, "two_history_gradient" + sfx, TH_GRADIENT_BINDINGS,
-                                    sizeof(TwoHistoryGradientPush), kSets, GradientTexelFormats(params_.precision));
+                                    sizeof(TwoHistoryGradientPush), kSets, GradientTexelFormats(params_.precision),
+                                    edgeStopping);
         blend_ = ComputePipeline(*context_, "two_history_blend" + sfx, TH_BLEND_BINDINGS,
                                  sizeof(TwoHistoryBlendPush), kSets);
     }
@@ -187,7 +189,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                   sizeof(AsvgfSamplesPush), kSets);
         gradAtrous_ = ComputePipeline(*context_, "asvgf_gradient_atrous" + sfx,
                                       ASVGF_ATROUS_BINDINGS, sizeof(AsvgfAtrousPush), kSets,
-                                      GradientAtrousTexelFormats());
+                                      GradientAtrousTexelFormats(), edgeStopping);
         alpha_ = ComputePipeline(*context_, "asvgf_alpha" + sfx, ASVGF_ALPHA_BINDINGS,
                                  sizeof(AsvgfAlphaPush), kSets);
     }

@@ -20,6 +20,12 @@
 // Epsilons of the à-trous weights (SPEC §3) and albedo floor of demodulation (Falcor 1e-3).
 #define FOVRT_ATROUS_DEPTH_EPSILON 1e-4
 #define FOVRT_ATROUS_LUMINANCE_EPSILON 1e-10
+// Specialization constant (constant_id) of the edge-stopping shaders: k ≥ 0 when σn = 2^k, so that
+// w_n = max(0, n·n')^σn is k squarings instead of exp2(σn·log2(n·n')) (a log2 per tap is ~1/5 of an
+// à-trous pass on lavapipe); −1 = any other σn, evaluated with log2. Set by the host from σn
+// (EdgeStoppingSpecialization in denoise/svgf_layout.h). Up to 2^12 = 4096.
+#define FOVRT_SPEC_NORMAL_SQUARINGS 0
+#define FOVRT_MAX_NORMAL_SQUARINGS 12
 // 7×7 spatial variance estimate radius.
 #define FOVRT_MOMENTS_RADIUS 3
 // Maximum à-trous iterations (SvgfParams::atrousIterations range).

@@ -178,9 +178,10 @@ void main() {
                 const bool centre = kx == 0 && ky == 0;
                 float depth_term = centre ? 0.0 : geometry_depth_term(gc[k].w, gq.w, gp[k], vec2(off), pc.sigma_depth);
                 float normal_log2 = centre ? 0.0 : geometry_normal_log2(gc[k].xyz, gq.xyz, pc.sigma_normal);
+                float normal_factor = centre ? 1.0 : geometry_normal_factor(gc[k].xyz, gq.xyz);
                 [[unroll]] for (int c = 0; c < NCH; ++c) {
                     float w = centre ? 1.0
-                                     : geometry_weight_from_terms(depth_term, normal_log2,
+                                     : geometry_weight_from_terms(depth_term, normal_log2, normal_factor,
                                                                   abs(lp[k][c] - luminance(cq[c].rgb)) * inv_l_den[k][c]);
                     float hw = h * w;
                     sum_w[k][c] += hw;

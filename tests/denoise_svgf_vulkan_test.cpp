@@ -15,6 +15,7 @@
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
 #include "denoise/svgf_cpu.h"
+#include "denoise/svgf_layout.h"
 #include "denoise/svgf_vk.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
@@ -140,6 +141,17 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
         p.svgf.feedbackIteration = 2;
         RunPair(p, "svgf", 3, 2e-3, false);
     }
+    // σn = 128 = 2^7 (default) evaluates w_n as 7 squarings; any other σn takes exp2(σn·log2).
+    SECTION("sigma_normal 100 (log2 path), 3 iterations") {
+        p.svgf.sigmaNormal = 100.0f;
+        p.svgf.atrousIterations = 3;
+        RunPair(p, "svgf", 3, 2e-3, true);
+    }
+    SECTION("sigma_normal 32 (5 squarings), 3 iterations") {
+        p.svgf.sigmaNormal = 32.0f;
+        p.svgf.atrousIterations = 3;
+        RunPair(p, "svgf", 3, 2e-3, true);
+    }
     SECTION("svgf-weighted") {
         p.svgf.weightBySampleCount = true;
         p.svgf.atrousIterations = 2;
@@ -193,6 +205,17 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
         p.svgf.atrousIterations = 3;
         RunPair(p, "svgf", 3, 1e-2, true, 67, 45);
     }
+}
+
+TEST_CASE("sigma_normal = 2^k specialises w_n to k squarings, anything else to log2", "[svgf]") {
+    CHECK(NormalWeightSquarings(128.0f) == 7);
+    CHECK(NormalWeightSquarings(1.0f) == 0);
+    CHECK(NormalWeightSquarings(4096.0f) == FOVRT_MAX_NORMAL_SQUARINGS);
+    CHECK(NormalWeightSquarings(8192.0f) == -1);
+    CHECK(NormalWeightSquarings(100.0f) == -1);
+    CHECK(NormalWeightSquarings(0.0f) == -1);
+    CHECK(NormalWeightSquarings(0.5f) == -1);
+    CHECK(NormalWeightSquarings(128.5f) == -1);
 }
 
 TEST_CASE("vulkan allocator accounting equals the memory plan", "[vulkan][svgf]") {

@@ -176,6 +176,15 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
             RunPair(v, params, 4);
         }
     }
+    // σn not a power of two: w_n through exp2(σn·log2) in the à-trous, moments, gradient and
+    // A-SVGF reconstruction passes (2^k takes k squarings).
+    for (TwoHistoryVariant v : {TwoHistoryVariant::TwoHistory, TwoHistoryVariant::TwoHistoryAsvgf}) {
+        SECTION(std::string("fp32, sigma_normal 100 (log2 path): ") + TwoHistoryVariantName(v)) {
+            params.svgf.sigmaNormal = 100.0f;
+            params.svgf.atrousIterations = 2;
+            RunPair(v, params, 3);
+        }
+    }
     SECTION("fp32 combined, feedback 0, 2 iterations: two-history") {
         params.svgf.filterCombined = true;
         params.svgf.feedbackIteration = 0;

@@ -18,7 +18,8 @@ VkDescriptorType TypeOf(VkFormat texelFormat) {
 
 ComputePipeline::ComputePipeline(VulkanContext& context, const std::string& shaderName,
                                  uint32_t bindings, uint32_t pushBytes, uint32_t maxSets,
-                                 std::span<const VkFormat> texelFormats)
+                                 std::span<const VkFormat> texelFormats,
+                                 std::span<const int32_t> specialization)
     : device_(context.device()), bindings_(bindings), pushBytes_(pushBytes), name_(shaderName) {
     if (!texelFormats.empty() && texelFormats.size() != bindings)
         Fail("pipeline {}: {} texel formats given for {} bindings", shaderName, texelFormats.size(), bindings);
@@ -63,6 +64,12 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const std::string& shad
     pipeInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipeInfo.stage.module = module_;
     pipeInfo.stage.pName = "main";
+    std::vector<VkSpecializationMapEntry> specEntries(specialization.size());
+    for (uint32_t i = 0; i < specEntries.size(); ++i)
+        specEntries[i] = {i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)};
+    VkSpecializationInfo specInfo{uint32_t(specEntries.size()), specEntries.data(), specialization.size_bytes(),
+                                  specialization.data()};
+    if (!specialization.empty()) pipeInfo.stage.pSpecializationInfo = &specInfo;
     pipeInfo.layout = layout_;
     FOVRT_VK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &pipeline_));
 

@@ -24,9 +24,12 @@ public:
     // `shaderName` as in ShaderCode(); `bindings` storage buffers; `pushBytes` of push constants;
     // `maxSets` descriptor sets may be allocated from this pipeline. `texelFormats` (empty, or one
     // per binding): VK_FORMAT_UNDEFINED = storage buffer, else a uniform texel buffer (GLSL
-    // samplerBuffer) viewing the whole buffer with that format.
+    // samplerBuffer) viewing the whole buffer with that format. `specialization`: the value of the
+    // int specialization constant with constant_id i is specialization[i] (ids a shader does not
+    // declare are ignored, as Vulkan specifies).
     ComputePipeline(VulkanContext& context, const std::string& shaderName, uint32_t bindings,
-                    uint32_t pushBytes, uint32_t maxSets = 16, std::span<const VkFormat> texelFormats = {});
+                    uint32_t pushBytes, uint32_t maxSets = 16, std::span<const VkFormat> texelFormats = {},
+                    std::span<const int32_t> specialization = {});
     ComputePipeline(ComputePipeline&& other) noexcept { *this = std::move(other); }
     ComputePipeline& operator=(ComputePipeline&& other) noexcept;
     ComputePipeline(const ComputePipeline&) = delete;
