@@ -14,6 +14,7 @@
 #include <array>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/check.h"
 #include "denoise/params.h"
@@ -21,6 +22,7 @@
 #include "denoise/svgf_texel_formats.h"
 #include "denoise/vk_denoiser_buffers.h"
 #include "vk/pipeline.h"
+#include "vk/recorder.h"
 
 namespace fovrt {
 
@@ -92,11 +94,64 @@ void BindReprojectionInputs(std::array<const Buffer*, N>& r, DenoiserBuffers& bu
     r[SVGF_REPROJECT_B_PREV_PIXEL] = &buf["input.prevPixel"];
 }
 
+// The illumination planes of one channel that the "filter_moments" pass handles: the pixels
+// listed by `classify` (history shorter than the threshold, counted in `args`) get the spatial
+// variance estimate of each plane (SVGF: illum0 → illum1; two-history also willum0 → willum1),
+// every other pixel is copied through.
+struct MomentsPlane {
+    VkDescriptorSet set;  // SvgfStagePipelines::MomentsSet over in → out
+    Buffer* in;
+    Buffer* out;
+};
+struct MomentsChannel {
+    VkDescriptorSet classify;  // SvgfStagePipelines::ClassifySet
+    Buffer* args;              // the channel's indirect-dispatch arguments (".spatialArgs")
+    std::vector<MomentsPlane> planes;
+};
+
 // The SVGF stages both Vulkan hosts (svgf_vk, two_history_vk) run unchanged, built one way for
 // both: the guide pack, the moments classify + spatial filter, à-trous (and its step-1 variant
-// for iteration 0) with `channels` planes per dispatch, and the remodulation.
+// for iteration 0) with `channels` planes per dispatch, and the remodulation; the passes that
+// both hosts record identically are recorded here too.
 struct SvgfStagePipelines {
     ComputePipeline guide, classify, moments, atrous, atrousStep1, modulate;
+
+    // The "pack_guide" pass.
+    void RecordGuide(CommandRecorder& rec, VkDescriptorSet set, int w, int h) const {
+        rec.BeginPass("pack_guide");
+        const ivec2 size(w, h);
+        rec.Dispatch(guide, set, &size, sizeof(size), DispatchGroups(w, h));
+        rec.Barrier();
+        rec.EndPass();
+    }
+    // The "filter_moments" pass: classify each channel and copy its planes through, then filter
+    // only the listed pixels (indirect dispatch; one list per channel serves all its planes).
+    void RecordFilterMoments(CommandRecorder& rec, const SvgfParams& p, int w, int h,
+                             std::span<const MomentsChannel> channels) const {
+        rec.BeginPass("filter_moments");
+        for (const MomentsChannel& c : channels) rec.Fill(*c.args, 0u);
+        rec.Barrier();
+        const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
+        const size_t bytes = sizeof(vec4) * size_t(w) * size_t(h);
+        for (const MomentsChannel& c : channels) {
+            rec.Dispatch(classify, c.classify, &cp, sizeof(cp), DispatchGroups(w, h));
+            for (const MomentsPlane& plane : c.planes) rec.Copy(*plane.in, *plane.out, bytes);
+        }
+        rec.Barrier();
+        const SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal, float(p.varianceHistoryThreshold)};
+        for (const MomentsChannel& c : channels)
+            for (const MomentsPlane& plane : c.planes) rec.DispatchIndirect(moments, plane.set, &mp, sizeof(mp), *c.args);
+        rec.Barrier();
+        rec.EndPass();
+    }
+    // The "modulate" pass (combined: one channel holds direct + indirect).
+    void RecordModulate(CommandRecorder& rec, VkDescriptorSet set, int w, int h, bool combined) const {
+        rec.BeginPass("modulate");
+        const SvgfModulatePush mo{ivec2(w, h), combined ? 1u : 0u};
+        rec.Dispatch(modulate, set, &mo, sizeof(mo), DispatchGroups(w, h));
+        rec.Barrier();
+        rec.EndPass();
+    }
 
     SvgfStagePipelines() = default;
     SvgfStagePipelines(VulkanContext& context, int channels, const DenoiserParams& params, uint32_t maxSets) {

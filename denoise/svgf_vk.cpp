@@ -155,11 +155,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     rec.Barrier();
     rec.EndPass();
 
-    rec.BeginPass("pack_guide");
-    const ivec2 size(w, h);
-    rec.Dispatch(stages_.guide, guideSets_[size_t(parity_)], &size, sizeof(size), groups);
-    rec.Barrier();
-    rec.EndPass();
+    stages_.RecordGuide(rec, guideSets_[size_t(parity_)], w, h);
 
     rec.BeginPass("reproject");
     SvgfReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments,
@@ -170,23 +166,13 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     rec.Barrier();
     rec.EndPass();
 
-    rec.BeginPass("filter_moments");
-    // Classify (list the pixels needing the spatial estimate), copy illum0 → illum1 for every
-    // pixel, then filter only the listed ones (indirect dispatch).
-    for (size_t c = 0; c < channels_.size(); ++c) rec.Fill(Buf(channels_[c] + ".spatialArgs"), 0u);
-    rec.Barrier();
-    const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
+    std::vector<MomentsChannel> moments;
     for (size_t c = 0; c < channels_.size(); ++c) {
-        rec.Dispatch(stages_.classify, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
-        rec.Copy(Buf(channels_[c] + ".illum0"), Buf(channels_[c] + ".illum1"), 16 * n);
+        const std::string& ch = channels_[c];
+        moments.push_back({classifySets_[c][size_t(parity_)], &Buf(ch + ".spatialArgs"),
+                           {{momentsSets_[c][size_t(parity_)], &Buf(ch + ".illum0"), &Buf(ch + ".illum1")}}});
     }
-    rec.Barrier();
-    SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal, float(p.varianceHistoryThreshold)};
-    for (size_t c = 0; c < channels_.size(); ++c)
-        rec.DispatchIndirect(stages_.moments, momentsSets_[c][size_t(parity_)], &mp, sizeof(mp),
-                             Buf(channels_[c] + ".spatialArgs"));
-    rec.Barrier();
-    rec.EndPass();
+    stages_.RecordFilterMoments(rec, p, w, h, moments);
 
     for (int i = 0; i < iterations; ++i) {
         rec.BeginPass(fmt::format("atrous{}", i));
@@ -199,11 +185,7 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
         rec.EndPass();
     }
 
-    rec.BeginPass("modulate");
-    SvgfModulatePush mo{ivec2(w, h), p.filterCombined ? 1u : 0u};
-    rec.Dispatch(stages_.modulate, modulateSet_, &mo, sizeof(mo), groups);
-    rec.Barrier();
-    rec.EndPass();
+    stages_.RecordModulate(rec, modulateSet_, w, h, p.filterCombined);
 
     rec.BeginPass("download");
     buffers_.RecordDownloadOutput(rec, off, n);

@@ -431,11 +431,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
         }
     }
 
-    rec.BeginPass("pack_guide");
-    const ivec2 guideSize(w, h);
-    rec.Dispatch(stages_.guide, guideSets_[size_t(parity_)], &guideSize, sizeof(guideSize), groups);
-    rec.Barrier();
-    rec.EndPass();
+    stages_.RecordGuide(rec, guideSets_[size_t(parity_)], w, h);
 
     rec.BeginPass("two_history_reproject");
     uint32_t flags = TH_REPROJECT_FLAG_HAS_PREV * (hasPrev_ ? 1u : 0u);
@@ -451,27 +447,16 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     rec.Barrier();
     rec.EndPass();
 
-    rec.BeginPass("filter_moments");
-    const SvgfFilterMomentsPush mp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal,
-                                   float(p.varianceHistoryThreshold)};
-    // Classify, copy every pixel through, filter only the listed ones (as SVGF).
-    for (size_t c = 0; c < channels_.size(); ++c) rec.Fill(Buf(channels_[c] + ".spatialArgs"), 0u);
-    rec.Barrier();
-    const SvgfClassifyPush cp{ivec2(w, h), float(p.varianceHistoryThreshold)};
+    // One list per channel serves both histories: both test W_u (the channel's length).
+    std::vector<MomentsChannel> moments;
     for (size_t c = 0; c < channels_.size(); ++c) {
         const std::string& ch = channels_[c];
-        rec.Dispatch(stages_.classify, classifySets_[c][size_t(parity_)], &cp, sizeof(cp), groups);
-        rec.Copy(Buf(ch + ".illum0"), Buf(ch + ".illum1"), 16 * n);
-        if (two_) rec.Copy(Buf(ch + ".willum0"), Buf(ch + ".willum1"), 16 * n);
+        MomentsChannel mc{classifySets_[c][size_t(parity_)], &Buf(ch + ".spatialArgs"),
+                          {{momentsU_[c][size_t(parity_)], &Buf(ch + ".illum0"), &Buf(ch + ".illum1")}}};
+        if (two_) mc.planes.push_back({momentsW_[c][size_t(parity_)], &Buf(ch + ".willum0"), &Buf(ch + ".willum1")});
+        moments.push_back(std::move(mc));
     }
-    rec.Barrier();
-    for (size_t c = 0; c < channels_.size(); ++c) {
-        const Buffer& args = Buf(channels_[c] + ".spatialArgs");
-        rec.DispatchIndirect(stages_.moments, momentsU_[c][size_t(parity_)], &mp, sizeof(mp), args);
-        if (two_) rec.DispatchIndirect(stages_.moments, momentsW_[c][size_t(parity_)], &mp, sizeof(mp), args);
-    }
-    rec.Barrier();
-    rec.EndPass();
+    stages_.RecordFilterMoments(rec, p, w, h, moments);
 
     if (variant_ == TwoHistoryVariant::TwoHistory) {
         rec.BeginPass("two_history_gradient");
@@ -507,11 +492,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
         if (two_ && i == 0) blend();
     }
 
-    rec.BeginPass("modulate");
-    const SvgfModulatePush mo{ivec2(w, h), channels_.size() == 1 ? 1u : 0u};
-    rec.Dispatch(stages_.modulate, modulateSet_, &mo, sizeof(mo), groups);
-    rec.Barrier();
-    rec.EndPass();
+    stages_.RecordModulate(rec, modulateSet_, w, h, channels_.size() == 1);
 
     rec.BeginPass("download");
     buffers_.RecordDownloadOutput(rec, off, n);
