@@ -13,6 +13,7 @@
 #include "denoise/denoiser_factory.h"
 #include "denoise/asvgf_ref.h"
 #include "denoise/pass_bytes.h"
+#include "shaders/shared_constants.h"
 #include "vk/bandwidth.h"
 #include "vk/context.h"
 
@@ -102,6 +103,12 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
                    report.device.storageGBps);
         fmt::print(out, "  (device copies: shaders/bandwidth_copy.comp on {}, {} MiB, GPU timestamps)\n",
                    context->deviceName(), report.device.bytes >> 20);
+        if (report.device.exp2PerSecond > 0.0)
+            fmt::print(out, "  device exp2 throughput {:7.2f} G/s   (the same copy + {} exp2 per element; every "
+                            "edge-stopping weight costs one exp2 per channel: an ALU floor of the à-trous taps)\n",
+                       report.device.exp2PerSecond / 1e9, BANDWIDTH_EXP2_PER_ELEMENT);
+        else
+            fmt::print(out, "  device exp2 throughput  not resolved (hidden behind the copy's memory traffic)\n");
     }
     fmt::print(out, "bytes/pixel: what each pass reads + writes per pixel per frame, every plane counted once per "
                     "dispatch (gather taps assumed to hit cache; sizes from the memory plan; steady state: no pixel "

@@ -85,6 +85,7 @@
 #define BANDWIDTH_B_STORAGE_IN 1           // vec4[N] (the same source as a storage buffer)
 #define BANDWIDTH_B_OUT 2                  // vec4[N]
 #define BANDWIDTH_BINDINGS 3
+#define BANDWIDTH_EXP2_PER_ELEMENT 64     // exp2 per element of the ALU probe (multiple of 4)
 
 // svgf_moments_classify: appends the pixels that need the spatial variance estimate (not
 // background, history length < threshold) to a list, and counts the 1-D workgroups of
