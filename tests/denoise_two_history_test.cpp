@@ -296,8 +296,10 @@ TEST_CASE("two-history moving fovea: the periphery gap is blur in the weighted h
     const PeripheryGap flat = DecomposeMovingFovea(params, 0.0f, 2);
     double flatTh = 0.0, flatSvgf = 0.0;
     for (size_t r = 1; r < 3; ++r) flatTh += flat.th[r].mse, flatSvgf += flat.svgf[r].mse;
-    std::printf("moving fovea, thesis protocol, flat truth: relMSE trail two-history %.3e svgf %.3e "
-                "(%+.1f%%), rest of periphery %.3e / %.3e (%+.1f%%)\n",
+    std::printf("moving fovea, thesis protocol, flat truth: relMSE two-history / svgf: fovea %.3e / "
+                "%.3e (%+.1f%%), trail %.3e / %.3e (%+.1f%%), rest of periphery %.3e / %.3e "
+                "(%+.1f%%)\n",
+                flat.th[0].mse, flat.svgf[0].mse, 100.0 * (flat.th[0].mse / flat.svgf[0].mse - 1.0),
                 flat.th[1].mse, flat.svgf[1].mse, 100.0 * (flat.th[1].mse / flat.svgf[1].mse - 1.0),
                 flat.th[2].mse, flat.svgf[2].mse, 100.0 * (flat.th[2].mse / flat.svgf[2].mse - 1.0));
     CHECK(flat.th[1].mse < 0.8 * flat.svgf[1].mse);
