@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
