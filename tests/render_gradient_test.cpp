@@ -1,8 +1,11 @@
-// Re-shading API and A-SVGF gradient samples (paper §3): with nothing changing, re-shading the
-// forward-projected previous sample with its previous seed reproduces the old value exactly;
-// switching the light off makes the difference large.
+// Re-shading API and A-SVGF gradient samples (paper §3): the forward-projected previous surface
+// sample and its seed replace the pixel's own visibility-buffer entry and are shaded once, as every
+// other pixel (no extra work). With nothing changing, that shading reproduces the old value
+// exactly; switching the light off makes the difference large.
 #include <cmath>
+#include <cstring>
 
+#include "core/rng.h"
 #include "render_test_scenes.h"
 #include "test_support.h"
 
@@ -13,25 +16,63 @@ namespace {
 
 constexpr int kW = 48, kH = 36;
 
-std::vector<GradientSample> TwoFrames(const Scene& scene, FrameInputs& f1, bool cut = false) {
+Plane<uint16_t> RandomSppMap(uint32_t seed, int maxSpp) {
+    Plane<uint16_t> map(kW, kH);
+    Pcg32 rng(seed);
+    for (size_t i = 0; i < map.size(); ++i) map[i] = uint16_t(1 + rng.NextBounded(uint32_t(maxSpp)));
+    return map;
+}
+
+// Two frames of one eye; the spp maps differ between the frames, so a gradient pixel's previous
+// sample count n_prev mostly differs from the map's n_cur.
+struct TwoFrameRun {
+    std::unique_ptr<Renderer> renderer;
+    EyeCamera c0, c1;
+    Plane<uint16_t> spp0, spp1;
+    FrameInputs f0, f1;
+    RenderStats stats1;  // frame 1 only
+};
+
+TwoFrameRun RenderTwoFrames(const Scene& scene, bool gradients, const vec3& move = vec3(0.0f),
+                            bool cut = false) {
     RenderSettings settings;
-    settings.gradientSamples = true;
+    settings.gradientSamples = gradients;
     settings.seed = 5;
-    auto renderer = CreateRenderer(scene, settings);
-    EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
-    Plane<uint16_t> spp(kW, kH, uint16_t(2));
-    for (int x = 0; x < kW; ++x) spp(x, 5) = 7;  // mixed counts: re-shading must reuse them
-    FrameInputs f0;
-    renderer->SetFrame(0);
-    renderer->RenderEye(0, camera, camera, spp, f0);
-    CHECK(f0.gradientSamples.empty());  // frame 0 has no history
-    renderer->SetFrame(1);
-    f1.cameraCut = cut;
-    renderer->RenderEye(0, camera, camera, spp, f1);
+    TwoFrameRun r;
+    r.renderer = CreateRenderer(scene, settings);
+    Pose pose = scene.cameraPath.front().pose;
+    r.c0 = MakeCamera(pose, kW, kH);
+    pose.position += move;
+    r.c1 = MakeCamera(pose, kW, kH);
+    r.spp0 = RandomSppMap(7, 6);
+    r.spp1 = RandomSppMap(8, 6);
+    r.renderer->SetFrame(0);
+    r.renderer->RenderEye(0, r.c0, r.c0, r.spp0, r.f0);
+    CHECK(r.f0.gradientSamples.empty());  // frame 0 has no history
+    r.renderer->SetFrame(1);
+    r.renderer->ResetStats();
+    r.f1.cameraCut = cut;
+    r.renderer->RenderEye(0, r.c1, r.c0, r.spp1, r.f1);
+    r.stats1 = r.renderer->Stats();
     // The old luminances are last frame's noisy colours at prevPixel.
-    for (const GradientSample& g : f1.gradientSamples)
-        REQUIRE(g.oldLuminance == Luminance(f0.NoisyColor(g.prevPixel.x, g.prevPixel.y)));
+    for (const GradientSample& g : r.f1.gradientSamples)
+        REQUIRE(g.oldLuminance == Luminance(r.f0.NoisyColor(g.prevPixel.x, g.prevPixel.y)));
+    return r;
+}
+
+std::vector<GradientSample> TwoFrames(const Scene& scene, FrameInputs& f1) {
+    TwoFrameRun r = RenderTwoFrames(scene, true);
+    f1 = std::move(r.f1);
     return f1.gradientSamples;
+}
+
+template <typename T>
+bool SameBits(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+SurfaceSample VisibilityAt(const FrameInputs& f, ivec2 p) {
+    return SurfaceSample{f.objectId(p.x, p.y), f.primitiveId(p.x, p.y), f.barycentrics(p.x, p.y)};
 }
 
 }  // namespace
@@ -55,23 +96,134 @@ TEST_CASE("Shade() reproduces RenderEye's pixel colour exactly", "[render]") {
 }
 
 TEST_CASE("static scene: every gradient sample has newLuminance == oldLuminance", "[render]") {
-    FrameInputs f1;
-    std::vector<GradientSample> samples = TwoFrames(BoxScene(), f1);
+    TwoFrameRun r = RenderTwoFrames(BoxScene(), true);
+    const std::vector<GradientSample>& samples = r.f1.gradientSamples;
     int strata = ((kW + 2) / 3) * ((kH + 2) / 3);
     // Static camera and scene: every stratum's pick lands in its own stratum.
     CHECK(int(samples.size()) == strata);
     std::vector<int> perStratum(size_t(strata), 0);
+    Plane<uint8_t> isGradient(kW, kH, uint8_t(0));
     for (const GradientSample& g : samples) {
         REQUIRE(g.newLuminance == g.oldLuminance);
         REQUIRE(g.stratum == g.pixel / kGradientStratumSize);
         REQUIRE(g.pixel == g.prevPixel);
         REQUIRE(++perStratum[size_t(g.stratum.y * ((kW + 2) / 3) + g.stratum.x)] == 1);
+        // Same surface, seed and n as last frame: the pixel's demodulated shading repeats bit
+        // for bit, and it is the pixel's own sample of this frame.
+        ivec2 p = g.pixel;
+        REQUIRE(r.f1.seed(p.x, p.y) == r.f0.seed(p.x, p.y));
+        REQUIRE(r.f1.sampleCount(p.x, p.y) == r.f0.sampleCount(p.x, p.y));
+        REQUIRE(SameBits(r.f1.direct(p.x, p.y), r.f0.direct(p.x, p.y)));
+        REQUIRE(SameBits(r.f1.indirect(p.x, p.y), r.f0.indirect(p.x, p.y)));
+        REQUIRE(Luminance(r.f1.NoisyColor(p.x, p.y)) == g.newLuminance);
+        isGradient(p.x, p.y) = 1;
     }
-    // The re-shaded frame itself uses fresh seeds: its own colours differ from the old ones.
-    int differing = 0;
-    for (const GradientSample& g : samples)
-        differing += Luminance(f1.NoisyColor(g.pixel.x, g.pixel.y)) != g.oldLuminance;
-    CHECK(differing > int(samples.size()) / 2);
+    // The other pixels use fresh seeds: their colours differ from last frame's.
+    int others = 0, differing = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            if (isGradient(x, y)) continue;
+            ++others;
+            REQUIRE(r.f1.seed(x, y) != r.f0.seed(x, y));
+            differing += Luminance(r.f1.NoisyColor(x, y)) != Luminance(r.f0.NoisyColor(x, y));
+        }
+    CHECK(differing > others / 2);
+}
+
+TEST_CASE("gradient samples replace pixel samples: traced samples = sum of sampleCount", "[render]") {
+    TwoFrameRun r = RenderTwoFrames(BoxScene(), true, vec3(0.03f, 0.0f, 0.0f));
+    REQUIRE(r.f1.gradientSamples.size() > 100);
+    uint64_t recorded = 0, map = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            REQUIRE(r.f1.objectId(x, y) != kNoObject);  // closed room: every pixel shades its samples
+            recorded += r.f1.sampleCount(x, y);
+            map += r.spp1(x, y);
+        }
+    // No extra shading: every traced sample belongs to a pixel of the frame, one primary ray each.
+    CHECK(r.stats1.samples == recorded);
+    CHECK(r.stats1.primaryRays == uint64_t(kW * kH));
+    // sampleCount differs from the spp map exactly at the gradient pixels, by n_prev - n_cur.
+    int64_t expected = 0;
+    int changed = 0;
+    Plane<uint8_t> isGradient(kW, kH, uint8_t(0));
+    for (const GradientSample& g : r.f1.gradientSamples) {
+        int nPrev = r.f0.sampleCount(g.prevPixel.x, g.prevPixel.y), nCur = r.spp1(g.pixel.x, g.pixel.y);
+        REQUIRE(r.f1.sampleCount(g.pixel.x, g.pixel.y) == nPrev);
+        expected += nPrev - nCur;
+        changed += nPrev != nCur;
+        isGradient(g.pixel.x, g.pixel.y) = 1;
+    }
+    CHECK(changed > int(r.f1.gradientSamples.size()) / 2);  // the test distinguishes n_prev from n_cur
+    CHECK(int64_t(recorded) - int64_t(map) == expected);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            if (!isGradient(x, y)) REQUIRE(r.f1.sampleCount(x, y) == r.spp1(x, y));
+}
+
+TEST_CASE("a gradient pixel is the re-shaded previous surface sample with its old seed", "[render]") {
+    // Camera motion: the merged surface sample is not the pixel-centre one.
+    TwoFrameRun r = RenderTwoFrames(BoxScene(), true, vec3(0.03f, 0.0f, 0.0f));
+    REQUIRE(r.f1.gradientSamples.size() > 100);
+    int offCentre = 0;
+    for (const GradientSample& g : r.f1.gradientSamples) {
+        ivec2 p = g.pixel, q = g.prevPixel;
+        INFO("pixel " << p.x << "," << p.y << " from " << q.x << "," << q.y);
+        SurfaceSample s = VisibilityAt(r.f0, q);
+        // The visibility-buffer entry, seed and sample count are the previous pixel's.
+        REQUIRE(r.f1.objectId(p.x, p.y) == s.instance);
+        REQUIRE(r.f1.primitiveId(p.x, p.y) == s.primitive);
+        REQUIRE(SameBits(r.f1.barycentrics(p.x, p.y), s.barycentrics));
+        REQUIRE(r.f1.seed(p.x, p.y) == r.f0.seed(q.x, q.y));
+        REQUIRE(r.f1.sampleCount(p.x, p.y) == r.f0.sampleCount(q.x, q.y));
+        vec3 position = r.renderer->WorldPosition(s);
+        REQUIRE(SameBits(r.f1.worldPosition(p.x, p.y), position));
+        REQUIRE(r.f1.linearDepth(p.x, p.y) == r.c1.LinearDepth(position));
+        // Its colour is f_i(G→, ξ_{i−1}), bit for bit, and newLuminance is that colour's.
+        vec3 reshaded = r.renderer->Shade(r.c1, s, r.f0.seed(q.x, q.y), r.f0.sampleCount(q.x, q.y));
+        vec3 colour = r.f1.NoisyColor(p.x, p.y);
+        REQUIRE(SameBits(reshaded, colour));
+        REQUIRE(g.newLuminance == Luminance(colour));
+        // Same surface point, same albedo: direct + indirect is the re-shaded illumination.
+        REQUIRE(SameBits(r.f1.albedo(p.x, p.y), r.f0.albedo(q.x, q.y)));
+        vec3 centre = r.c1.WorldDirection(vec2(p) + 0.5f);
+        vec3 toSample = glm::normalize(position - r.c1.Position());
+        offCentre += glm::dot(centre, toSample) < 1.0f - 1e-7f;
+    }
+    CHECK(offCentre > int(r.f1.gradientSamples.size()) / 2);
+}
+
+TEST_CASE("pixels without a gradient sample are as with gradient samples off", "[render]") {
+    const vec3 move(0.03f, 0.0f, 0.0f);
+    TwoFrameRun on = RenderTwoFrames(BoxScene(), true, move);
+    TwoFrameRun off = RenderTwoFrames(BoxScene(), false, move);
+    REQUIRE(off.f1.gradientSamples.empty());
+    REQUIRE(on.f1.gradientSamples.size() > 100);
+    Plane<uint8_t> isGradient(kW, kH, uint8_t(0));
+    for (const GradientSample& g : on.f1.gradientSamples) isGradient(g.pixel.x, g.pixel.y) = 1;
+    int merged = 0, mergedDiffering = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const FrameInputs &a = on.f1, &b = off.f1;
+            bool same = SameBits(a.direct(x, y), b.direct(x, y)) && SameBits(a.indirect(x, y), b.indirect(x, y)) &&
+                        SameBits(a.albedo(x, y), b.albedo(x, y)) && SameBits(a.emission(x, y), b.emission(x, y)) &&
+                        SameBits(a.normal(x, y), b.normal(x, y)) && SameBits(a.linearDepth(x, y), b.linearDepth(x, y)) &&
+                        SameBits(a.depthGradient(x, y), b.depthGradient(x, y)) &&
+                        a.objectId(x, y) == b.objectId(x, y) && SameBits(a.prevPixel(x, y), b.prevPixel(x, y)) &&
+                        a.primitiveId(x, y) == b.primitiveId(x, y) &&
+                        SameBits(a.barycentrics(x, y), b.barycentrics(x, y)) &&
+                        SameBits(a.worldPosition(x, y), b.worldPosition(x, y)) &&
+                        a.sampleCount(x, y) == b.sampleCount(x, y) && a.seed(x, y) == b.seed(x, y);
+            if (isGradient(x, y)) {
+                ++merged;
+                mergedDiffering += !same;
+            } else {
+                INFO("pixel " << x << "," << y);
+                REQUIRE(same);
+            }
+        }
+    // Merged pixels hold the previous seed: they differ from the gradient-free render.
+    CHECK(mergedDiffering == merged);
 }
 
 TEST_CASE("a light switched off gives large gradients", "[render]") {

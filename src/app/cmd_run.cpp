@@ -69,6 +69,7 @@ void Run(const RunConfig& config) {
     StereoFrame frame;
     Plane<vec3> denoised;
     uint64_t totalSamples = 0;
+    uint64_t recordedSamples = 0;  // Σ FrameInputs::sampleCount: A-SVGF gradient pixels trace n_prev
     for (int i = 0; i < config.run.frames; ++i) {
         uint32_t index = uint32_t(config.run.firstFrame + i);
         pipeline.Render(index, frame);
@@ -87,6 +88,7 @@ void Run(const RunConfig& config) {
             uint64_t samples = 0;
             for (size_t p = 0; p < e.sppMap.size(); ++p) samples += e.sppMap[p];
             totalSamples += samples;
+            for (size_t p = 0; p < e.inputs.sampleCount.size(); ++p) recordedSamples += e.inputs.sampleCount[p];
             eyeRecord["samples"] = samples;
 
             auto writeStart = std::chrono::steady_clock::now();
@@ -132,6 +134,8 @@ void Run(const RunConfig& config) {
                          {"frame_rate", pipeline.FramesPerSecond()}};
     manifest["denoise_device"] = denoisers.DeviceDescription();
     manifest["counters"] = {{"samples", totalSamples},
+                            {"recorded_samples", recordedSamples},
+                            {"traced_samples", stats.samples},
                             {"rays", stats.Rays()},
                             {"primary_rays", stats.primaryRays},
                             {"shadow_tests", stats.shadowRays},

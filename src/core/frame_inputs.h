@@ -16,7 +16,8 @@ inline constexpr uint32_t kNoObject = 0xFFFFFFFFu;  // object/instance id of a b
 
 // One A-SVGF gradient sample (SPEC §2, A-SVGF paper §3): the previous frame's surface sample at
 // `prevPixel`, forward-projected into this frame's `pixel` (inside stratum `stratum`), shaded now
-// with the previous frame's seed. Luminances are of the full (remodulated) pixel colour.
+// with the previous frame's seed; it replaced that pixel's own visibility-buffer entry, so the
+// pixel's colour is that shading. Luminances are of the full (remodulated) pixel colour.
 struct GradientSample {
     ivec2 stratum;      // stratum coordinates (pixel / kGradientStratumSize)
     ivec2 pixel;        // current-frame pixel the sample landed in
@@ -56,7 +57,8 @@ struct FrameInputs {
     Plane<uint32_t> primitiveId; // triangle index within the instance's mesh
     Plane<vec2> barycentrics;    // (u, v) of the hit, Embree convention
     Plane<vec3> worldPosition;   // primary hit in world space (this frame)
-    Plane<uint16_t> sampleCount; // n ≥ 1: samples the tracer took (= spp map)
+    Plane<uint16_t> sampleCount; // n ≥ 1: samples the tracer took (= spp map; at an A-SVGF
+                                 // gradient sample's pixel the previous frame's n, reused)
     Plane<uint32_t> seed;        // per-pixel RNG seed of this frame
 
     std::vector<GradientSample> gradientSamples;  // A-SVGF only; empty otherwise

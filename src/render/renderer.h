@@ -53,7 +53,10 @@ public:
 
     // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's
     // resolution). `prevCamera` and the previous frame's scene state give the motion vectors.
-    // Set out.cameraCut before the call on a cut: gradient samples are then skipped (as on frame 0).
+    // With gradient samples on, each gradient pixel instead holds the forward-projected previous
+    // surface sample, shaded once with the previous seed and the previous n (A-SVGF §3; its
+    // sampleCount says so). Set out.cameraCut before the call on a cut: gradient samples are then
+    // skipped (as on frame 0).
     virtual void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
                            const Plane<uint16_t>& spp, FrameInputs& out) = 0;
 
