@@ -45,7 +45,9 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
         add(ch + ".illum0", 16 * n, false);
         add(ch + ".illum1", 16 * n, false);
         // Pixels needing the spatial variance estimate (Vulkan: svgf_moments_classify) + the
-        // indirect dispatch arguments (groups x, y, z, count).
+        // indirect dispatch arguments (groups x, y, z, count). Earlier in the frame the first
+        // channel's list holds the reprojection's box-fallback pixels (svgf_reproject,
+        // two_history_reproject): used up before the classify pass refills it, so no buffer of its own.
         add(ch + ".spatialList", 4 * n, false);
         add(ch + ".spatialArgs", 16, false);
     }

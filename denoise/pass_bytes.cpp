@@ -115,7 +115,8 @@ std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams
     // One dispatch for both channels (svgf_reproject_pair; combined: one channel, colour = direct +
     // indirect): geometry of both frames, depth gradient, previous pixel and sample counts once;
     // per channel colour in, previous colour/moments/length/weight, this frame's moments, length,
-    // weight, colour (no feedback), illumination.
+    // weight, colour (no feedback), illumination. The box-fallback pass over the listed pixels
+    // (shaders/common/reprojection.glsl) moves bytes only for those: none in the steady state.
     double reproject = b("input.direct") + b("input.indirect") + 2 * GeometryBytes(b) + b("input.depthGradient") +
                        b("input.prevPixel") + (weighted ? b("input.sampleCount") : 0.0);
     for (const std::string& ch : channels) {
@@ -184,7 +185,7 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
     // two_history_reproject: one dispatch for both channels (two_history_reproject_pair; combined:
     // one channel, colour = direct + indirect). Once per pixel: both colours, geometry of both
     // frames, depth gradient, previous pixel, sample count, α, W_u gathered (channel 0's length),
-    // W_w and S gathered and written, g gathered and written.
+    // W_w and S gathered and written, g gathered and written. The box-fallback pass: as SVGF's.
     double reproject = b("input.direct") + b("input.indirect") + 2 * GeometryBytes(b) + b("input.depthGradient") +
                        b("input.prevPixel");
     // The sample count is loaded unconditionally (asvgf binds a dummy plane: 2 bytes a pixel).

@@ -1,5 +1,6 @@
 // The SVGF stages shared by the SVGF and two-history Vulkan hosts: the à-trous pipelines and sets,
-// and SvgfStagePipelines (guide, moments, à-trous, modulate) with their descriptor sets. One
+// the two reprojection passes (ReprojectionPipelines), and SvgfStagePipelines (guide, moments,
+// à-trous, modulate) with their descriptor sets. One
 // dispatch filters one illumination channel ("svgf_atrous") or a pair ("svgf_atrous_pair": direct
 // + indirect, or two-history's unweighted + weighted history) that shares the per-tap guide fetch,
 // depth gradient and w_z·w_n exponent; each channel keeps its own w_l and variance
@@ -75,13 +76,15 @@ inline VkDescriptorSet MakeAtrousSet(ComputePipeline& pipeline, const Buffer& gu
         std::span<const Buffer* const>(a).first(channels.size() == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS));
 }
 
-// The inputs every reprojection shader binds at the same slots 0–9 (svgf_reproject and
-// two_history_reproject: SVGF_REPROJECT_B_COLOR_IN … PREV_PIXEL): both colour channels, the
-// geometry of this frame (`side`) and the previous one (`prevSide`), depth gradient and motion.
+// The inputs every reprojection shader binds at the same slots 0–11 (svgf_reproject and
+// two_history_reproject: SVGF_REPROJECT_B_COLOR_IN … LIST): both colour channels, the geometry of
+// this frame (`side`) and the previous one (`prevSide`), depth gradient and motion, and the list
+// of the box-fallback pixels. The list borrows channel `listChannel`'s spatial-variance list: the
+// reprojection has used it up before svgf_moments_classify refills it (memory_plan.cpp).
 template <size_t N>
 void BindReprojectionInputs(std::array<const Buffer*, N>& r, DenoiserBuffers& buf, const std::string& side,
-                            const std::string& prevSide) {
-    static_assert(N > SVGF_REPROJECT_B_PREV_PIXEL);
+                            const std::string& prevSide, const std::string& listChannel) {
+    static_assert(N > SVGF_REPROJECT_B_LIST);
     r[SVGF_REPROJECT_B_COLOR_IN] = &buf["input.direct"];
     r[SVGF_REPROJECT_B_COLOR_IN2] = &buf["input.indirect"];
     r[SVGF_REPROJECT_B_DEPTH] = &buf["geometry.depth." + side];
@@ -92,7 +95,41 @@ void BindReprojectionInputs(std::array<const Buffer*, N>& r, DenoiserBuffers& bu
     r[SVGF_REPROJECT_B_PREV_OBJECT] = &buf["geometry.objectId." + prevSide];
     r[SVGF_REPROJECT_B_DEPTH_GRAD] = &buf["input.depthGradient"];
     r[SVGF_REPROJECT_B_PREV_PIXEL] = &buf["input.prevPixel"];
+    r[SVGF_REPROJECT_B_LIST_ARGS] = &buf[listChannel + ".spatialArgs"];
+    r[SVGF_REPROJECT_B_LIST] = &buf[listChannel + ".spatialList"];
 }
+
+// Temporal accumulation as two passes of one shader (shaders/common/reprojection.glsl): `main`
+// on every pixel with the bilinear taps, listing the pixels whose taps all failed, then `box`
+// ("<shader>_box") on the listed pixels only, with the 3×3 fallback taps (indirect dispatch).
+// `flags` (the shader's mode bits) is a specialization constant of both. The two variants declare
+// the same bindings, so a set made from `main` is bound with `box` too.
+struct ReprojectionPipelines {
+    ComputePipeline main, box;
+
+    ReprojectionPipelines() = default;
+    // `shader` without the variant suffix (e.g. "svgf_reproject_pair"), `suffix` "" or "_fp16".
+    ReprojectionPipelines(VulkanContext& context, const std::string& shader, const std::string& suffix,
+                          uint32_t bindings, uint32_t pushBytes, uint32_t maxSets,
+                          std::span<const VkFormat> texelFormats, uint32_t flags) {
+        const std::array<int32_t, 2> spec{-1, int32_t(flags)};  // constant_id 1: FOVRT_SPEC_REPROJECT_FLAGS
+        static_assert(FOVRT_SPEC_REPROJECT_FLAGS == 1);
+        main = ComputePipeline(context, shader + suffix, bindings, pushBytes, maxSets, texelFormats, spec);
+        box = ComputePipeline(context, shader + "_box" + suffix, bindings, pushBytes, 1, texelFormats, spec);
+    }
+    // Both passes over a W×H image; `listArgs` is the buffer bound at SVGF_REPROJECT_B_LIST_ARGS.
+    // Without a previous frame nothing is listed, and the box pass is not recorded.
+    void Record(CommandRecorder& rec, VkDescriptorSet set, const void* push, int w, int h, Buffer& listArgs,
+                bool hasPrev) const {
+        rec.Fill(listArgs, 0u);
+        rec.Barrier();
+        rec.Dispatch(main, set, push, main.pushBytes(), DispatchGroups(w, h));
+        rec.Barrier();
+        if (!hasPrev) return;
+        rec.DispatchIndirect(box, set, push, box.pushBytes(), listArgs);
+        rec.Barrier();
+    }
+};
 
 // The illumination planes of one channel that the "filter_moments" pass handles: the pixels
 // listed by `classify` (history shorter than the threshold, counted in `args`) get the spatial

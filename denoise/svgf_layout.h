@@ -12,15 +12,12 @@
 
 namespace fovrt {
 
-inline constexpr uint32_t kSvgfReprojectWeighted = 1u;
-inline constexpr uint32_t kSvgfReprojectCombined = 2u;
-inline constexpr uint32_t kSvgfReprojectWriteColor = 4u;
-
+// svgf_reproject's mode bits (SVGF_REPROJECT_FLAG_*) are a specialization constant.
 struct SvgfReprojectPush {
     ivec2 size;
     float alphaColor;
     float alphaMoments;
-    uint32_t flags;  // kSvgfReproject*
+    uint32_t hasPrev;  // 0: no previous frame (first frame, reset): nothing reprojects
 };
 static_assert(sizeof(SvgfReprojectPush) == 20);
 

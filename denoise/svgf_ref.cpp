@@ -87,6 +87,7 @@ ReprojectionTaps FindReprojectionTaps(vec2 prevPixel, int width, int height, flo
         return taps;
     }
     taps.count = 0;
+    taps.box = true;
     ivec2 nearest(int(std::floor(prevPixel.x)), int(std::floor(prevPixel.y)));
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {

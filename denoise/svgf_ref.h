@@ -47,6 +47,7 @@ struct SvgfHistory {
 // every valid pixel of the 3×3 block around the nearest previous pixel, equal weights; else none.
 struct ReprojectionTaps {
     int count = 0;
+    bool box = false;               // from the 3×3 fallback (no bilinear tap was valid)
     std::array<int, 9> index{};    // previous-frame pixel index y·W + x
     std::array<float, 9> weight{};  // sum 1 when count > 0
 };

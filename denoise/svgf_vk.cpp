@@ -38,9 +38,13 @@ void SvgfVulkanDenoiser::CreatePipelines() {
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? SVGF_REPROJECT_PAIR_BINDINGS : SVGF_REPROJECT_BINDINGS;
     const auto reprojectFormats = SvgfReprojectTexelFormats(params_.precision);
-    reproject_ = ComputePipeline(*context_, (pair ? "svgf_reproject_pair" : "svgf_reproject") + suffix,
-                                 reprojectBindings, sizeof(SvgfReprojectPush), sets,
-                                 std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
+    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= p.atrousIterations;
+    const uint32_t flags = (p.weightBySampleCount ? SVGF_REPROJECT_FLAG_WEIGHTED : 0u) |
+                           (p.filterCombined ? SVGF_REPROJECT_FLAG_COMBINED : 0u) |
+                           (atrousFeedback ? 0u : SVGF_REPROJECT_FLAG_WRITE_COLOR);
+    reproject_ = ReprojectionPipelines(*context_, pair ? "svgf_reproject_pair" : "svgf_reproject", suffix,
+                                       reprojectBindings, sizeof(SvgfReprojectPush), sets,
+                                       std::span<const VkFormat>(reprojectFormats).first(reprojectBindings), flags);
     // Direct and indirect in one à-trous dispatch (svgf_atrous_pair); combined: one channel.
     stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, sets);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
@@ -61,7 +65,7 @@ void SvgfVulkanDenoiser::Allocate(int width, int height) {
 
 void SvgfVulkanDenoiser::BuildSets() {
     stages_.guide.ResetSets();
-    reproject_.ResetSets();
+    reproject_.main.ResetSets();
     stages_.moments.ResetSets();
     stages_.classify.ResetSets();
     stages_.atrous.ResetSets();
@@ -75,7 +79,7 @@ void SvgfVulkanDenoiser::BuildSets() {
         // the base bindings, indirect at the *2 bindings of svgf_reproject_pair.
         const std::string cur = Side(parity), prev = Side(parity ^ 1);
         std::array<const Buffer*, SVGF_REPROJECT_PAIR_BINDINGS> r{};
-        BindReprojectionInputs(r, buffers_, cur, prev);
+        BindReprojectionInputs(r, buffers_, cur, prev, channels_[0]);
         // Unused bindings (unweighted mode) point at a buffer of the plan that is never read.
         r[SVGF_REPROJECT_B_SAMPLE_COUNT] = &Buf(weighted ? "input.sampleCount" : "input.prevPixel");
         r[SVGF_REPROJECT_B_STATS] = &Buf("stats");
@@ -95,7 +99,7 @@ void SvgfVulkanDenoiser::BuildSets() {
             r[b(SVGF_REPROJECT_B_ILLUM_OUT, SVGF_REPROJECT_B_ILLUM_OUT2)] = &Buf(ch + ".illum0");
         }
         const size_t bindings = channels_.size() == 2 ? SVGF_REPROJECT_PAIR_BINDINGS : SVGF_REPROJECT_BINDINGS;
-        reprojectSets_[size_t(parity)] = reproject_.MakeSet(std::span<const Buffer* const>(r).first(bindings));
+        reprojectSets_[size_t(parity)] = reproject_.main.MakeSet(std::span<const Buffer* const>(r).first(bindings));
     }
     for (size_t c = 0; c < channels_.size(); ++c) {
         const std::string& ch = channels_[c];
@@ -137,13 +141,13 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     if (in.cameraCut) needsClear_ = true;
     const SvgfParams& p = params_.svgf;
     const size_t n = size_t(w) * size_t(h);
-    const uvec2 groups = DispatchGroups(w, h);
     const int iterations = p.atrousIterations;
     const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
     const std::string cur = Side(parity_);
 
     CommandRecorder rec(*context_, commands_, &timestamps_);
     Buffer& staging = Buf("staging");
+    const bool hasPrev = !needsClear_;
     rec.BeginPass("upload");
     if (needsClear_) {
         buffers_.RecordClear(rec);  // Reset(): nothing reprojects on the next frame
@@ -158,12 +162,8 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     stages_.RecordGuide(rec, guideSets_[size_t(parity_)], w, h);
 
     rec.BeginPass("reproject");
-    SvgfReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments,
-                         (p.weightBySampleCount ? kSvgfReprojectWeighted : 0u) |
-                             (p.filterCombined ? kSvgfReprojectCombined : 0u) |
-                             (atrousFeedback ? 0u : kSvgfReprojectWriteColor)};
-    rec.Dispatch(reproject_, reprojectSets_[size_t(parity_)], &rp, sizeof(rp), groups);
-    rec.Barrier();
+    const SvgfReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments, hasPrev ? 1u : 0u};
+    reproject_.Record(rec, reprojectSets_[size_t(parity_)], &rp, w, h, Buf(channels_[0] + ".spatialArgs"), hasPrev);
     rec.EndPass();
 
     std::vector<MomentsChannel> moments;

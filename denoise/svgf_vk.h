@@ -55,7 +55,7 @@ private:
     bool needsClear_ = true;  // histories must be cleared before the next frame
     DenoiserBuffers buffers_{"svgf"};
     SvgfStagePipelines stages_;  // guide, moments, à-trous, modulate (svgf_atrous_vk.h)
-    ComputePipeline reproject_;
+    ReprojectionPipelines reproject_;  // main + box-fallback passes
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     // Descriptor sets: [channel][parity]; reproject: [parity] and atrous: [parity][pingpong], both
     // channels in one set.

@@ -84,12 +84,12 @@ namespace {
 const char* Side(int parity) { return parity ? "B" : "A"; }
 
 // Push-constant blocks, mirrored in the shaders named.
-struct TwoHistoryReprojectPush {  // two_history_reproject.comp
+struct TwoHistoryReprojectPush {  // two_history_reproject.comp (mode bits: specialization constant)
     ivec2 size;
     float alpha;
     float alphaMoments;
     float gradientBeta;
-    uint32_t flags;
+    uint32_t hasPrev;
 };
 static_assert(sizeof(TwoHistoryReprojectPush) == 24);
 
@@ -165,9 +165,15 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
     const auto reprojectFormats = ReprojectTexelFormats(params_.precision);
-    reproject_ = ComputePipeline(*context_, (pair ? "two_history_reproject_pair" : "two_history_reproject") + sfx,
-                                 reprojectBindings, sizeof(TwoHistoryReprojectPush), kSets,
-                                 std::span<const VkFormat>(reprojectFormats).first(reprojectBindings));
+    uint32_t flags = 0;
+    if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
+    if (variant_ == TwoHistoryVariant::TwoHistory) flags |= TH_REPROJECT_FLAG_GRADIENT;
+    if (!pair) flags |= TH_REPROJECT_FLAG_COMBINED;
+    if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
+    if (FeedbackIteration(params_.svgf, two_) == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
+    reproject_ = ReprojectionPipelines(*context_, pair ? "two_history_reproject_pair" : "two_history_reproject", sfx,
+                                       reprojectBindings, sizeof(TwoHistoryReprojectPush), kSets,
+                                       std::span<const VkFormat>(reprojectFormats).first(reprojectBindings), flags);
     // Both channels per dispatch (svgf_atrous_pair); combined: one channel, and iteration 0 of
     // the two-history variants filters I_u and I_w of it as a pair.
     // Iteration 0 (step 1) runs the _step1 variants: stages_.atrousStep1 with stages_.atrous's sets, and
@@ -211,7 +217,7 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
 }
 
 void TwoHistoryVulkanDenoiser::BuildSets() {
-    for (ComputePipeline* p : {&stages_.guide, &stages_.classify, &reproject_, &stages_.moments, &stages_.atrous,
+    for (ComputePipeline* p : {&stages_.guide, &stages_.classify, &reproject_.main, &stages_.moments, &stages_.atrous,
                                &atrousPair_, &stages_.modulate, &gradient_, &blend_, &claim_, &gather_,
                                &gradAtrous_, &alpha_})
         if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
@@ -239,7 +245,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         // Channel 0 (direct, or combined) at the base bindings; the pair's indirect at
         // COLOR_OTHER, PREV_IU_OTHER and the *2 bindings.
         std::array<const Buffer*, TH_REPROJECT_PAIR_BINDINGS> r{};
-        BindReprojectionInputs(r, buffers_, cur, prev);  // slots 0–9, as svgf_reproject
+        BindReprojectionInputs(r, buffers_, cur, prev, ch0);  // slots 0–11, as svgf_reproject
         r[TH_REPROJECT_B_SAMPLE_COUNT] = two("input.sampleCount");
         r[TH_REPROJECT_B_ALPHA] = asvgf_ ? &Buf("asvgf.alpha") : dummyIn;
         r[TH_REPROJECT_B_PREV_IU] = &Buf(ch0 + ".color." + prev);
@@ -265,7 +271,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             r[b(TH_REPROJECT_B_ILLUM_W, TH_REPROJECT_B_ILLUM_W2)] = twoOut(ch + ".willum0");
         }
         const size_t reprojectBindings = nch == 2 ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
-        reprojectSets_[pi] = reproject_.MakeSet(std::span<const Buffer* const>(r).first(reprojectBindings));
+        reprojectSets_[pi] = reproject_.main.MakeSet(std::span<const Buffer* const>(r).first(reprojectBindings));
 
         for (size_t c = 0; c < nch; ++c) {
             const std::string& ch = channels_[c];
@@ -434,17 +440,10 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     stages_.RecordGuide(rec, guideSets_[size_t(parity_)], w, h);
 
     rec.BeginPass("two_history_reproject");
-    uint32_t flags = TH_REPROJECT_FLAG_HAS_PREV * (hasPrev_ ? 1u : 0u);
-    if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
-    if (variant_ == TwoHistoryVariant::TwoHistory) flags |= TH_REPROJECT_FLAG_GRADIENT;
-    if (channels_.size() == 1) flags |= TH_REPROJECT_FLAG_COMBINED;
-    if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
-    if (feedback == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
-    // One dispatch: both channels (pair) or the combined one.
+    // Both channels (pair) or the combined one per dispatch.
     const TwoHistoryReprojectPush rp{ivec2(w, h), p.alphaColor, p.alphaMoments, params_.twoHistory.gradientBeta,
-                                     flags};
-    rec.Dispatch(reproject_, reprojectSets_[size_t(parity_)], &rp, sizeof(rp), groups);
-    rec.Barrier();
+                                     hasPrev_ ? 1u : 0u};
+    reproject_.Record(rec, reprojectSets_[size_t(parity_)], &rp, w, h, Buf(channels_[0] + ".spatialArgs"), hasPrev_);
     rec.EndPass();
 
     // One list per channel serves both histories: both test W_u (the channel's length).

@@ -57,7 +57,8 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     bool hasPrev_ = false;
     DenoiserBuffers buffers_;
     SvgfStagePipelines stages_;  // guide, moments, à-trous, modulate (svgf_atrous_vk.h)
-    ComputePipeline reproject_, gradient_, blend_;
+    ReprojectionPipelines reproject_;  // main + box-fallback passes
+    ComputePipeline gradient_, blend_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
     ComputePipeline claim_, gather_, gradAtrous_, alpha_;
     std::array<VkDescriptorSet, 2> gradientSets_{};

@@ -26,6 +26,11 @@
 // (EdgeStoppingSpecialization in denoise/svgf_layout.h). Up to 2^12 = 4096.
 #define FOVRT_SPEC_NORMAL_SQUARINGS 0
 #define FOVRT_MAX_NORMAL_SQUARINGS 12
+// Specialization constant (constant_id) of the reprojection shaders: their mode bits
+// (SVGF_REPROJECT_FLAG_*, TH_REPROJECT_FLAG_*), fixed per pipeline. As push-constant flags the code
+// they switch off still ran (lavapipe executes both sides of a branch); as a specialization
+// constant it is folded away when the pipeline is created.
+#define FOVRT_SPEC_REPROJECT_FLAGS 1
 // 7×7 spatial variance estimate radius.
 #define FOVRT_MOMENTS_RADIUS 3
 // Maximum à-trous iterations (SvgfParams::atrousIterations range).
@@ -47,29 +52,35 @@
 #define SVGF_REPROJECT_B_PREV_OBJECT 7     // uint[N]    previous frame
 #define SVGF_REPROJECT_B_DEPTH_GRAD 8      // float[2N]  depth gradient (this frame)
 #define SVGF_REPROJECT_B_PREV_PIXEL 9      // float[2N]  motion: previous continuous pixel
-#define SVGF_REPROJECT_B_SAMPLE_COUNT 10   // uint[N/2]  uint16 sample counts, packed pairs
-#define SVGF_REPROJECT_B_PREV_COLOR 11     // hfloat[3N] colour history (read)
-#define SVGF_REPROJECT_B_PREV_MOMENTS 12   // hfloat[2N] moments history (read)
-#define SVGF_REPROJECT_B_PREV_LENGTH 13    // hfloat[N]  history length (read)
-#define SVGF_REPROJECT_B_PREV_WEIGHT 14    // hfloat[N]  total weight W (read; weighted mode)
-#define SVGF_REPROJECT_B_CUR_COLOR 15      // hfloat[3N] colour history (written when no à-trous feedback)
-#define SVGF_REPROJECT_B_CUR_MOMENTS 16    // hfloat[2N] moments (written)
-#define SVGF_REPROJECT_B_CUR_LENGTH 17     // hfloat[N]  history length (written)
-#define SVGF_REPROJECT_B_CUR_WEIGHT 18     // hfloat[N]  total weight (written; weighted mode)
-#define SVGF_REPROJECT_B_ILLUM_OUT 19      // vec4[N]    accumulated illumination + variance
-#define SVGF_REPROJECT_B_STATS 20          // uint[2]    non-finite, negative counters
-#define SVGF_REPROJECT_BINDINGS 21         // one channel ("svgf_reproject")
+#define SVGF_REPROJECT_B_LIST_ARGS 10      // uint[4]    (groups x, 1, 1, count) of the box-fallback list
+#define SVGF_REPROJECT_B_LIST 11           // uint[N]    pixels whose bilinear taps all failed (common/pixel_list.glsl)
+#define SVGF_REPROJECT_B_SAMPLE_COUNT 12   // uint[N/2]  uint16 sample counts, packed pairs
+#define SVGF_REPROJECT_B_PREV_COLOR 13     // hfloat[3N] colour history (read)
+#define SVGF_REPROJECT_B_PREV_MOMENTS 14   // hfloat[2N] moments history (read)
+#define SVGF_REPROJECT_B_PREV_LENGTH 15    // hfloat[N]  history length (read)
+#define SVGF_REPROJECT_B_PREV_WEIGHT 16    // hfloat[N]  total weight W (read; weighted mode)
+#define SVGF_REPROJECT_B_CUR_COLOR 17      // hfloat[3N] colour history (written when no à-trous feedback)
+#define SVGF_REPROJECT_B_CUR_MOMENTS 18    // hfloat[2N] moments (written)
+#define SVGF_REPROJECT_B_CUR_LENGTH 19     // hfloat[N]  history length (written)
+#define SVGF_REPROJECT_B_CUR_WEIGHT 20     // hfloat[N]  total weight (written; weighted mode)
+#define SVGF_REPROJECT_B_ILLUM_OUT 21      // vec4[N]    accumulated illumination + variance
+#define SVGF_REPROJECT_B_STATS 22          // uint[2]    non-finite, negative counters
+#define SVGF_REPROJECT_BINDINGS 23         // one channel ("svgf_reproject")
 // second channel of "svgf_reproject_pair" (FOVRT_CHANNELS 2: colour in = COLOR_IN2; taps shared)
-#define SVGF_REPROJECT_B_PREV_COLOR2 21
-#define SVGF_REPROJECT_B_PREV_MOMENTS2 22
-#define SVGF_REPROJECT_B_PREV_LENGTH2 23
-#define SVGF_REPROJECT_B_PREV_WEIGHT2 24
-#define SVGF_REPROJECT_B_CUR_COLOR2 25
-#define SVGF_REPROJECT_B_CUR_MOMENTS2 26
-#define SVGF_REPROJECT_B_CUR_LENGTH2 27
-#define SVGF_REPROJECT_B_CUR_WEIGHT2 28
-#define SVGF_REPROJECT_B_ILLUM_OUT2 29
-#define SVGF_REPROJECT_PAIR_BINDINGS 30
+#define SVGF_REPROJECT_B_PREV_COLOR2 23
+#define SVGF_REPROJECT_B_PREV_MOMENTS2 24
+#define SVGF_REPROJECT_B_PREV_LENGTH2 25
+#define SVGF_REPROJECT_B_PREV_WEIGHT2 26
+#define SVGF_REPROJECT_B_CUR_COLOR2 27
+#define SVGF_REPROJECT_B_CUR_MOMENTS2 28
+#define SVGF_REPROJECT_B_CUR_LENGTH2 29
+#define SVGF_REPROJECT_B_CUR_WEIGHT2 30
+#define SVGF_REPROJECT_B_ILLUM_OUT2 31
+#define SVGF_REPROJECT_PAIR_BINDINGS 32
+// Mode bits (FOVRT_SPEC_REPROJECT_FLAGS)
+#define SVGF_REPROJECT_FLAG_WEIGHTED 1u    // svgf-weighted: W ← (1−α)W + n, C += n(x − C)/W
+#define SVGF_REPROJECT_FLAG_COMBINED 2u    // one channel = direct + indirect
+#define SVGF_REPROJECT_FLAG_WRITE_COLOR 4u // write the colour history (no à-trous feedback)
 
 // svgf_pack_guide: this frame's edge-stopping guide (normal.xyz, depth), depth = −1 on background
 // pixels (object id kNoObject), so the spatial filters fetch one texel per tap instead of three.
@@ -97,8 +108,8 @@
 #define SVGF_CLASSIFY_B_LIST 3             // uint[N]    pixel indices
 #define SVGF_CLASSIFY_BINDINGS 4
 #define FOVRT_SPATIAL_LIST_GROUP 64        // invocations per workgroup of the list dispatch
-// Cap of the list dispatch's group count (Vulkan guarantees 65535); beyond it each invocation
-// loops over several list entries (images above 4.19 MPix, e.g. 2048×2048+ per eye).
+// Cap of a list dispatch's group count along x (Vulkan guarantees 65535); longer lists (above
+// 4.19 MPix, e.g. 2064×2208 per eye) take further rows of groups along y (common/pixel_list.glsl).
 #define FOVRT_SPATIAL_LIST_MAX_GROUPS 65535u
 
 // svgf_filter_moments (indirect, one invocation per listed pixel)

@@ -15,6 +15,9 @@
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/edge_stopping.glsl"
+#define PIXEL_LIST_B_ARGS SVGF_MOMENTS_B_ARGS
+#define PIXEL_LIST_B_LIST SVGF_MOMENTS_B_LIST
+#include "common/pixel_list.glsl"
 
 layout(local_size_x = FOVRT_SPATIAL_LIST_GROUP) in;
 
@@ -25,8 +28,6 @@ PLANE(SVGF_MOMENTS_B_DEPTH_GRAD, depth_grad);  // rg32f
 PLANE(SVGF_MOMENTS_B_MOMENTS, moments);        // rg32f, or rg16f in _fp16
 PLANE(SVGF_MOMENTS_B_LENGTH, hist_length);     // r32f, or r16f in _fp16
 layout(std430, binding = SVGF_MOMENTS_B_ILLUM_OUT) writeonly buffer IllumOut { vec4 illum_out[]; };
-layout(std430, binding = SVGF_MOMENTS_B_ARGS) readonly buffer Args { uint args[4]; };
-layout(std430, binding = SVGF_MOMENTS_B_LIST) readonly buffer List { uint list[]; };
 
 // Mirrors SvgfFilterMomentsPush in denoise/svgf_layout.h.
 layout(push_constant) uniform Push {
@@ -67,7 +68,6 @@ void filter_pixel(int i) {
 }
 
 void main() {
-    // Grid-stride over the list: the group count is capped (FOVRT_SPATIAL_LIST_MAX_GROUPS).
-    const uint stride = gl_NumWorkGroups.x * FOVRT_SPATIAL_LIST_GROUP;
-    for (uint k = gl_GlobalInvocationID.x; k < args[3]; k += stride) filter_pixel(int(list[k]));
+    uint k;
+    if (pixel_list_entry(k)) filter_pixel(pixel_list_at(k));
 }

@@ -8,13 +8,14 @@
 #include "shared_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
+#define PIXEL_LIST_B_ARGS SVGF_CLASSIFY_B_ARGS
+#define PIXEL_LIST_B_LIST SVGF_CLASSIFY_B_LIST
+#include "common/pixel_list.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
 PLANE(SVGF_CLASSIFY_B_GUIDE, guide);           // rgba32f
 PLANE(SVGF_CLASSIFY_B_LENGTH, hist_length);    // r32f, or r16f in _fp16
-layout(std430, binding = SVGF_CLASSIFY_B_ARGS) buffer Args { uint args[4]; };
-layout(std430, binding = SVGF_CLASSIFY_B_LIST) writeonly buffer List { uint list[]; };
 
 // Mirrors SvgfClassifyPush in denoise/svgf_layout.h.
 layout(push_constant) uniform Push {
@@ -27,12 +28,5 @@ void main() {
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
     if (GUIDE_IS_BACKGROUND(FETCH4(guide, i)) || !(FETCH1(hist_length, i) < pc.threshold)) return;
-    uint k = atomicAdd(args[3], 1u);
-    list[k] = uint(i);
-    if (k % FOVRT_SPATIAL_LIST_GROUP == 0u && k / FOVRT_SPATIAL_LIST_GROUP < FOVRT_SPATIAL_LIST_MAX_GROUPS)
-        atomicAdd(args[0], 1u);
-    if (k == 0u) {
-        args[1] = 1u;
-        args[2] = 1u;
-    }
+    pixel_list_append(i);
 }

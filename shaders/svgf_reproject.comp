@@ -7,26 +7,42 @@
 //   blend: C' = lerp(C_prev, C, α_c) with α_c = max(α, 1/length) — or, in weighted mode (svgf-weighted,
 //   SPEC §5), W ← (1−α)·W_prev + n, C' = C_prev + n·(C − C_prev)/W. Moments (l, l²) use
 //   α_m = max(α_m, 1/length). History length is interpolated from the valid taps, +1, capped.
-// Channels: FOVRT_CHANNELS (1: "svgf_reproject", one channel, or direct + indirect summed when
-//   combined; 2: "svgf_reproject_pair", direct = COLOR_IN and indirect = COLOR_IN2 with their own
-//   histories at the *2 bindings). The taps (consistency tests on the previous geometry) are found
-//   once per pixel for both channels; each channel's arithmetic is the one-channel arithmetic.
+// Passes: "svgf_reproject[_pair]" runs on every pixel with the bilinear taps and lists the pixels
+//   whose taps all failed (their disocclusion result is written meanwhile); "…_box" runs on the
+//   listed pixels only (indirect dispatch) with the 3×3 fallback taps and overwrites their results
+//   (common/reprojection.glsl explains why two passes). Sanitising is counted by the first only.
+// Channels: FOVRT_CHANNELS (1: one channel, or direct + indirect summed when combined; 2: "_pair",
+//   direct = COLOR_IN and indirect = COLOR_IN2 with their own histories at the *2 bindings). The
+//   taps (consistency tests on the previous geometry) are found once per pixel for both channels;
+//   each channel's arithmetic is the one-channel arithmetic.
+// Modes: SVGF_REPROJECT_FLAG_* as the specialization constant FOVRT_SPEC_REPROJECT_FLAGS.
 // Reads:  colour in (+ second channel), depth/normal/object of both frames, depth gradient,
 //         previous pixel, sample counts (weighted), previous colour/moments/length/weight per channel.
 // Writes: per channel this frame's moments/length/weight (and colour history when no à-trous
-//         feedback), illumination + temporal variance (vec4); sanitising counters.
+//         feedback), illumination + temporal variance (vec4); sanitising counters; the list.
 #include "shared_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
+#define PIXEL_LIST_B_ARGS SVGF_REPROJECT_B_LIST_ARGS
+#define PIXEL_LIST_B_LIST SVGF_REPROJECT_B_LIST
+#include "common/pixel_list.glsl"
 
 #ifndef FOVRT_CHANNELS
 #define FOVRT_CHANNELS 1
 #endif
 #define NCH FOVRT_CHANNELS
 
+#if FOVRT_REPROJECT_BOX
+layout(local_size_x = FOVRT_SPATIAL_LIST_GROUP) in;
+#else
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+#endif
+layout(constant_id = FOVRT_SPEC_REPROJECT_FLAGS) const uint kFlags = 0u;
+const bool kWeighted = (kFlags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
+const bool kCombined = (kFlags & SVGF_REPROJECT_FLAG_COMBINED) != 0u;
+const bool kWriteColor = (kFlags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 
 // Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h),
 // except the fp16 colour history (RGB16F texel buffers are not widely supported) and the sample counts.
@@ -79,25 +95,22 @@ layout(push_constant) uniform Push {
     ivec2 size;
     float alpha_color;
     float alpha_moments;
-    uint flags;  // SVGF_REPROJECT_FLAG_*
+    uint has_prev;  // 0: no previous frame (first frame, reset): nothing reprojects
 } pc;
-
-#define SVGF_REPROJECT_FLAG_WEIGHTED 1u
-#define SVGF_REPROJECT_FLAG_COMBINED 2u
-#define SVGF_REPROJECT_FLAG_WRITE_COLOR 4u
 
 float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
 uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
 
 // Sanitise: a non-finite pixel becomes 0 (stats[0]); negative components are clamped to 0 (stats[1]).
+// Counted by the main pass only: the box pass revisits pixels it has counted.
 vec3 sanitise(vec3 c) {
     if (any(isnan(c)) || any(isinf(c))) {
-        atomicAdd(stats[0], 1u);
+        if (!bool(FOVRT_REPROJECT_BOX)) atomicAdd(stats[0], 1u);
         return vec3(0.0);
     }
     if (any(lessThan(c, vec3(0.0)))) {
-        atomicAdd(stats[1], 1u);
+        if (!bool(FOVRT_REPROJECT_BOX)) atomicAdd(stats[1], 1u);
         return max(c, vec3(0.0));
     }
     return c;
@@ -110,39 +123,40 @@ vec3 sanitise(vec3 c) {
         REPROJ_GATHER(hist_prev_moments##k, taps, pc.size, FETCH2, vec2(0.0), m_prev[k]);        \
         REPROJ_GATHER(hist_prev_length##k, taps, pc.size, FETCH1, 0.0, len_prev[k]);             \
         w_prev[k] = 0.0;                                                                        \
-        if (weighted) REPROJ_GATHER(hist_prev_weight##k, taps, pc.size, FETCH1, 0.0, w_prev[k]); \
+        if (kWeighted) REPROJ_GATHER(hist_prev_weight##k, taps, pc.size, FETCH1, 0.0, w_prev[k]); \
     } while (false)
 
 // Writes channel k's accumulated history and illumination.
 #define WRITE_HISTORY(k)                                                                                     \
     do {                                                                                                     \
-        if (weighted) hist_weight##k[i] = hfloat(to_history(total[k]));                                      \
+        if (kWeighted) hist_weight##k[i] = hfloat(to_history(total[k]));                                     \
         STORE2(hist_moments##k, i, to_history(m_acc[k]), hfloat);                                            \
         hist_length##k[i] = hfloat(len[k]);                                                                  \
-        if ((pc.flags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u) STORE3(hist_color##k, i, to_history(c_acc[k]), hfloat); \
+        if (kWriteColor) STORE3(hist_color##k, i, to_history(c_acc[k]), hfloat);                             \
         illum_out##k[i] = vec4(c_acc[k], max(0.0, m_acc[k].y - m_acc[k].x * m_acc[k].x));                   \
     } while (false)
 
-void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, pc.size))) return;
-    int i = p.y * pc.size.x + p.x;
-
+// Accumulates pixel i with this pass's taps; true when the main pass found no bilinear tap on an
+// on-screen object pixel (the box pass decides it).
+bool reproject_pixel(int i) {
     vec3 c[NCH];
 #if NCH == 2
     c[0] = sanitise(FETCH3(color_in, i));
     c[1] = sanitise(FETCH3(color_in2, i));
 #else
     c[0] = FETCH3(color_in, i);
-    if ((pc.flags & SVGF_REPROJECT_FLAG_COMBINED) != 0u) c[0] += FETCH3(color_in2, i);
+    if (kCombined) c[0] += FETCH3(color_in2, i);
     c[0] = sanitise(c[0]);
 #endif
 
-    uint id = FETCH1(object_id, i);
-    vec2 dzv = FETCH2(depth_grad, i);
-    ReprojTaps taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH3(normal, i),
-                                             id, max(abs(dzv.x), abs(dzv.y)));
-    bool weighted = (pc.flags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
+    ReprojTaps taps;
+    taps.count = 0;
+    taps.needs_box = false;
+    if (pc.has_prev != 0u) {
+        vec2 dzv = FETCH2(depth_grad, i);
+        taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH3(normal, i),
+                                      FETCH1(object_id, i), max(abs(dzv.x), abs(dzv.y)));
+    }
     vec3 c_prev[NCH];
     vec2 m_prev[NCH];
     float len_prev[NCH], w_prev[NCH];
@@ -151,7 +165,7 @@ void main() {
     GATHER_HISTORY(1);
 #endif
     bool success = taps.count > 0;
-    float n = weighted ? float(max(LOAD_U16(sample_count, i), 1u)) : 1.0;
+    float n = kWeighted ? float(max(LOAD_U16(sample_count, i), 1u)) : 1.0;
 
     vec3 c_acc[NCH];
     vec2 m_acc[NCH];
@@ -160,7 +174,7 @@ void main() {
         float l = luminance(c[k]);
         vec2 m = vec2(l, l * l);
         len[k] = success ? min(len_prev[k] + 1.0, FOVRT_MAX_HISTORY_LENGTH) : 1.0;
-        if (weighted) {
+        if (kWeighted) {
             total[k] = (success ? (1.0 - pc.alpha_color) * w_prev[k] : 0.0) + n;
             c_acc[k] = success ? c_prev[k] + (n / total[k]) * (c[k] - c_prev[k]) : c[k];
         } else {
@@ -174,5 +188,18 @@ void main() {
     WRITE_HISTORY(0);
 #if NCH == 2
     WRITE_HISTORY(1);
+#endif
+    return taps.needs_box;
+}
+
+void main() {
+#if FOVRT_REPROJECT_BOX
+    uint k;
+    if (pixel_list_entry(k)) reproject_pixel(pixel_list_at(k));
+#else
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    int i = p.y * pc.size.x + p.x;
+    if (reproject_pixel(i)) pixel_list_append(i);
 #endif
 }

@@ -12,10 +12,14 @@
 //   COLOR_OTHER / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
 //   geometry) and the per-pixel state (W_u, W_w, S, g) are gathered and computed once per pixel;
 //   W_u is the same for both channels (as in the reference) and written into each channel's length.
+// Passes: as svgf_reproject — this shader on every pixel with the bilinear taps, listing the pixels
+//   whose taps all failed; "…_box" on the listed pixels with the 3×3 fallback taps (indirect).
+// Modes: TH_REPROJECT_FLAG_* as the specialization constant FOVRT_SPEC_REPROJECT_FLAGS.
 // Reads:  illumination, geometry of both frames, depth gradient, previous pixel, sample counts,
 //         per-pixel α (A-SVGF), previous histories.
 // Writes: this frame's histories (per channel moments, W_u into the channel's length, colours
-//         when no à-trous iteration feeds back; W_w, S, g once), (I_u, Var) and (I_w, Var), counters.
+//         when no à-trous iteration feeds back; W_w, S, g once), (I_u, Var) and (I_w, Var), counters,
+//         the list.
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
@@ -23,13 +27,26 @@
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
 #include "common/two_history.glsl"
+#define PIXEL_LIST_B_ARGS TH_REPROJECT_B_LIST_ARGS
+#define PIXEL_LIST_B_LIST TH_REPROJECT_B_LIST
+#include "common/pixel_list.glsl"
 
 #ifndef FOVRT_CHANNELS
 #define FOVRT_CHANNELS 1
 #endif
 #define NCH FOVRT_CHANNELS
 
+#if FOVRT_REPROJECT_BOX
+layout(local_size_x = FOVRT_SPATIAL_LIST_GROUP) in;
+#else
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+#endif
+layout(constant_id = FOVRT_SPEC_REPROJECT_FLAGS) const uint kFlags = 0u;
+const bool kTwo = (kFlags & TH_REPROJECT_FLAG_TWO_HISTORY) != 0u;
+const bool kCombined = (kFlags & TH_REPROJECT_FLAG_COMBINED) != 0u;
+const bool kAlphaMap = (kFlags & TH_REPROJECT_FLAG_ALPHA_MAP) != 0u;
+const bool kWriteColor = (kFlags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
+const bool kGradient = (kFlags & TH_REPROJECT_FLAG_GRADIENT) != 0u;
 
 // Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp),
 // except the fp16 RGB histories (RGB16F texel buffers are rarely supported), sample counts and α.
@@ -91,7 +108,7 @@ layout(push_constant) uniform Push {
     float alpha;
     float alpha_moments;
     float gradient_beta;
-    uint flags;  // TH_REPROJECT_FLAG_*
+    uint has_prev;  // 0: no previous frame (first frame, reset): nothing reprojects
 } pc;
 
 float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
@@ -99,13 +116,14 @@ vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
 uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
 
 // NaN/Inf → 0, negative components → 0; counted (each channel once).
+// Counted by the main pass only: the box pass revisits pixels it has counted.
 vec3 sanitize(vec3 c) {
     if (any(isnan(c)) || any(isinf(c))) {
-        atomicAdd(stats[0], 1u);
+        if (!bool(FOVRT_REPROJECT_BOX)) atomicAdd(stats[0], 1u);
         return vec3(0.0);
     }
     if (any(lessThan(c, vec3(0.0)))) {
-        atomicAdd(stats[1], 1u);
+        if (!bool(FOVRT_REPROJECT_BOX)) atomicAdd(stats[1], 1u);
         return max(c, vec3(0.0));
     }
     return c;
@@ -127,7 +145,7 @@ vec3 sanitize(vec3 c) {
         if (success) {                                                                         \
             GATHER3(prev_iu##k, taps, iu_prev[k]);                                             \
             GATHER2(prev_m##k, taps, m_prev_);                                                 \
-            if (two) GATHER3(prev_iw##k, taps, iw_prev_);                                      \
+            if (kTwo) GATHER3(prev_iw##k, taps, iw_prev_);                                     \
         }                                                                                      \
         vec3 iu_ = iu_prev[k] + (x[k] - iu_prev[k]) * (1.0 / wu);                              \
         vec2 m_ = mix(m_prev_, vec2(l_, l_ * l_), am);                                         \
@@ -135,24 +153,21 @@ vec3 sanitize(vec3 c) {
         STORE2(cur_m##k, i, to_history(m_), hfloat);                                           \
         cur_wu##k[i] = hfloat(to_history(wu));                                                 \
         illum_u##k[i] = vec4(iu_, variance_);                                                  \
-        if (write_color) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
-        if (two) {                                                                             \
+        if (kWriteColor) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
+        if (kTwo) {                                                                            \
             vec3 iw_ = iw_prev_ + (x[k] - iw_prev_) * (n / ww);                                \
             illum_w##k[i] = vec4(iw_, variance_);                                              \
-            if (write_color) STORE3(cur_iw##k, i, to_history(iw_), hfloat);                    \
+            if (kWriteColor) STORE3(cur_iw##k, i, to_history(iw_), hfloat);                    \
         }                                                                                      \
     } while (false)
 
-void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, pc.size))) return;
-    int i = p.y * pc.size.x + p.x;
-    bool two = (pc.flags & TH_REPROJECT_FLAG_TWO_HISTORY) != 0u;
-    bool write_color = (pc.flags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
-
+// Accumulates pixel i with this pass's taps; true when the main pass found no bilinear tap on an
+// on-screen object pixel (the box pass decides it).
+bool reproject_pixel(int i) {
     ReprojTaps taps;
     taps.count = 0;
-    if ((pc.flags & TH_REPROJECT_FLAG_HAS_PREV) != 0u) {
+    taps.needs_box = false;
+    if (pc.has_prev != 0u) {
         vec2 dzv = FETCH2(depth_grad, i);
         taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH3(normal, i),
                                       FETCH1(object_id, i),
@@ -160,16 +175,15 @@ void main() {
     }
     bool success = taps.count > 0;
     float n = float(max(LOAD_U16(sample_count, i), 1u));
-    bool alpha_map_on = (pc.flags & TH_REPROJECT_FLAG_ALPHA_MAP) != 0u;
-    float alpha = alpha_map_on ? alpha_map[i] : pc.alpha;
-    float alpha_m = alpha_map_on ? alpha_map[i] : pc.alpha_moments;
+    float alpha = kAlphaMap ? alpha_map[i] : pc.alpha;
+    float alpha_m = kAlphaMap ? alpha_map[i] : pc.alpha_moments;
 
     // Per-pixel state, once for all channels (W_u from channel 0's length: both channels hold the same).
     float wu_prev = 0.0, ww_prev = 0.0;
     vec3 s_prev = vec3(0.0);
     if (success) {
         GATHER1(prev_wu0, taps, wu_prev);
-        if (two) {
+        if (kTwo) {
             GATHER1(prev_ww, taps, ww_prev);
             GATHER3(prev_s, taps, s_prev);
         }
@@ -186,17 +200,17 @@ void main() {
     x[1] = sanitize(FETCH3(color_other, i));
 #else
     vec3 raw = FETCH3(color, i);
-    if ((pc.flags & TH_REPROJECT_FLAG_COMBINED) != 0u) raw += FETCH3(color_other, i);
+    if (kCombined) raw += FETCH3(color_other, i);
     x[0] = sanitize(raw);
 #endif
     ACCUMULATE_CHANNEL(0);
 #if NCH == 2
     ACCUMULATE_CHANNEL(1);
 #endif
-    if (two) {
+    if (kTwo) {
         cur_ww[i] = hfloat(to_history(ww));
         STORE3(cur_s, i, to_history(s), hfloat);
-        if ((pc.flags & TH_REPROJECT_FLAG_GRADIENT) != 0u) {
+        if (kGradient) {
             vec3 x_sum = x[0], iu_prev_sum = iu_prev[0];
 #if NCH == 2
             x_sum += x[1];
@@ -210,4 +224,17 @@ void main() {
             cur_g[i] = hfloat(to_history(g));
         }
     }
+    return taps.needs_box;
+}
+
+void main() {
+#if FOVRT_REPROJECT_BOX
+    uint k;
+    if (pixel_list_entry(k)) reproject_pixel(pixel_list_at(k));
+#else
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    int i = p.y * pc.size.x + p.x;
+    if (reproject_pixel(i)) pixel_list_append(i);
+#endif
 }

@@ -10,6 +10,7 @@
 
 #include "core/frame_inputs.h"
 #include "denoise/denoiser.h"
+#include "denoise/svgf_ref.h"
 
 namespace fovrt::test {
 
@@ -97,6 +98,27 @@ inline FrameInputs RandomFrame(int w, int h, uint32_t seed, uint32_t frame) {
             f.indirect(x, y) = vec3(hdr(), hdr(), hdr());
         }
     return f;
+}
+
+// RandomFrame whose patch-edge pixels (x % 8 == 0) move onto the centre of their left neighbour,
+// in the next patch: their one bilinear tap (weight 1) sees another surface and fails, and the 3×3
+// fallback around it finds their own patch's column. Exercises the reprojection's box pass.
+inline FrameInputs FallbackFrame(int w, int h, uint32_t seed, uint32_t frame) {
+    FrameInputs f = RandomFrame(w, h, seed, frame);
+    for (int y = 0; y < h; ++y)
+        for (int x = 8; x < w; x += 8) f.prevPixel(x, y) = vec2(float(x) - 0.5f, float(y) + 0.5f);
+    return f;
+}
+
+// Pixels of `cur` that the reference reprojects from `prev` through the 3×3 fallback.
+inline int CountBoxFallbackPixels(const FrameInputs& cur, const FrameInputs& prev) {
+    int count = 0;
+    for (int y = 0; y < cur.height(); ++y)
+        for (int x = 0; x < cur.width(); ++x) {
+            const ReprojectionTaps taps = FindReprojectionTaps(cur, GeometryOf(prev), x, y);
+            count += taps.box && taps.count > 0;
+        }
+    return count;
 }
 
 inline float TemporalError(const Plane<vec3>& a, const Plane<vec3>& b) {

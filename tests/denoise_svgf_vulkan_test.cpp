@@ -65,8 +65,10 @@ std::vector<float> HalfsToFloats(const std::vector<uint8_t>& bytes) {
     return out;
 }
 
+using FrameMaker = FrameInputs (*)(int width, int height, uint32_t seed, uint32_t frame);
+
 void RunPair(const DenoiserParams& params, const std::string& name, int frames, double tol,
-             bool checkIllum, int width = 64, int height = 64) {
+             bool checkIllum, int width = 64, int height = 64, FrameMaker makeFrame = RandomFrame) {
     auto ctx = TestContext();
     SvgfVulkanDenoiser vk(name, ctx, params);
     SvgfReferenceDenoiser ref(name, params);
@@ -77,7 +79,7 @@ void RunPair(const DenoiserParams& params, const std::string& name, int frames, 
         return history && fp16 ? HalfsToFloats(bytes) : AsFloats(bytes);
     };
     for (int t = 0; t < frames; ++t) {
-        FrameInputs f = RandomFrame(width, height, 1234, uint32_t(t));
+        FrameInputs f = makeFrame(width, height, 1234, uint32_t(t));
         vk.Denoise(f, outVk);
         ref.Denoise(f, outRef);
         const std::string side = vk.LastWrittenSide();
@@ -202,6 +204,33 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
         p.precision = Precision::Fp16;
         p.svgf.atrousIterations = 3;
         RunPair(p, "svgf", 3, 1e-2, true, 67, 45);
+    }
+}
+
+// The reprojection runs as two passes on Vulkan (bilinear taps on every pixel, then the 3×3
+// fallback on the listed pixels only: shaders/common/reprojection.glsl); the reference does both in
+// one loop. FallbackFrame sends every patch-edge column through the fallback.
+TEST_CASE("vulkan svgf: the 3x3 reprojection fallback pass matches the reference", "[vulkan][svgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    const int boxPixels = CountBoxFallbackPixels(FallbackFrame(64, 64, 1234, 1), FallbackFrame(64, 64, 1234, 0));
+    INFO(boxPixels << " of 4096 pixels reproject through the 3x3 fallback");
+    REQUIRE(boxPixels > 150);
+    DenoiserParams p;
+    p.svgf.atrousIterations = 1;
+    SECTION("separate channels") { RunPair(p, "svgf", 4, 2e-3, true, 64, 64, FallbackFrame); }
+    SECTION("combined") {
+        p.svgf.filterCombined = true;
+        RunPair(p, "svgf", 4, 2e-3, true, 64, 64, FallbackFrame);
+    }
+    SECTION("svgf-weighted, no a-trous (the colour history is written by the reprojection)") {
+        p.svgf.weightBySampleCount = true;
+        p.svgf.atrousIterations = 0;
+        RunPair(p, "svgf-weighted", 4, 2e-3, true, 64, 64, FallbackFrame);
+    }
+    SECTION("fp16 histories") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        p.precision = Precision::Fp16;
+        RunPair(p, "svgf", 4, 1e-2, false, 64, 64, FallbackFrame);
     }
 }
 

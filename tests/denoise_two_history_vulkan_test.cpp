@@ -63,8 +63,8 @@ Mismatch Compare(const std::vector<float>& vk, const Plane<T>& ref, double tol) 
 
 // Random frame with per-frame sample counts and gradient samples (some strata twice, some none,
 // one outside the grid).
-FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame) {
-    FrameInputs f = test::RandomFrame(w, h, 5, frame);
+FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame, bool boxFallback = false) {
+    FrameInputs f = boxFallback ? test::FallbackFrame(w, h, 5, frame) : test::RandomFrame(w, h, 5, frame);
     std::mt19937 rng(1000 + frame);
     std::uniform_int_distribution<int> spp(1, 16), off(0, 2);
     std::uniform_real_distribution<float> lum(0.0f, 4.0f), u(0.0f, 1.0f);
@@ -94,7 +94,7 @@ FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame) {
 }
 
 void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames, int width = 64,
-             int height = 64) {
+             int height = 64, bool boxFallback = false) {
     auto ctx = TestContext();
     TwoHistoryVulkanDenoiser vk(variant, ctx, params);
     TwoHistoryReferenceDenoiser ref(variant, params);
@@ -107,7 +107,7 @@ void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames
                                                   : std::vector<std::string>{"direct", "indirect"};
     Plane<vec3> outVk, outRef;
     for (int frame = 0; frame < frames; ++frame) {
-        const FrameInputs f = RandomTwoHistoryFrame(width, height, uint32_t(frame));
+        const FrameInputs f = RandomTwoHistoryFrame(width, height, uint32_t(frame), boxFallback);
         vk.Denoise(f, outVk);
         ref.Denoise(f, outRef);
         const std::string side = vk.LastWrittenSide();
@@ -221,6 +221,24 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
     SECTION("fp32, no a-trous: two-history-asvgf") {
         params.svgf.atrousIterations = 0;
         RunPair(TwoHistoryVariant::TwoHistoryAsvgf, params, 3);
+    }
+    // Every patch-edge column through the 3×3 fallback (the Vulkan reprojection's box pass):
+    // a broken box pass changes ~6 % of the pixels, beyond the 0.5 % tolerated above.
+    for (TwoHistoryVariant v : {TwoHistoryVariant::TwoHistory, TwoHistoryVariant::Asvgf,
+                                TwoHistoryVariant::TwoHistoryAsvgf}) {
+        SECTION(std::string("fp32, 3x3 reprojection fallback: ") + TwoHistoryVariantName(v)) {
+            const int boxPixels = test::CountBoxFallbackPixels(RandomTwoHistoryFrame(64, 64, 1, true),
+                                                               RandomTwoHistoryFrame(64, 64, 0, true));
+            INFO(boxPixels << " of 4096 pixels reproject through the 3x3 fallback");
+            REQUIRE(boxPixels > 150);
+            params.svgf.atrousIterations = 1;
+            RunPair(v, params, 4, 64, 64, true);
+        }
+    }
+    SECTION("fp32 combined, 3x3 reprojection fallback: two-history") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 1;
+        RunPair(TwoHistoryVariant::TwoHistory, params, 4, 64, 64, true);
     }
     SECTION("fp16 histories: two-history and asvgf") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
