@@ -34,18 +34,20 @@ struct AtrousChannel {
     const Buffer* history;  // colour history written on the feedback iteration
 };
 
-// `channels` (1 or 2) illumination planes per dispatch; `step1`: the variant for step 1 only.
+// `channels` (1 or 2) illumination planes per dispatch; `step1`: the variant for step 1 only;
+// `writeHistory`: the feedback iteration's pipeline, which also writes the colour history.
 inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, const DenoiserParams& params,
-                                          uint32_t maxSets, bool step1 = false) {
+                                          uint32_t maxSets, bool step1, bool writeHistory) {
     const Precision precision = params.precision;
     FOVRT_CHECK(channels == 1 || channels == 2);
     const std::string name = std::string(channels == 2 ? "svgf_atrous_pair" : "svgf_atrous") +
                              (step1 ? "_step1" : "") + (precision == Precision::Fp16 ? "_fp16" : "");
     const uint32_t bindings = channels == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS;
     static const std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> kFormats = SvgfAtrousTexelFormats();
+    static_assert(FOVRT_SPEC_NORMAL_SQUARINGS == 0 && FOVRT_SPEC_ATROUS_WRITE_HISTORY == 2);
+    const std::array<int32_t, 3> spec{EdgeStoppingSpecialization(params.svgf)[0], -1, writeHistory ? 1 : 0};
     return ComputePipeline(context, name, bindings, sizeof(SvgfAtrousPush), maxSets,
-                           std::span<const VkFormat>(kFormats).first(bindings),
-                           EdgeStoppingSpecialization(params.svgf));
+                           std::span<const VkFormat>(kFormats).first(bindings), spec);
 }
 
 // Blocks per axis of `n` pixels at stride `step`: pixels pair up (x, x + step) inside each run of
@@ -147,11 +149,23 @@ struct MomentsChannel {
 };
 
 // The SVGF stages both Vulkan hosts (svgf_vk, two_history_vk) run unchanged, built one way for
-// both: the guide pack, the moments classify + spatial filter, à-trous (and its step-1 variant
-// for iteration 0) with `channels` planes per dispatch, and the remodulation; the passes that
-// both hosts record identically are recorded here too.
+// both: the guide pack, the moments classify + spatial filter, à-trous with `channels` planes per
+// dispatch (its step-1 variant for iteration 0, and the variant that writes the colour history
+// for the feedback iteration), and the remodulation; the passes that both hosts record
+// identically are recorded here too.
 struct SvgfStagePipelines {
-    ComputePipeline guide, classify, moments, atrous, atrousStep1, modulate;
+    ComputePipeline guide, classify, moments, modulate;
+    // À-trous: `atrous` for iterations ≥ 1, `atrousStep1` for iteration 0 (writes the colour
+    // history when the feedback iteration is 1), `atrousFeedback` for a feedback iteration ≥ 2.
+    // Same set layouts: sets made from `atrous` are bound with all three.
+    ComputePipeline atrous, atrousStep1, atrousFeedback;
+    int feedbackIteration = 0;  // 1-based à-trous iteration that feeds back; 0: none
+
+    // The pipeline of à-trous iteration i (0-based).
+    const ComputePipeline& Atrous(int i) const {
+        if (i == 0) return atrousStep1;
+        return i + 1 == feedbackIteration ? atrousFeedback : atrous;
+    }
 
     // The "pack_guide" pass.
     void RecordGuide(CommandRecorder& rec, VkDescriptorSet set, int w, int h) const {
@@ -181,17 +195,20 @@ struct SvgfStagePipelines {
         rec.Barrier();
         rec.EndPass();
     }
-    // The "modulate" pass (combined: one channel holds direct + indirect).
-    void RecordModulate(CommandRecorder& rec, VkDescriptorSet set, int w, int h, bool combined) const {
+    // The "modulate" pass (one channel: it holds direct + indirect).
+    void RecordModulate(CommandRecorder& rec, VkDescriptorSet set, int w, int h) const {
         rec.BeginPass("modulate");
-        const SvgfModulatePush mo{ivec2(w, h), combined ? 1u : 0u};
+        const SvgfModulatePush mo{ivec2(w, h)};
         rec.Dispatch(modulate, set, &mo, sizeof(mo), DispatchGroups(w, h));
         rec.Barrier();
         rec.EndPass();
     }
 
     SvgfStagePipelines() = default;
-    SvgfStagePipelines(VulkanContext& context, int channels, const DenoiserParams& params, uint32_t maxSets) {
+    // `feedbackIteration`: the 1-based à-trous iteration whose output is the colour history (0: none).
+    SvgfStagePipelines(VulkanContext& context, int channels, const DenoiserParams& params, uint32_t maxSets,
+                       int feedback)
+        : feedbackIteration(feedback) {
         const Precision precision = params.precision;
         const std::string sfx = precision == Precision::Fp16 ? "_fp16" : "";
         guide = ComputePipeline(context, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
@@ -201,9 +218,14 @@ struct SvgfStagePipelines {
         moments = ComputePipeline(context, "svgf_filter_moments" + sfx, SVGF_MOMENTS_BINDINGS,
                                   sizeof(SvgfFilterMomentsPush), maxSets, SvgfMomentsTexelFormats(precision),
                                   EdgeStoppingSpecialization(params.svgf));
-        atrous = MakeAtrousPipeline(context, channels, params, maxSets);
-        atrousStep1 = MakeAtrousPipeline(context, channels, params, 1, true);  // bound with atrous's sets
-        modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2);
+        atrous = MakeAtrousPipeline(context, channels, params, maxSets, false, false);
+        // Bound with atrous's sets:
+        atrousStep1 = MakeAtrousPipeline(context, channels, params, 1, true, feedback == 1);
+        if (feedback >= 2) atrousFeedback = MakeAtrousPipeline(context, channels, params, 1, false, true);
+        static_assert(FOVRT_SPEC_MODULATE_COMBINED == 3);
+        const std::array<int32_t, 4> combined{-1, -1, -1, channels == 1 ? 1 : 0};
+        modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2,
+                                   SvgfModulateTexelFormats(), combined);
     }
 
     // Descriptor sets of these stages over the plan's buffers (names as in the memory plan);

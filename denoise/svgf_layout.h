@@ -41,15 +41,13 @@ struct SvgfAtrousPush {
     float sigmaDepth;
     float sigmaNormal;
     float sigmaLuminance;
-    uint32_t writeHistory;
 };
-static_assert(sizeof(SvgfAtrousPush) == 28);
+static_assert(sizeof(SvgfAtrousPush) == 24);
 
-struct SvgfModulatePush {
+struct SvgfModulatePush {  // combined: specialization constant FOVRT_SPEC_MODULATE_COMBINED
     ivec2 size;
-    uint32_t combined;
 };
-static_assert(sizeof(SvgfModulatePush) == 12);
+static_assert(sizeof(SvgfModulatePush) == 8);
 
 // Bytes per element of a history plane scalar.
 inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }

@@ -48,6 +48,16 @@ inline std::array<VkFormat, SVGF_GUIDE_BINDINGS> SvgfGuideTexelFormats() {
     return f;
 }
 
+inline std::array<VkFormat, SVGF_MODULATE_BINDINGS> SvgfModulateTexelFormats() {
+    std::array<VkFormat, SVGF_MODULATE_BINDINGS> f{};
+    f.fill(VK_FORMAT_UNDEFINED);
+    f[SVGF_MODULATE_B_ILLUM0] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[SVGF_MODULATE_B_ILLUM1] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[SVGF_MODULATE_B_ALBEDO] = VK_FORMAT_R32G32B32_SFLOAT;
+    f[SVGF_MODULATE_B_EMISSION] = VK_FORMAT_R32G32B32_SFLOAT;
+    return f;
+}
+
 inline std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> SvgfClassifyTexelFormats(Precision precision) {
     std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> f{};
     f.fill(VK_FORMAT_UNDEFINED);

@@ -46,7 +46,8 @@ void SvgfVulkanDenoiser::CreatePipelines() {
                                        reprojectBindings, sizeof(SvgfReprojectPush), sets,
                                        std::span<const VkFormat>(reprojectFormats).first(reprojectBindings), flags);
     // Direct and indirect in one à-trous dispatch (svgf_atrous_pair); combined: one channel.
-    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, sets);
+    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, sets,
+                                 atrousFeedback ? p.feedbackIteration : 0);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
 }
 
@@ -142,7 +143,6 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     const SvgfParams& p = params_.svgf;
     const size_t n = size_t(w) * size_t(h);
     const int iterations = p.atrousIterations;
-    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
     const std::string cur = Side(parity_);
 
     CommandRecorder rec(*context_, commands_, &timestamps_);
@@ -176,16 +176,14 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
 
     for (int i = 0; i < iterations; ++i) {
         rec.BeginPass(fmt::format("atrous{}", i));
-        SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance,
-                          atrousFeedback && i + 1 == p.feedbackIteration ? 1u : 0u};
-        ComputePipeline& atrous = i == 0 ? stages_.atrousStep1 : stages_.atrous;  // step 1: shared prefilter
-        rec.Dispatch(atrous, atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+        const SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
+        rec.Dispatch(stages_.Atrous(i), atrousSets_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
                      AtrousBlockGroups(w, h, 1 << i));
         rec.Barrier();
         rec.EndPass();
     }
 
-    stages_.RecordModulate(rec, modulateSet_, w, h, p.filterCombined);
+    stages_.RecordModulate(rec, modulateSet_, w, h);
 
     rec.BeginPass("download");
     buffers_.RecordDownloadOutput(rec, off, n);

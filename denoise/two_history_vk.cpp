@@ -165,12 +165,13 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
     const auto reprojectFormats = ReprojectTexelFormats(params_.precision);
+    const int feedback = FeedbackIteration(params_.svgf, two_);
     uint32_t flags = 0;
     if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
     if (variant_ == TwoHistoryVariant::TwoHistory) flags |= TH_REPROJECT_FLAG_GRADIENT;
     if (!pair) flags |= TH_REPROJECT_FLAG_COMBINED;
     if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
-    if (FeedbackIteration(params_.svgf, two_) == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
+    if (feedback == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
     reproject_ = ReprojectionPipelines(*context_, pair ? "two_history_reproject_pair" : "two_history_reproject", sfx,
                                        reprojectBindings, sizeof(TwoHistoryReprojectPush), kSets,
                                        std::span<const VkFormat>(reprojectFormats).first(reprojectBindings), flags);
@@ -178,8 +179,9 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     // the two-history variants filters I_u and I_w of it as a pair.
     // Iteration 0 (step 1) runs the _step1 variants: stages_.atrousStep1 with stages_.atrous's sets, and
     // atrousPair_, which only iteration 0 uses.
-    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, kSets);
-    if (two_ && channels_.size() == 1) atrousPair_ = MakeAtrousPipeline(*context_, 2, params_, kSets, true);
+    stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, kSets, feedback);
+    if (two_ && channels_.size() == 1)
+        atrousPair_ = MakeAtrousPipeline(*context_, 2, params_, kSets, true, feedback == 1);
     const auto edgeStopping = EdgeStoppingSpecialization(params_.svgf);
     if (two_) {
         gradient_ = ComputePipeline(*context_, "two_history_gradient" + sfx, TH_GRADIENT_BINDINGS,
@@ -375,7 +377,6 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     const uvec2 groups = DispatchGroups(w, h);
     const uvec2 gridGroups = DispatchGroups(grid_.x, grid_.y);
     const int iterations = p.atrousIterations;
-    const int feedback = FeedbackIteration(p, two_);
     const std::string cur = Side(parity_);
     const size_t sampleCount = asvgf_ ? in.gradientSamples.size() : 0;
     if (sampleCount > GradientSampleCapacity(w, h))
@@ -477,21 +478,19 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     if (two_ && iterations == 0) blend();
     for (int i = 0; i < iterations; ++i) {
         rec.BeginPass(fmt::format("atrous{}", i));
-        const uint32_t writeHistory = i + 1 == feedback ? 1u : 0u;
-        const SvgfAtrousPush ap{ivec2(w, h),   1 << i,           p.sigmaDepth,
-                                p.sigmaNormal, p.sigmaLuminance, writeHistory};
-        if (i == 0)
+        const SvgfAtrousPush ap{ivec2(w, h), 1 << i, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
+        if (i == 0)  // the step-1 pipelines, writing the histories when the feedback iteration is 1
             for (const auto& [pipeline, set] : atrousFirst_[size_t(parity_)])
                 rec.Dispatch(*pipeline, set, &ap, sizeof(ap), AtrousBlockGroups(w, h, 1));
         else
-            rec.Dispatch(stages_.atrous, atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
+            rec.Dispatch(stages_.Atrous(i), atrousU_[size_t(parity_)][size_t(i & 1)], &ap, sizeof(ap),
                          AtrousBlockGroups(w, h, 1 << i));
         rec.Barrier();
         rec.EndPass();
         if (two_ && i == 0) blend();
     }
 
-    stages_.RecordModulate(rec, modulateSet_, w, h, channels_.size() == 1);
+    stages_.RecordModulate(rec, modulateSet_, w, h);
 
     rec.BeginPass("download");
     buffers_.RecordDownloadOutput(rec, off, n);

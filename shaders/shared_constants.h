@@ -31,6 +31,11 @@
 // they switch off still ran (lavapipe executes both sides of a branch); as a specialization
 // constant it is folded away when the pipeline is created.
 #define FOVRT_SPEC_REPROJECT_FLAGS 1
+// Specialization constant (constant_id, bool) of svgf_atrous: this iteration writes the colour
+// history (the feedback iteration). A push-constant flag cost the masked stores on every iteration.
+#define FOVRT_SPEC_ATROUS_WRITE_HISTORY 2
+// Specialization constant (constant_id, bool) of svgf_modulate: one channel holds direct + indirect.
+#define FOVRT_SPEC_MODULATE_COMBINED 3
 // 7×7 spatial variance estimate radius.
 #define FOVRT_MOMENTS_RADIUS 3
 // Maximum à-trous iterations (SvgfParams::atrousIterations range).

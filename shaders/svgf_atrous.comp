@@ -4,7 +4,8 @@
 // svgf_atrous — one edge-avoiding à-trous wavelet iteration (paper §4.3, SPEC §3).
 // Purpose: 5×5 kernel h⊗h at step 2^i with w = w_z·w_n·w_l; w_l uses the 3×3 Gaussian-prefiltered
 //   variance of the centre; colour = Σ h w c / Σ h w, variance = Σ h² w² Var / (Σ h w)².
-//   On the feedback iteration the filtered colour is also written as the colour history.
+//   On the feedback iteration (specialization constant FOVRT_SPEC_ATROUS_WRITE_HISTORY) the filtered
+//   colour is also written as the colour history.
 // Channels: FOVRT_CHANNELS (1: "svgf_atrous", 2: "svgf_atrous_pair") illumination planes filtered
 //   by one dispatch (direct + indirect, or the unweighted + weighted history of two-history). The
 //   per-tap guide fetch, background test, depth gradient and w_z·w_n exponent are shared; each
@@ -15,7 +16,7 @@
 //   FOVRT_ATROUS_STEP1 ("…_step1", iteration 0 only): the four 3×3 variance windows are one 4×4
 //   block, 4 fetches per pixel instead of 9. The host dispatches AtrousBlockGroups (svgf_atrous_vk.h).
 // Reads:  per channel illumination + variance (vec4); guide (normal, depth, background), depth gradient.
-// Writes: per channel illumination + variance (vec4); colour history when write_history != 0.
+// Writes: per channel illumination + variance (vec4); colour history when kWriteHistory.
 #include "shared_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
@@ -28,6 +29,7 @@
 #define NCH FOVRT_CHANNELS
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+layout(constant_id = FOVRT_SPEC_ATROUS_WRITE_HISTORY) const bool kWriteHistory = false;
 
 // Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h).
 PLANE(SVGF_ATROUS_B_GUIDE, guide);             // rgba32f (normal, depth; svgf_pack_guide)
@@ -53,7 +55,6 @@ layout(push_constant) uniform Push {
     float sigma_depth;
     float sigma_normal;
     float sigma_luminance;
-    uint write_history;
 } pc;
 
 bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, pc.size)); }
@@ -199,10 +200,10 @@ void main() {
             result[c] = filtered[k] ? vec4(sum_c[k][c] / sum_w[k][c], sum_v[k][c] / (sum_w[k][c] * sum_w[k][c]))
                                   : center[k][c];
         illum_out0[i] = result[0];
-        if (pc.write_history != 0u) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
+        if (kWriteHistory) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
 #if NCH == 2
         illum_out1[i] = result[1];
-        if (pc.write_history != 0u) STORE3(hist_color1, i, to_history(result[1].rgb), hfloat);
+        if (kWriteHistory) STORE3(hist_color1, i, to_history(result[1].rgb), hfloat);
 #endif
     }
 }

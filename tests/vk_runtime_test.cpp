@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "denoise/svgf_layout.h"
+#include "denoise/svgf_texel_formats.h"
 #include "shaders/shader_registry.h"
 #include "test_support.h"
 #include "vk/context.h"
@@ -83,7 +84,8 @@ TEST_CASE("buffers, dispatch, timestamps and accounting", "[vk][vulkan]") {
             a[i] = vec3(0.5f, 2.0f, 1.0f);
             e[i] = vec3(0.0f, 0.0f, float(i));
         }
-        ComputePipeline pipe(c, "svgf_modulate", SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2);
+        ComputePipeline pipe(c, "svgf_modulate", SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2,
+                             SvgfModulateTexelFormats());
         std::array<const Buffer*, SVGF_MODULATE_BINDINGS> b{};
         b[SVGF_MODULATE_B_ILLUM0] = &illum0;
         b[SVGF_MODULATE_B_ILLUM1] = &illum1;
@@ -100,7 +102,7 @@ TEST_CASE("buffers, dispatch, timestamps and accounting", "[vk][vulkan]") {
         off = rec.Upload(e.data(), 12 * n, staging, off, emission);
         rec.Barrier();
         rec.BeginPass("modulate");
-        SvgfModulatePush push{ivec2(w, h), 0u};
+        SvgfModulatePush push{ivec2(w, h)};
         rec.Dispatch(pipe, set, &push, sizeof(push), DispatchGroups(w, h));
         rec.Barrier();
         rec.EndPass();
