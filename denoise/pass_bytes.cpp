@@ -150,16 +150,18 @@ std::vector<PassBytes> AsvgfPassBytes(const std::string& name, int width, int he
     const double strataPerPixel = double(grid.x) * double(grid.y) / (double(width) * double(height));
     double gradient = b("asvgf.claim");  // vkCmdFillBuffer: every slot empty
     if (samplesRead > 0) gradient += samplesRead + 2 * b("asvgf.claim") * claimed;  // claim: atomicMin
-    // gather: claim slots, the claimed samples → (δ, Δ), guide pixel per stratum.
-    gradient += b("asvgf.claim") + b("asvgf.samples") / 2 * claimed + b("asvgf.grad0") + b("asvgf.guide");
-    // Each à-trous iteration: (δ, Δ) in/out, stratum guide, and the per-pixel planes it fetches
-    // at the guide pixels only (object id, depth, normal, depth gradient, the noisy colour's
+    // gather: claim slots, the claimed samples → (δ, Δ), and the stratum guide from the per-pixel
+    // planes at the guide pixels (object id, depth, normal, depth gradient, the noisy colour's
     // direct, indirect, albedo, emission): one element per stratum.
     const double atGuide = (b("geometry.objectId") + b("geometry.depth") + b("geometry.normal") +
                             b("input.depthGradient") + b("input.direct") + b("input.indirect") + b("input.albedo") +
                             b("input.emission")) *
                            strataPerPixel;
-    gradient += params.asvgf.gradientIterations * (2 * b("asvgf.grad0") + b("asvgf.guide") + atGuide);
+    const double guide = b("asvgf.guideGeometry") + b("asvgf.guideLuminance");
+    gradient += b("asvgf.claim") + b("asvgf.samples") / 2 * claimed + b("asvgf.grad0") + atGuide + guide;
+    gradient += guide + b("asvgf.sigmaL");  // asvgf_stratum_sigma
+    // Each à-trous iteration: (δ, Δ) in/out, the stratum guide and σ_l·std.
+    gradient += params.asvgf.gradientIterations * (2 * b("asvgf.grad0") + guide + b("asvgf.sigmaL"));
     return {{"asvgf_gradient", gradient}, {"asvgf_alpha", b("asvgf.grad0") + b("asvgf.alpha") + b("asvgf.lambda")}};
 }
 

@@ -370,7 +370,11 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
         add("asvgf.claim", 4 * strata, false);
         add("asvgf.grad0", 8 * strata, false);
         add("asvgf.grad1", 8 * strata, false);
-        add("asvgf.guide", 4 * strata, false);
+        // Stratum guide (Vulkan: asvgf_gradient_gather): normal + depth, luminance + depth
+        // gradient, and σ_l·std (asvgf_stratum_sigma).
+        add("asvgf.guideGeometry", 16 * strata, false);
+        add("asvgf.guideLuminance", 16 * strata, false);
+        add("asvgf.sigmaL", 4 * strata, false);
         add("asvgf.alpha", 4 * n, false);
         add("asvgf.lambda", 4 * n, false);
     }

@@ -54,16 +54,34 @@ std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> ReprojectTexelFormats(Precision
     return f;
 }
 
+std::array<VkFormat, ASVGF_GATHER_BINDINGS> GradientGatherTexelFormats() {
+    std::array<VkFormat, ASVGF_GATHER_BINDINGS> f{};
+    f.fill(VK_FORMAT_UNDEFINED);  // samples, claim slots, outputs: storage buffers
+    for (int b : {ASVGF_GATHER_B_NORMAL, ASVGF_GATHER_B_DIRECT, ASVGF_GATHER_B_INDIRECT, ASVGF_GATHER_B_ALBEDO,
+                  ASVGF_GATHER_B_EMISSION})
+        f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
+    f[ASVGF_GATHER_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
+    f[ASVGF_GATHER_B_OBJECT] = VK_FORMAT_R32_UINT;
+    f[ASVGF_GATHER_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
+    return f;
+}
+
+std::array<VkFormat, ASVGF_SIGMA_BINDINGS> StratumSigmaTexelFormats() {
+    return {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_UNDEFINED};
+}
+
 std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
     std::array<VkFormat, ASVGF_ATROUS_BINDINGS> f{};
-    f.fill(VK_FORMAT_R32G32B32_SFLOAT);  // direct, indirect, albedo, emission, normal
     f[ASVGF_ATROUS_B_GRAD_IN] = VK_FORMAT_R32G32_SFLOAT;
-    f[ASVGF_ATROUS_B_GUIDE] = VK_FORMAT_R32_SINT;
-    f[ASVGF_ATROUS_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
-    f[ASVGF_ATROUS_B_OBJECT] = VK_FORMAT_R32_UINT;
-    f[ASVGF_ATROUS_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
+    f[ASVGF_ATROUS_B_GUIDE_GEOMETRY] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[ASVGF_ATROUS_B_GUIDE_LUMINANCE] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[ASVGF_ATROUS_B_SIGMA] = VK_FORMAT_R32_SFLOAT;
     f[ASVGF_ATROUS_B_GRAD_OUT] = VK_FORMAT_UNDEFINED;
     return f;
+}
+
+std::array<VkFormat, ASVGF_ALPHA_BINDINGS> AlphaTexelFormats() {
+    return {VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_UNDEFINED, VK_FORMAT_UNDEFINED};  // (δ̂, Δ̂); α, λ written
 }
 
 std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
@@ -122,6 +140,12 @@ struct AsvgfAtrousPush {  // asvgf_gradient_atrous.comp
     float sigmaLuminance;
 };
 static_assert(sizeof(AsvgfAtrousPush) == 32);
+
+struct AsvgfSigmaPush {  // asvgf_stratum_sigma.comp
+    ivec2 grid;
+    float sigmaLuminance;
+};
+static_assert(sizeof(AsvgfSigmaPush) == 12);
 
 struct AsvgfAlphaPush {  // asvgf_alpha.comp
     ivec2 size;
@@ -194,12 +218,14 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
         claim_ = ComputePipeline(*context_, "asvgf_gradient_claim" + sfx, ASVGF_CLAIM_BINDINGS,
                                  sizeof(AsvgfSamplesPush), kSets);
         gather_ = ComputePipeline(*context_, "asvgf_gradient_gather" + sfx, ASVGF_GATHER_BINDINGS,
-                                  sizeof(AsvgfSamplesPush), kSets);
+                                  sizeof(AsvgfSamplesPush), kSets, GradientGatherTexelFormats());
+        stratumSigma_ = ComputePipeline(*context_, "asvgf_stratum_sigma" + sfx, ASVGF_SIGMA_BINDINGS,
+                                        sizeof(AsvgfSigmaPush), 1, StratumSigmaTexelFormats());
         gradAtrous_ = ComputePipeline(*context_, "asvgf_gradient_atrous" + sfx,
                                       ASVGF_ATROUS_BINDINGS, sizeof(AsvgfAtrousPush), kSets,
                                       GradientAtrousTexelFormats(), edgeStopping);
         alpha_ = ComputePipeline(*context_, "asvgf_alpha" + sfx, ASVGF_ALPHA_BINDINGS,
-                                 sizeof(AsvgfAlphaPush), kSets);
+                                 sizeof(AsvgfAlphaPush), kSets, AlphaTexelFormats());
     }
     timestamps_ = TimestampPool(*context_, 16 + FOVRT_MAX_ATROUS_ITERATIONS);
 }
@@ -221,7 +247,7 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
 void TwoHistoryVulkanDenoiser::BuildSets() {
     for (ComputePipeline* p : {&stages_.guide, &stages_.classify, &reproject_.main, &stages_.moments, &stages_.atrous,
                                &atrousPair_, &stages_.modulate, &gradient_, &blend_, &claim_, &gather_,
-                               &gradAtrous_, &alpha_})
+                               &stratumSigma_, &gradAtrous_, &alpha_})
         if (p->handle() != VK_NULL_HANDLE) p->ResetSets();
     const size_t nch = channels_.size();
     const std::string& ch0 = channels_[0];
@@ -326,34 +352,40 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             g[TH_GRADIENT_B_Q] = &Buf("q");
             gradientSets_[pi] = gradient_.MakeSet(g);
         }
-        if (asvgf_) {
-            for (int pp = 0; pp < 2; ++pp) {
-                std::array<const Buffer*, ASVGF_ATROUS_BINDINGS> a{};
-                a[ASVGF_ATROUS_B_GRAD_IN] = &Buf(pp ? "asvgf.grad1" : "asvgf.grad0");
-                a[ASVGF_ATROUS_B_GUIDE] = &Buf("asvgf.guide");
-                a[ASVGF_ATROUS_B_DEPTH] = &Buf("geometry.depth." + cur);
-                a[ASVGF_ATROUS_B_NORMAL] = &Buf("geometry.normal." + cur);
-                a[ASVGF_ATROUS_B_OBJECT] = &Buf("geometry.objectId." + cur);
-                a[ASVGF_ATROUS_B_DEPTH_GRAD] = &Buf("input.depthGradient");
-                a[ASVGF_ATROUS_B_DIRECT] = &Buf("input.direct");
-                a[ASVGF_ATROUS_B_INDIRECT] = &Buf("input.indirect");
-                a[ASVGF_ATROUS_B_ALBEDO] = &Buf("input.albedo");
-                a[ASVGF_ATROUS_B_EMISSION] = &Buf("input.emission");
-                a[ASVGF_ATROUS_B_GRAD_OUT] = &Buf(pp ? "asvgf.grad0" : "asvgf.grad1");
-                gradAtrousSets_[pi][size_t(pp)] = gradAtrous_.MakeSet(a);
-            }
+        if (asvgf_) {  // the gather reads this frame's geometry at the guide pixels
+            std::array<const Buffer*, ASVGF_GATHER_BINDINGS> g{};
+            g[ASVGF_GATHER_B_SAMPLES] = &Buf("asvgf.samples");
+            g[ASVGF_GATHER_B_CLAIM] = &Buf("asvgf.claim");
+            g[ASVGF_GATHER_B_GRAD] = &Buf("asvgf.grad0");
+            g[ASVGF_GATHER_B_GUIDE_GEOMETRY] = &Buf("asvgf.guideGeometry");
+            g[ASVGF_GATHER_B_GUIDE_LUMINANCE] = &Buf("asvgf.guideLuminance");
+            g[ASVGF_GATHER_B_DEPTH] = &Buf("geometry.depth." + cur);
+            g[ASVGF_GATHER_B_NORMAL] = &Buf("geometry.normal." + cur);
+            g[ASVGF_GATHER_B_OBJECT] = &Buf("geometry.objectId." + cur);
+            g[ASVGF_GATHER_B_DEPTH_GRAD] = &Buf("input.depthGradient");
+            g[ASVGF_GATHER_B_DIRECT] = &Buf("input.direct");
+            g[ASVGF_GATHER_B_INDIRECT] = &Buf("input.indirect");
+            g[ASVGF_GATHER_B_ALBEDO] = &Buf("input.albedo");
+            g[ASVGF_GATHER_B_EMISSION] = &Buf("input.emission");
+            gatherSets_[pi] = gather_.MakeSet(g);
         }
     }
     if (asvgf_) {
         std::array<const Buffer*, ASVGF_CLAIM_BINDINGS> c{&Buf("asvgf.samples"),
                                                           &Buf("asvgf.claim")};
         claimSet_ = claim_.MakeSet(c);
-        std::array<const Buffer*, ASVGF_GATHER_BINDINGS> g{};
-        g[ASVGF_GATHER_B_SAMPLES] = &Buf("asvgf.samples");
-        g[ASVGF_GATHER_B_CLAIM] = &Buf("asvgf.claim");
-        g[ASVGF_GATHER_B_GRAD] = &Buf("asvgf.grad0");
-        g[ASVGF_GATHER_B_GUIDE] = &Buf("asvgf.guide");
-        gatherSet_ = gather_.MakeSet(g);
+        const std::array<const Buffer*, ASVGF_SIGMA_BINDINGS> sg{
+            &Buf("asvgf.guideGeometry"), &Buf("asvgf.guideLuminance"), &Buf("asvgf.sigmaL")};
+        sigmaSet_ = stratumSigma_.MakeSet(sg);
+        for (int pp = 0; pp < 2; ++pp) {
+            std::array<const Buffer*, ASVGF_ATROUS_BINDINGS> a{};
+            a[ASVGF_ATROUS_B_GRAD_IN] = &Buf(pp ? "asvgf.grad1" : "asvgf.grad0");
+            a[ASVGF_ATROUS_B_GUIDE_GEOMETRY] = &Buf("asvgf.guideGeometry");
+            a[ASVGF_ATROUS_B_GUIDE_LUMINANCE] = &Buf("asvgf.guideLuminance");
+            a[ASVGF_ATROUS_B_SIGMA] = &Buf("asvgf.sigmaL");
+            a[ASVGF_ATROUS_B_GRAD_OUT] = &Buf(pp ? "asvgf.grad0" : "asvgf.grad1");
+            gradAtrousSets_[size_t(pp)] = gradAtrous_.MakeSet(a);
+        }
         const int gi = params_.asvgf.gradientIterations;
         std::array<const Buffer*, ASVGF_ALPHA_BINDINGS> a{};
         a[ASVGF_ALPHA_B_GRAD] = &Buf(gi > 0 && (gi - 1) % 2 == 0 ? "asvgf.grad1" : "asvgf.grad0");
@@ -415,13 +447,15 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
                           1));
                 rec.Barrier();
             }
-            rec.Dispatch(gather_, gatherSet_, &sp, sizeof(sp), gridGroups);
+            rec.Dispatch(gather_, gatherSets_[size_t(parity_)], &sp, sizeof(sp), gridGroups);
+            rec.Barrier();
+            const AsvgfSigmaPush sigma{grid_, p.sigmaLuminance};
+            rec.Dispatch(stratumSigma_, sigmaSet_, &sigma, sizeof(sigma), gridGroups);
             rec.Barrier();
             for (int i = 0; i < params_.asvgf.gradientIterations; ++i) {
                 const AsvgfAtrousPush ap{ivec2(w, h),  grid_,         1 << i,
                                          p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
-                rec.Dispatch(gradAtrous_, gradAtrousSets_[size_t(parity_)][size_t(i & 1)], &ap,
-                             sizeof(ap), gridGroups);
+                rec.Dispatch(gradAtrous_, gradAtrousSets_[size_t(i & 1)], &ap, sizeof(ap), gridGroups);
                 rec.Barrier();
             }
             rec.EndPass();

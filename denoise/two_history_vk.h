@@ -60,7 +60,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     ReprojectionPipelines reproject_;  // main + box-fallback passes
     ComputePipeline gradient_, blend_;
     std::array<VkDescriptorSet, 2> guideSets_{};  // [parity]
-    ComputePipeline claim_, gather_, gradAtrous_, alpha_;
+    ComputePipeline claim_, gather_, stratumSigma_, gradAtrous_, alpha_;
     std::array<VkDescriptorSet, 2> gradientSets_{};
     std::array<VkDescriptorSet, 2> reprojectSets_{};  // both channels (pair) or the combined one
     std::vector<std::array<VkDescriptorSet, 2>> classifySets_, momentsU_, momentsW_, blendSets_;
@@ -70,8 +70,9 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     ComputePipeline atrousPair_;  // step-1 pair variant (iteration 0, combined two-history)
     std::array<std::array<VkDescriptorSet, 2>, 2> atrousU_{};
     std::array<std::vector<std::pair<const ComputePipeline*, VkDescriptorSet>>, 2> atrousFirst_;
-    VkDescriptorSet claimSet_ = VK_NULL_HANDLE, gatherSet_ = VK_NULL_HANDLE;
-    std::array<std::array<VkDescriptorSet, 2>, 2> gradAtrousSets_{};  // [parity][pingpong]
+    VkDescriptorSet claimSet_ = VK_NULL_HANDLE, sigmaSet_ = VK_NULL_HANDLE;
+    std::array<VkDescriptorSet, 2> gatherSets_{};      // [parity]: this frame's geometry side
+    std::array<VkDescriptorSet, 2> gradAtrousSets_{};  // [pingpong]
     VkDescriptorSet alphaSet_ = VK_NULL_HANDLE, modulateSet_ = VK_NULL_HANDLE;
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()

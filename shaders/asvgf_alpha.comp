@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // asvgf_alpha — per-pixel temporal weight from the reconstructed gradient (SPEC §4).
 // Mirrors AsvgfAlphaRef.
 // Purpose: λ(s) = min(1, |δ̂|/Δ̂) (0 where Δ̂ = 0); per pixel λ = max over the 3×3 strata around
@@ -8,10 +9,11 @@
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
+#include "common/access.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = ASVGF_ALPHA_B_GRAD) readonly buffer Grad { vec2 grad[]; };
+PLANE(ASVGF_ALPHA_B_GRAD, grad);  // rg32f (δ̂, Δ̂) per stratum: a uniform texel buffer (common/access.glsl)
 layout(std430, binding = ASVGF_ALPHA_B_ALPHA) writeonly buffer AlphaOut { float alpha_out[]; };
 layout(std430, binding = ASVGF_ALPHA_B_LAMBDA) writeonly buffer LambdaOut { float lambda_out[]; };
 
@@ -26,11 +28,11 @@ void main() {
     if (any(greaterThanEqual(p, pc.size))) return;
     ivec2 s = p / ASVGF_STRATUM_SIZE;
     float lambda = 0.0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+    [[unroll]] for (int dy = -1; dy <= 1; ++dy)
+        [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
             ivec2 t = s + ivec2(dx, dy);
             if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, pc.grid))) continue;
-            vec2 d = grad[t.y * pc.grid.x + t.x];
+            vec2 d = FETCH2(grad, t.y * pc.grid.x + t.x);
             lambda = max(lambda, d.y > 1e-6 ? min(1.0, abs(d.x) / d.y) : 0.0);
         }
     int i = p.y * pc.size.x + p.x;

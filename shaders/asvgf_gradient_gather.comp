@@ -1,19 +1,33 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // asvgf_gradient_gather — per stratum (δ, Δ) = (f_i − f_{i−1}, max(f_i, f_{i−1})) of the claimed
-// sample (0 when empty) and the guide pixel: the sample's pixel, else the stratum's centre.
-// Mirrors AsvgfScatterGradientsRef.
-// Reads:  gradient samples, claim slots.  Writes: (δ, Δ) per stratum, guide pixel index.
+// sample (0 when empty), and the stratum guide at its guide pixel (the sample's pixel, else the
+// stratum's centre): normal, depth (−1 on background), noisy luminance of albedo·(direct +
+// indirect) + emission, depth gradient. Mirrors AsvgfScatterGradientsRef.
+// Reads:  gradient samples, claim slots, this frame's geometry and noisy colour at the guide pixel.
+// Writes: (δ, Δ) per stratum, the stratum guide (two vec4 planes).
+#include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
-#include "shared_constants.h"
+#include "common/access.glsl"
+#include "common/luminance.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
 layout(std430, binding = ASVGF_GATHER_B_SAMPLES) readonly buffer Samples { GradientSample samples[]; };
 layout(std430, binding = ASVGF_GATHER_B_CLAIM) readonly buffer Claim { uint claim[]; };
 layout(std430, binding = ASVGF_GATHER_B_GRAD) writeonly buffer Grad { vec2 grad[]; };
-layout(std430, binding = ASVGF_GATHER_B_GUIDE) writeonly buffer Guide { int guide[]; };
+layout(std430, binding = ASVGF_GATHER_B_GUIDE_GEOMETRY) writeonly buffer GuideGeometry { vec4 guide_geometry[]; };
+layout(std430, binding = ASVGF_GATHER_B_GUIDE_LUMINANCE) writeonly buffer GuideLuminance { vec4 guide_luminance[]; };
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp).
+PLANE(ASVGF_GATHER_B_DEPTH, depth);            // r32f
+PLANE(ASVGF_GATHER_B_NORMAL, normal);          // rgb32f
+UPLANE(ASVGF_GATHER_B_OBJECT, object_id);      // r32ui
+PLANE(ASVGF_GATHER_B_DEPTH_GRAD, depth_grad);  // rg32f
+PLANE(ASVGF_GATHER_B_DIRECT, direct);          // rgb32f
+PLANE(ASVGF_GATHER_B_INDIRECT, indirect);      // rgb32f
+PLANE(ASVGF_GATHER_B_ALBEDO, albedo);          // rgb32f
+PLANE(ASVGF_GATHER_B_EMISSION, emission);      // rgb32f
 
 layout(push_constant) uniform Push {
     ivec2 size;
@@ -26,14 +40,19 @@ void main() {
     if (any(greaterThanEqual(s, pc.grid))) return;
     int k = s.y * pc.grid.x + s.x;
     uint c = claim[k];
+    int j;
     if (c == 0xFFFFFFFFu) {
         ivec2 centre = min(s * ASVGF_STRATUM_SIZE + 1, pc.size - 1);
         grad[k] = vec2(0.0);
-        guide[k] = centre.y * pc.size.x + centre.x;
-        return;
+        j = centre.y * pc.size.x + centre.x;
+    } else {
+        GradientSample g = samples[c];
+        float f_new = max(g.new_luminance, 0.0), f_old = max(g.old_luminance, 0.0);
+        grad[k] = vec2(f_new - f_old, max(f_new, f_old));
+        j = g.pixel.y * pc.size.x + g.pixel.x;
     }
-    GradientSample g = samples[c];
-    float f_new = max(g.new_luminance, 0.0), f_old = max(g.old_luminance, 0.0);
-    grad[k] = vec2(f_new - f_old, max(f_new, f_old));
-    guide[k] = g.pixel.y * pc.size.x + g.pixel.x;
+    bool background = FETCH1(object_id, j) == FOVRT_NO_OBJECT;
+    guide_geometry[k] = vec4(FETCH3(normal, j), background ? -1.0 : FETCH1(depth, j));
+    float l = luminance(FETCH3(albedo, j) * (FETCH3(direct, j) + FETCH3(indirect, j)) + FETCH3(emission, j));
+    guide_luminance[k] = vec4(l, FETCH2(depth_grad, j), 0.0);
 }

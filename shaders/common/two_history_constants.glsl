@@ -89,26 +89,39 @@
 #define ASVGF_CLAIM_B_CLAIM 1     // uint[strata], 0xFFFFFFFF = empty
 #define ASVGF_CLAIM_BINDINGS 2
 
-// asvgf_gradient_gather: per stratum, (δ, Δ) and the guide pixel.
+// asvgf_gradient_gather: per stratum, (δ, Δ) and the stratum guide: the geometry and noisy
+// luminance at its guide pixel (the claimed sample's pixel, else the stratum's centre), read once
+// here instead of at every tap of every reconstruction iteration (AsvgfScatterGradientsRef's
+// StratumGuide).
 #define ASVGF_GATHER_B_SAMPLES 0
 #define ASVGF_GATHER_B_CLAIM 1
-#define ASVGF_GATHER_B_GRAD 2      // vec2[strata]
-#define ASVGF_GATHER_B_GUIDE 3     // int[strata]: pixel index y·W + x
-#define ASVGF_GATHER_BINDINGS 4
+#define ASVGF_GATHER_B_GRAD 2          // vec2[strata]
+#define ASVGF_GATHER_B_GUIDE_GEOMETRY 3 // vec4[strata]: normal, depth (−1: background guide pixel)
+#define ASVGF_GATHER_B_GUIDE_LUMINANCE 4 // vec4[strata]: noisy luminance, depth gradient, 0
+#define ASVGF_GATHER_B_DEPTH 5          // per-pixel planes of this frame, read at the guide pixel
+#define ASVGF_GATHER_B_NORMAL 6
+#define ASVGF_GATHER_B_OBJECT 7
+#define ASVGF_GATHER_B_DEPTH_GRAD 8
+#define ASVGF_GATHER_B_DIRECT 9
+#define ASVGF_GATHER_B_INDIRECT 10
+#define ASVGF_GATHER_B_ALBEDO 11
+#define ASVGF_GATHER_B_EMISSION 12
+#define ASVGF_GATHER_BINDINGS 13
+
+// asvgf_stratum_sigma: σ_l times the standard deviation of the guide luminance over the 3×3
+// strata (the w_l scale of every reconstruction iteration; it does not depend on the step).
+#define ASVGF_SIGMA_B_GUIDE_GEOMETRY 0
+#define ASVGF_SIGMA_B_GUIDE_LUMINANCE 1
+#define ASVGF_SIGMA_B_OUT 2             // float[strata]
+#define ASVGF_SIGMA_BINDINGS 3
 
 // asvgf_gradient_atrous: one 3×3-box iteration at stratum resolution.
 #define ASVGF_ATROUS_B_GRAD_IN 0
-#define ASVGF_ATROUS_B_GUIDE 1
-#define ASVGF_ATROUS_B_DEPTH 2
-#define ASVGF_ATROUS_B_NORMAL 3
-#define ASVGF_ATROUS_B_OBJECT 4
-#define ASVGF_ATROUS_B_DEPTH_GRAD 5
-#define ASVGF_ATROUS_B_DIRECT 6
-#define ASVGF_ATROUS_B_INDIRECT 7
-#define ASVGF_ATROUS_B_ALBEDO 8
-#define ASVGF_ATROUS_B_EMISSION 9
-#define ASVGF_ATROUS_B_GRAD_OUT 10
-#define ASVGF_ATROUS_BINDINGS 11
+#define ASVGF_ATROUS_B_GUIDE_GEOMETRY 1
+#define ASVGF_ATROUS_B_GUIDE_LUMINANCE 2
+#define ASVGF_ATROUS_B_SIGMA 3
+#define ASVGF_ATROUS_B_GRAD_OUT 4
+#define ASVGF_ATROUS_BINDINGS 5
 
 // asvgf_alpha: per pixel α and λ.
 #define ASVGF_ALPHA_B_GRAD 0
