@@ -103,21 +103,20 @@ void main() {
     [[unroll]] for (int vy = 0; vy < 2 + BY; ++vy)
         [[unroll]] for (int vx = 0; vx < 4; ++vx) {
             ivec2 q = base + ivec2(vx - 1, vy - 1);
-            if (!inside(q)) continue;
-            int j = q.y * pc.size.x + q.x;
+            const bool in_image = inside(q);
+            int j = clamped_index(q, pc.size);
             vec4 gq = FETCH4(guide, j);
             vec4 v[NCH];
             FETCH_ILLUM(v, j);
-            bool bg = GUIDE_IS_BACKGROUND(gq);
+            const bool use = in_image && !GUIDE_IS_BACKGROUND(gq);
             [[unroll]] for (int k = 0; k < BK; ++k) {
                 const int dx = vx - 1 - (k & 1), dy = vy - 1 - (k >> 1);
                 if (dx < -1 || dx > 1 || dy < -1 || dy > 1) continue;  // compile-time
                 if (dx == 0 && dy == 0) {
-                    gc[k] = gq;
-                    center[k] = v;
+                    gc[k] = in_image ? gq : gc[k];
+                    center[k] = v;  // only read where gc[k] is not background
                 }
-                if (bg) continue;
-                float g = gauss3(dx, dy);
+                float g = use ? gauss3(dx, dy) : 0.0;
                 [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[k][c] += g * v[c].a;
                 var_w[k] += g;
             }
@@ -128,17 +127,16 @@ void main() {
         [[unroll]] for (int dy = -1; dy <= 1; ++dy)
             [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
                 ivec2 q = pix[k] + ivec2(dx, dy);
-                if (!inside(q)) continue;
-                int j = q.y * pc.size.x + q.x;
+                const bool in_image = inside(q);
+                int j = clamped_index(q, pc.size);
                 vec4 gq = FETCH4(guide, j);
                 vec4 v[NCH];
                 FETCH_ILLUM(v, j);
                 if (dx == 0 && dy == 0) {
-                    gc[k] = gq;
-                    center[k] = v;
+                    gc[k] = in_image ? gq : gc[k];
+                    center[k] = v;  // only read where gc[k] is not background
                 }
-                if (GUIDE_IS_BACKGROUND(gq)) continue;
-                float g = gauss3(dx, dy);
+                float g = in_image && !GUIDE_IS_BACKGROUND(gq) ? gauss3(dx, dy) : 0.0;
                 [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[k][c] += g * v[c].a;
                 var_w[k] += g;
             }
@@ -164,10 +162,9 @@ void main() {
     [[unroll]] for (int ly = 0; ly < 4 + BY; ++ly) {
         [[unroll]] for (int lx = 0; lx < 6; ++lx) {
             ivec2 q = base + ivec2(lx - 2, ly - 2) * s;
-            if (!inside(q)) continue;
-            int j = q.y * pc.size.x + q.x;
+            int j = clamped_index(q, pc.size);
             vec4 gq = FETCH4(guide, j);
-            if (GUIDE_IS_BACKGROUND(gq)) continue;
+            const bool use = inside(q) && !GUIDE_IS_BACKGROUND(gq);
             vec4 cq[NCH];
             FETCH_ILLUM(cq, j);
             [[unroll]] for (int k = 0; k < BK; ++k) {
@@ -184,6 +181,7 @@ void main() {
                     float w = centre ? 1.0
                                      : geometry_weight_from_terms(depth_term, normal_log2, normal_factor,
                                                                   abs(lp[k][c] - luminance(cq[c].rgb)) * inv_l_den[k][c]);
+                    w = use ? w : 0.0;
                     float hw = h * w;
                     sum_w[k][c] += hw;
                     sum_c[k][c] += hw * cq[c].rgb;

@@ -41,26 +41,24 @@ void main() {
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
     vec4 gc = FETCH4(guide, i);
-    if (GUIDE_IS_BACKGROUND(gc)) {
-        q_out[i] = 0.0;
-        return;
-    }
     vec2 gp = FETCH2(depth_grad, i);
     float sum = 0.0;
     float wsum = 0.0;
+    // Taps outside the image or on background weigh 0 (no `continue`: common/access.glsl).
     [[unroll]] for (int ky = -2; ky <= 2; ++ky)
         [[unroll]] for (int kx = -2; kx <= 2; ++kx) {
             ivec2 q = p + ivec2(kx, ky);
-            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
-            int j = q.y * pc.size.x + q.x;
+            int j = clamped_index(q, pc.size);
             vec4 gq = FETCH4(guide, j);
-            if (GUIDE_IS_BACKGROUND(gq)) continue;
+            bool use = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, pc.size)) && !GUIDE_IS_BACKGROUND(gq);
             float w = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
-            if (kx != 0 || ky != 0)  // w_z·w_n as one exp2, as in svgf_atrous
+            if (kx != 0 || ky != 0)  // compile-time; w_z·w_n as one exp2, as in svgf_atrous
                 w *= geometry_weight(gc.w, gq.w, gp, vec2(kx, ky), pc.sigma_depth, gc.xyz, gq.xyz, pc.sigma_normal, 0.0);
+            w = use ? w : 0.0;
             sum += w * FETCH1(gradient, j);
             wsum += w;
         }
     float variance = FETCH4(illum_u0, i).a + (pc.two_channels != 0u ? FETCH4(illum_u1, i).a : 0.0);
-    q_out[i] = two_history_gradient_blend(sum / wsum, variance, pc.q_scale);
+    // Background pixels: q = 0 (their sums are 0/0, discarded by the select).
+    q_out[i] = GUIDE_IS_BACKGROUND(gc) ? 0.0 : two_history_gradient_blend(sum / wsum, variance, pc.q_scale);
 }
