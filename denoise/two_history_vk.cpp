@@ -80,6 +80,18 @@ std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
     return f;
 }
 
+std::array<VkFormat, TH_BLEND_BINDINGS> BlendTexelFormats(Precision precision) {
+    const bool half = precision == Precision::Fp16;
+    std::array<VkFormat, TH_BLEND_BINDINGS> f{};
+    f[TH_BLEND_B_ILLUM_U] = VK_FORMAT_UNDEFINED;  // read and written
+    f[TH_BLEND_B_ILLUM_W] = VK_FORMAT_R32G32B32A32_SFLOAT;
+    f[TH_BLEND_B_WU] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    f[TH_BLEND_B_WW] = f[TH_BLEND_B_WU];
+    f[TH_BLEND_B_S] = half ? VK_FORMAT_UNDEFINED : VK_FORMAT_R32G32B32_SFLOAT;  // fp16 RGB: storage
+    f[TH_BLEND_B_Q] = VK_FORMAT_R32_SFLOAT;
+    return f;
+}
+
 std::array<VkFormat, ASVGF_ALPHA_BINDINGS> AlphaTexelFormats() {
     return {VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_UNDEFINED, VK_FORMAT_UNDEFINED};  // (δ̂, Δ̂); α, λ written
 }
@@ -212,7 +224,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                     sizeof(TwoHistoryGradientPush), kSets, GradientTexelFormats(params_.precision),
                                     edgeStopping);
         blend_ = ComputePipeline(*context_, "two_history_blend" + sfx, TH_BLEND_BINDINGS,
-                                 sizeof(TwoHistoryBlendPush), kSets);
+                                 sizeof(TwoHistoryBlendPush), kSets, BlendTexelFormats(params_.precision));
     }
     if (asvgf_) {
         claim_ = ComputePipeline(*context_, "asvgf_gradient_claim" + sfx, ASVGF_CLAIM_BINDINGS,

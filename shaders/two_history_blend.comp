@@ -8,16 +8,25 @@
 #include "shared_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
+#include "common/access.glsl"
 #include "common/two_history.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = TH_BLEND_B_ILLUM_U) buffer IllumU { vec4 illum_u[]; };
-layout(std430, binding = TH_BLEND_B_ILLUM_W) readonly buffer IllumW { vec4 illum_w[]; };
-layout(std430, binding = TH_BLEND_B_WU) readonly buffer Wu { hfloat wu[]; };
-layout(std430, binding = TH_BLEND_B_WW) readonly buffer Ww { hfloat ww[]; };
+layout(std430, binding = TH_BLEND_B_ILLUM_U) buffer IllumU { vec4 illum_u[]; };  // blended in place
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp), except
+// the fp16 power sums (RGB16F texel buffers are rarely supported).
+PLANE(TH_BLEND_B_ILLUM_W, illum_w);  // rgba32f
+PLANE(TH_BLEND_B_WU, wu);            // r32f / r16f
+PLANE(TH_BLEND_B_WW, ww);            // r32f / r16f
+PLANE(TH_BLEND_B_Q, q);              // r32f
+#ifdef FOVRT_FP16
 layout(std430, binding = TH_BLEND_B_S) readonly buffer S { hfloat s[]; };
-layout(std430, binding = TH_BLEND_B_Q) readonly buffer Q { float q[]; };
+#define LOAD_S(i) LOAD3(s, i)
+#else
+PLANE(TH_BLEND_B_S, s);              // rgb32f
+#define LOAD_S(i) FETCH3(s, i)
+#endif
 
 layout(push_constant) uniform Push {
     ivec2 size;
@@ -27,7 +36,8 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
-    float pb = two_history_optimal_blend(float(wu[i]), float(ww[i]), LOAD3(s, i));
-    float t = pb + q[i] - pb * q[i];
-    illum_u[i] = mix(illum_w[i], illum_u[i], t);
+    float pb = two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, i), LOAD_S(i));
+    float qi = FETCH1(q, i);
+    float t = pb + qi - pb * qi;
+    illum_u[i] = mix(FETCH4(illum_w, i), illum_u[i], t);
 }
