@@ -90,7 +90,10 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
             report.deviceName = context->deviceName();
         }
     }
-    if (context) report.device = MeasureDeviceBandwidth(*context);
+    if (context) {
+        report.device = MeasureDeviceBandwidth(*context);
+        report.atrousFloor = MeasureAtrousFloor(*context, o.width, o.height);
+    }
     fmt::print(out, "denoiser bench: {}x{}, {} timed frame(s) after {} warm-up frame(s); Vulkan device: {}\n",
                o.width, o.height, o.frames, o.warmup, context ? context->deviceName() : std::string("none"));
     fmt::print(out, "bandwidth (bytes read + written per second, best of a few runs):\n");
@@ -109,6 +112,17 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
                        report.device.exp2PerSecond / 1e9, BANDWIDTH_EXP2_PER_ELEMENT);
         else
             fmt::print(out, "  device exp2 throughput  not resolved (hidden behind the copy's memory traffic)\n");
+        const AtrousFloor& af = report.atrousFloor;
+        const double bytes = af.bytesPerPixel * double(af.width) * double(af.height);
+        const double memcpyBoundMs = bytes / (report.memcpyGBps * 1e9) * 1e3;
+        const double deviceBoundMs = bytes / (report.device.texelGBps * 1e9) * 1e3;
+        fmt::print(out, "a-trous floor (svgf_atrous_pair at step {}, {} B/pixel; best of 3, alternated; "
+                        "denoise/atrous_probe.h):\n", af.step, af.bytesPerPixel);
+        fmt::print(out, "  as the denoisers run it {:8.2f} ms  = {:5.1f}x memcpy bound, {:5.1f}x device-copy bound\n",
+                   af.fullMs, af.fullMs / memcpyBoundMs, af.fullMs / deviceBoundMs);
+        fmt::print(out, "  every weight 1          {:8.2f} ms  = {:5.1f}x memcpy bound, {:5.1f}x device-copy bound "
+                        "(same fetches, sums and stores; no weight arithmetic)\n",
+                   af.unitWeightsMs, af.unitWeightsMs / memcpyBoundMs, af.unitWeightsMs / deviceBoundMs);
     }
     fmt::print(out, "bytes/pixel: what each pass reads + writes per pixel per frame, every plane counted once per "
                     "dispatch (gather taps assumed to hit cache; sizes from the memory plan; steady state: no pixel "

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "denoise/atrous_probe.h"
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
 #include "vk/bandwidth.h"
@@ -48,6 +49,7 @@ struct DenoiserBenchResult {
 struct DenoiserBenchReport {
     double memcpyGBps = 0.0;      // (read + write) bytes per second of a large memcpy
     DeviceBandwidth device;       // streaming copy on the Vulkan device (zero without one)
+    AtrousFloor atrousFloor;      // one à-trous pair dispatch, as run and with unit weights (Vulkan only)
     std::string deviceName;
     std::vector<DenoiserBenchResult> results;
 };

@@ -35,17 +35,21 @@ struct AtrousChannel {
 };
 
 // `channels` (1 or 2) illumination planes per dispatch; `step1`: the variant for step 1 only;
-// `writeHistory`: the feedback iteration's pipeline, which also writes the colour history.
+// `writeHistory`: the feedback iteration's pipeline, which also writes the colour history;
+// `unitWeights`: every edge-stopping weight 1 (the bench's floor probe, denoise/atrous_probe.h).
 inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, const DenoiserParams& params,
-                                          uint32_t maxSets, bool step1, bool writeHistory) {
+                                          uint32_t maxSets, bool step1, bool writeHistory,
+                                          bool unitWeights = false) {
     const Precision precision = params.precision;
     FOVRT_CHECK(channels == 1 || channels == 2);
     const std::string name = std::string(channels == 2 ? "svgf_atrous_pair" : "svgf_atrous") +
                              (step1 ? "_step1" : "") + (precision == Precision::Fp16 ? "_fp16" : "");
     const uint32_t bindings = channels == 2 ? SVGF_ATROUS_PAIR_BINDINGS : SVGF_ATROUS_BINDINGS;
     static const std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> kFormats = SvgfAtrousTexelFormats();
-    static_assert(FOVRT_SPEC_NORMAL_SQUARINGS == 0 && FOVRT_SPEC_ATROUS_WRITE_HISTORY == 2);
-    const std::array<int32_t, 3> spec{EdgeStoppingSpecialization(params.svgf)[0], -1, writeHistory ? 1 : 0};
+    static_assert(FOVRT_SPEC_NORMAL_SQUARINGS == 0 && FOVRT_SPEC_ATROUS_WRITE_HISTORY == 2 &&
+                  FOVRT_SPEC_ATROUS_UNIT_WEIGHTS == 4);
+    const std::array<int32_t, 5> spec{EdgeStoppingSpecialization(params.svgf)[0], -1, writeHistory ? 1 : 0, -1,
+                                      unitWeights ? 1 : 0};
     return ComputePipeline(context, name, bindings, sizeof(SvgfAtrousPush), maxSets,
                            std::span<const VkFormat>(kFormats).first(bindings), spec);
 }

@@ -36,6 +36,10 @@
 #define FOVRT_SPEC_ATROUS_WRITE_HISTORY 2
 // Specialization constant (constant_id, bool) of svgf_modulate: one channel holds direct + indirect.
 #define FOVRT_SPEC_MODULATE_COMBINED 3
+// Specialization constant (constant_id, bool) of svgf_atrous, for the bench's floor probe only
+// (denoise/atrous_probe.h): every edge-stopping weight is 1, so the dispatch keeps its fetches and
+// sums and loses the weight arithmetic. Never set by a denoiser.
+#define FOVRT_SPEC_ATROUS_UNIT_WEIGHTS 4
 // 7×7 spatial variance estimate radius.
 #define FOVRT_MOMENTS_RADIUS 3
 // Maximum à-trous iterations (SvgfParams::atrousIterations range).

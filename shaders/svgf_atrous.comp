@@ -30,6 +30,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 layout(constant_id = FOVRT_SPEC_ATROUS_WRITE_HISTORY) const bool kWriteHistory = false;
+layout(constant_id = FOVRT_SPEC_ATROUS_UNIT_WEIGHTS) const bool kUnitWeights = false;  // bench probe only
 
 // Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h).
 PLANE(SVGF_ATROUS_B_GUIDE, guide);             // rgba32f (normal, depth; svgf_pack_guide)
@@ -181,7 +182,7 @@ void main() {
                     float w = centre ? 1.0
                                      : geometry_weight_from_terms(depth_term, normal_log2, normal_factor,
                                                                   abs(lp[k][c] - luminance(cq[c].rgb)) * inv_l_den[k][c]);
-                    w = use ? w : 0.0;
+                    w = use ? (kUnitWeights ? 1.0 : w) : 0.0;
                     float hw = h * w;
                     sum_w[k][c] += hw;
                     sum_c[k][c] += hw * cq[c].rgb;

@@ -1,0 +1,116 @@
+#include "denoise/atrous_probe.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "denoise/pass_bytes.h"
+#include "denoise/svgf_atrous_vk.h"
+#include "vk/context.h"
+
+namespace fovrt {
+
+AtrousProbeImage MakeAtrousProbeImage(int width, int height, uint32_t seed) {
+    AtrousProbeImage im;
+    im.width = width;
+    im.height = height;
+    const size_t n = size_t(width) * size_t(height);
+    im.guide.resize(n);
+    im.illum0.resize(n);
+    im.illum1.resize(n);
+    im.depthGradient.resize(n);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t i = size_t(y) * size_t(width) + size_t(x);
+            const bool background = y < height / 16;
+            const bool nearObject = (x / 64 + y / 48) % 3 == 0;  // depth and normal edges
+            const float depth = nearObject ? 2.0f : 5.0f + 0.01f * float(x);
+            const vec3 normal = glm::normalize(nearObject ? vec3(0.3f, 0.1f, 1.0f) : vec3(0.0f, 0.0f, 1.0f));
+            im.guide[i] = vec4(normal, background ? -1.0f : depth);
+            im.depthGradient[i] = nearObject ? vec2(0.0f) : vec2(0.01f, 0.0f);
+            auto noisy = [&] {
+                const float a = u(rng), b = u(rng);
+                return vec4(a * a * 3.0f, b, 0.5f * a, 0.05f + 0.2f * b);  // rgb, variance
+            };
+            im.illum0[i] = noisy();
+            im.illum1[i] = noisy();
+        }
+    return im;
+}
+
+AtrousProbeRun RunAtrousProbe(VulkanContext& context, const AtrousProbeImage& image, int step, bool unitWeights,
+                              int runs) {
+    const int w = image.width, h = image.height;
+    const size_t n = size_t(w) * size_t(h);
+    VulkanAllocator& alloc = context.allocator();
+    Buffer guide = alloc.CreateBuffer("probe.guide", 16 * n);
+    Buffer depthGradient = alloc.CreateBuffer("probe.depthGradient", 8 * n);
+    std::array<Buffer, 2> in{alloc.CreateBuffer("probe.illum0", 16 * n), alloc.CreateBuffer("probe.illum1", 16 * n)};
+    std::array<Buffer, 2> out{alloc.CreateBuffer("probe.out0", 16 * n), alloc.CreateBuffer("probe.out1", 16 * n)};
+    Buffer history = alloc.CreateBuffer("probe.history", 12 * n);  // bound, not written (no feedback)
+    Buffer staging = alloc.CreateBuffer("probe.staging", 64 * n + 4096, MemoryUsage::Staging);
+
+    ComputePipeline pipeline = MakeAtrousPipeline(context, 2, DenoiserParams{}, 1, false, false, unitWeights);
+    const std::array<AtrousChannel, 2> channels{AtrousChannel{&in[0], &out[0], &history},
+                                                AtrousChannel{&in[1], &out[1], &history}};
+    VkDescriptorSet set = MakeAtrousSet(pipeline, guide, depthGradient, channels);
+    const SvgfParams p;
+    const SvgfAtrousPush push{ivec2(w, h), step, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
+
+    TimestampPool timestamps(context, 1);
+    {
+        CommandRecorder rec(context);
+        size_t off = rec.Upload(image.guide.data(), 16 * n, staging, 0, guide);
+        off = rec.Upload(image.depthGradient.data(), 8 * n, staging, off, depthGradient);
+        off = rec.Upload(image.illum0.data(), 16 * n, staging, off, in[0]);
+        rec.Upload(image.illum1.data(), 16 * n, staging, off, in[1]);
+        rec.Barrier();
+        rec.Submit();
+    }
+    AtrousProbeRun result;
+    result.ms = 1e30;
+    size_t out1Offset = 0;
+    for (int run = 0; run < std::max(runs, 1); ++run) {
+        CommandRecorder rec(context, &timestamps);
+        rec.BeginPass("atrous");
+        rec.Dispatch(pipeline, set, &push, sizeof(push), AtrousBlockGroups(w, h, step));
+        rec.Barrier();
+        rec.EndPass();
+        out1Offset = rec.Download(out[0], 16 * n, staging, 0);
+        rec.Download(out[1], 16 * n, staging, out1Offset);
+        rec.Barrier();
+        const auto t0 = std::chrono::steady_clock::now();
+        rec.Submit();
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (timestamps.enabled()) ms = timestamps.Results().at(0).second;
+        result.ms = std::min(result.ms, ms);
+    }
+    result.out0.resize(n);
+    result.out1.resize(n);
+    std::memcpy(result.out0.data(), staging.mapped(), 16 * n);
+    std::memcpy(result.out1.data(), static_cast<const char*>(staging.mapped()) + out1Offset, 16 * n);
+    return result;
+}
+
+AtrousFloor MeasureAtrousFloor(VulkanContext& context, int width, int height, int runs) {
+    AtrousFloor f;
+    f.width = width;
+    f.height = height;
+    const AtrousProbeImage image = MakeAtrousProbeImage(width, height, 7);
+    // Alternate the two so that a drifting machine affects both alike; keep each one's best.
+    f.fullMs = f.unitWeightsMs = 1e30;
+    for (int r = 0; r < std::max(runs, 1); ++r) {
+        f.fullMs = std::min(f.fullMs, RunAtrousProbe(context, image, f.step, false, 2).ms);
+        f.unitWeightsMs = std::min(f.unitWeightsMs, RunAtrousProbe(context, image, f.step, true, 2).ms);
+    }
+    for (const PassBytes& pb : SvgfPassBytes(width, height, DenoiserParams{}))
+        if (pb.pass == "atrous1") f.bytesPerPixel = pb.bytesPerPixel;
+    return f;
+}
+
+}  // namespace fovrt
