@@ -55,57 +55,44 @@ std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> ReprojectTexelFormats(Precision
 }
 
 std::array<VkFormat, ASVGF_GATHER_BINDINGS> GradientGatherTexelFormats() {
-    std::array<VkFormat, ASVGF_GATHER_BINDINGS> f{};
-    f.fill(VK_FORMAT_UNDEFINED);  // samples, claim slots, outputs: storage buffers
-    for (int b : {ASVGF_GATHER_B_NORMAL, ASVGF_GATHER_B_DIRECT, ASVGF_GATHER_B_INDIRECT, ASVGF_GATHER_B_ALBEDO,
-                  ASVGF_GATHER_B_EMISSION})
-        f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[ASVGF_GATHER_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
-    f[ASVGF_GATHER_B_OBJECT] = VK_FORMAT_R32_UINT;
-    f[ASVGF_GATHER_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
-    return f;
+    return TexelFormats<ASVGF_GATHER_BINDINGS>(  // samples, claim slots, outputs: storage buffers
+        {{ASVGF_GATHER_B_NORMAL, kRGB32}, {ASVGF_GATHER_B_DIRECT, kRGB32}, {ASVGF_GATHER_B_INDIRECT, kRGB32},
+         {ASVGF_GATHER_B_ALBEDO, kRGB32}, {ASVGF_GATHER_B_EMISSION, kRGB32}, {ASVGF_GATHER_B_DEPTH, kR32},
+         {ASVGF_GATHER_B_OBJECT, kR32U}, {ASVGF_GATHER_B_DEPTH_GRAD, kRG32}});
 }
 
 std::array<VkFormat, ASVGF_SIGMA_BINDINGS> StratumSigmaTexelFormats() {
-    return {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_UNDEFINED};
+    return TexelFormats<ASVGF_SIGMA_BINDINGS>(
+        {{ASVGF_SIGMA_B_GUIDE_GEOMETRY, kRGBA32}, {ASVGF_SIGMA_B_GUIDE_LUMINANCE, kRGBA32}});
 }
 
 std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
-    std::array<VkFormat, ASVGF_ATROUS_BINDINGS> f{};
-    f[ASVGF_ATROUS_B_GRAD_IN] = VK_FORMAT_R32G32_SFLOAT;
-    f[ASVGF_ATROUS_B_GUIDE_GEOMETRY] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[ASVGF_ATROUS_B_GUIDE_LUMINANCE] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[ASVGF_ATROUS_B_SIGMA] = VK_FORMAT_R32_SFLOAT;
-    f[ASVGF_ATROUS_B_GRAD_OUT] = VK_FORMAT_UNDEFINED;
-    return f;
+    return TexelFormats<ASVGF_ATROUS_BINDINGS>({{ASVGF_ATROUS_B_GRAD_IN, kRG32},
+                                                {ASVGF_ATROUS_B_GUIDE_GEOMETRY, kRGBA32},
+                                                {ASVGF_ATROUS_B_GUIDE_LUMINANCE, kRGBA32},
+                                                {ASVGF_ATROUS_B_SIGMA, kR32}});
 }
 
+// I_u is blended in place (storage); fp16 power sums stay storage (RGB16F texel buffers are rare).
 std::array<VkFormat, TH_BLEND_BINDINGS> BlendTexelFormats(Precision precision) {
-    const bool half = precision == Precision::Fp16;
-    std::array<VkFormat, TH_BLEND_BINDINGS> f{};
-    f[TH_BLEND_B_ILLUM_U] = VK_FORMAT_UNDEFINED;  // read and written
-    f[TH_BLEND_B_ILLUM_W] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[TH_BLEND_B_WU] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    f[TH_BLEND_B_WW] = f[TH_BLEND_B_WU];
-    f[TH_BLEND_B_S] = half ? VK_FORMAT_UNDEFINED : VK_FORMAT_R32G32B32_SFLOAT;  // fp16 RGB: storage
-    f[TH_BLEND_B_Q] = VK_FORMAT_R32_SFLOAT;
-    return f;
+    return TexelFormats<TH_BLEND_BINDINGS>(
+        {{TH_BLEND_B_ILLUM_W, kRGBA32},
+         {TH_BLEND_B_WU, HistoryTexelFormat(kR32, precision)},
+         {TH_BLEND_B_WW, HistoryTexelFormat(kR32, precision)},
+         {TH_BLEND_B_S, precision == Precision::Fp16 ? VK_FORMAT_UNDEFINED : kRGB32},
+         {TH_BLEND_B_Q, kR32}});
 }
 
 std::array<VkFormat, ASVGF_ALPHA_BINDINGS> AlphaTexelFormats() {
-    return {VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_UNDEFINED, VK_FORMAT_UNDEFINED};  // (δ̂, Δ̂); α, λ written
+    return TexelFormats<ASVGF_ALPHA_BINDINGS>({{ASVGF_ALPHA_B_GRAD, kRG32}});  // (δ̂, Δ̂); α, λ written
 }
 
 std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
-    std::array<VkFormat, TH_GRADIENT_BINDINGS> f{};
-    f.fill(VK_FORMAT_UNDEFINED);
-    f[TH_GRADIENT_B_GRADIENT] =  // one float per pixel: lum(g)
-        precision == Precision::Fp16 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    f[TH_GRADIENT_B_ILLUM_U0] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[TH_GRADIENT_B_ILLUM_U1] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[TH_GRADIENT_B_GUIDE] = VK_FORMAT_R32G32B32A32_SFLOAT;
-    f[TH_GRADIENT_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
-    return f;
+    return TexelFormats<TH_GRADIENT_BINDINGS>({{TH_GRADIENT_B_GRADIENT, HistoryTexelFormat(kR32, precision)},  // lum(g)
+                                               {TH_GRADIENT_B_ILLUM_U0, kRGBA32},
+                                               {TH_GRADIENT_B_ILLUM_U1, kRGBA32},
+                                               {TH_GRADIENT_B_GUIDE, kRGBA32},
+                                               {TH_GRADIENT_B_DEPTH_GRAD, kRG32}});
 }
 }  // namespace
 
