@@ -58,7 +58,7 @@ layout(push_constant) uniform Push {
     float sigma_luminance;
 } pc;
 
-bool inside(ivec2 q) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, pc.size)); }
+bool inside(ivec2 q) { return in_image(q, pc.size); }
 
 // 2×2 pixel blocks at stride s = step: one invocation filters P_k = base + s·(k & 1, k >> 1),
 // k = 0..3, where base has bit i (s = 2^i) of x and y cleared. The 5×5 windows of the four pixels
@@ -104,17 +104,17 @@ void main() {
     [[unroll]] for (int vy = 0; vy < 2 + BY; ++vy)
         [[unroll]] for (int vx = 0; vx < 4; ++vx) {
             ivec2 q = base + ivec2(vx - 1, vy - 1);
-            const bool in_image = inside(q);
+            const bool q_inside = inside(q);
             int j = clamped_index(q, pc.size);
             vec4 gq = FETCH4(guide, j);
             vec4 v[NCH];
             FETCH_ILLUM(v, j);
-            const bool use = in_image && !GUIDE_IS_BACKGROUND(gq);
+            const bool use = q_inside && !GUIDE_IS_BACKGROUND(gq);
             [[unroll]] for (int k = 0; k < BK; ++k) {
                 const int dx = vx - 1 - (k & 1), dy = vy - 1 - (k >> 1);
                 if (dx < -1 || dx > 1 || dy < -1 || dy > 1) continue;  // compile-time
                 if (dx == 0 && dy == 0) {
-                    gc[k] = in_image ? gq : gc[k];
+                    gc[k] = q_inside ? gq : gc[k];
                     center[k] = v;  // only read where gc[k] is not background
                 }
                 float g = use ? gauss3(dx, dy) : 0.0;
@@ -128,16 +128,16 @@ void main() {
         [[unroll]] for (int dy = -1; dy <= 1; ++dy)
             [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
                 ivec2 q = pix[k] + ivec2(dx, dy);
-                const bool in_image = inside(q);
+                const bool q_inside = inside(q);
                 int j = clamped_index(q, pc.size);
                 vec4 gq = FETCH4(guide, j);
                 vec4 v[NCH];
                 FETCH_ILLUM(v, j);
                 if (dx == 0 && dy == 0) {
-                    gc[k] = in_image ? gq : gc[k];
+                    gc[k] = q_inside ? gq : gc[k];
                     center[k] = v;  // only read where gc[k] is not background
                 }
-                float g = in_image && !GUIDE_IS_BACKGROUND(gq) ? gauss3(dx, dy) : 0.0;
+                float g = q_inside && !GUIDE_IS_BACKGROUND(gq) ? gauss3(dx, dy) : 0.0;
                 [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[k][c] += g * v[c].a;
                 var_w[k] += g;
             }

@@ -50,7 +50,7 @@ void main() {
             ivec2 q = p + ivec2(kx, ky);
             int j = clamped_index(q, pc.size);
             vec4 gq = FETCH4(guide, j);
-            bool use = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, pc.size)) && !GUIDE_IS_BACKGROUND(gq);
+            bool use = in_image(q, pc.size) && !GUIDE_IS_BACKGROUND(gq);
             float w = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
             if (kx != 0 || ky != 0)  // compile-time; w_z·w_n as one exp2, as in svgf_atrous
                 w *= geometry_weight(gc.w, gq.w, gp, vec2(kx, ky), pc.sigma_depth, gc.xyz, gq.xyz, pc.sigma_normal, 0.0);

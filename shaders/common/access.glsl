@@ -23,6 +23,7 @@
 // accumulator update becomes a masked blend (measured: −14 to −20 % per à-trous iteration). Such
 // taps are fetched at the clamped index and enter with weight 0; adding an exact 0 leaves the
 // sums bit-identical for finite data (the illumination is sanitised before it enters a history).
+bool in_image(ivec2 q, ivec2 size) { return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)); }
 int clamped_index(ivec2 q, ivec2 size) {
     q = clamp(q, ivec2(0), size - 1);
     return q.y * size.x + q.x;
