@@ -43,57 +43,59 @@ AtrousProbeImage MakeAtrousProbeImage(int width, int height, uint32_t seed) {
     return im;
 }
 
-AtrousProbeRun RunAtrousProbe(VulkanContext& context, const AtrousProbeImage& image, int step, bool unitWeights,
-                              int runs) {
-    const int w = image.width, h = image.height;
-    const size_t n = size_t(w) * size_t(h);
+AtrousProbe::AtrousProbe(VulkanContext& context, const AtrousProbeImage& image, int step)
+    : context_(context), width_(image.width), height_(image.height), step_(step) {
+    const size_t n = size_t(width_) * size_t(height_);
     VulkanAllocator& alloc = context.allocator();
-    Buffer guide = alloc.CreateBuffer("probe.guide", 16 * n);
-    Buffer depthGradient = alloc.CreateBuffer("probe.depthGradient", 8 * n);
-    std::array<Buffer, 2> in{alloc.CreateBuffer("probe.illum0", 16 * n), alloc.CreateBuffer("probe.illum1", 16 * n)};
-    std::array<Buffer, 2> out{alloc.CreateBuffer("probe.out0", 16 * n), alloc.CreateBuffer("probe.out1", 16 * n)};
-    Buffer history = alloc.CreateBuffer("probe.history", 12 * n);  // bound, not written (no feedback)
-    Buffer staging = alloc.CreateBuffer("probe.staging", 64 * n + 4096, MemoryUsage::Staging);
-
-    ComputePipeline pipeline = MakeAtrousPipeline(context, 2, DenoiserParams{}, 1, false, false, unitWeights);
-    const std::array<AtrousChannel, 2> channels{AtrousChannel{&in[0], &out[0], &history},
-                                                AtrousChannel{&in[1], &out[1], &history}};
-    VkDescriptorSet set = MakeAtrousSet(pipeline, guide, depthGradient, channels);
-    const SvgfParams p;
-    const SvgfAtrousPush push{ivec2(w, h), step, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
-
-    TimestampPool timestamps(context, 1);
-    {
-        CommandRecorder rec(context);
-        size_t off = rec.Upload(image.guide.data(), 16 * n, staging, 0, guide);
-        off = rec.Upload(image.depthGradient.data(), 8 * n, staging, off, depthGradient);
-        off = rec.Upload(image.illum0.data(), 16 * n, staging, off, in[0]);
-        rec.Upload(image.illum1.data(), 16 * n, staging, off, in[1]);
-        rec.Barrier();
-        rec.Submit();
+    guide_ = alloc.CreateBuffer("probe.guide", 16 * n);
+    depthGradient_ = alloc.CreateBuffer("probe.depthGradient", 8 * n);
+    in_ = {alloc.CreateBuffer("probe.illum0", 16 * n), alloc.CreateBuffer("probe.illum1", 16 * n)};
+    out_ = {alloc.CreateBuffer("probe.out0", 16 * n), alloc.CreateBuffer("probe.out1", 16 * n)};
+    history_ = alloc.CreateBuffer("probe.history", 12 * n);  // bound, not written (no feedback)
+    staging_ = alloc.CreateBuffer("probe.staging", 64 * n + 4096, MemoryUsage::Staging);
+    const std::array<AtrousChannel, 2> channels{AtrousChannel{&in_[0], &out_[0], &history_},
+                                                AtrousChannel{&in_[1], &out_[1], &history_}};
+    for (int unit = 0; unit < 2; ++unit) {
+        pipelines_[size_t(unit)] = MakeAtrousPipeline(context, 2, DenoiserParams{}, 1, false, false, unit == 1);
+        sets_[size_t(unit)] = MakeAtrousSet(pipelines_[size_t(unit)], guide_, depthGradient_, channels);
     }
+    timestamps_ = TimestampPool(context, 1);
+    CommandRecorder rec(context);
+    size_t off = rec.Upload(image.guide.data(), 16 * n, staging_, 0, guide_);
+    off = rec.Upload(image.depthGradient.data(), 8 * n, staging_, off, depthGradient_);
+    off = rec.Upload(image.illum0.data(), 16 * n, staging_, off, in_[0]);
+    rec.Upload(image.illum1.data(), 16 * n, staging_, off, in_[1]);
+    rec.Barrier();
+    rec.Submit();
+}
+
+AtrousProbeRun AtrousProbe::Run(bool unitWeights, int runs) {
+    const size_t n = size_t(width_) * size_t(height_);
+    const SvgfParams p;
+    const SvgfAtrousPush push{ivec2(width_, height_), step_, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
     AtrousProbeRun result;
     result.ms = 1e30;
     size_t out1Offset = 0;
     for (int run = 0; run < std::max(runs, 1); ++run) {
-        CommandRecorder rec(context, &timestamps);
+        CommandRecorder rec(context_, &timestamps_);
         rec.BeginPass("atrous");
-        rec.Dispatch(pipeline, set, &push, sizeof(push), AtrousBlockGroups(w, h, step));
+        rec.Dispatch(pipelines_[unitWeights ? 1 : 0], sets_[unitWeights ? 1 : 0], &push, sizeof(push),
+                     AtrousBlockGroups(width_, height_, step_));
         rec.Barrier();
         rec.EndPass();
-        out1Offset = rec.Download(out[0], 16 * n, staging, 0);
-        rec.Download(out[1], 16 * n, staging, out1Offset);
+        out1Offset = rec.Download(out_[0], 16 * n, staging_, 0);
+        rec.Download(out_[1], 16 * n, staging_, out1Offset);
         rec.Barrier();
         const auto t0 = std::chrono::steady_clock::now();
         rec.Submit();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        if (timestamps.enabled()) ms = timestamps.Results().at(0).second;
+        if (timestamps_.enabled()) ms = timestamps_.Results().at(0).second;
         result.ms = std::min(result.ms, ms);
     }
     result.out0.resize(n);
     result.out1.resize(n);
-    std::memcpy(result.out0.data(), staging.mapped(), 16 * n);
-    std::memcpy(result.out1.data(), static_cast<const char*>(staging.mapped()) + out1Offset, 16 * n);
+    std::memcpy(result.out0.data(), staging_.mapped(), 16 * n);
+    std::memcpy(result.out1.data(), static_cast<const char*>(staging_.mapped()) + out1Offset, 16 * n);
     return result;
 }
 
@@ -101,12 +103,12 @@ AtrousFloor MeasureAtrousFloor(VulkanContext& context, int width, int height, in
     AtrousFloor f;
     f.width = width;
     f.height = height;
-    const AtrousProbeImage image = MakeAtrousProbeImage(width, height, 7);
+    AtrousProbe probe(context, MakeAtrousProbeImage(width, height, 7), f.step);
     // Alternate the two so that a drifting machine affects both alike; keep each one's best.
     f.fullMs = f.unitWeightsMs = 1e30;
     for (int r = 0; r < std::max(runs, 1); ++r) {
-        f.fullMs = std::min(f.fullMs, RunAtrousProbe(context, image, f.step, false, 2).ms);
-        f.unitWeightsMs = std::min(f.unitWeightsMs, RunAtrousProbe(context, image, f.step, true, 2).ms);
+        f.fullMs = std::min(f.fullMs, probe.Run(false, 2).ms);
+        f.unitWeightsMs = std::min(f.unitWeightsMs, probe.Run(true, 2).ms);
     }
     for (const PassBytes& pb : SvgfPassBytes(width, height, DenoiserParams{}))
         if (pb.pass == "atrous1") f.bytesPerPixel = pb.bytesPerPixel;

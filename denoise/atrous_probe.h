@@ -6,10 +6,14 @@
 // the pass from the bandwidth bound is data movement or the weights — measured, not assumed.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/math.h"
+#include "vk/allocator.h"
+#include "vk/pipeline.h"
+#include "vk/recorder.h"
 
 namespace fovrt {
 
@@ -25,13 +29,27 @@ struct AtrousProbeImage {
 };
 AtrousProbeImage MakeAtrousProbeImage(int width, int height, uint32_t seed);
 
-// One svgf_atrous_pair dispatch at `step` (not the step-1 variant), as the denoisers record it.
 struct AtrousProbeRun {
     std::vector<vec4> out0, out1;  // illumination + variance of both channels
     double ms = 0.0;               // best of `runs` (GPU timestamps; wall clock without them)
 };
-AtrousProbeRun RunAtrousProbe(VulkanContext& context, const AtrousProbeImage& image, int step, bool unitWeights,
-                              int runs = 1);
+
+// One svgf_atrous_pair dispatch at `step` (not the step-1 variant), as the denoisers record it:
+// the image uploaded and both pipelines (as run, unit weights) built once, then run at will.
+class AtrousProbe {
+public:
+    AtrousProbe(VulkanContext& context, const AtrousProbeImage& image, int step);
+    AtrousProbeRun Run(bool unitWeights, int runs = 1);
+
+private:
+    VulkanContext& context_;
+    int width_, height_, step_;
+    Buffer guide_, depthGradient_, history_, staging_;
+    std::array<Buffer, 2> in_, out_;
+    std::array<ComputePipeline, 2> pipelines_;  // [unitWeights]
+    std::array<VkDescriptorSet, 2> sets_{};
+    TimestampPool timestamps_;
+};
 
 struct AtrousFloor {
     int width = 0, height = 0, step = 2;

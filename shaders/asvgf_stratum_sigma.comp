@@ -28,7 +28,7 @@ void main() {
     [[unroll]] for (int dy = -1; dy <= 1; ++dy)
         [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
             ivec2 t = s + ivec2(dx, dy);
-            if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, pc.grid))) continue;
+            if (!in_image(t, pc.grid)) continue;
             int kt = t.y * pc.grid.x + t.x;
             if (GUIDE_IS_BACKGROUND(FETCH4(guide_geometry, kt))) continue;
             float l = FETCH1(guide_luminance, kt);

@@ -39,8 +39,9 @@ TEST_CASE("a-trous floor probe: unit weights are the plain a-trous kernel", "[vu
     // Odd size: 2×2 blocks with partners outside the image at the right and bottom edges.
     const AtrousProbeImage im = MakeAtrousProbeImage(67, 45, 3);
     for (int step : {2, 4}) {
-        const AtrousProbeRun unit = RunAtrousProbe(c, im, step, true);
-        const AtrousProbeRun full = RunAtrousProbe(c, im, step, false);
+        AtrousProbe probe(c, im, step);
+        const AtrousProbeRun unit = probe.Run(true);
+        const AtrousProbeRun full = probe.Run(false);
         double maxErr = 0.0, maxFullDiff = 0.0;
         for (int y = 0; y < im.height; ++y)
             for (int x = 0; x < im.width; ++x) {
