@@ -10,6 +10,7 @@
 #include "core/frame_inputs.h"
 #include "core/image.h"
 #include "denoise/params.h"
+#include "denoise/variants.h"
 
 namespace fovrt {
 
@@ -49,7 +50,5 @@ public:
 std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, int height,
                                            const DenoiserParams& params);
 
-// Names accepted by CreateDenoiser: svgf, svgf-weighted, asvgf, two-history, two-history-asvgf.
-const std::vector<std::string>& DenoiserNames();
 
 }  // namespace fovrt

@@ -10,25 +10,16 @@
 #include "denoise/svgf_vk.h"
 #include "denoise/two_history_ref.h"
 #include "denoise/two_history_vk.h"
+#include "denoise/variants.h"
 #include "vk/context.h"
 
 namespace fovrt {
 
-const std::vector<std::string>& DenoiserNames() {
-    static const std::vector<std::string> names = {"svgf", "svgf-weighted", "asvgf", "two-history",
-                                                   "two-history-asvgf"};
-    return names;
-}
-
 namespace {
 
-bool IsSvgf(const std::string& name) { return name == "svgf" || name == "svgf-weighted"; }
+bool IsSvgf(const std::string& name) { return FindDenoiserVariant(name).family == DenoiserFamily::Svgf; }
 
-void CheckName(const std::string& name) {
-    for (const auto& n : DenoiserNames())
-        if (n == name) return;
-    Fail("unknown denoiser '{}' (known: {})", name, fmt::join(DenoiserNames(), ", "));
-}
+void CheckName(const std::string& name) { FindDenoiserVariant(name); }
 
 // Resolves the Vulkan context: the caller's (not owned), or a new one; null → CPU fallback.
 std::shared_ptr<VulkanContext> ResolveContext(const std::string& device, VulkanContext* context) {
@@ -48,9 +39,7 @@ std::shared_ptr<VulkanContext> ResolveContext(const std::string& device, VulkanC
 }  // namespace
 
 DenoiserParams ParamsForDenoiser(const std::string& name, DenoiserParams params) {
-    if (name == "svgf-weighted") params.svgf.weightBySampleCount = true;
-    if (name == "svgf") params.svgf.weightBySampleCount = false;
-    return params;
+    return ParamsForVariant(FindDenoiserVariant(name), params);
 }
 
 std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::string& device,

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/error.h"
+#include "denoise/variants.h"
 
 namespace fovrt {
 namespace {
@@ -14,7 +15,7 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
 
 bool AnyDenoiserNeedsGradients(const DenoiseConfig& denoise) {
     for (const std::string& name : denoise.denoisers)
-        if (name.find("asvgf") != std::string::npos) return true;
+        if (FindDenoiserVariant(name, "denoise.denoisers").needsGradientSamples) return true;
     return false;
 }
 

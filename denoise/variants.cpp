@@ -1,0 +1,72 @@
+#include "denoise/variants.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace fovrt {
+
+const std::vector<DenoiserVariant>& DenoiserVariants() {
+    using F = DenoiserFamily;
+    // name, summary, family, weighted, twoHistory, emaGradient, asvgfGradient, gradient samples, sample count
+    static const std::vector<DenoiserVariant> rows = {
+        {"svgf", "SVGF (Schied 2017)", F::Svgf, false, false, false, false, false, false},
+        {"svgf-weighted", "SVGF with temporal weights x sample count", F::Svgf, true, false, false, false, false, true},
+        {"asvgf", "A-SVGF temporal gradients (Schied 2018)", F::TwoHistory, false, false, false, true, true, false},
+        {"two-history", "two-history SVGF (Tu 2024)", F::TwoHistory, false, true, true, false, false, true},
+        {"two-history-asvgf", "two-history SVGF with A-SVGF's gradient as q", F::TwoHistory, false, true, false, true,
+         true, true},
+    };
+    return rows;
+}
+
+const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
+    for (const DenoiserVariant& v : DenoiserVariants())
+        if (v.name == name) return &v;
+    return nullptr;
+}
+
+namespace {
+// Levenshtein distance, for "did you mean".
+size_t EditDistance(std::string_view a, std::string_view b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+}  // namespace
+
+const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
+    if (const DenoiserVariant* v = LookupDenoiserVariant(name)) return *v;
+    const DenoiserVariant* nearest = &DenoiserVariants().front();
+    for (const DenoiserVariant& v : DenoiserVariants())
+        if (EditDistance(name, v.name) < EditDistance(name, nearest->name)) nearest = &v;
+    Fail("{}: unknown denoiser '{}' (did you mean '{}'? known: {})", what, name, nearest->name,
+         fmt::join(DenoiserNames(), ", "));
+}
+
+const std::vector<std::string>& DenoiserNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const DenoiserVariant& v : DenoiserVariants()) n.emplace_back(v.name);
+        return n;
+    }();
+    return names;
+}
+
+DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams params) {
+    params.svgf.weightBySampleCount = variant.weightBySampleCount;
+    return params;
+}
+
+}  // namespace fovrt

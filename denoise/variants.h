@@ -1,0 +1,47 @@
+// The one table of denoiser variants: every name `run`, `experiment`, `bench` and `memory` accept,
+// with the family whose passes it runs, the options it implies, and what it needs from the
+// renderer. Adding a variant is one row here (plus a pass file if it brings a new pass).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "denoise/params.h"
+
+namespace fovrt {
+
+// The pass family a variant runs. Svgf: reproject → moments → à-trous → modulate (SPEC §3).
+// TwoHistory: the same stages composed with A-SVGF's temporal gradient and/or two-history's
+// second history (SPEC §4–§5).
+enum class DenoiserFamily { Svgf, TwoHistory };
+
+struct DenoiserVariant {
+    std::string_view name;     // the factory name, e.g. "two-history-asvgf"
+    std::string_view summary;  // one line for `fovrt info` and error messages
+    DenoiserFamily family;
+    bool weightBySampleCount;  // svgf-weighted: temporal weights × n (SvgfParams)
+    bool twoHistory;           // keeps the weighted history I_w, W_w, S_k and blends (Tu 2024)
+    bool emaGradient;          // two-history's EMA luminance gradient g → q
+    bool asvgfGradient;        // A-SVGF temporal gradient → per-pixel α (Schied 2018)
+    // What the renderer must produce for it (FrameInputs):
+    bool needsGradientSamples;  // A-SVGF forward-projected gradient samples
+    bool needsSampleCount;      // per-pixel sample counts uploaded to the device
+};
+
+// Every variant, in the order tables list them.
+const std::vector<DenoiserVariant>& DenoiserVariants();
+// The row of `name`; fovrt::Error naming the key `what` (e.g. "denoise.denoisers"), listing the
+// known names and suggesting the nearest one otherwise.
+const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what = "denoiser");
+// Null when `name` is not a variant.
+const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
+
+// Names accepted by CreateDenoiser, in table order.
+const std::vector<std::string>& DenoiserNames();
+
+// Parameters the variant implies (svgf-weighted sets svgf.weightBySampleCount; the two-history
+// family keeps its own weighted history and clears it).
+DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams params);
+
+}  // namespace fovrt
