@@ -6,10 +6,10 @@
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
-#include "denoise/svgf_cpu.h"
-#include "denoise/svgf_vk.h"
-#include "denoise/two_history_ref.h"
-#include "denoise/two_history_vk.h"
+#include "denoise/reference/svgf_cpu.h"
+#include "denoise/vulkan/svgf_vk.h"
+#include "denoise/reference/two_history_ref.h"
+#include "denoise/vulkan/two_history_vk.h"
 #include "denoise/variants.h"
 #include "vk/context.h"
 
@@ -61,15 +61,6 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
         return std::make_unique<TwoHistoryVulkanDenoiser>(v, std::move(ctx), p);
     }
     Fail("denoiser '{}' is not implemented yet", name);
-}
-
-std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, int height,
-                                           const DenoiserParams& params) {
-    CheckName(name);
-    const DenoiserParams p = ParamsForDenoiser(name, params);
-    if (IsSvgf(name)) return PlanSvgfMemory(width, height, p);
-    if (TwoHistoryVariant v; TwoHistoryVariantOf(name, v)) return PlanTwoHistoryMemory(name, width, height, p);
-    Fail("denoiser '{}' has no memory plan yet", name);
 }
 
 }  // namespace fovrt

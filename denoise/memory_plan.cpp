@@ -5,14 +5,10 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "denoise/svgf_layout.h"
+#include "denoise/gradient_strata.h"
+#include "denoise/variants.h"
 
 namespace fovrt {
-
-std::vector<std::string> SvgfChannels(const SvgfParams& params) {
-    if (params.filterCombined) return {"combined"};
-    return {"direct", "indirect"};
-}
 
 std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserParams& params) {
     if (width <= 0 || height <= 0) Fail("memory plan: invalid size {}x{}", width, height);
@@ -63,6 +59,70 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
     staging += StagingAlign(12 * n) + StagingAlign(8);
     add("staging", staging, false);
     return plan;
+}
+
+std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
+                                                  const DenoiserParams& params) {
+    TwoHistoryVariant v;
+    if (!TwoHistoryVariantOf(name, v)) return {};
+    const size_t n = size_t(width) * size_t(height);
+    const size_t hs = HistoryScalarBytes(params.precision);
+    std::vector<BufferPlan> plan;
+    auto add = [&](const std::string& what, size_t bytes, bool history) {
+        plan.push_back({what, bytes, history});
+    };
+    const size_t sampleCountBytes = ((2 * n + 3) / 4) * 4;
+    const size_t sampleBytes = GradientSampleCapacity(width, height) * sizeof(GradientSample);
+    if (v != TwoHistoryVariant::Asvgf) {
+        for (const std::string& ch : SvgfChannels(params.svgf)) {
+            add(ch + ".wcolor.A", 3 * hs * n, true);
+            add(ch + ".wcolor.B", 3 * hs * n, true);
+            add(ch + ".willum0", 16 * n, false);
+            add(ch + ".willum1", 16 * n, false);
+        }
+        for (const char* side : {"A", "B"}) {
+            add(std::string("wweight.") + side, hs * n, true);
+            add(std::string("powerSums.") + side, 3 * hs * n, true);
+            // g as one float (its luminance); two-history-asvgf takes q from A-SVGF instead.
+            if (v == TwoHistoryVariant::TwoHistory)
+                add(std::string("gradient.") + side, hs * n, true);
+        }
+        add("q", 4 * n, false);
+        if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);
+    }
+    if (v != TwoHistoryVariant::TwoHistory) {
+        const ivec2 g = StratumGridSize(width, height);
+        const size_t strata = size_t(g.x) * size_t(g.y);
+        add("asvgf.samples", sampleBytes, false);
+        add("asvgf.claim", 4 * strata, false);
+        add("asvgf.grad0", 8 * strata, false);
+        add("asvgf.grad1", 8 * strata, false);
+        // Stratum guide (Vulkan: asvgf_gradient_gather): normal + depth, luminance + depth
+        // gradient, and σ_l·std (asvgf_stratum_sigma).
+        add("asvgf.guideGeometry", 16 * strata, false);
+        add("asvgf.guideLuminance", 16 * strata, false);
+        add("asvgf.sigmaL", 4 * strata, false);
+        add("asvgf.alpha", 4 * n, false);
+        add("asvgf.lambda", 4 * n, false);
+    }
+    add("staging.extra", StagingAlign(sampleCountBytes) + StagingAlign(sampleBytes), false);
+    return plan;
+}
+
+std::vector<BufferPlan> PlanTwoHistoryMemory(const std::string& name, int width, int height,
+                                             const DenoiserParams& params) {
+    std::vector<BufferPlan> plan = PlanSvgfMemory(width, height, params);
+    for (BufferPlan& b : PlanTwoHistoryExtraMemory(name, width, height, params))
+        plan.push_back(std::move(b));
+    return plan;
+}
+
+std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, int height,
+                                           const DenoiserParams& params) {
+    const DenoiserVariant& v = FindDenoiserVariant(name);
+    const DenoiserParams p = ParamsForVariant(v, params);
+    if (v.family == DenoiserFamily::Svgf) return PlanSvgfMemory(width, height, p);
+    return PlanTwoHistoryMemory(name, width, height, p);
 }
 
 size_t TotalBytes(const std::vector<BufferPlan>& plan) {

@@ -9,19 +9,32 @@
 
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
+#include "denoise/variants.h"
 
 namespace fovrt {
 
 // Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
 inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
 
-// Channels SVGF filters: {"direct", "indirect"}, or {"combined"} with filterCombined.
-std::vector<std::string> SvgfChannels(const SvgfParams& params);
+// Bytes per element of a history plane scalar.
+inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }
 
 // Every buffer of the SVGF / svgf-weighted Vulkan path at W×H (one eye). Names:
 // input.* (per-frame uploads), geometry.*.A/B (this/previous frame, history), <channel>.color|
 // moments|length|weight.A/B (history), <channel>.illum0/1 (à-trous ping-pong), output, stats, staging.
 std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserParams& params);
+
+// Buffers of the named denoiser beyond SVGF's, W×H, one eye, named as the Vulkan path allocates
+// them. History (A/B pairs): <channel>.wcolor (I_w, float3), wweight (W_w), powerSums (S_{-1},
+// S_0, S_1), gradient (g, one float: its luminance; two-history only); W_u lives in SVGF's
+// <channel>.length. Scratch: weighted
+// illumination ping-pong, q, sample counts, A-SVGF strata/α/λ, extra staging.
+std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
+                                                  const DenoiserParams& params);
+
+// Full plan of the named denoiser: SVGF's buffers (PlanSvgfMemory) + the extra ones above.
+std::vector<BufferPlan> PlanTwoHistoryMemory(const std::string& name, int width, int height,
+                                             const DenoiserParams& params);
 
 size_t TotalBytes(const std::vector<BufferPlan>& plan);
 size_t HistoryBytes(const std::vector<BufferPlan>& plan);

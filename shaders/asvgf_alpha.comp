@@ -7,6 +7,7 @@
 //   its stratum; α = (1 − λ)α_base + λ.
 // Reads:  (δ̂, Δ̂) per stratum.  Writes: α and λ per pixel.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
 #include "common/access.glsl"
@@ -17,11 +18,7 @@ PLANE(ASVGF_ALPHA_B_GRAD, grad);  // rg32f (δ̂, Δ̂) per stratum: a uniform t
 layout(std430, binding = ASVGF_ALPHA_B_ALPHA) writeonly buffer AlphaOut { float alpha_out[]; };
 layout(std430, binding = ASVGF_ALPHA_B_LAMBDA) writeonly buffer LambdaOut { float lambda_out[]; };
 
-layout(push_constant) uniform Push {
-    ivec2 size;
-    ivec2 grid;
-    float alpha;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_ALPHA);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -9,6 +9,7 @@
 //   as 0; centre weight 1.
 // Reads:  (δ, Δ), stratum guide (asvgf_gradient_gather), σ_l·std.  Writes: (δ, Δ) filtered.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
 #include "common/access.glsl"
@@ -23,14 +24,7 @@ PLANE(ASVGF_ATROUS_B_GUIDE_LUMINANCE, guide_luminance);  // rgba32f: luminance, 
 PLANE(ASVGF_ATROUS_B_SIGMA, sigma_l);                    // r32f: σ_l·std
 layout(std430, binding = ASVGF_ATROUS_B_GRAD_OUT) writeonly buffer GradOut { vec2 grad_out[]; };
 
-layout(push_constant) uniform Push {
-    ivec2 size;
-    ivec2 grid;
-    int step;
-    float sigma_depth;
-    float sigma_normal;
-    float sigma_luminance;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_ATROUS);  // shaders/push_constants.h
 
 bool inside(ivec2 s) { return all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, pc.grid)); }
 

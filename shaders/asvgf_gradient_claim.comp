@@ -5,6 +5,7 @@
 // Purpose: each valid sample (stratum inside the grid, pixel on screen, finite luminances)
 //   atomicMin's its index into its stratum's slot: the lowest index wins, deterministically.
 // Reads:  gradient samples.  Writes: claim slots (cleared to 0xFFFFFFFF by the host).
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
 
@@ -13,11 +14,7 @@ layout(local_size_x = FOVRT_WORKGROUP_1D) in;
 layout(std430, binding = ASVGF_CLAIM_B_SAMPLES) readonly buffer Samples { GradientSample samples[]; };
 layout(std430, binding = ASVGF_CLAIM_B_CLAIM) buffer Claim { uint claim[]; };
 
-layout(push_constant) uniform Push {
-    ivec2 size;   // image
-    ivec2 grid;   // strata
-    uint count;   // samples
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_SAMPLES);  // shaders/push_constants.h
 
 void main() {
     uint k = gl_GlobalInvocationID.x;

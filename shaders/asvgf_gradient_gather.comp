@@ -7,6 +7,7 @@
 // Reads:  gradient samples, claim slots, this frame's geometry and noisy colour at the guide pixel.
 // Writes: (δ, Δ) per stratum, the stratum guide (two vec4 planes).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/asvgf.glsl"
 #include "common/access.glsl"
@@ -29,11 +30,7 @@ PLANE(ASVGF_GATHER_B_INDIRECT, indirect);      // rgb32f
 PLANE(ASVGF_GATHER_B_ALBEDO, albedo);          // rgb32f
 PLANE(ASVGF_GATHER_B_EMISSION, emission);      // rgb32f
 
-layout(push_constant) uniform Push {
-    ivec2 size;
-    ivec2 grid;
-    uint count;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_SAMPLES);  // shaders/push_constants.h
 
 void main() {
     ivec2 s = ivec2(gl_GlobalInvocationID.xy);

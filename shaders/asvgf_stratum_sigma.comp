@@ -7,6 +7,7 @@
 // iteration (as AsvgfGradientAtrousRef does inline). 0 where the stratum's guide is background.
 // Reads:  stratum guide (geometry: background test; luminance).  Writes: σ_l·std per stratum.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/access.glsl"
 
@@ -16,10 +17,7 @@ PLANE(ASVGF_SIGMA_B_GUIDE_GEOMETRY, guide_geometry);    // rgba32f
 PLANE(ASVGF_SIGMA_B_GUIDE_LUMINANCE, guide_luminance);  // rgba32f
 layout(std430, binding = ASVGF_SIGMA_B_OUT) writeonly buffer SigmaOut { float sigma_out[]; };
 
-layout(push_constant) uniform Push {
-    ivec2 grid;
-    float sigma_luminance;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_SIGMA);  // shaders/push_constants.h
 
 void main() {
     ivec2 s = ivec2(gl_GlobalInvocationID.xy);

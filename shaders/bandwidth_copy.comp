@@ -12,6 +12,7 @@
 //   element (the transcendental of every edge-stopping weight): the ALU side of the passes.
 // Reads:  source (vec4 per element).  Writes: destination (vec4 per element).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/access.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
@@ -21,10 +22,7 @@ PLANE(BANDWIDTH_B_TEXEL_IN, src_texel);  // rgba32f
 layout(std430, binding = BANDWIDTH_B_STORAGE_IN) readonly buffer Src { vec4 src[]; };
 layout(std430, binding = BANDWIDTH_B_OUT) writeonly buffer Dst { vec4 dst[]; };
 
-// Mirrors BandwidthPush in src/vk/bandwidth.cpp.
-layout(push_constant) uniform Push {
-    ivec2 size;  // elements as rows × columns
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_BANDWIDTH);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

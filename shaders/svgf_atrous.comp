@@ -18,6 +18,7 @@
 // Reads:  per channel illumination + variance (vec4); guide (normal, depth, background), depth gradient.
 // Writes: per channel illumination + variance (vec4); colour history when kWriteHistory.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/luminance.glsl"
@@ -32,7 +33,7 @@ layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 layout(constant_id = FOVRT_SPEC_ATROUS_WRITE_HISTORY) const bool kWriteHistory = false;
 layout(constant_id = FOVRT_SPEC_ATROUS_UNIT_WEIGHTS) const bool kUnitWeights = false;  // bench probe only
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h).
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/vulkan/svgf_texel_formats.h).
 PLANE(SVGF_ATROUS_B_GUIDE, guide);             // rgba32f (normal, depth; svgf_pack_guide)
 PLANE(SVGF_ATROUS_B_DEPTH_GRAD, depth_grad);   // rg32f
 PLANE(SVGF_ATROUS_B_ILLUM_IN, illum_in0);      // rgba32f
@@ -49,14 +50,7 @@ layout(std430, binding = SVGF_ATROUS_B_HIST_COLOR2) writeonly buffer HistColor1 
 #error "FOVRT_CHANNELS must be 1 or 2"
 #endif
 
-// Mirrors SvgfAtrousPush in denoise/svgf_layout.h.
-layout(push_constant) uniform Push {
-    ivec2 size;
-    int step;
-    float sigma_depth;
-    float sigma_normal;
-    float sigma_luminance;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_ATROUS);  // shaders/push_constants.h
 
 bool inside(ivec2 q) { return in_image(q, pc.size); }
 

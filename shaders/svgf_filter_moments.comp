@@ -12,6 +12,7 @@
 //         this frame's moments and history length.
 // Writes: illumination + variance (vec4).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/edge_stopping.glsl"
@@ -21,7 +22,7 @@
 
 layout(local_size_x = FOVRT_SPATIAL_LIST_GROUP) in;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h).
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/vulkan/svgf_texel_formats.h).
 PLANE(SVGF_MOMENTS_B_ILLUM_IN, illum_in);      // rgba32f
 PLANE(SVGF_MOMENTS_B_GUIDE, guide);            // rgba32f (normal, depth; svgf_pack_guide)
 PLANE(SVGF_MOMENTS_B_DEPTH_GRAD, depth_grad);  // rg32f
@@ -29,13 +30,7 @@ PLANE(SVGF_MOMENTS_B_MOMENTS, moments);        // rg32f, or rg16f in _fp16
 PLANE(SVGF_MOMENTS_B_LENGTH, hist_length);     // r32f, or r16f in _fp16
 layout(std430, binding = SVGF_MOMENTS_B_ILLUM_OUT) writeonly buffer IllumOut { vec4 illum_out[]; };
 
-// Mirrors SvgfFilterMomentsPush in denoise/svgf_layout.h.
-layout(push_constant) uniform Push {
-    ivec2 size;
-    float sigma_depth;
-    float sigma_normal;
-    float threshold;  // history length below which the spatial estimate is used
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_FILTER_MOMENTS);  // shaders/push_constants.h
 
 void filter_pixel(int i) {
     ivec2 p = ivec2(i % pc.size.x, i / pc.size.x);

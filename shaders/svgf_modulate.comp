@@ -5,6 +5,7 @@
 //         FOVRT_SPEC_MODULATE_COMBINED), albedo, emission — uniform texel buffers (common/access.glsl).
 // Writes: HDR colour (float[3N]).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 
@@ -17,10 +18,7 @@ PLANE(SVGF_MODULATE_B_ALBEDO, albedo);      // rgb32f
 PLANE(SVGF_MODULATE_B_EMISSION, emission);  // rgb32f
 layout(std430, binding = SVGF_MODULATE_B_OUT) writeonly buffer Out { float color_out[]; };
 
-// Mirrors SvgfModulatePush in denoise/svgf_layout.h.
-layout(push_constant) uniform Push {
-    ivec2 size;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_IMAGE_SIZE);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

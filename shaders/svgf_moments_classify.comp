@@ -6,6 +6,7 @@
 // Reads:  guide (background test), this frame's history length.
 // Writes: list of pixel indices, (groups x, 1, 1, count) — zeroed by the host before.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #define PIXEL_LIST_B_ARGS SVGF_CLASSIFY_B_ARGS
@@ -17,11 +18,7 @@ layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 PLANE(SVGF_CLASSIFY_B_GUIDE, guide);           // rgba32f
 PLANE(SVGF_CLASSIFY_B_LENGTH, hist_length);    // r32f, or r16f in _fp16
 
-// Mirrors SvgfClassifyPush in denoise/svgf_layout.h.
-layout(push_constant) uniform Push {
-    ivec2 size;
-    float threshold;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_CLASSIFY);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

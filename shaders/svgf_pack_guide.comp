@@ -7,6 +7,7 @@
 // Reads:  depth, normal, object id (this frame).
 // Writes: guide (vec4).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/access.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
@@ -16,9 +17,7 @@ PLANE(SVGF_GUIDE_B_NORMAL, normal);        // rgb32f
 UPLANE(SVGF_GUIDE_B_OBJECT, object_id);    // r32ui
 layout(std430, binding = SVGF_GUIDE_B_OUT) writeonly buffer GuideOut { vec4 guide_out[]; };
 
-layout(push_constant) uniform Push {
-    ivec2 size;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_IMAGE_SIZE);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -21,6 +21,7 @@
 // Writes: per channel this frame's moments/length/weight (and colour history when no à-trous
 //         feedback), illumination + temporal variance (vec4); sanitising counters; the list.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/luminance.glsl"
@@ -44,7 +45,7 @@ const bool kWeighted = (kFlags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
 const bool kCombined = (kFlags & SVGF_REPROJECT_FLAG_COMBINED) != 0u;
 const bool kWriteColor = (kFlags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/svgf_texel_formats.h),
+// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/vulkan/svgf_texel_formats.h),
 // except the fp16 colour history (RGB16F texel buffers are not widely supported) and the sample counts.
 PLANE(SVGF_REPROJECT_B_COLOR_IN, color_in);            // rgb32f
 PLANE(SVGF_REPROJECT_B_COLOR_IN2, color_in2);          // rgb32f
@@ -90,13 +91,7 @@ HISTORY_PLANES(1, SVGF_REPROJECT_B_PREV_COLOR2, SVGF_REPROJECT_B_PREV_MOMENTS2, 
 #error "FOVRT_CHANNELS must be 1 or 2"
 #endif
 
-// Mirrors SvgfReprojectPush in denoise/svgf_layout.h.
-layout(push_constant) uniform Push {
-    ivec2 size;
-    float alpha_color;
-    float alpha_moments;
-    uint has_prev;  // 0: no previous frame (first frame, reset): nothing reprojects
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_REPROJECT);  // shaders/push_constants.h
 
 float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }

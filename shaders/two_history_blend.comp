@@ -6,6 +6,7 @@
 // Reads:  filtered (I_u, Var) and (I_w, Var), W_u, W_w, power sums, q.
 // Writes: the blend, in place over (I_u, Var) (the input of the remaining iterations).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
 #include "common/access.glsl"
@@ -28,9 +29,7 @@ PLANE(TH_BLEND_B_S, s);              // rgb32f
 #define LOAD_S(i) FETCH3(s, i)
 #endif
 
-layout(push_constant) uniform Push {
-    ivec2 size;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_IMAGE_SIZE);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

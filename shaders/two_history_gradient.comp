@@ -6,11 +6,12 @@
 // Purpose: g' = Σ h(k) w_z w_n g / Σ h(k) w_z w_n over a 5×5 à-trous kernel (step 1, no
 //   luminance term: g itself is what is being estimated); q = clamp(S·|g'|/std, 0, 1) with
 //   std² = Σ_channels Var of the unweighted history (after the variance estimate). g is the
-//   signed luminance of the gradient, one float (denoise/two_history_math.h).
+//   signed luminance of the gradient, one float (denoise/reference/two_history_math.h).
 // Reads:  gradient EMA (this frame), (I_u, Var) per channel, the packed guide (normal, depth,
 //         background; svgf_pack_guide: one fetch per tap instead of three), depth gradient.
 // Writes: q (float per pixel).
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
 #include "common/access.glsl"
@@ -27,14 +28,7 @@ PLANE(TH_GRADIENT_B_GUIDE, guide);              // rgba32f (normal, depth; svgf_
 PLANE(TH_GRADIENT_B_DEPTH_GRAD, depth_grad);    // rg32f
 layout(std430, binding = TH_GRADIENT_B_Q) writeonly buffer Q { float q_out[]; };
 
-// Mirrors TwoHistoryGradientPush in denoise/two_history_vk.cpp.
-layout(push_constant) uniform Push {
-    ivec2 size;
-    float sigma_depth;
-    float sigma_normal;
-    float q_scale;
-    uint two_channels;
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_GRADIENT);  // shaders/push_constants.h
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -21,6 +21,7 @@
 //         when no à-trous iteration feeds back; W_w, S, g once), (I_u, Var) and (I_w, Var), counters,
 //         the list.
 #include "shared_constants.h"
+#include "push_constants.h"
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
 #include "common/access.glsl"
@@ -102,14 +103,7 @@ CHANNEL_PLANES(1, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW2, TH_REPR
 #error "FOVRT_CHANNELS must be 1 or 2"
 #endif
 
-// Mirrors TwoHistoryReprojectPush in denoise/two_history_vk.cpp.
-layout(push_constant) uniform Push {
-    ivec2 size;
-    float alpha;
-    float alpha_moments;
-    float gradient_beta;
-    uint has_prev;  // 0: no previous frame (first frame, reset): nothing reprojects
-} pc;
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_REPROJECT);  // shaders/push_constants.h
 
 float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include "denoise/asvgf_ref.h"
-#include "denoise/two_history_ref.h"
+#include "denoise/reference/asvgf_ref.h"
+#include "denoise/reference/two_history_ref.h"
 #include "denoise_two_history_scene.h"
 #include "test_support.h"
 

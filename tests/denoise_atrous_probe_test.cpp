@@ -1,10 +1,10 @@
-// The bench's à-trous floor probe (denoise/atrous_probe.h): its unit-weight mode must be the plain
+// The bench's à-trous floor probe (denoise/bench/atrous_probe.h): its unit-weight mode must be the plain
 // à-trous kernel — Σ h c / Σ h and Σ h² Var / (Σ h)² over the taps inside the image and off the
 // background, background pixels passed through — so that the "every weight 1" timing it reports
 // is the same dispatch minus the weight arithmetic; and the full mode must be a different one.
 #include <cmath>
 
-#include "denoise/atrous_probe.h"
+#include "denoise/bench/atrous_probe.h"
 #include "test_support.h"
 #include "vk_test_support.h"
 

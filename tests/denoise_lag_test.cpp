@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 
-#include "denoise/two_history_ref.h"
+#include "denoise/reference/two_history_ref.h"
 #include "denoise_two_history_scene.h"
 #include "test_support.h"
 

@@ -1,4 +1,4 @@
-// Byte models of the denoiser passes (denoise/pass_bytes.h): every pass a denoiser actually times
+// Byte models of the denoiser passes (denoise/bench/pass_bytes.h): every pass a denoiser actually times
 // (names taken from real 64×64 runs, Vulkan and C++ reference, both precisions) has a model entry
 // and nothing else does; the models hold at least the compulsory traffic of the memory plan; and
 // spot values that follow from the shaders' bindings.
@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/pass_bytes.h"
+#include "denoise/bench/pass_bytes.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"

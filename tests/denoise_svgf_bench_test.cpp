@@ -1,6 +1,6 @@
 // The denoiser benchmark machinery on a small image (the full 1280×720 run is the hidden test
 // "[.bench]": `denoise_svgf_bench_test "[.bench]"`, or `fovrt bench --denoisers`).
-#include "denoise/denoise_bench.h"
+#include "denoise/bench/denoise_bench.h"
 #include "test_support.h"
 #include "vk/context.h"
 

@@ -10,7 +10,7 @@
 
 #include "core/frame_inputs.h"
 #include "denoise/denoiser.h"
-#include "denoise/svgf_ref.h"
+#include "denoise/reference/svgf_ref.h"
 
 namespace fovrt::test {
 

@@ -6,8 +6,8 @@
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/svgf_cpu.h"
-#include "denoise/svgf_ref.h"
+#include "denoise/reference/svgf_cpu.h"
+#include "denoise/reference/svgf_ref.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 

@@ -15,9 +15,9 @@
 
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/svgf_cpu.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/svgf_vk.h"
+#include "denoise/reference/svgf_cpu.h"
+#include "denoise/vulkan/svgf_layout.h"
+#include "denoise/vulkan/svgf_vk.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"

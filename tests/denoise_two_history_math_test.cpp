@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "denoise/two_history_math.h"
+#include "denoise/reference/two_history_math.h"
 #include "test_support.h"
 
 using namespace fovrt;

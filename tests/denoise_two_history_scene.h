@@ -10,7 +10,7 @@
 
 #include "core/frame_inputs.h"
 #include "denoise/params.h"
-#include "denoise/svgf_cpu.h"
+#include "denoise/reference/svgf_cpu.h"
 
 namespace fovrt::test {
 
@@ -30,7 +30,7 @@ inline void MakeStaticPlane(FrameInputs& f, int w, int h, uint32_t frameIndex) {
         }
 }
 
-// The project's plain SVGF (C++ reference backend, denoise/svgf_cpu.h).
+// The project's plain SVGF (C++ reference backend, denoise/reference/svgf_cpu.h).
 inline SvgfReferenceDenoiser MakeSvgf(const SvgfParams& svgf) {
     DenoiserParams params;
     params.svgf = svgf;

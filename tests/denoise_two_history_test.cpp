@@ -12,9 +12,9 @@
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/two_history_math.h"
-#include "denoise/two_history_ref.h"
+#include "denoise/vulkan/svgf_layout.h"
+#include "denoise/reference/two_history_math.h"
+#include "denoise/reference/two_history_ref.h"
 #include "denoise_two_history_scene.h"
 #include "test_support.h"
 

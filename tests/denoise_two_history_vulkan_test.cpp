@@ -14,11 +14,11 @@
 #include <memory>
 #include <random>
 
-#include "denoise/asvgf_ref.h"
+#include "denoise/reference/asvgf_ref.h"
 #include "denoise/denoiser_factory.h"
-#include "denoise/svgf_vk.h"
-#include "denoise/two_history_ref.h"
-#include "denoise/two_history_vk.h"
+#include "denoise/vulkan/svgf_vk.h"
+#include "denoise/reference/two_history_ref.h"
+#include "denoise/vulkan/two_history_vk.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/svgf_texel_formats.h"
+#include "denoise/vulkan/svgf_layout.h"
+#include "denoise/vulkan/svgf_texel_formats.h"
 #include "shaders/shader_registry.h"
 #include "test_support.h"
 #include "vk/context.h"
@@ -84,7 +84,7 @@ TEST_CASE("buffers, dispatch, timestamps and accounting", "[vk][vulkan]") {
             a[i] = vec3(0.5f, 2.0f, 1.0f);
             e[i] = vec3(0.0f, 0.0f, float(i));
         }
-        ComputePipeline pipe(c, "svgf_modulate", SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2,
+        ComputePipeline pipe(c, "svgf_modulate", SVGF_MODULATE_BINDINGS, sizeof(ImageSizePush), 2,
                              SvgfModulateTexelFormats());
         std::array<const Buffer*, SVGF_MODULATE_BINDINGS> b{};
         b[SVGF_MODULATE_B_ILLUM0] = &illum0;
@@ -102,7 +102,7 @@ TEST_CASE("buffers, dispatch, timestamps and accounting", "[vk][vulkan]") {
         off = rec.Upload(e.data(), 12 * n, staging, off, emission);
         rec.Barrier();
         rec.BeginPass("modulate");
-        SvgfModulatePush push{ivec2(w, h)};
+        ImageSizePush push{ivec2(w, h)};
         rec.Dispatch(pipe, set, &push, sizeof(push), DispatchGroups(w, h));
         rec.Barrier();
         rec.EndPass();

@@ -1,6 +1,6 @@
 // Access layer of the gather-heavy passes (à-trous, filter moments): their read-only per-pixel
 // planes are uniform texel buffers (samplerBuffer / usamplerBuffer) whose format is declared on the
-// host's VkBufferView (denoise/svgf_texel_formats.h), not std430 arrays. Same bytes, same buffers;
+// host's VkBufferView (denoise/vulkan/svgf_texel_formats.h), not std430 arrays. Same bytes, same buffers;
 // only the descriptor type differs. Why: lavapipe turns each std430 load into a per-lane loop with
 // a bounds check, but a texel fetch into one vector gather — measured ~3.3× faster for a 25-tap
 // gather at 1280×720 (denoise/svgf.md, "Speed"). fp16 history planes are R16/R16G16_SFLOAT views:

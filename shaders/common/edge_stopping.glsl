@@ -1,7 +1,7 @@
 // Edge-stopping weights of the SVGF spatial filters (paper §4.3, SPEC §3):
 //   w_z = exp(−|z(p)−z(q)| / (σz |∇z(p)·(p−q)| + ε)),  w_n = max(0, n·n')^σn,
 //   w_l = exp(−|l(p)−l(q)| / (σl sqrt(g3×3(Var l(p))) + ε)).
-// Mirrored by denoise/svgf_ref.cpp (DepthWeight, NormalWeight, LuminanceWeight).
+// Mirrored by denoise/reference/svgf_ref.cpp (DepthWeight, NormalWeight, LuminanceWeight).
 #ifndef FOVRT_EDGE_STOPPING_GLSL
 #define FOVRT_EDGE_STOPPING_GLSL
 #extension GL_EXT_control_flow_attributes : require

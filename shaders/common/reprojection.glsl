@@ -1,7 +1,7 @@
 // Back-projection taps of temporal accumulation (SVGF §4.1, SPEC §3), shared by every stage that
 // reprojects a history (svgf_reproject, two_history_reproject). The including shader defines
 //   float reproj_prev_depth(int i); vec3 reproj_prev_normal(int i); uint reproj_prev_object(int i);
-// (previous frame's planes, i = y·width + x). Mirrored by FindReprojectionTaps in denoise/svgf_ref.cpp:
+// (previous frame's planes, i = y·width + x). Mirrored by FindReprojectionTaps in denoise/reference/svgf_ref.cpp:
 //   1. 2×2 bilinear taps around the previous continuous pixel; each tap must pass the consistency
 //      test (same object id, |z_prev − z| / (dz + 0.01) ≤ 10, dot(n_prev, n) ≥ 0.9); weights of the
 //      valid taps are renormalised.

@@ -1,4 +1,4 @@
-// Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/two_history_math.h line by
+// Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/reference/two_history_math.h line by
 // line (TwoHistoryDecay, AccumulateWeights, TwoHistoryOptimalBlend, TwoHistoryGradientBlend).
 // Weights are packed as (W_u, W_w) and power sums as (S_{-1}, S_0, S_1).
 #ifndef FOVRT_TWO_HISTORY_GLSL

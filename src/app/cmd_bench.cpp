@@ -19,7 +19,7 @@
 #include "core/error.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
-#include "denoise/denoise_bench.h"
+#include "denoise/bench/denoise_bench.h"
 #include "denoise/denoiser_factory.h"
 
 namespace fovrt {
@@ -49,7 +49,7 @@ struct BenchOptions {
     bool compare = true;
     int compareSpp = 4;
     std::string embreeBinary = "/usr/bin/pathtracer";
-    bool denoisers = false;  // time the denoisers instead (denoise/denoise_bench.h)
+    bool denoisers = false;  // time the denoisers instead (denoise/bench/denoise_bench.h)
     std::vector<std::string> denoiserNames;  // --denoiser: empty = all
     bool reference = true;
     std::string precision = "fp32";

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 
+#include "shaders/push_constants.h"
 #include "shaders/shared_constants.h"
 #include "vk/allocator.h"
 #include "vk/context.h"
@@ -13,11 +14,6 @@
 namespace fovrt {
 
 namespace {
-
-struct BandwidthPush {  // shaders/bandwidth_copy.comp
-    ivec2 size;
-};
-static_assert(sizeof(BandwidthPush) == 8);
 
 constexpr uint32_t kRowElements = 4096;  // vec4 elements per dispatch row
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
-#include "denoise/svgf_atrous_vk.h"
-#include "denoise/vk_denoiser_buffers.h"
+#include "denoise/vulkan/svgf_atrous_vk.h"
+#include "denoise/vulkan/vk_denoiser_buffers.h"
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/recorder.h"

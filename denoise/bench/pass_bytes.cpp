@@ -1,4 +1,4 @@
-#include "denoise/pass_bytes.h"
+#include "denoise/bench/pass_bytes.h"
 
 #include <algorithm>
 #include <map>
@@ -6,10 +6,10 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "denoise/asvgf_ref.h"
+#include "denoise/reference/asvgf_ref.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/two_history_ref.h"
+#include "denoise/reference/two_history_ref.h"
 
 namespace fovrt {
 

@@ -1,6 +1,6 @@
 // Denoiser benchmark (`fovrt bench --denoisers`): for each denoiser at W×H on the Vulkan device in
 // use and for the C++ reference: per-pass ms, total ms, MPix/s, bytes moved per pixel per frame
-// (reads + writes of every pass, each plane counted once per pass: denoise/pass_bytes.h), and the
+// (reads + writes of every pass, each plane counted once per pass: denoise/bench/pass_bytes.h), and the
 // bandwidth bound of each pass against the host memcpy bandwidth and against the Vulkan device's
 // own streaming-copy bandwidth (vk/bandwidth.h).
 #pragma once
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "denoise/atrous_probe.h"
+#include "denoise/bench/atrous_probe.h"
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
 #include "vk/bandwidth.h"

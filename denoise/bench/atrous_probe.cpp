@@ -1,4 +1,4 @@
-#include "denoise/atrous_probe.h"
+#include "denoise/bench/atrous_probe.h"
 
 #include <algorithm>
 #include <array>
@@ -7,8 +7,8 @@
 #include <cstring>
 #include <random>
 
-#include "denoise/pass_bytes.h"
-#include "denoise/svgf_atrous_vk.h"
+#include "denoise/bench/pass_bytes.h"
+#include "denoise/vulkan/svgf_atrous_vk.h"
 #include "vk/context.h"
 
 namespace fovrt {

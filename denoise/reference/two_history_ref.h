@@ -39,11 +39,10 @@
 #include "core/image.h"
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
-#include "denoise/svgf_ref.h"
+#include "denoise/variants.h"
+#include "denoise/reference/svgf_ref.h"
 
 namespace fovrt {
-
-enum class TwoHistoryVariant { Asvgf, TwoHistory, TwoHistoryAsvgf };
 
 // Persistent per-pixel state of one frame (one side of the A/B pair). Channel 0 is direct (or the
 // combined illumination), channel 1 indirect.
@@ -138,25 +137,7 @@ class TwoHistoryReferenceDenoiser final : public Denoiser {
 
 std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(TwoHistoryVariant variant,
                                                       const DenoiserParams& params);
-const char* TwoHistoryVariantName(TwoHistoryVariant variant);
 // Checks the parameters this family reads; fovrt::Error naming the key otherwise.
 void ValidateTwoHistoryParams(const DenoiserParams& params);
-// Variant of a factory name; false when the name is none of the three.
-bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant);
-
-// Buffers of the named denoiser beyond SVGF's, W×H, one eye, named as the Vulkan path allocates
-// them. History (A/B pairs): <channel>.wcolor (I_w, float3), wweight (W_w), powerSums (S_{-1},
-// S_0, S_1), gradient (g, one float: its luminance; two-history only); W_u lives in SVGF's
-// <channel>.length. Scratch: weighted
-// illumination ping-pong, q, sample counts, A-SVGF strata/α/λ, extra staging.
-std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
-                                                  const DenoiserParams& params);
-
-// Capacity of the gradient-sample upload: two per stratum.
-size_t GradientSampleCapacity(int width, int height);
-
-// Full plan of the named denoiser: SVGF's buffers (PlanSvgfMemory) + the extra ones above.
-std::vector<BufferPlan> PlanTwoHistoryMemory(const std::string& name, int width, int height,
-                                             const DenoiserParams& params);
 
 }  // namespace fovrt

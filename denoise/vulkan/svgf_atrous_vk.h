@@ -19,9 +19,9 @@
 
 #include "core/check.h"
 #include "denoise/params.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/svgf_texel_formats.h"
-#include "denoise/vk_denoiser_buffers.h"
+#include "denoise/vulkan/svgf_layout.h"
+#include "denoise/vulkan/svgf_texel_formats.h"
+#include "denoise/vulkan/vk_denoiser_buffers.h"
 #include "vk/pipeline.h"
 #include "vk/recorder.h"
 
@@ -36,7 +36,7 @@ struct AtrousChannel {
 
 // `channels` (1 or 2) illumination planes per dispatch; `step1`: the variant for step 1 only;
 // `writeHistory`: the feedback iteration's pipeline, which also writes the colour history;
-// `unitWeights`: every edge-stopping weight 1 (the bench's floor probe, denoise/atrous_probe.h).
+// `unitWeights`: every edge-stopping weight 1 (the bench's floor probe, denoise/bench/atrous_probe.h).
 inline ComputePipeline MakeAtrousPipeline(VulkanContext& context, int channels, const DenoiserParams& params,
                                           uint32_t maxSets, bool step1, bool writeHistory,
                                           bool unitWeights = false) {
@@ -174,7 +174,7 @@ struct SvgfStagePipelines {
     // The "pack_guide" pass.
     void RecordGuide(CommandRecorder& rec, VkDescriptorSet set, int w, int h) const {
         rec.BeginPass("pack_guide");
-        const ivec2 size(w, h);
+        const ImageSizePush size{ivec2(w, h)};
         rec.Dispatch(guide, set, &size, sizeof(size), DispatchGroups(w, h));
         rec.Barrier();
         rec.EndPass();
@@ -202,7 +202,7 @@ struct SvgfStagePipelines {
     // The "modulate" pass (one channel: it holds direct + indirect).
     void RecordModulate(CommandRecorder& rec, VkDescriptorSet set, int w, int h) const {
         rec.BeginPass("modulate");
-        const SvgfModulatePush mo{ivec2(w, h)};
+        const ImageSizePush mo{ivec2(w, h)};
         rec.Dispatch(modulate, set, &mo, sizeof(mo), DispatchGroups(w, h));
         rec.Barrier();
         rec.EndPass();
@@ -215,7 +215,7 @@ struct SvgfStagePipelines {
         : feedbackIteration(feedback) {
         const Precision precision = params.precision;
         const std::string sfx = precision == Precision::Fp16 ? "_fp16" : "";
-        guide = ComputePipeline(context, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ivec2), 2,
+        guide = ComputePipeline(context, "svgf_pack_guide", SVGF_GUIDE_BINDINGS, sizeof(ImageSizePush), 2,
                                 SvgfGuideTexelFormats());
         classify = ComputePipeline(context, "svgf_moments_classify" + sfx, SVGF_CLASSIFY_BINDINGS,
                                    sizeof(SvgfClassifyPush), maxSets, SvgfClassifyTexelFormats(precision));
@@ -228,7 +228,7 @@ struct SvgfStagePipelines {
         if (feedback >= 2) atrousFeedback = MakeAtrousPipeline(context, channels, params, 1, false, true);
         static_assert(FOVRT_SPEC_MODULATE_COMBINED == 3);
         const std::array<int32_t, 4> combined{-1, -1, -1, channels == 1 ? 1 : 0};
-        modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(SvgfModulatePush), 2,
+        modulate = ComputePipeline(context, "svgf_modulate" + sfx, SVGF_MODULATE_BINDINGS, sizeof(ImageSizePush), 2,
                                    SvgfModulateTexelFormats(), combined);
     }
 

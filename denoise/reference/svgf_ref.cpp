@@ -1,4 +1,4 @@
-#include "denoise/svgf_ref.h"
+#include "denoise/reference/svgf_ref.h"
 
 #include <algorithm>
 #include <atomic>

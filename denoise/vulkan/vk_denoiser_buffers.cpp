@@ -1,4 +1,4 @@
-#include "denoise/vk_denoiser_buffers.h"
+#include "denoise/vulkan/vk_denoiser_buffers.h"
 
 #include <cstring>
 

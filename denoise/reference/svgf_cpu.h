@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
-#include "denoise/svgf_ref.h"
+#include "denoise/reference/svgf_ref.h"
 
 namespace fovrt {
 

@@ -1,4 +1,4 @@
-#include "denoise/svgf_vk.h"
+#include "denoise/vulkan/svgf_vk.h"
 
 #include <array>
 #include <cstring>
@@ -6,9 +6,9 @@
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
-#include "denoise/svgf_atrous_vk.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/svgf_texel_formats.h"
+#include "denoise/vulkan/svgf_atrous_vk.h"
+#include "denoise/vulkan/svgf_layout.h"
+#include "denoise/vulkan/svgf_texel_formats.h"
 
 namespace fovrt {
 

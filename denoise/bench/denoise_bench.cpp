@@ -1,4 +1,4 @@
-#include "denoise/denoise_bench.h"
+#include "denoise/bench/denoise_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,8 +11,8 @@
 
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
-#include "denoise/asvgf_ref.h"
-#include "denoise/pass_bytes.h"
+#include "denoise/reference/asvgf_ref.h"
+#include "denoise/bench/pass_bytes.h"
 #include "shaders/shared_constants.h"
 #include "vk/bandwidth.h"
 #include "vk/context.h"
@@ -117,7 +117,7 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
         const double memcpyBoundMs = bytes / (report.memcpyGBps * 1e9) * 1e3;
         const double deviceBoundMs = bytes / (report.device.texelGBps * 1e9) * 1e3;
         fmt::print(out, "a-trous floor (svgf_atrous_pair at step {}, {} B/pixel; best of 3, alternated; "
-                        "denoise/atrous_probe.h):\n", af.step, af.bytesPerPixel);
+                        "denoise/bench/atrous_probe.h):\n", af.step, af.bytesPerPixel);
         fmt::print(out, "  as the denoisers run it {:8.2f} ms  = {:5.1f}x memcpy bound, {:5.1f}x device-copy bound\n",
                    af.fullMs, af.fullMs / memcpyBoundMs, af.fullMs / deviceBoundMs);
         fmt::print(out, "  every weight 1          {:8.2f} ms  = {:5.1f}x memcpy bound, {:5.1f}x device-copy bound "

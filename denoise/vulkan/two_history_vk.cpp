@@ -1,4 +1,4 @@
-#include "denoise/two_history_vk.h"
+#include "denoise/vulkan/two_history_vk.h"
 
 #include <fmt/format.h>
 
@@ -7,11 +7,11 @@
 #include <span>
 
 #include "core/error.h"
-#include "denoise/asvgf_ref.h"
+#include "denoise/reference/asvgf_ref.h"
 #include "denoise/memory_plan.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/svgf_atrous_vk.h"
-#include "denoise/svgf_texel_formats.h"
+#include "denoise/vulkan/svgf_layout.h"
+#include "denoise/vulkan/svgf_atrous_vk.h"
+#include "denoise/vulkan/svgf_texel_formats.h"
 #include "shaders/common/two_history_constants.glsl"
 
 namespace fovrt {
@@ -100,59 +100,6 @@ namespace {
 
 const char* Side(int parity) { return parity ? "B" : "A"; }
 
-// Push-constant blocks, mirrored in the shaders named.
-struct TwoHistoryReprojectPush {  // two_history_reproject.comp (mode bits: specialization constant)
-    ivec2 size;
-    float alpha;
-    float alphaMoments;
-    float gradientBeta;
-    uint32_t hasPrev;
-};
-static_assert(sizeof(TwoHistoryReprojectPush) == 24);
-
-struct TwoHistoryGradientPush {  // two_history_gradient.comp
-    ivec2 size;
-    float sigmaDepth;
-    float sigmaNormal;
-    float qScale;
-    uint32_t twoChannels;
-};
-static_assert(sizeof(TwoHistoryGradientPush) == 24);
-
-struct TwoHistoryBlendPush {  // two_history_blend.comp
-    ivec2 size;
-};
-
-struct AsvgfSamplesPush {  // asvgf_gradient_claim.comp, asvgf_gradient_gather.comp
-    ivec2 size;
-    ivec2 grid;
-    uint32_t count;
-};
-static_assert(sizeof(AsvgfSamplesPush) == 20);
-
-struct AsvgfAtrousPush {  // asvgf_gradient_atrous.comp
-    ivec2 size;
-    ivec2 grid;
-    int32_t step;
-    float sigmaDepth;
-    float sigmaNormal;
-    float sigmaLuminance;
-};
-static_assert(sizeof(AsvgfAtrousPush) == 32);
-
-struct AsvgfSigmaPush {  // asvgf_stratum_sigma.comp
-    ivec2 grid;
-    float sigmaLuminance;
-};
-static_assert(sizeof(AsvgfSigmaPush) == 12);
-
-struct AsvgfAlphaPush {  // asvgf_alpha.comp
-    ivec2 size;
-    ivec2 grid;
-    float alpha;
-};
-static_assert(sizeof(AsvgfAlphaPush) == 20);
-
 // The shaders read fovrt::GradientSample as uploaded (std430: 3 ivec2 + 2 float).
 static_assert(sizeof(GradientSample) == 32);
 
@@ -211,7 +158,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
                                     sizeof(TwoHistoryGradientPush), kSets, GradientTexelFormats(params_.precision),
                                     edgeStopping);
         blend_ = ComputePipeline(*context_, "two_history_blend" + sfx, TH_BLEND_BINDINGS,
-                                 sizeof(TwoHistoryBlendPush), kSets, BlendTexelFormats(params_.precision));
+                                 sizeof(ImageSizePush), kSets, BlendTexelFormats(params_.precision));
     }
     if (asvgf_) {
         claim_ = ComputePipeline(*context_, "asvgf_gradient_claim" + sfx, ASVGF_CLAIM_BINDINGS,
@@ -502,7 +449,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
 
     auto blend = [&] {
         rec.BeginPass("two_history_blend");
-        const TwoHistoryBlendPush bp{ivec2(w, h)};
+        const ImageSizePush bp{ivec2(w, h)};
         for (size_t c = 0; c < channels_.size(); ++c)
             rec.Dispatch(blend_, blendSets_[c][size_t(parity_)], &bp, sizeof(bp), groups);
         rec.Barrier();

@@ -1,4 +1,4 @@
-#include "denoise/two_history_ref.h"
+#include "denoise/reference/two_history_ref.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,10 +6,9 @@
 #include <cstdio>
 
 #include "core/error.h"
-#include "denoise/asvgf_ref.h"
-#include "denoise/memory_plan.h"
-#include "denoise/svgf_layout.h"
-#include "denoise/two_history_math.h"
+#include "denoise/reference/asvgf_ref.h"
+#include "denoise/reference/two_history_math.h"
+#include "shaders/shared_constants.h"
 
 namespace fovrt {
 
@@ -164,30 +163,6 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
     }
 }
 
-bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant) {
-    if (name == "asvgf")
-        variant = TwoHistoryVariant::Asvgf;
-    else if (name == "two-history")
-        variant = TwoHistoryVariant::TwoHistory;
-    else if (name == "two-history-asvgf")
-        variant = TwoHistoryVariant::TwoHistoryAsvgf;
-    else
-        return false;
-    return true;
-}
-
-const char* TwoHistoryVariantName(TwoHistoryVariant v) {
-    switch (v) {
-        case TwoHistoryVariant::Asvgf:
-            return "asvgf";
-        case TwoHistoryVariant::TwoHistory:
-            return "two-history";
-        case TwoHistoryVariant::TwoHistoryAsvgf:
-            return "two-history-asvgf";
-    }
-    return "?";
-}
-
 void ValidateTwoHistoryParams(const DenoiserParams& params) {
     const SvgfParams& s = params.svgf;
     if (s.atrousIterations < 0 || s.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
@@ -327,67 +302,6 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
 std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(TwoHistoryVariant variant,
                                                       const DenoiserParams& params) {
     return std::make_unique<TwoHistoryReferenceDenoiser>(variant, params);
-}
-
-size_t GradientSampleCapacity(int width, int height) {
-    const ivec2 g = StratumGridSize(width, height);
-    return 2 * size_t(g.x) * size_t(g.y);
-}
-
-std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
-                                                  const DenoiserParams& params) {
-    TwoHistoryVariant v;
-    if (!TwoHistoryVariantOf(name, v)) return {};
-    const size_t n = size_t(width) * size_t(height);
-    const size_t hs = HistoryScalarBytes(params.precision);
-    std::vector<BufferPlan> plan;
-    auto add = [&](const std::string& what, size_t bytes, bool history) {
-        plan.push_back({what, bytes, history});
-    };
-    const size_t sampleCountBytes = ((2 * n + 3) / 4) * 4;
-    const size_t sampleBytes = GradientSampleCapacity(width, height) * sizeof(GradientSample);
-    if (v != TwoHistoryVariant::Asvgf) {
-        for (const std::string& ch : SvgfChannels(params.svgf)) {
-            add(ch + ".wcolor.A", 3 * hs * n, true);
-            add(ch + ".wcolor.B", 3 * hs * n, true);
-            add(ch + ".willum0", 16 * n, false);
-            add(ch + ".willum1", 16 * n, false);
-        }
-        for (const char* side : {"A", "B"}) {
-            add(std::string("wweight.") + side, hs * n, true);
-            add(std::string("powerSums.") + side, 3 * hs * n, true);
-            // g as one float (its luminance); two-history-asvgf takes q from A-SVGF instead.
-            if (v == TwoHistoryVariant::TwoHistory)
-                add(std::string("gradient.") + side, hs * n, true);
-        }
-        add("q", 4 * n, false);
-        if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);
-    }
-    if (v != TwoHistoryVariant::TwoHistory) {
-        const ivec2 g = StratumGridSize(width, height);
-        const size_t strata = size_t(g.x) * size_t(g.y);
-        add("asvgf.samples", sampleBytes, false);
-        add("asvgf.claim", 4 * strata, false);
-        add("asvgf.grad0", 8 * strata, false);
-        add("asvgf.grad1", 8 * strata, false);
-        // Stratum guide (Vulkan: asvgf_gradient_gather): normal + depth, luminance + depth
-        // gradient, and σ_l·std (asvgf_stratum_sigma).
-        add("asvgf.guideGeometry", 16 * strata, false);
-        add("asvgf.guideLuminance", 16 * strata, false);
-        add("asvgf.sigmaL", 4 * strata, false);
-        add("asvgf.alpha", 4 * n, false);
-        add("asvgf.lambda", 4 * n, false);
-    }
-    add("staging.extra", StagingAlign(sampleCountBytes) + StagingAlign(sampleBytes), false);
-    return plan;
-}
-
-std::vector<BufferPlan> PlanTwoHistoryMemory(const std::string& name, int width, int height,
-                                             const DenoiserParams& params) {
-    std::vector<BufferPlan> plan = PlanSvgfMemory(width, height, params);
-    for (BufferPlan& b : PlanTwoHistoryExtraMemory(name, width, height, params))
-        plan.push_back(std::move(b));
-    return plan;
 }
 
 }  // namespace fovrt

@@ -1,9 +1,9 @@
-#include "denoise/asvgf_ref.h"
+#include "denoise/reference/asvgf_ref.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "denoise/svgf_ref.h"
+#include "denoise/reference/svgf_ref.h"
 
 namespace fovrt {
 

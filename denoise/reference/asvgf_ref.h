@@ -4,12 +4,13 @@
 //   asvgf_gradient_atrous   5 iterations of a joint-bilateral 3×3-box à-trous on (δ, Δ)
 //   asvgf_alpha             λ = min(1, |δ̂|/Δ̂), α_s = (1−λ)α + λ, per pixel max over 3×3 strata
 // The per-pixel α drives the temporal accumulation of colour and moments (asvgf and
-// two-history-asvgf, denoise/two_history_ref.h).
+// two-history-asvgf, denoise/reference/two_history_ref.h).
 #pragma once
 
 #include "core/frame_inputs.h"
 #include "core/image.h"
 #include "core/math.h"
+#include "denoise/gradient_strata.h"
 #include "denoise/params.h"
 
 namespace fovrt {
@@ -23,12 +24,6 @@ struct StratumGuide {
     float luminance = 0.0f;    // luminance of the noisy colour at that pixel
     uint32_t objectId = kNoObject;
 };
-
-// Stratum grid of a W×H image: ceil(W/3) × ceil(H/3).
-inline ivec2 StratumGridSize(int width, int height) {
-    return ivec2((width + kGradientStratumSize - 1) / kGradientStratumSize,
-                 (height + kGradientStratumSize - 1) / kGradientStratumSize);
-}
 
 // Stage asvgf_gradient_scatter. gradient(s) = (δ, Δ) = (new − old, max(new, old)) of the first
 // sample landing in stratum s (0 for empty strata); samples outside the grid are ignored.

@@ -55,7 +55,7 @@ struct AtrousFloor {
     int width = 0, height = 0, step = 2;
     double fullMs = 0.0;         // the pass as the denoisers run it
     double unitWeightsMs = 0.0;  // every edge-stopping weight 1
-    double bytesPerPixel = 0.0;  // its byte model (denoise/pass_bytes.h, svgf "atrous1")
+    double bytesPerPixel = 0.0;  // its byte model (denoise/bench/pass_bytes.h, svgf "atrous1")
 };
 AtrousFloor MeasureAtrousFloor(VulkanContext& context, int width, int height, int runs = 3);
 

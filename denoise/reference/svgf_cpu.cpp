@@ -1,7 +1,7 @@
-#include "denoise/svgf_cpu.h"
+#include "denoise/reference/svgf_cpu.h"
 
 #include "core/error.h"
-#include "denoise/memory_plan.h"
+#include "denoise/variants.h"
 #include "shaders/shared_constants.h"
 
 namespace fovrt {

@@ -1,0 +1,85 @@
+// Push-constant blocks of every compute pass, declared once for GLSL and C++. Each block is a
+// field list FOVRT_PUSH_<PASS>(F) of F(type, name); a shader declares its block with
+// FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_<PASS>) and reads pc.<name>; the host fills the struct of the
+// same fields (fovrt::<Pass>Push below) by aggregate initialisation, in field order. Types are
+// ivec2, int, uint and float only, so the std430 push-constant offsets equal the C++ layout
+// (static_asserts at the end pin the sizes). Macros only: included by GLSL and by C++.
+#ifndef FOVRT_PUSH_CONSTANTS_H
+#define FOVRT_PUSH_CONSTANTS_H
+
+// svgf_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS).
+// has_prev 0: no previous frame (first frame, reset): nothing reprojects.
+#define FOVRT_PUSH_SVGF_REPROJECT(F) F(ivec2, size) F(float, alpha_color) F(float, alpha_moments) F(uint, has_prev)
+// svgf_pack_guide, svgf_modulate, two_history_blend: the image size alone.
+#define FOVRT_PUSH_IMAGE_SIZE(F) F(ivec2, size)
+// svgf_moments_classify: threshold = history length below which the spatial estimate is used.
+#define FOVRT_PUSH_SVGF_CLASSIFY(F) F(ivec2, size) F(float, threshold)
+// svgf_filter_moments
+#define FOVRT_PUSH_SVGF_FILTER_MOMENTS(F) \
+    F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, threshold)
+// svgf_atrous: step = 2^iteration.
+#define FOVRT_PUSH_SVGF_ATROUS(F) \
+    F(ivec2, size) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance)
+// two_history_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS).
+#define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F) \
+    F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev)
+// two_history_gradient
+#define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
+    F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
+// asvgf_gradient_claim, asvgf_gradient_gather: image size, stratum grid, uploaded samples.
+#define FOVRT_PUSH_ASVGF_SAMPLES(F) F(ivec2, size) F(ivec2, grid) F(uint, count)
+// asvgf_gradient_atrous: step in strata.
+#define FOVRT_PUSH_ASVGF_ATROUS(F) \
+    F(ivec2, size) F(ivec2, grid) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance)
+// asvgf_stratum_sigma
+#define FOVRT_PUSH_ASVGF_SIGMA(F) F(ivec2, grid) F(float, sigma_luminance)
+// asvgf_alpha: alpha = the base temporal weight.
+#define FOVRT_PUSH_ASVGF_ALPHA(F) F(ivec2, size) F(ivec2, grid) F(float, alpha)
+// bandwidth_copy: elements as rows × columns.
+#define FOVRT_PUSH_BANDWIDTH(F) F(ivec2, size)
+
+#define FOVRT_PUSH_FIELD(type, name) type name;
+
+#ifdef __cplusplus
+#include <cstdint>
+
+#include "core/math.h"
+
+namespace fovrt {
+// The C++ type of each GLSL type a block may hold.
+#define FOVRT_PUSH_CPP_TYPE_ivec2 ivec2
+#define FOVRT_PUSH_CPP_TYPE_int int32_t
+#define FOVRT_PUSH_CPP_TYPE_uint uint32_t
+#define FOVRT_PUSH_CPP_TYPE_float float
+#define FOVRT_DECLARE_PUSH(Name, LIST)         \
+    struct Name {                              \
+        LIST(FOVRT_PUSH_FIELD_QUALIFIED)       \
+    }
+#define FOVRT_PUSH_FIELD_QUALIFIED(type, name) FOVRT_PUSH_CPP_TYPE_##type name;
+FOVRT_DECLARE_PUSH(SvgfReprojectPush, FOVRT_PUSH_SVGF_REPROJECT);
+FOVRT_DECLARE_PUSH(ImageSizePush, FOVRT_PUSH_IMAGE_SIZE);
+FOVRT_DECLARE_PUSH(SvgfClassifyPush, FOVRT_PUSH_SVGF_CLASSIFY);
+FOVRT_DECLARE_PUSH(SvgfFilterMomentsPush, FOVRT_PUSH_SVGF_FILTER_MOMENTS);
+FOVRT_DECLARE_PUSH(SvgfAtrousPush, FOVRT_PUSH_SVGF_ATROUS);
+FOVRT_DECLARE_PUSH(TwoHistoryReprojectPush, FOVRT_PUSH_TWO_HISTORY_REPROJECT);
+FOVRT_DECLARE_PUSH(TwoHistoryGradientPush, FOVRT_PUSH_TWO_HISTORY_GRADIENT);
+FOVRT_DECLARE_PUSH(AsvgfSamplesPush, FOVRT_PUSH_ASVGF_SAMPLES);
+FOVRT_DECLARE_PUSH(AsvgfAtrousPush, FOVRT_PUSH_ASVGF_ATROUS);
+FOVRT_DECLARE_PUSH(AsvgfSigmaPush, FOVRT_PUSH_ASVGF_SIGMA);
+FOVRT_DECLARE_PUSH(AsvgfAlphaPush, FOVRT_PUSH_ASVGF_ALPHA);
+FOVRT_DECLARE_PUSH(BandwidthPush, FOVRT_PUSH_BANDWIDTH);
+#undef FOVRT_DECLARE_PUSH
+#undef FOVRT_PUSH_FIELD_QUALIFIED
+// 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
+static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
+              sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
+              sizeof(TwoHistoryReprojectPush) == 24 && sizeof(TwoHistoryGradientPush) == 24 &&
+              sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
+              sizeof(AsvgfAlphaPush) == 20 && sizeof(BandwidthPush) == 8);
+}  // namespace fovrt
+#else
+// GLSL: the block every shader reads as `pc`.
+#define FOVRT_PUSH_CONSTANTS(LIST) layout(push_constant) uniform Push { LIST(FOVRT_PUSH_FIELD) } pc
+#endif
+
+#endif
