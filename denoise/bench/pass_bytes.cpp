@@ -9,6 +9,7 @@
 #include "denoise/reference/asvgf_ref.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
+#include "denoise/schedule.h"
 #include "denoise/reference/two_history_ref.h"
 
 namespace fovrt {
@@ -88,11 +89,6 @@ double ModulateBytes(const PlanBytes& b, const std::vector<std::string>& channel
 // Output + counters: device → staging (read + write).
 double DownloadBytes(const PlanBytes& b) { return 2 * b("output"); }
 
-int TwoHistoryFeedback(const SvgfParams& s, bool two) {  // as two_history_vk.cpp
-    if (s.atrousIterations == 0) return 0;
-    return two ? std::min(s.feedbackIteration, 1) : std::min(s.feedbackIteration, s.atrousIterations);
-}
-
 DenoiserParams TwoHistoryFamilyParams(const DenoiserParams& params) {
     DenoiserParams p = params;
     p.svgf.weightBySampleCount = false;  // as TwoHistoryVulkanDenoiser
@@ -108,7 +104,8 @@ std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams
     const std::vector<std::string> channels = SvgfChannels(p);
     const bool weighted = p.weightBySampleCount;
     const int iterations = p.atrousIterations;
-    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
+    const int feedback = FeedbackIteration(p, false);
+    const bool atrousFeedback = feedback > 0;
     std::vector<PassBytes> out;
     out.push_back({"upload", 2 * (UploadBytes(b) + (weighted ? b("input.sampleCount") : 0.0))});
     out.push_back({"pack_guide", PackGuideBytes(b)});
@@ -130,7 +127,7 @@ std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams
     for (int i = 0; i < iterations; ++i) {
         double atrous = AtrousSharedBytes(b, int(channels.size()));
         for (const std::string& ch : channels)
-            atrous += AtrousChannelBytes(b, ch, "illum", "color", atrousFeedback && i + 1 == p.feedbackIteration);
+            atrous += AtrousChannelBytes(b, ch, "illum", "color", i + 1 == feedback);
         out.push_back({fmt::format("atrous{}", i), atrous});
     }
     out.push_back({"modulate", ModulateBytes(b, channels)});
@@ -176,7 +173,7 @@ std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, i
     const bool asvgf = variant != TwoHistoryVariant::TwoHistory;
     const std::vector<std::string> channels = SvgfChannels(p);
     const int iterations = p.atrousIterations;
-    const int feedback = TwoHistoryFeedback(p, two);
+    const int feedback = FeedbackIteration(p, two);
     const double samples = asvgf ? b("asvgf.samples") * std::clamp(o.gradientSamplesPerStratum / 2.0, 0.0, 1.0) : 0.0;
     std::vector<PassBytes> out;
     out.push_back({"upload", 2 * (UploadBytes(b) + (two ? b("input.sampleCount") : 0.0) + samples)});

@@ -1,6 +1,7 @@
 #include "denoise/reference/svgf_cpu.h"
 
 #include "core/error.h"
+#include "denoise/schedule.h"
 #include "denoise/variants.h"
 #include "shaders/shared_constants.h"
 
@@ -60,7 +61,8 @@ void SvgfReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) 
     PassClock clock(timings_);
     const SvgfParams& p = params_.svgf;
     const int iterations = p.atrousIterations;
-    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= iterations;
+    const int feedbackIteration = FeedbackIteration(p, false);
+    const bool atrousFeedback = feedbackIteration > 0;
     SvgfReprojectOptions opt;
     opt.alphaColor = p.alphaColor;
     opt.alphaMoments = p.alphaMoments;
@@ -82,13 +84,13 @@ void SvgfReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) 
     clock.Lap("filter_moments");
     for (int i = 0; i < iterations; ++i) {
         for (Channel& ch : channels_) {
-            Plane<vec3>* feedback = atrousFeedback && i + 1 == p.feedbackIteration ? &ch.hist[parity_].color : nullptr;
+            Plane<vec3>* feedback = atrousFeedback && i + 1 == feedbackIteration ? &ch.hist[parity_].color : nullptr;
             SvgfAtrousRef(ch.illum[(i + 1) & 1], cur, in.depthGradient, i, ch.illum[i & 1], feedback, p,
                           params_.precision);
         }
         clock.Lap(fmt::format("atrous{}", i));
     }
-    const int last = iterations == 0 ? 1 : (iterations - 1) & 1;
+    const int last = FilteredIlluminationPlane(iterations);
     for (Channel& ch : channels_) ch.filtered = ch.illum[last];
     SvgfModulateRef(channels_[0].filtered, channels_.size() > 1 ? &channels_[1].filtered : nullptr, in.albedo,
                     in.emission, output);

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "denoise/schedule.h"
 #include "denoise/reference/asvgf_ref.h"
 #include "denoise/reference/two_history_math.h"
 #include "shaders/shared_constants.h"
@@ -228,11 +229,7 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
         lap("asvgf_gradient");
     }
 
-    // Feedback: the paper's iteration 1, or the unfiltered accumulation. Two-history cannot
-    // feed back a later iteration (the blend would break the accumulation), so k > 1 → 1.
-    const int feedback = s.atrousIterations == 0 ? 0
-                         : two                   ? std::min(s.feedbackIteration, 1)
-                               : std::min(s.feedbackIteration, s.atrousIterations);
+    const int feedback = FeedbackIteration(s, two);
     TwoHistoryReprojectOptions ro;
     ro.alpha = s.alphaColor;
     ro.alphaMoments = s.alphaMoments;

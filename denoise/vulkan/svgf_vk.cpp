@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
+#include "denoise/schedule.h"
 #include "denoise/vulkan/svgf_atrous_vk.h"
 #include "denoise/vulkan/svgf_layout.h"
 #include "denoise/vulkan/svgf_texel_formats.h"
@@ -38,7 +39,8 @@ void SvgfVulkanDenoiser::CreatePipelines() {
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? SVGF_REPROJECT_PAIR_BINDINGS : SVGF_REPROJECT_BINDINGS;
     const auto reprojectFormats = SvgfReprojectTexelFormats(params_.precision);
-    const bool atrousFeedback = p.feedbackIteration >= 1 && p.feedbackIteration <= p.atrousIterations;
+    const int feedback = FeedbackIteration(p, false);
+    const bool atrousFeedback = feedback > 0;
     const uint32_t flags = (p.weightBySampleCount ? SVGF_REPROJECT_FLAG_WEIGHTED : 0u) |
                            (p.filterCombined ? SVGF_REPROJECT_FLAG_COMBINED : 0u) |
                            (atrousFeedback ? 0u : SVGF_REPROJECT_FLAG_WRITE_COLOR);
@@ -47,7 +49,7 @@ void SvgfVulkanDenoiser::CreatePipelines() {
                                        std::span<const VkFormat>(reprojectFormats).first(reprojectBindings), flags);
     // Direct and indirect in one à-trous dispatch (svgf_atrous_pair); combined: one channel.
     stages_ = SvgfStagePipelines(*context_, int(channels_.size()), params_, sets,
-                                 atrousFeedback ? p.feedbackIteration : 0);
+                                 feedback);
     timestamps_ = TimestampPool(*context_, 8 + FOVRT_MAX_ATROUS_ITERATIONS);
 }
 
@@ -121,7 +123,7 @@ void SvgfVulkanDenoiser::BuildSets() {
                 MakeAtrousSet(stages_.atrous, Buf("geometry.guide"), Buf("input.depthGradient"), a);
         }
     const int iterations = params_.svgf.atrousIterations;
-    const std::string last = iterations == 0 ? ".illum1" : ((iterations - 1) & 1) ? ".illum1" : ".illum0";
+    const std::string last = FilteredIlluminationPlane(iterations) ? ".illum1" : ".illum0";
     modulateSet_ = stages_.ModulateSet(buffers_, channels_[0] + last, channels_.back() + last);
 }
 

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "denoise/reference/asvgf_ref.h"
 #include "denoise/memory_plan.h"
+#include "denoise/schedule.h"
 #include "denoise/vulkan/svgf_layout.h"
 #include "denoise/vulkan/svgf_atrous_vk.h"
 #include "denoise/vulkan/svgf_texel_formats.h"
@@ -104,13 +105,6 @@ const char* Side(int parity) { return parity ? "B" : "A"; }
 static_assert(sizeof(GradientSample) == 32);
 
 constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f, for vkCmdFillBuffer
-
-// À-trous feedback iteration (1-based; 0 = unfiltered accumulation), as the reference.
-int FeedbackIteration(const SvgfParams& s, bool two) {
-    if (s.atrousIterations == 0) return 0;
-    return two ? std::min(s.feedbackIteration, 1)
-               : std::min(s.feedbackIteration, s.atrousIterations);
-}
 
 }  // namespace
 
@@ -339,9 +333,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         a[ASVGF_ALPHA_B_LAMBDA] = &Buf("asvgf.lambda");
         alphaSet_ = alpha_.MakeSet(a);
     }
-    const std::string last = iterations == 0          ? ".illum1"
-                             : ((iterations - 1) & 1) ? ".illum1"
-                                                      : ".illum0";
+    const std::string last = FilteredIlluminationPlane(iterations) ? ".illum1" : ".illum0";
     modulateSet_ = stages_.ModulateSet(buffers_, ch0 + last, ch1 + last);
 }
 
