@@ -87,7 +87,8 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
             if (v == TwoHistoryVariant::TwoHistory)
                 add(std::string("gradient.") + side, hs * n, true);
         }
-        add("q", 4 * n, false);
+        // q of the EMA gradient (two-history-asvgf blends with A-SVGF's λ̂ instead).
+        if (v == TwoHistoryVariant::TwoHistory) add("q", 4 * n, false);
         if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);
     }
     if (v != TwoHistoryVariant::TwoHistory) {

@@ -1,6 +1,7 @@
 // Byte models of the denoiser passes (`fovrt bench --denoisers`): the bytes each timed pass reads
-// and writes per pixel per frame, taken from the element sizes of the memory plan's buffers (by
-// name), so fp16 histories, combined/separate channels and plane shapes follow the plan.
+// and writes per pixel per frame — the sum of the plane uses of the variant's pass plan
+// (denoise/pass_plan.h), each at the element size of its memory-plan buffer, so fp16 histories,
+// combined/separate channels and plane shapes follow the plan.
 // Assumption: every plane a dispatch binds is counted once per dispatch (the taps of a gather —
 // 5×5 à-trous, 7×7 moments, bilinear reprojection, 3×3 strata — hit cache), so each figure is
 // the compulsory traffic of the pass: a lower bound on the bytes it moves to and from memory.
@@ -30,27 +31,11 @@ struct PassBytesOptions {
     double gradientSamplesPerStratum = 1.0;
 };
 
-// One dispatch of svgf_atrous_pair filters up to this many illumination planes (direct + indirect,
-// or two-history's unweighted + weighted when combined): the guide and depth gradient are read
-// once per dispatch.
-inline constexpr int kAtrousChannelsPerDispatch = 2;
-
 // svgf and svgf-weighted (params.svgf.weightBySampleCount), Vulkan pass names in recording order:
 // upload, pack_guide, reproject, filter_moments, atrous<i>, modulate, download. The C++ reference
 // times the same names (it has no upload/pack_guide/download).
 std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams& params,
                                      const PassBytesOptions& options = {});
-
-// The A-SVGF temporal-gradient passes as timed on Vulkan: asvgf_gradient (claim-slot fill, claim,
-// gather, gradientIterations à-trous iterations at stratum resolution) and asvgf_alpha.
-std::vector<PassBytes> AsvgfPassBytes(const std::string& name, int width, int height,
-                                      const DenoiserParams& params, const PassBytesOptions& options = {});
-
-// asvgf, two-history, two-history-asvgf on Vulkan: upload, [asvgf_gradient, asvgf_alpha],
-// pack_guide, two_history_reproject, filter_moments, [two_history_gradient], atrous<i> with
-// [two_history_blend] after atrous0, modulate, download.
-std::vector<PassBytes> TwoHistoryPassBytes(const std::string& name, int width, int height,
-                                           const DenoiserParams& params, const PassBytesOptions& options = {});
 
 // Any denoiser by backend: "vulkan" gives the Vulkan pass names; "cpu" the C++ reference's, where
 // a reference pass spanning several Vulkan passes gets their sum (two-history family:

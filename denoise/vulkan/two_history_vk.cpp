@@ -178,7 +178,7 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
     width_ = width;
     height_ = height;
     grid_ = StratumGridSize(width, height);
-    buffers_.Allocate(*context_, PlanTwoHistoryMemory(Name(), width, height, params_));
+    buffers_.Allocate(*context_, PlanDenoiserMemory(Name(), width, height, params_));
     BuildSets();
     parity_ = 0;
     needsClear_ = true;

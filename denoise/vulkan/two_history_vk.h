@@ -1,7 +1,7 @@
 // Two-history SVGF, A-SVGF and two-history-asvgf on Vulkan compute: the new stages
 // (shaders/two_history_*.comp, shaders/asvgf_*.comp) composed with SVGF's own shaders
 // (svgf_filter_moments, svgf_atrous, svgf_modulate), one dispatch per stage, GPU timestamps per
-// pass. Buffers are allocated by iterating PlanTwoHistoryMemory(), so `fovrt memory` lists
+// pass. Buffers are allocated by iterating PlanDenoiserMemory(), so `fovrt memory` lists
 // exactly what is allocated. Same maths as TwoHistoryReferenceDenoiser (two_history_ref.h).
 #pragma once
 
