@@ -60,7 +60,7 @@ Buffer& SvgfVulkanDenoiser::Buf(const std::string& name) { return buffers_[name]
 void SvgfVulkanDenoiser::Allocate(int width, int height) {
     width_ = width;
     height_ = height;
-    buffers_.Allocate(*context_, PlanDenoiserMemory(name_, width, height, params_));
+    buffers_.Allocate(*context_, PlanSvgfMemory(width, height, params_));  // its own params: tests set weighting directly
     BuildSets();
     parity_ = 0;
     needsClear_ = true;

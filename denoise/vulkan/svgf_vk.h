@@ -1,6 +1,6 @@
 // SVGF on Vulkan compute: shaders/svgf_*.comp composed as in the paper, one dispatch per stage
 // and channel except reprojection and à-trous (both channels in one dispatch: svgf_*_pair), GPU
-// timestamps per pass. Buffers are allocated by iterating PlanDenoiserMemory(), so `fovrt memory`
+// timestamps per pass. Buffers are allocated by iterating PlanSvgfMemory(), so `fovrt memory`
 // lists exactly what is allocated. Histories (and the geometry of the previous frame) are A/B
 // pairs selected by a parity bit; descriptor sets are built once per size.
 #pragma once
