@@ -342,7 +342,8 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
         r.String("denoise.device", d.device);
     }
     if (!ParseDeviceSetting(d.device))
-        r.Bad("denoise.device", fmt::format("'{}' is not {}", d.device, kDeviceSettingForms));
+        r.Bad("denoise.device", fmt::format("'{}' is not {} (Vulkan devices present: {})", d.device,
+                                            kDeviceSettingForms, DescribeVulkanDevices(VulkanContext::ListDevices())));
     std::string precision = d.params.precision == Precision::Fp16 ? "fp16" : "fp32";
     r.String("denoise.precision", precision, {"fp32", "fp16"});
     d.params.precision = precision == "fp16" ? Precision::Fp16 : Precision::Fp32;
