@@ -12,6 +12,7 @@
 #include "denoise/vulkan/two_history_vk.h"
 #include "denoise/variants.h"
 #include "vk/context.h"
+#include "vk/device_choice.h"
 
 namespace fovrt {
 
@@ -21,19 +22,16 @@ bool IsSvgf(const std::string& name) { return FindDenoiserVariant(name).family =
 
 void CheckName(const std::string& name) { FindDenoiserVariant(name); }
 
-// Resolves the Vulkan context: the caller's (not owned), or a new one; null → CPU fallback.
+// The caller's context (not owned), or a new one on the device the setting resolves to
+// (vk/device_choice.h); null → the C++ reference.
 std::shared_ptr<VulkanContext> ResolveContext(const std::string& device, VulkanContext* context) {
     if (context) return std::shared_ptr<VulkanContext>(context, [](VulkanContext*) {});
-    if (device == "auto") {
-        if (!VulkanContext::Available()) {
-            std::fprintf(stderr, "fovrt: notice: no Vulkan device; denoising with the C++ reference (cpu)\n");
-            return nullptr;
-        }
-        return std::make_shared<VulkanContext>(VulkanContext::Create({}));
+    const DeviceDecision decision = ResolveVulkanDevice(device);
+    if (!decision.vulkan) {
+        if (!decision.notice.empty()) std::fprintf(stderr, "%s\n", decision.notice.c_str());
+        return nullptr;
     }
-    VulkanContextOptions options;
-    options.device = device == "vulkan" ? "auto" : device;
-    return std::make_shared<VulkanContext>(VulkanContext::Create(options));
+    return std::make_shared<VulkanContext>(VulkanContext::Create(decision.options));
 }
 
 }  // namespace

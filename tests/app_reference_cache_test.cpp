@@ -1,6 +1,9 @@
 // Reference cache: keys change with everything that changes the image and nothing else, and a
 // cached entry reads back exactly what was rendered.
 #include <filesystem>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "app/reference_cache.h"
 #include "scene/scene.h"
@@ -39,6 +42,66 @@ TEST_CASE("reference keys: animated scenes key on time, content changes the fing
     Scene changed = pillars;
     changed.materials[0].baseColor.r += 0.01f;
     CHECK(SceneFingerprint(changed) != fp);
+}
+
+namespace {
+
+// A scene with at least one of everything the key must see (room has textures and meshes; a light
+// and a second camera key are added when the file has none).
+Scene EverythingScene() {
+    Scene scene = LoadScene(ResolveSceneName("room"));
+    if (scene.lights.empty()) scene.lights.push_back(Light{});
+    if (scene.textures.empty()) scene.textures.push_back(Texture{"t", 1, 1, {vec4(0.5f)}});
+    if (scene.cameraPath.size() < 2) scene.cameraPath.push_back({1.0f, Pose::LookAt(vec3(1, 1, 1), vec3(0))});
+    if (scene.instances.empty() || scene.instances[0].keys.empty())
+        FAIL("room needs an instance with a transform key");
+    return scene;
+}
+
+std::string KeyOf(const Scene& scene) {
+    return MakeReferenceKey(scene, SceneFingerprint(scene), 0, 0.0, 0, Camera(), 64, 2, 1).Hex();
+}
+
+}  // namespace
+
+TEST_CASE("reference keys: identical scenes give identical keys, any content change a new key", "[app]") {
+    const Scene base = EverythingScene();
+    const std::string key = KeyOf(base);
+    CHECK(KeyOf(EverythingScene()) == key);  // loaded twice: same stream
+    Scene renamed = base;                    // names and paths never change an image
+    renamed.name = "elsewhere";
+    renamed.sourcePath = "/elsewhere.toml";
+    renamed.materials[0].name += "-renamed";
+    CHECK(KeyOf(renamed) == key);
+
+    const std::vector<std::pair<const char*, std::function<void(Scene&)>>> changes = {
+        {"a vertex", [](Scene& s) { s.meshes[0].positions[0].x += 1e-3f; }},
+        {"a normal", [](Scene& s) { s.meshes[0].normals.push_back(vec3(0, 1, 0)); }},
+        {"a triangle's material", [](Scene& s) { s.meshes[0].materials[0] ^= 1u; }},
+        {"a base colour", [](Scene& s) { s.materials[0].baseColor.g += 1e-3f; }},
+        {"a roughness", [](Scene& s) { s.materials.back().roughness *= 0.5f; }},
+        {"an emission", [](Scene& s) { s.materials[0].emission.r += 1.0f; }},
+        {"a texture binding", [](Scene& s) { s.materials[0].baseColorTexture = s.materials[0].baseColorTexture == 0 ? -1 : 0; }},
+        {"a texel", [](Scene& s) { s.textures[0].texels.back().b += 1e-3f; }},
+        {"a texture's shape", [](Scene& s) { std::swap(s.textures[0].width, s.textures[0].height);
+                                             s.textures[0].width += 1; }},
+        {"a light's intensity", [](Scene& s) { s.lights[0].intensity *= 2.0f; }},
+        {"a light's switching", [](Scene& s) { s.lights[0].switchOffset += 0.25f; }},
+        {"a light's path", [](Scene& s) { s.lights[0].path.push_back(TransformKey{}); }},
+        {"an instance key", [](Scene& s) { s.instances[0].keys[0].pose.position.y += 1e-3f; }},
+        {"an instance loop", [](Scene& s) { s.instances[0].loop = !s.instances[0].loop; }},
+        {"an emission switch", [](Scene& s) { s.emissionSwitches.push_back({0, 1.0f, 0.5f, 0.0f}); }},
+        {"a camera keyframe", [](Scene& s) { s.cameraPath.back().pose.orientation.x += 1e-3f; }},
+        {"the camera loop", [](Scene& s) { s.cameraLoop = !s.cameraLoop; }},
+        {"the frame rate", [](Scene& s) { s.frameRate = 90.0f; }},
+        {"the background", [](Scene& s) { s.background = vec3(0.1f); }},
+    };
+    for (const auto& [what, change] : changes) {
+        Scene changed = base;
+        change(changed);
+        CAPTURE(what);
+        CHECK(KeyOf(changed) != key);
+    }
 }
 
 TEST_CASE("reference cache renders once, then reads back the same pixels", "[app]") {

@@ -16,6 +16,7 @@
 #include "shaders/shared_constants.h"
 #include "vk/bandwidth.h"
 #include "vk/context.h"
+#include "vk/device_choice.h"
 
 namespace fovrt {
 
@@ -80,15 +81,11 @@ DenoiserBenchReport RunDenoiserBench(const DenoiserBenchOptions& o) {
     const double pixels = double(o.width) * double(o.height);
 
     std::unique_ptr<VulkanContext> context;
-    if (o.device != "cpu") {
-        if (o.device == "auto" && !VulkanContext::Available()) {
-            fmt::print(out, "no Vulkan device: timing the C++ reference only\n");
-        } else {
-            VulkanContextOptions vo;
-            vo.device = o.device == "vulkan" ? "auto" : o.device;
-            context = std::make_unique<VulkanContext>(VulkanContext::Create(vo));
-            report.deviceName = context->deviceName();
-        }
+    if (const DeviceDecision decision = ResolveVulkanDevice(o.device); decision.vulkan) {
+        context = std::make_unique<VulkanContext>(VulkanContext::Create(decision.options));
+        report.deviceName = context->deviceName();
+    } else if (!decision.notice.empty()) {
+        fmt::print(out, "{}\n", decision.notice);
     }
     if (context) {
         report.device = MeasureDeviceBandwidth(*context);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "denoise/reference/svgf_ref.h"
 
 namespace fovrt {
@@ -37,13 +39,15 @@ int AsvgfScatterGradientsRef(const FrameInputs& frame, Plane<vec2>& gradient,
         guide(s.stratum.x, s.stratum.y) = guideAt(s.pixel);
         ++count;
     }
-    for (int sy = 0; sy < grid.y; ++sy)
+    // Rows in parallel from here on: every stratum / pixel is independent (results equal serial).
+    tbb::parallel_for(0, grid.y, [&](int sy) {
         for (int sx = 0; sx < grid.x; ++sx) {
             if (filled(sx, sy)) continue;
             const ivec2 centre(std::min(sx * kGradientStratumSize + 1, w - 1),
                                std::min(sy * kGradientStratumSize + 1, h - 1));
             guide(sx, sy) = guideAt(centre);
         }
+    });
     return count;
 }
 
@@ -52,7 +56,7 @@ void AsvgfGradientAtrousRef(const Plane<vec2>& in, const Plane<StratumGuide>& gu
     const int gw = in.width(), gh = in.height();
     out.Resize(gw, gh, vec2(0.0f));
     const int step = 1 << iteration;
-    for (int sy = 0; sy < gh; ++sy)
+    tbb::parallel_for(0, gh, [&](int sy) {
         for (int sx = 0; sx < gw; ++sx) {
             const StratumGuide& gp = guide(sx, sy);
             if (gp.objectId == kNoObject) {
@@ -94,20 +98,22 @@ void AsvgfGradientAtrousRef(const Plane<vec2>& in, const Plane<StratumGuide>& gu
                 }
             out(sx, sy) = acc / wsum;  // the centre has weight 1
         }
+    });
 }
 
 void AsvgfAlphaRef(const Plane<vec2>& reconstructed, int width, int height, float alpha,
                    Plane<float>& alphaOut, Plane<float>& lambdaOut) {
     const int gw = reconstructed.width(), gh = reconstructed.height();
     Plane<float> lambdaS(gw, gh, 0.0f);
-    for (int sy = 0; sy < gh; ++sy)
+    tbb::parallel_for(0, gh, [&](int sy) {
         for (int sx = 0; sx < gw; ++sx) {
             const vec2 d = reconstructed(sx, sy);
             lambdaS(sx, sy) = d.y > 1e-6f ? std::min(1.0f, std::abs(d.x) / d.y) : 0.0f;
         }
+    });
     alphaOut.Resize(width, height, alpha);
     lambdaOut.Resize(width, height, 0.0f);
-    for (int y = 0; y < height; ++y)
+    tbb::parallel_for(0, height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const int sx = x / kGradientStratumSize, sy = y / kGradientStratumSize;
             float lambda = 0.0f;
@@ -119,6 +125,7 @@ void AsvgfAlphaRef(const Plane<vec2>& reconstructed, int width, int height, floa
             lambdaOut(x, y) = lambda;
             alphaOut(x, y) = (1.0f - lambda) * alpha + lambda;
         }
+    });
 }
 
 void AsvgfTemporalAlphaRef(const FrameInputs& frame, const AsvgfParams& params,

@@ -1,9 +1,12 @@
 #include "denoise/reference/two_history_ref.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "denoise/schedule.h"
@@ -43,7 +46,11 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
         illumU[size_t(c)].Resize(w, h);
         if (two) illumW[size_t(c)].Resize(w, h);
     }
-    for (int y = 0; y < h; ++y)
+    // Rows in parallel: pixels are independent; the sample counters are integers, so per-row
+    // counts summed in any order equal the serial count.
+    std::atomic<uint64_t> nonFinite{0}, negative{0};
+    tbb::parallel_for(0, h, [&](int y) {
+        DenoiseStats rowStats;
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
             const ReprojectionTaps taps =
@@ -72,7 +79,7 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                 const size_t ch = size_t(c);
                 vec3 raw = (*colors[ch])[i];
                 if (channels == 1 && color2) raw += (*color2)[i];
-                const vec3 xc = SanitizeIllumination(raw, stats);
+                const vec3 xc = SanitizeIllumination(raw, rowStats);
                 const float l = Luminance(xc);
                 const vec3 iuPrev = success ? GatherTaps(prev.iu[ch], taps) : xc;
                 const vec2 mPrev = success ? GatherTaps(prev.moments[ch], taps) : vec2(l, l * l);
@@ -104,6 +111,11 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                     prec);
             }
         }
+        nonFinite += rowStats.nonFiniteSamples;
+        negative += rowStats.negativeSamples;
+    });
+    stats.nonFiniteSamples += nonFinite;
+    stats.negativeSamples += negative;
 }
 
 template <typename T>
@@ -140,7 +152,7 @@ void TwoHistoryGradientRef(const Plane<float>& gradient, const std::array<Plane<
                            float qScale, Plane<float>& qOut) {
     const int w = frame.width(), h = frame.height();
     qOut.Resize(w, h, 0.0f);
-    for (int y = 0; y < h; ++y)
+    tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {
             if (frame.objectId(x, y) == kNoObject) continue;
             float var = 0.0f;
@@ -148,20 +160,24 @@ void TwoHistoryGradientRef(const Plane<float>& gradient, const std::array<Plane<
             qOut(x, y) = TwoHistoryGradientBlend(
                 FilterTwoHistoryGradient(gradient, frame, svgf, x, y), var, qScale);
         }
+    });
 }
 
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
                         const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out) {
+    const size_t width = size_t(illumU.width());
     out.Resize(illumU.width(), illumU.height());
-    for (size_t i = 0; i < illumU.size(); ++i) {
-        TwoHistoryWeights w;
-        w.wu = wu[i];
-        w.ww = ww[i];
-        w.sMinus1 = powerSums[i].x, w.s0 = powerSums[i].y, w.s1 = powerSums[i].z;
-        const float t = TwoHistoryFinalBlend(TwoHistoryOptimalBlend(w), q[i]);
-        out[i] = glm::mix(illumW[i], illumU[i], t);
-    }
+    tbb::parallel_for(0, illumU.height(), [&](int y) {
+        for (size_t i = size_t(y) * width, end = i + width; i < end; ++i) {
+            TwoHistoryWeights w;
+            w.wu = wu[i];
+            w.ww = ww[i];
+            w.sMinus1 = powerSums[i].x, w.s0 = powerSums[i].y, w.s1 = powerSums[i].z;
+            const float t = TwoHistoryFinalBlend(TwoHistoryOptimalBlend(w), q[i]);
+            out[i] = glm::mix(illumW[i], illumU[i], t);
+        }
+    });
 }
 
 void ValidateTwoHistoryParams(const DenoiserParams& params) {

@@ -233,7 +233,7 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--denoiser", o->denoiserNames, "With --denoisers: only these (repeatable; default all)");
     cmd->add_flag("!--no-reference", o->reference, "With --denoisers: skip the C++ reference");
     cmd->add_option("--precision", o->precision, "With --denoisers: history storage (fp32 or fp16)");
-    cmd->add_option("--device", o->device, "With --denoisers: Vulkan device (auto, cpu or an index from `fovrt info`)");
+    cmd->add_option("--device", o->device, "With --denoisers: device, as denoise.device (auto, vulkan, cpu or an index from `fovrt info`)");
     cmd->callback([o] {
         if (o->denoisers) {
             DenoiserBenchOptions options;  // named fields: no -Wmissing-field-initializers

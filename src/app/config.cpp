@@ -14,6 +14,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "vk/device_choice.h"
 
 namespace fovrt {
 namespace {
@@ -340,12 +341,9 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     } else {
         r.String("denoise.device", d.device);
     }
-    {
-        bool digits = !d.device.empty() &&
-                      std::all_of(d.device.begin(), d.device.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); });
-        if (d.device != "auto" && d.device != "cpu" && !digits)
-            r.Bad("denoise.device", fmt::format("'{}' is not auto, cpu or a device index", d.device));
-    }
+    if (!ParseDeviceSetting(d.device))
+        r.Bad("denoise.device", fmt::format("'{}' is not {} (Vulkan devices present: {})", d.device,
+                                            kDeviceSettingForms, DescribeVulkanDevices(VulkanContext::ListDevices())));
     std::string precision = d.params.precision == Precision::Fp16 ? "fp16" : "fp32";
     r.String("denoise.precision", precision, {"fp32", "fp16"});
     d.params.precision = precision == "fp16" ? Precision::Fp16 : Precision::Fp32;

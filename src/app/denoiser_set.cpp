@@ -3,18 +3,17 @@
 #include <cstdio>
 
 #include "denoise/denoiser_factory.h"
+#include "vk/device_choice.h"
 
 namespace fovrt {
 
 DenoiserSet::DenoiserSet(const DenoiseConfig& config) {
-    if (config.device != "cpu" && !config.denoisers.empty()) {
-        if (config.device == "auto" && !VulkanContext::Available()) {
-            std::fprintf(stderr, "fovrt: no Vulkan device found; denoising with the C++ reference\n");
-        } else {
-            VulkanContextOptions options;
-            options.device = config.device;
-            context_.emplace(VulkanContext::Create(options));
-        }
+    if (!config.denoisers.empty()) {
+        const DeviceDecision decision = ResolveVulkanDevice(config.device);
+        if (decision.vulkan)
+            context_.emplace(VulkanContext::Create(decision.options));
+        else if (!decision.notice.empty())
+            std::fprintf(stderr, "%s\n", decision.notice.c_str());
     }
     std::string device = context_ ? config.device : "cpu";
     for (const std::string& name : config.denoisers) {

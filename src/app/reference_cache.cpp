@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "io/exr.h"
+#include "scene/scene_serialize.h"
 
 namespace fovrt {
 namespace {
@@ -24,11 +25,6 @@ public:
         static_assert(std::is_trivially_copyable_v<T>);
         Bytes(&v, sizeof(T));
     }
-    template <typename T>
-    void Vector(const std::vector<T>& v) {
-        Value(v.size());
-        if (!v.empty()) Bytes(v.data(), v.size() * sizeof(T));
-    }
     void String(const std::string& s) {
         Value(s.size());
         Bytes(s.data(), s.size());
@@ -39,59 +35,11 @@ private:
     uint64_t hash_ = 1469598103934665603ull;
 };
 
-void HashKeys(Fnv1a& h, const std::vector<TransformKey>& keys) {
-    for (const TransformKey& k : keys) {
-        h.Value(k.time);
-        h.Value(k.pose.orientation);
-        h.Value(k.pose.position);
-        h.Value(k.scale);
-    }
-}
-
 }  // namespace
 
 uint64_t SceneFingerprint(const Scene& scene) {
     Fnv1a h;
-    for (const Mesh& mesh : scene.meshes) {
-        h.Vector(mesh.positions);
-        h.Vector(mesh.normals);
-        h.Vector(mesh.uvs);
-        h.Vector(mesh.triangles);
-        h.Vector(mesh.materials);
-    }
-    for (const Material& m : scene.materials) {
-        h.Value(m.baseColor);
-        h.Value(m.baseColorTexture);
-        h.Value(m.roughness);
-        h.Value(m.metallic);
-        h.Value(m.metallicRoughnessTexture);
-        h.Value(m.specular);
-        h.Value(m.emission);
-    }
-    for (const Texture& t : scene.textures) h.Vector(t.texels);
-    for (const Instance& instance : scene.instances) {
-        h.Value(instance.mesh);
-        h.Value(instance.loop);
-        HashKeys(h, instance.keys);
-    }
-    for (const Light& light : scene.lights) {
-        h.Value(light.type);
-        h.Value(light.color);
-        h.Value(light.intensity);
-        h.Value(light.position);
-        h.Value(light.direction);
-        h.Value(light.spotInner);
-        h.Value(light.spotOuter);
-        HashKeys(h, light.path);
-        h.Value(light.pathLoop);
-        h.Value(light.aimAtTarget);
-        h.Value(light.target);
-        h.Value(light.switchPeriod);
-        h.Value(light.switchOnDuration);
-        h.Value(light.switchOffset);
-    }
-    for (const Scene::EmissionSwitch& s : scene.emissionSwitches) h.Value(s);
-    h.Value(scene.background);
+    SerializeScene(scene, [&](const void* data, size_t size) { h.Bytes(data, size); });
     return h.Digest();
 }
 
@@ -105,7 +53,7 @@ ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t
 
 std::string ReferenceKey::Hex() const {
     Fnv1a h;
-    h.String("fovrt-reference-v1");
+    h.String("fovrt-reference-v2");  // v2: the scene part is SerializeScene's stream
     h.Value(sceneFingerprint);
     h.Value(frame);
     h.Value(timeSeconds);

@@ -16,7 +16,8 @@
 
 namespace fovrt {
 
-// A content fingerprint of a scene: geometry, materials, textures, lights, animation keys.
+// A content fingerprint of a scene: the hash of SerializeScene's stream (scene/scene_serialize.h),
+// so everything that can change the image is in it.
 uint64_t SceneFingerprint(const Scene& scene);
 
 struct ReferenceKey {

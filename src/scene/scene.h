@@ -2,6 +2,8 @@
 // description (TOML) that names mesh files (OBJ+MTL or glTF 2.0). Time-varying state (rigid
 // instance motion, moving/switching lights, camera path) is evaluated per frame with
 // Scene::StateAt(), so the renderer and the motion vectors see the same transforms.
+// Adding a field to any struct here? Add it to SerializeScene (scene/scene_serialize.cpp), the
+// stream the reference-cache key hashes; that file stops compiling until you do.
 #pragma once
 
 #include <filesystem>

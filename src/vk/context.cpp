@@ -6,9 +6,8 @@
 #include <mutex>
 #include <optional>
 
-#include <fmt/format.h>
-
 #include "core/error.h"
+#include "vk/device_choice.h"
 #include "vk/vk_check.h"
 
 namespace fovrt {
@@ -159,7 +158,7 @@ std::vector<VulkanDeviceInfo> VulkanContext::ListDevices() {
         for (uint32_t i = 0; i < count; ++i) {
             VkPhysicalDeviceProperties props;
             vkGetPhysicalDeviceProperties(devices[i], &props);
-            out.push_back({i, props.deviceName, TypeName(props.deviceType)});
+            out.push_back({i, props.deviceName, TypeName(props.deviceType), ComputeQueueFamily(devices[i]).has_value()});
         }
     }
     vkDestroyInstance(instance, nullptr);
@@ -222,50 +221,23 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
     }
 
     std::vector<VkPhysicalDevice> devices = EnumerateDevices(s->instance);
-    auto describeAll = [&] {
-        std::string list;
-        for (size_t i = 0; i < devices.size(); ++i) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(devices[i], &p);
-            list += fmt::format("{}{}: {} ({})", i ? ", " : "", i, p.deviceName, TypeName(p.deviceType));
-        }
-        return list.empty() ? std::string("none") : list;
-    };
     if (devices.empty()) Fail("no Vulkan device found (vkEnumeratePhysicalDevices returned none)");
-    std::optional<size_t> pick;
-    const std::string& want = options.device;
-    if (want == "auto" || want.empty()) {
-        int bestScore = -1;
-        for (size_t i = 0; i < devices.size(); ++i) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(devices[i], &p);
-            int score = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 3
-                        : p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 2
-                                                                                 : 1;
-            if (ComputeQueueFamily(devices[i]) && score > bestScore) {
-                bestScore = score;
-                pick = i;
-            }
-        }
-    } else if (want == "cpu") {
-        for (size_t i = 0; i < devices.size() && !pick; ++i) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(devices[i], &p);
-            if (p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) pick = i;
-        }
-        if (!pick) Fail("--device cpu: no CPU Vulkan device (available: {})", describeAll());
-    } else {
-        char* end = nullptr;
-        unsigned long index = std::strtoul(want.c_str(), &end, 10);
-        if (want.empty() || *end != '\0' || index >= devices.size())
-            Fail("--device '{}': unknown Vulkan device (use auto, cpu or an index; available: {})", want,
-                 describeAll());
-        pick = index;
+    std::vector<VulkanDeviceInfo> infos;
+    for (uint32_t i = 0; i < devices.size(); ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        infos.push_back({i, p.deviceName, TypeName(p.deviceType), ComputeQueueFamily(devices[i]).has_value()});
     }
-    if (!pick) Fail("no Vulkan device with a compute queue (available: {})", describeAll());
-    s->physicalDevice = devices[*pick];
+    // The one device resolution every command uses, against this instance's devices.
+    const DeviceDecision decision = ResolveVulkanDevice(options.device, infos);
+    if (!decision.vulkan)
+        Fail("denoise.device = \"{}\": {}", options.device,
+             decision.notice.empty() ? "the C++ reference, which needs no Vulkan context"
+                                     : "no Vulkan device with a compute queue");
+    const uint32_t pick = decision.index;
+    s->physicalDevice = devices[pick];
     auto family = ComputeQueueFamily(s->physicalDevice);
-    if (!family) Fail("Vulkan device {} has no compute queue", *pick);
+    if (!family) Fail("Vulkan device {} has no compute queue", pick);
     s->queueFamily = *family;
 
     // 16-bit storage for fp16 histories, when the device has it.
@@ -287,7 +259,7 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
     r = vkCreateDevice(s->physicalDevice, &deviceInfo, nullptr, &s->device);
-    if (r != VK_SUCCESS) Fail("cannot create Vulkan device {}: {}", *pick, VkResultName(r));
+    if (r != VK_SUCCESS) Fail("cannot create Vulkan device {}: {}", pick, VkResultName(r));
     vkGetDeviceQueue(s->device, s->queueFamily, 0, &s->queue);
     DescribeDevice(*s);
     CreateCommandPool(*s);

@@ -20,7 +20,9 @@ namespace fovrt {
 enum class Validation { Auto, On, Off };  // Auto: on in Debug builds or when FOVRT_VK_VALIDATION=1
 
 struct VulkanContextOptions {
-    std::string device = "auto";  // "auto" (first discrete/integrated GPU, else any), "cpu", or an index
+    // A device setting (vk/device_choice.h): "auto" or "vulkan" (the preferred device) or an index.
+    // "cpu" names the C++ reference, which has no context: Create() refuses it.
+    std::string device = "auto";
     Validation validation = Validation::Auto;
     bool quiet = false;           // no notice when validation was asked for but is unavailable
 };
@@ -39,12 +41,14 @@ struct VulkanDeviceInfo {
     uint32_t index = 0;
     std::string name;
     std::string type;  // "discrete", "integrated", "cpu", "virtual", "other"
+    bool compute = false;  // has a compute queue (the denoisers need one)
 };
 
 class VulkanContext {
 public:
-    // Creates instance + device + compute queue. fovrt::Error when no Vulkan device exists or an
-    // unknown device index is asked for (the message lists the devices).
+    // Creates instance + device + compute queue on the device ResolveVulkanDevice picks for
+    // options.device. fovrt::Error when no Vulkan device exists or the setting names none (the
+    // message lists the devices).
     static VulkanContext Create(const VulkanContextOptions& options = {});
     // Wraps external handles (not destroyed by the context). Creates only a command pool.
     static VulkanContext Wrap(const ExternalVulkan& external);

@@ -1,0 +1,64 @@
+// denoise.device through the commands' paths (config, DenoiserSet, the denoiser factory): every
+// path resolves auto and vulkan to the same device, cpu to the C++ reference, and rejects a bad
+// value with one line naming denoise.device.
+#include "app/config.h"
+#include "app/denoiser_set.h"
+#include "core/error.h"
+#include "denoise/denoiser_factory.h"
+#include "denoise/vulkan/svgf_vk.h"
+#include "test_support.h"
+#include "vk/device_choice.h"
+
+using namespace fovrt;
+
+namespace {
+
+RunConfig WithDevice(const std::string& device) {
+    ConfigOptions options;
+    options.sets = {"denoise.device=\"" + device + "\""};
+    return ResolveConfig(options);
+}
+
+std::string SetDeviceName(const std::string& device) {
+    DenoiseConfig config = WithDevice(device).denoise;
+    config.denoisers = {"svgf"};
+    return DenoiserSet(config).DeviceDescription();
+}
+
+std::string FactoryDeviceName(const std::string& device) {
+    auto denoiser = CreateDenoiser("svgf", device, DenoiserParams{});
+    auto* vk = dynamic_cast<SvgfVulkanDenoiser*>(denoiser.get());
+    return vk ? vk->context().deviceName() : "cpu";
+}
+
+}  // namespace
+
+TEST_CASE("config accepts the four device forms and names denoise.device for anything else", "[app]") {
+    for (const char* device : {"auto", "vulkan", "cpu", "0"}) CHECK(WithDevice(device).denoise.device == device);
+    CHECK_THROWS_WITH(WithDevice("gpu0"), Catch::Contains("denoise.device") && Catch::Contains(kDeviceSettingForms) &&
+                                              Catch::Contains("devices present: "));
+}
+
+TEST_CASE("cpu is the C++ reference on every path", "[app]") {
+    CHECK(SetDeviceName("cpu") == "cpu (C++ reference)");
+    CHECK(FactoryDeviceName("cpu") == "cpu");
+}
+
+TEST_CASE("auto and vulkan are the same device for DenoiserSet and the factory", "[app][vulkan]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    const std::string autoSet = SetDeviceName("auto");
+    CHECK(autoSet.rfind("vulkan (", 0) == 0);
+    CHECK(SetDeviceName("vulkan") == autoSet);
+    CHECK(SetDeviceName(std::to_string(ResolveVulkanDevice("auto").index)) == autoSet);
+    const std::string autoFactory = FactoryDeviceName("auto");
+    CHECK(autoSet == "vulkan (" + autoFactory + ")");
+    CHECK(FactoryDeviceName("vulkan") == autoFactory);
+}
+
+TEST_CASE("a device index past the last device fails before any work, naming the key", "[app][vulkan]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    DenoiseConfig config = WithDevice("99").denoise;
+    CHECK_THROWS_WITH(DenoiserSet(config), Catch::Contains("denoise.device = \"99\"") &&
+                                               Catch::Contains("devices present: 0:"));
+    CHECK_THROWS_WITH(CreateDenoiser("svgf", "99", DenoiserParams{}), Catch::Contains("denoise.device"));
+}
