@@ -2,7 +2,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
 #include "app/config.h"
+#include "app/config_cli.h"
+#include "app/config_io.h"
 #include "core/error.h"
 #include "test_support.h"
 
@@ -51,7 +56,7 @@ TEST_CASE("Defaults: the default job needs no config file", "[config]") {
     CHECK(c.denoise.params.precision == Precision::Fp32);
     CHECK(c.denoise.params.svgf.alphaColor == 0.2f);
     CHECK(c.memoryBudget == 0);
-    CHECK(DefaultConfig().ToJson() == c.ToJson());
+    CHECK(ConfigToJson(DefaultConfig()) == ConfigToJson(c));
 }
 
 TEST_CASE("TOML file, then --set overrides, then --memory-budget", "[config]") {
@@ -173,20 +178,20 @@ TEST_CASE("ToJson / ToToml round trip", "[config]") {
                                "denoise.denoisers=[\"svgf\", \"asvgf\", \"two-history\"]",
                                "denoise.two_history.gradient_beta=0.85", "output.exposure=-1.5",
                                "memory_budget=\"3GiB\"", "denoise.device=1"});
-    nlohmann::json j = c.ToJson();
+    nlohmann::json j = ConfigToJson(c);
     CHECK(j["camera"]["ipd"].get<double>() == 0.0655);  // shortest decimal, not 0.06549999...
     CHECK(j["run"]["seed"].get<int64_t>() == 4000000000ll);
     CHECK(j["memory_budget"].get<uint64_t>() == 3ull << 30);
     RunConfig back = ConfigFromJson(j);
-    CHECK(back.ToJson() == j);
+    CHECK(ConfigToJson(back) == j);
     CHECK(back.camera.ipd == c.camera.ipd);
     CHECK(back.camera.fovDeg == c.camera.fovDeg);
     CHECK(back.gaze.amplitude == c.gaze.amplitude);
     CHECK(back.denoise.params.twoHistory.gradientBeta == c.denoise.params.twoHistory.gradientBeta);
     CHECK(back.foveation.omega0Deg == c.foveation.omega0Deg);  // 1/48 survives the decimal trip
     // Through TOML text as well.
-    RunConfig fromToml = ConfigFromTomlString(c.ToToml(), "manifest.toml");
-    CHECK(fromToml.ToJson() == j);
+    RunConfig fromToml = ConfigFromTomlString(ConfigToToml(c), "manifest.toml");
+    CHECK(ConfigToJson(fromToml) == j);
     // JSON with an unknown key is rejected like TOML.
     j["camera"]["zoom"] = 2;
     CHECK_THROWS_WITH(ConfigFromJson(j), Catch::Contains("camera.zoom"));

@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/config.h"
+#include <nlohmann/json.hpp>
+
+#include "app/config_cli.h"
+#include "app/config_io.h"
 #include "commands.h"
 
 namespace fovrt {
@@ -23,7 +26,7 @@ void RegisterConfigCommand(CLI::App& app) {
         RunConfig config = *experiment || *quick
                                ? ResolveExperimentConfig(*options, *quick, experimentTable)
                                : ResolveConfig(*options);
-        std::string text = *json ? config.ToJson().dump(2) + "\n" : config.ToToml();
+        std::string text = *json ? ConfigToJson(config).dump(2) + "\n" : ConfigToToml(config);
         std::fputs(text.c_str(), stdout);
     });
 }

@@ -1,4 +1,6 @@
 #include "app/config.h"
+#include "app/config_cli.h"
+#include "app/config_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -13,6 +15,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "core/check.h"
@@ -646,15 +650,15 @@ RunConfig ConfigFromJson(const nlohmann::json& json) {
     return Build(table, origins, "JSON");
 }
 
-std::string RunConfig::ToToml() const {
+std::string ConfigToToml(const RunConfig& config) {
     std::ostringstream out;
     // toml++ prints doubles with 17 significant digits (0.20000000000000001): exact, if not pretty.
     // Its relaxed-precision mode keeps only 6 digits, which would break the round trip.
-    out << ToTable(*this) << "\n";
+    out << ToTable(config) << "\n";
     return out.str();
 }
 
-nlohmann::json RunConfig::ToJson() const { return NodeToJson(ToTable(*this)); }
+nlohmann::json ConfigToJson(const RunConfig& config) { return NodeToJson(ToTable(config)); }
 
 void AddConfigOptions(CLI::App* command, ConfigOptions& options) {
     command->add_option("-c,--config", options.configPath, "TOML config file (defaults apply to absent keys)");
