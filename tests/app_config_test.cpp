@@ -1,6 +1,7 @@
 // RunConfig: defaults, TOML load, --set overrides, unknown keys, bad values, JSON/TOML round trip.
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -281,4 +282,68 @@ TEST_CASE("Eye FOV and frame times", "[config]") {
     CHECK(FrameTimeSeconds(run, 30.0f, 15) == Approx(0.5));
     run.fps = 90.0f;
     CHECK(FrameTimeSeconds(run, 30.0f, 45) == Approx(0.5));
+}
+
+namespace {
+
+// An in-range value other than `value`: the other boolean, or a step towards the far bound.
+template <class T>
+T NonDefault(const ParamInfo& info, T value) {
+    if constexpr (std::is_same_v<T, bool>) {
+        return !value;
+    } else {
+        const double far = value - info.range.min < info.range.max - value ? info.range.max : info.range.min;
+        T next = std::is_same_v<T, int> ? T(value + (far > value ? 1 : -1)) : T((double(value) + far) / 2.0);
+        return next;
+    }
+}
+
+}  // namespace
+
+TEST_CASE("Denoiser parameter tables: every key round-trips through the TOML writer and reader", "[config]") {
+    int keys = 0;
+    const DenoiserParams defaults;
+    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& defaultValue) {
+        INFO(info.key);
+        ++keys;
+        RunConfig c = DefaultConfig();
+        auto changed = NonDefault(info, defaultValue);
+        REQUIRE(changed != defaultValue);
+        ForEachDenoiserParam(c.denoise.params, [&](const ParamInfo& row, auto& member) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, decltype(changed)>)
+                if (row.key == info.key) member = changed;
+        });
+        const RunConfig back = ConfigFromTomlString(ConfigToToml(c), "roundtrip.toml");
+        ForEachDenoiserParam(back.denoise.params, [&](const ParamInfo& row, const auto& member) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, decltype(changed)>)
+                if (row.key == info.key) CHECK(member == changed);
+        });
+        CHECK(ConfigToJson(back) == ConfigToJson(c));
+    });
+    CHECK(keys == 14);
+    RunConfig c = DefaultConfig();
+    c.denoise.params.precision = Precision::Fp16;
+    CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
+}
+
+TEST_CASE("Denoiser parameter tables: each numeric key out of range fails naming it", "[config]") {
+    const DenoiserParams defaults;
+    int numeric = 0;
+    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& value) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(value)>, bool>) {
+            ++numeric;
+            const ParamRange& r = info.range;
+            for (double outside : {r.minOpen ? r.min : r.min - 1.0, r.maxOpen ? r.max : r.max + 1.0}) {
+                const std::string set = fmt::format("{}={}", info.key, outside);
+                INFO(set);
+                CHECK_THROWS_WITH(Resolve("", {set}),
+                                  Catch::Contains(fmt::format("'{}'", info.key)) && Catch::Contains("out of range"));
+            }
+        }
+    });
+    CHECK(numeric == 12);
+    // The rule between keys names both.
+    CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.atrous_iterations=2", "denoise.svgf.feedback_iteration=3"}),
+                      Catch::Contains("'denoise.svgf.feedback_iteration'") &&
+                          Catch::Contains("denoise.svgf.atrous_iterations = 2"));
 }
