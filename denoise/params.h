@@ -1,33 +1,39 @@
-// Tunables of the denoisers, each declared once with its default and range. Loaded from the
-// [denoise] config table and recorded in every run manifest.
+// Tunables of the denoisers. Defaults are the struct initialisers below; key, range and meaning of
+// each member are one row of its struct's table (params.cpp). The config reader and writer, the
+// denoisers' checks and `fovrt config --keys` all walk those tables, so a parameter is added in
+// two places: its member here and its row there.
 #pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <variant>
 
 namespace fovrt {
 
 enum class Precision { Fp32, Fp16 };  // storage of history buffers
 
 struct SvgfParams {
-    float alphaColor = 0.2f;      // temporal EMA weight of new colour, (0,1]; paper 0.2
-    float alphaMoments = 0.2f;    // temporal EMA weight of moments, (0,1]; paper 0.2
-    int atrousIterations = 5;     // [0,8]; paper 5
-    int feedbackIteration = 1;    // à-trous iteration (1-based) whose output is the colour history;
-                                  // paper 1, Falcor 2; 0 = feed back the unfiltered accumulation
+    float alphaColor = 0.2f;      // paper 0.2
+    float alphaMoments = 0.2f;    // paper 0.2
+    int atrousIterations = 5;     // paper 5
+    int feedbackIteration = 1;    // paper 1, Falcor 2
     float sigmaDepth = 1.0f;      // σz
     float sigmaNormal = 128.0f;   // σn
     float sigmaLuminance = 4.0f;  // σl
-    int varianceHistoryThreshold = 4;  // spatial 7×7 variance below this history length
-    bool filterCombined = false;  // filter direct+indirect together instead of separately
-    bool weightBySampleCount = false;  // svgf-weighted: temporal weights × n
+    int varianceHistoryThreshold = 4;
+    bool filterCombined = false;
+    bool weightBySampleCount = false;
 };
 
 struct AsvgfParams {
-    float alpha = 0.1f;            // base temporal weight α (paper 0.1)
-    int gradientIterations = 5;    // à-trous iterations at stratum resolution
+    float alpha = 0.1f;            // paper 0.1
+    int gradientIterations = 5;
 };
 
 struct TwoHistoryParams {
-    float gradientBeta = 0.8f;     // β_g of the gradient EMA
-    float qScale = 1.0f;           // S in q = clamp(S·|lum g| / std(lum I_u), 0, 1)
+    float gradientBeta = 0.8f;     // β_g
+    float qScale = 1.0f;           // S
 };
 
 struct DenoiserParams {
@@ -36,5 +42,90 @@ struct DenoiserParams {
     TwoHistoryParams twoHistory;
     Precision precision = Precision::Fp32;
 };
+
+// ---- Parameter tables -------------------------------------------------------------------------
+
+// Allowed values of a number; an open end excludes its bound.
+struct ParamRange {
+    double min = 0.0;
+    double max = 0.0;
+    bool minOpen = false;
+    bool maxOpen = false;
+
+    bool Contains(double value) const;  // false for NaN and infinities
+    std::string Describe() const;       // "(0, 1]"
+};
+
+// What a row says about its parameter, whatever struct holds it.
+struct ParamInfo {
+    const char* key;   // full TOML key: "denoise.svgf.alpha_color"
+    ParamRange range;  // unused for bool members
+    const char* doc;   // one line
+};
+
+// One row of a struct's table: the info and the member it describes.
+template <class Struct>
+struct ParamRow {
+    ParamInfo info;
+    std::variant<float Struct::*, int Struct::*, bool Struct::*> member;
+};
+
+std::span<const ParamRow<SvgfParams>> SvgfParamTable();            // [denoise.svgf]
+std::span<const ParamRow<AsvgfParams>> AsvgfParamTable();          // [denoise.asvgf]
+std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable();  // [denoise.two_history]
+
+// The precision enum's table: the names the key denoise.precision takes.
+inline constexpr const char* kPrecisionKey = "denoise.precision";
+inline constexpr const char* kPrecisionDoc = "storage of history buffers";
+struct PrecisionRow {
+    Precision value;
+    const char* name;
+    const char* doc;
+};
+std::span<const PrecisionRow> PrecisionTable();
+const char* PrecisionName(Precision precision);
+// False when `name` is none of the table's names.
+bool PrecisionFromName(const std::string& name, Precision& precision);
+
+// Calls visit(info, value) for every row of every table, in table order ([denoise.svgf],
+// [denoise.asvgf], [denoise.two_history]); `value` is the member inside `params` (float&, int& or
+// bool&; const when `params` is).
+template <class Params, class Visit>
+void ForEachDenoiserParam(Params& params, Visit&& visit) {
+    auto walk = [&](auto& section, auto table) {
+        for (const auto& row : table)
+            std::visit([&](auto member) { visit(row.info, section.*member); }, row.member);
+    };
+    walk(params.svgf, SvgfParamTable());
+    walk(params.asvgf, AsvgfParamTable());
+    walk(params.twoHistory, TwoHistoryParamTable());
+}
+
+// What is wrong with a table row (no key, no doc, min > max, an empty open range), or nullptr.
+// params.cpp static_asserts it over every row; tests feed it bad rows.
+constexpr const char* ParamRowProblem(const ParamInfo& info) {
+    if (info.key == nullptr || info.key[0] == '\0') return "row without a key";
+    if (info.doc == nullptr || info.doc[0] == '\0') return "row without a doc line";
+    if (info.range.min > info.range.max) return "range with min > max";
+    if (info.range.min == info.range.max && (info.range.minOpen || info.range.maxOpen))
+        return "open range with min == max (empty)";
+    return nullptr;
+}
+
+// A value that breaks a rule: the key to blame and why ("9 is out of range [0, 8]").
+struct ParamProblem {
+    std::string key;
+    std::string message;
+};
+// The rule between keys: feedback_iteration <= atrous_iterations. For readers that report with
+// their own context (the config reader adds file:line).
+std::optional<ParamProblem> DenoiserParamConflict(const DenoiserParams& params);
+
+// Every value within its row's range; fovrt::Error "<key>: <value> is out of range <range>"
+// otherwise. The denoisers check this much: they also run feedback_iteration > atrous_iterations
+// (as "no à-trous feedback"), which tests with zero iterations rely on.
+void ValidateDenoiserParamRanges(const DenoiserParams& params);
+// The ranges and the rule between keys (what a config must satisfy).
+void ValidateDenoiserParams(const DenoiserParams& params);
 
 }  // namespace fovrt

@@ -1,8 +1,14 @@
 // RunConfig: defaults, TOML load, --set overrides, unknown keys, bad values, JSON/TOML round trip.
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "app/config.h"
+#include "app/config_cli.h"
+#include "app/config_io.h"
 #include "core/error.h"
 #include "test_support.h"
 
@@ -51,7 +57,7 @@ TEST_CASE("Defaults: the default job needs no config file", "[config]") {
     CHECK(c.denoise.params.precision == Precision::Fp32);
     CHECK(c.denoise.params.svgf.alphaColor == 0.2f);
     CHECK(c.memoryBudget == 0);
-    CHECK(DefaultConfig().ToJson() == c.ToJson());
+    CHECK(ConfigToJson(DefaultConfig()) == ConfigToJson(c));
 }
 
 TEST_CASE("TOML file, then --set overrides, then --memory-budget", "[config]") {
@@ -173,20 +179,20 @@ TEST_CASE("ToJson / ToToml round trip", "[config]") {
                                "denoise.denoisers=[\"svgf\", \"asvgf\", \"two-history\"]",
                                "denoise.two_history.gradient_beta=0.85", "output.exposure=-1.5",
                                "memory_budget=\"3GiB\"", "denoise.device=1"});
-    nlohmann::json j = c.ToJson();
+    nlohmann::json j = ConfigToJson(c);
     CHECK(j["camera"]["ipd"].get<double>() == 0.0655);  // shortest decimal, not 0.06549999...
     CHECK(j["run"]["seed"].get<int64_t>() == 4000000000ll);
     CHECK(j["memory_budget"].get<uint64_t>() == 3ull << 30);
     RunConfig back = ConfigFromJson(j);
-    CHECK(back.ToJson() == j);
+    CHECK(ConfigToJson(back) == j);
     CHECK(back.camera.ipd == c.camera.ipd);
     CHECK(back.camera.fovDeg == c.camera.fovDeg);
     CHECK(back.gaze.amplitude == c.gaze.amplitude);
     CHECK(back.denoise.params.twoHistory.gradientBeta == c.denoise.params.twoHistory.gradientBeta);
     CHECK(back.foveation.omega0Deg == c.foveation.omega0Deg);  // 1/48 survives the decimal trip
     // Through TOML text as well.
-    RunConfig fromToml = ConfigFromTomlString(c.ToToml(), "manifest.toml");
-    CHECK(fromToml.ToJson() == j);
+    RunConfig fromToml = ConfigFromTomlString(ConfigToToml(c), "manifest.toml");
+    CHECK(ConfigToJson(fromToml) == j);
     // JSON with an unknown key is rejected like TOML.
     j["camera"]["zoom"] = 2;
     CHECK_THROWS_WITH(ConfigFromJson(j), Catch::Contains("camera.zoom"));
@@ -276,4 +282,68 @@ TEST_CASE("Eye FOV and frame times", "[config]") {
     CHECK(FrameTimeSeconds(run, 30.0f, 15) == Approx(0.5));
     run.fps = 90.0f;
     CHECK(FrameTimeSeconds(run, 30.0f, 45) == Approx(0.5));
+}
+
+namespace {
+
+// An in-range value other than `value`: the other boolean, or a step towards the far bound.
+template <class T>
+T NonDefault(const ParamInfo& info, T value) {
+    if constexpr (std::is_same_v<T, bool>) {
+        return !value;
+    } else {
+        const double far = value - info.range.min < info.range.max - value ? info.range.max : info.range.min;
+        T next = std::is_same_v<T, int> ? T(value + (far > value ? 1 : -1)) : T((double(value) + far) / 2.0);
+        return next;
+    }
+}
+
+}  // namespace
+
+TEST_CASE("Denoiser parameter tables: every key round-trips through the TOML writer and reader", "[config]") {
+    int keys = 0;
+    const DenoiserParams defaults;
+    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& defaultValue) {
+        INFO(info.key);
+        ++keys;
+        RunConfig c = DefaultConfig();
+        auto changed = NonDefault(info, defaultValue);
+        REQUIRE(changed != defaultValue);
+        ForEachDenoiserParam(c.denoise.params, [&](const ParamInfo& row, auto& member) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, decltype(changed)>)
+                if (row.key == info.key) member = changed;
+        });
+        const RunConfig back = ConfigFromTomlString(ConfigToToml(c), "roundtrip.toml");
+        ForEachDenoiserParam(back.denoise.params, [&](const ParamInfo& row, const auto& member) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, decltype(changed)>)
+                if (row.key == info.key) CHECK(member == changed);
+        });
+        CHECK(ConfigToJson(back) == ConfigToJson(c));
+    });
+    CHECK(keys == 14);
+    RunConfig c = DefaultConfig();
+    c.denoise.params.precision = Precision::Fp16;
+    CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
+}
+
+TEST_CASE("Denoiser parameter tables: each numeric key out of range fails naming it", "[config]") {
+    const DenoiserParams defaults;
+    int numeric = 0;
+    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& value) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(value)>, bool>) {
+            ++numeric;
+            const ParamRange& r = info.range;
+            for (double outside : {r.minOpen ? r.min : r.min - 1.0, r.maxOpen ? r.max : r.max + 1.0}) {
+                const std::string set = fmt::format("{}={}", info.key, outside);
+                INFO(set);
+                CHECK_THROWS_WITH(Resolve("", {set}),
+                                  Catch::Contains(fmt::format("'{}'", info.key)) && Catch::Contains("out of range"));
+            }
+        }
+    });
+    CHECK(numeric == 12);
+    // The rule between keys names both.
+    CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.atrous_iterations=2", "denoise.svgf.feedback_iteration=3"}),
+                      Catch::Contains("'denoise.svgf.feedback_iteration'") &&
+                          Catch::Contains("denoise.svgf.atrous_iterations = 2"));
 }

@@ -2,6 +2,7 @@
 // path resolves auto and vulkan to the same device, cpu to the C++ reference, and rejects a bad
 // value with one line naming denoise.device.
 #include "app/config.h"
+#include "app/config_cli.h"
 #include "app/denoiser_set.h"
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "app/config.h"
+#include "app/config_io.h"
 #include "denoise/denoiser.h"
 #include "test_support.h"
 

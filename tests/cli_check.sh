@@ -68,6 +68,9 @@ else
 fi
 expect_error "unknown bench denoiser" "svgf-typo" bench --denoisers --denoiser svgf-typo
 expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
+# config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
+"$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
+  grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
 for d in e1 e2 e3 e4 e5 e6 e7 e8 e9; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
 done

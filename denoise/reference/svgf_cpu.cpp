@@ -3,7 +3,6 @@
 #include "core/error.h"
 #include "denoise/schedule.h"
 #include "denoise/variants.h"
-#include "shaders/shared_constants.h"
 
 namespace fovrt {
 
@@ -25,9 +24,7 @@ private:
 
 SvgfReferenceDenoiser::SvgfReferenceDenoiser(std::string name, const DenoiserParams& params)
     : name_(std::move(name)), params_(params) {
-    if (params_.svgf.atrousIterations < 0 || params_.svgf.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
-        Fail("denoise.svgf.atrous_iterations = {}: must be in [0, {}]", params_.svgf.atrousIterations,
-             FOVRT_MAX_ATROUS_ITERATIONS);
+    ValidateDenoiserParamRanges(params_);
 }
 
 void SvgfReferenceDenoiser::Allocate(int width, int height) {
@@ -45,9 +42,7 @@ void SvgfReferenceDenoiser::Reset() {
 }
 
 void SvgfReferenceDenoiser::SetParams(const DenoiserParams& params) {
-    if (params.svgf.atrousIterations < 0 || params.svgf.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
-        Fail("denoise.svgf.atrous_iterations = {}: must be in [0, {}]", params.svgf.atrousIterations,
-             FOVRT_MAX_ATROUS_ITERATIONS);
+    ValidateDenoiserParamRanges(params);
     params_ = params;
     Reset();
 }

@@ -181,18 +181,7 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
 }
 
 void ValidateTwoHistoryParams(const DenoiserParams& params) {
-    const SvgfParams& s = params.svgf;
-    if (s.atrousIterations < 0 || s.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
-        Fail("denoise.svgf.atrous_iterations = {}: expected 0..{}", s.atrousIterations,
-             FOVRT_MAX_ATROUS_ITERATIONS);
-    if (params.asvgf.gradientIterations < 0 || params.asvgf.gradientIterations > 8)
-        Fail("denoise.asvgf.gradient_iterations = {}: expected 0..8",
-             params.asvgf.gradientIterations);
-    if (!(params.asvgf.alpha > 0.0f && params.asvgf.alpha <= 1.0f))
-        Fail("denoise.asvgf.alpha = {}: expected (0, 1]", params.asvgf.alpha);
-    if (!(params.twoHistory.gradientBeta >= 0.0f && params.twoHistory.gradientBeta <= 1.0f))
-        Fail("denoise.two_history.gradient_beta = {}: expected [0, 1]",
-             params.twoHistory.gradientBeta);
+    ValidateDenoiserParamRanges(params);
 }
 
 TwoHistoryReferenceDenoiser::TwoHistoryReferenceDenoiser(TwoHistoryVariant variant,

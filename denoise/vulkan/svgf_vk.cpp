@@ -27,9 +27,7 @@ SvgfVulkanDenoiser::SvgfVulkanDenoiser(std::string name, std::shared_ptr<VulkanC
 
 void SvgfVulkanDenoiser::CreatePipelines() {
     const SvgfParams& p = params_.svgf;
-    if (p.atrousIterations < 0 || p.atrousIterations > FOVRT_MAX_ATROUS_ITERATIONS)
-        Fail("denoise.svgf.atrous_iterations = {}: must be in [0, {}]", p.atrousIterations,
-             FOVRT_MAX_ATROUS_ITERATIONS);
+    ValidateDenoiserParamRanges(params_);
     if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
         Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess", context_->deviceName());
     channels_ = SvgfChannels(p);

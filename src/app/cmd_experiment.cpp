@@ -1,6 +1,7 @@
 // `fovrt experiment FILE [--quick]`: same noisy inputs, several denoisers, metrics per region
 // against a cached reference; CSV, summary JSON, stdout table and an HTML report (experiment.h).
 #include "app/commands.h"
+#include "app/config_cli.h"
 #include "app/experiment.h"
 
 namespace fovrt {

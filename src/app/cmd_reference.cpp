@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "app/config.h"
+#include "app/config_cli.h"
 #include "app/frame_pipeline.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"

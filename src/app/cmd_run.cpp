@@ -13,6 +13,8 @@
 #include "app/build_info.h"
 #include "app/commands.h"
 #include "app/config.h"
+#include "app/config_cli.h"
+#include "app/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
 #include "app/progress.h"
@@ -127,7 +129,7 @@ void Run(const RunConfig& config) {
     manifest["command"] = "run";
     manifest["complete"] = true;
     manifest["build"] = BuildInfoJson();
-    manifest["config"] = config.ToJson();
+    manifest["config"] = ConfigToJson(config);
     manifest["seed"] = config.run.seed;
     manifest["scene"] = {{"name", pipeline.GetScene().name},
                          {"source", pipeline.GetScene().sourcePath.string()},

@@ -1,4 +1,6 @@
 #include "app/config.h"
+#include "app/config_cli.h"
+#include "app/config_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,13 +9,19 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <type_traits>
+#include <vector>
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "denoise/params.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
@@ -22,11 +30,21 @@ namespace {
 // Where each leaf key came from ("a.toml:12", "--set", "--memory-budget", "JSON").
 using Origins = std::map<std::string, std::string>;
 
-// Tables the schema knows; every other table is an unknown key.
-const std::set<std::string> kSections = {"scene",   "camera",          "run",
-                                         "foveation", "gaze",          "denoise",
-                                         "denoise.svgf", "denoise.asvgf", "denoise.two_history",
-                                         "output",  "reference"};
+// Tables the schema knows; every other table is an unknown key. The denoiser parameters' tables
+// ([denoise.svgf], ...) come from their keys in denoise/params.cpp.
+const std::set<std::string>& KnownSections() {
+    static const std::set<std::string> sections = [] {
+        std::set<std::string> names = {"scene",   "camera", "run",    "foveation",
+                                       "gaze",    "denoise", "output", "reference"};
+        const DenoiserParams defaults;
+        ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
+            const std::string key = info.key;
+            names.insert(key.substr(0, key.rfind('.')));
+        });
+        return names;
+    }();
+    return sections;
+}
 
 std::string TypeName(const toml::node& node) {
     switch (node.type()) {
@@ -121,6 +139,14 @@ public:
         Int64(key, v, lo, hi);
         out = int(v);
     }
+    void Int(const std::string& key, int& out, const ParamRange& range) {
+        const toml::node* n = Find(key);
+        if (!n) return;
+        if (!n->is_integer()) Bad(key, fmt::format("expected an integer, got {}", TypeName(*n)));
+        int64_t v = n->as_integer()->get();
+        if (!range.Contains(double(v))) Bad(key, fmt::format("{} is out of range {}", v, range.Describe()));
+        out = int(v);
+    }
     void Int64(const std::string& key, int64_t& out, int64_t lo, int64_t hi) {
         const toml::node* n = Find(key);
         if (!n) return;
@@ -130,14 +156,16 @@ public:
         out = v;
     }
     void Float(const std::string& key, float& out, double lo, double hi, bool loOpen = false) {
+        Float(key, out, ParamRange{lo, hi, loOpen, false});
+    }
+    void Float(const std::string& key, float& out, const ParamRange& range) {
         const toml::node* n = Find(key);
         if (!n) return;
         double v;
         if (n->is_integer()) v = double(n->as_integer()->get());
         else if (n->is_floating_point()) v = n->as_floating_point()->get();
         else Bad(key, fmt::format("expected a number, got {}", TypeName(*n)));
-        if (!std::isfinite(v) || v < lo || v > hi || (loOpen && v == lo))
-            Bad(key, fmt::format("{} is out of range {}{}, {}]", v, loOpen ? "(" : "[", lo, hi));
+        if (!range.Contains(v)) Bad(key, fmt::format("{} is out of range {}", v, range.Describe()));
         out = float(v);
     }
     void Double(const std::string& key, double& out) {
@@ -154,7 +182,7 @@ public:
         if (!n->is_boolean()) Bad(key, fmt::format("expected true or false, got {}", TypeName(*n)));
         out = n->as_boolean()->get();
     }
-    void String(const std::string& key, std::string& out, std::initializer_list<const char*> allowed = {}) {
+    void String(const std::string& key, std::string& out, const std::vector<std::string>& allowed = {}) {
         const toml::node* n = Find(key);
         if (!n) return;
         if (!n->is_string()) Bad(key, fmt::format("expected a string, got {}", TypeName(*n)));
@@ -162,9 +190,9 @@ public:
         if (allowed.size() != 0) {
             bool ok = false;
             std::string list;
-            for (const char* a : allowed) {
+            for (const std::string& a : allowed) {
                 ok = ok || v == a;
-                list += (list.empty() ? "" : ", ") + std::string(a);
+                list += (list.empty() ? "" : ", ") + a;
             }
             if (!ok) Bad(key, fmt::format("'{}' is not one of {}", v, list));
         }
@@ -207,13 +235,17 @@ public:
         std::array<float, 2> a{out.x, out.y};
         if (Numbers(key, a)) out = vec2(a[0], a[1]);
     }
+    // A denoiser parameter: its type is the member's, its range the table row's.
+    void Param(const ParamInfo& info, float& out) { Float(info.key, out, info.range); }
+    void Param(const ParamInfo& info, int& out) { Int(info.key, out, info.range); }
+    void Param(const ParamInfo& info, bool& out) { Bool(info.key, out); }
 
     // Every key present but not consumed by the schema is an error.
     void CheckUnknown(const toml::table& table, const std::string& prefix) const {
         for (const auto& [key, node] : table) {
             std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
             if (used_.count(path)) continue;
-            if (node.is_table() && kSections.count(path)) {
+            if (node.is_table() && KnownSections().count(path)) {
                 CheckUnknown(*node.as_table(), path);
                 continue;
             }
@@ -344,27 +376,14 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     if (!ParseDeviceSetting(d.device))
         r.Bad("denoise.device", fmt::format("'{}' is not {} (Vulkan devices present: {})", d.device,
                                             kDeviceSettingForms, DescribeVulkanDevices(VulkanContext::ListDevices())));
-    std::string precision = d.params.precision == Precision::Fp16 ? "fp16" : "fp32";
-    r.String("denoise.precision", precision, {"fp32", "fp16"});
-    d.params.precision = precision == "fp16" ? Precision::Fp16 : Precision::Fp32;
-    SvgfParams& s = d.params.svgf;
-    r.Float("denoise.svgf.alpha_color", s.alphaColor, 0.0, 1.0, true);
-    r.Float("denoise.svgf.alpha_moments", s.alphaMoments, 0.0, 1.0, true);
-    r.Int("denoise.svgf.atrous_iterations", s.atrousIterations, 0, 8);
-    r.Int("denoise.svgf.feedback_iteration", s.feedbackIteration, 0, 8);
-    if (s.feedbackIteration > s.atrousIterations)
-        r.Bad("denoise.svgf.feedback_iteration",
-              fmt::format("{} must be <= denoise.svgf.atrous_iterations = {}", s.feedbackIteration, s.atrousIterations));
-    r.Float("denoise.svgf.sigma_depth", s.sigmaDepth, 0.0, 1e6, true);
-    r.Float("denoise.svgf.sigma_normal", s.sigmaNormal, 0.0, 1e6);
-    r.Float("denoise.svgf.sigma_luminance", s.sigmaLuminance, 0.0, 1e6, true);
-    r.Int("denoise.svgf.variance_history_threshold", s.varianceHistoryThreshold, 0, 1 << 20);
-    r.Bool("denoise.svgf.filter_combined", s.filterCombined);
-    r.Bool("denoise.svgf.weight_by_sample_count", s.weightBySampleCount);
-    r.Float("denoise.asvgf.alpha", d.params.asvgf.alpha, 0.0, 1.0, true);
-    r.Int("denoise.asvgf.gradient_iterations", d.params.asvgf.gradientIterations, 0, 8);
-    r.Float("denoise.two_history.gradient_beta", d.params.twoHistory.gradientBeta, 0.0, 1.0);
-    r.Float("denoise.two_history.q_scale", d.params.twoHistory.qScale, 0.0, 1e6);
+    std::string precision = PrecisionName(d.params.precision);
+    std::vector<std::string> precisionNames;
+    for (const PrecisionRow& row : PrecisionTable()) precisionNames.push_back(row.name);
+    r.String(kPrecisionKey, precision, precisionNames);
+    PrecisionFromName(precision, d.params.precision);
+    ForEachDenoiserParam(d.params, [&](const ParamInfo& info, auto& value) { r.Param(info, value); });
+    if (std::optional<ParamProblem> problem = DenoiserParamConflict(d.params))
+        r.Bad(problem->key, problem->message);
 
     r.String("output.dir", c.output.dir);
     if (c.output.dir.empty()) r.Bad("output.dir", "must not be empty");
@@ -385,6 +404,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     try {
         ValidateFoveationParams(c.foveation);
         ValidateGazeParams(c.gaze);
+        ValidateDenoiserParams(c.denoise.params);
     } catch (const Error& e) {
         Fail("{} (config: {})", e.what(), sources);
     }
@@ -400,10 +420,32 @@ toml::array TomlArray(std::initializer_list<float> values) {
     return a;
 }
 
+// Sets a dotted key ("denoise.svgf.alpha_color") of `root`, making the tables on the way.
+template <class Value>
+void InsertAt(toml::table& root, const std::string& key, Value value) {
+    toml::table* table = &root;
+    size_t start = 0;
+    for (size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', start)) {
+        const std::string segment = key.substr(start, dot - start);
+        if (!table->contains(segment)) table->insert(segment, toml::table{});
+        table = table->get(segment)->as_table();
+        start = dot + 1;
+    }
+    table->insert_or_assign(key.substr(start), value);
+}
+
+// The denoiser parameters from their tables: floats as their shortest decimal, like every float.
+void InsertDenoiserParams(toml::table& root, const DenoiserParams& p) {
+    InsertAt(root, kPrecisionKey, std::string(PrecisionName(p.precision)));
+    ForEachDenoiserParam(p, [&](const ParamInfo& info, const auto& value) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, float>) InsertAt(root, info.key, CleanFloat(value));
+        else InsertAt(root, info.key, value);
+    });
+}
+
 toml::table ToTable(const RunConfig& c) {
     const FoveationConfig& f = c.foveation;
     const GazeConfig& g = c.gaze;
-    const DenoiserParams& p = c.denoise.params;
     toml::table camera{{"width", c.camera.width}, {"height", c.camera.height}, {"ipd", CleanFloat(c.camera.ipd)}};
     if (c.camera.fovDeg) {
         const auto& v = *c.camera.fovDeg;
@@ -411,7 +453,7 @@ toml::table ToTable(const RunConfig& c) {
     }
     toml::array denoisers;
     for (const std::string& name : c.denoise.denoisers) denoisers.push_back(name);
-    return toml::table{
+    toml::table root{
         {"memory_budget", int64_t(c.memoryBudget)},
         {"scene", toml::table{{"name", c.scene.name}}},
         {"camera", camera},
@@ -447,24 +489,7 @@ toml::table ToTable(const RunConfig& c) {
                              {"trace_start_ms", g.traceStartMs},
                              {"yaw_deg", CleanFloat(g.yawDeg)},
                              {"pitch_deg", CleanFloat(g.pitchDeg)}}},
-        {"denoise",
-         toml::table{{"denoisers", denoisers},
-                     {"device", c.denoise.device},
-                     {"precision", p.precision == Precision::Fp16 ? "fp16" : "fp32"},
-                     {"svgf", toml::table{{"alpha_color", CleanFloat(p.svgf.alphaColor)},
-                                          {"alpha_moments", CleanFloat(p.svgf.alphaMoments)},
-                                          {"atrous_iterations", p.svgf.atrousIterations},
-                                          {"feedback_iteration", p.svgf.feedbackIteration},
-                                          {"sigma_depth", CleanFloat(p.svgf.sigmaDepth)},
-                                          {"sigma_normal", CleanFloat(p.svgf.sigmaNormal)},
-                                          {"sigma_luminance", CleanFloat(p.svgf.sigmaLuminance)},
-                                          {"variance_history_threshold", p.svgf.varianceHistoryThreshold},
-                                          {"filter_combined", p.svgf.filterCombined},
-                                          {"weight_by_sample_count", p.svgf.weightBySampleCount}}},
-                     {"asvgf", toml::table{{"alpha", CleanFloat(p.asvgf.alpha)},
-                                           {"gradient_iterations", p.asvgf.gradientIterations}}},
-                     {"two_history", toml::table{{"gradient_beta", CleanFloat(p.twoHistory.gradientBeta)},
-                                                 {"q_scale", CleanFloat(p.twoHistory.qScale)}}}}},
+        {"denoise", toml::table{{"denoisers", denoisers}, {"device", c.denoise.device}}},
         {"output", toml::table{{"dir", c.output.dir},
                                {"write_exr", c.output.writeExr},
                                {"write_png", c.output.writePng},
@@ -473,6 +498,8 @@ toml::table ToTable(const RunConfig& c) {
                                {"report", c.output.report}}},
         {"reference", toml::table{{"spp", c.reference.spp}, {"cache_dir", c.reference.cacheDir}}},
     };
+    InsertDenoiserParams(root, c.denoise.params);
+    return root;
 }
 
 nlohmann::json NodeToJson(const toml::node& node) {
@@ -621,15 +648,15 @@ RunConfig ConfigFromJson(const nlohmann::json& json) {
     return Build(table, origins, "JSON");
 }
 
-std::string RunConfig::ToToml() const {
+std::string ConfigToToml(const RunConfig& config) {
     std::ostringstream out;
     // toml++ prints doubles with 17 significant digits (0.20000000000000001): exact, if not pretty.
     // Its relaxed-precision mode keeps only 6 digits, which would break the round trip.
-    out << ToTable(*this) << "\n";
+    out << ToTable(config) << "\n";
     return out.str();
 }
 
-nlohmann::json RunConfig::ToJson() const { return NodeToJson(ToTable(*this)); }
+nlohmann::json ConfigToJson(const RunConfig& config) { return NodeToJson(ToTable(config)); }
 
 void AddConfigOptions(CLI::App* command, ConfigOptions& options) {
     command->add_option("-c,--config", options.configPath, "TOML config file (defaults apply to absent keys)");

@@ -1,4 +1,5 @@
-// RunConfig: the typed configuration every fovrt command uses.
+// RunConfig: the typed configuration every fovrt command uses. Plain structs only: reading and
+// writing TOML/JSON is in app/config_io.h, the command-line options in app/config_cli.h.
 //
 // Sources, applied to one TOML table before validation: built-in defaults (the default job runs
 // with no file at all) <- `-c FILE` (TOML) <- each `--set section.key=value` in order (value in
@@ -24,12 +25,9 @@
 //                amplitude = [640, 360], frequency_hz = [0.4, 0.5], phase_deg = [90, 0],
 //                offset = [0, 0], reference_width = 1280, reference_height = 720,
 //                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0
-//   [denoise]    denoisers = ["svgf"], device = "auto"|"cpu"|"<index>", precision = "fp32"|"fp16"
-//   [denoise.svgf] alpha_color, alpha_moments, atrous_iterations, feedback_iteration,
-//                sigma_depth, sigma_normal, sigma_luminance, variance_history_threshold,
-//                filter_combined, weight_by_sample_count          (denoise/params.h)
-//   [denoise.asvgf] alpha, gradient_iterations
-//   [denoise.two_history] gradient_beta, q_scale
+//   [denoise]    denoisers = ["svgf"], device = "auto"|"cpu"|"<index>"
+//   denoise.precision and [denoise.svgf], [denoise.asvgf], [denoise.two_history]: the parameter
+//                tables in denoise/params.cpp (key, default, range, doc; `fovrt config --keys`)
 //   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = true,
 //                exposure = 0 (stops, PNG only), report = true
 //   [reference]  spp = 1024, cache_dir = "cache/reference"
@@ -40,10 +38,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-#include <toml++/toml.h>
 
 #include "denoise/params.h"
 #include "foveation/spp_model.h"
@@ -106,16 +100,10 @@ struct RunConfig {
     OutputConfig output;
     ReferenceConfig reference;
     uint64_t memoryBudget = 0;  // bytes, 0 = none
-
-    std::string ToToml() const;
-    nlohmann::json ToJson() const;
 };
 
-// Loaders. `origin` names the source in error messages.
+// The default job's configuration (validated like any other).
 RunConfig DefaultConfig();
-RunConfig LoadConfigFile(const std::string& path);                       // file + validation
-RunConfig ConfigFromTomlString(const std::string& text, const std::string& origin = "<string>");
-RunConfig ConfigFromJson(const nlohmann::json& json);                     // e.g. a run manifest
 
 // Parses "1234", "512MiB", "2GB" etc. into bytes; `what` names the option/key in errors.
 uint64_t ParseByteSize(const std::string& text, const std::string& what);
@@ -125,25 +113,5 @@ uint64_t ParseByteSize(const std::string& text, const std::string& what);
 Fov EyeFov(const CameraConfig& camera, float sceneHorizontalFovDegrees);
 // Time of a frame in seconds: frame / run.fps, or frame / sceneFrameRate when run.fps = 0.
 double FrameTimeSeconds(const RunSettings& run, float sceneFrameRate, int frame);
-
-// Command-line plumbing shared by every subcommand.
-struct ConfigOptions {
-    std::string configPath;            // -c/--config FILE
-    std::vector<std::string> sets;     // --set section.key=value (repeatable, in order)
-    std::string memoryBudget;          // --memory-budget BYTES (empty = not given)
-    // For commands whose files carry their own tables (e.g. [experiment]): top-level tables the
-    // schema skips (no unknown-key error), and dotted tables of the file merged over its root
-    // before the --set overrides, in order (e.g. "experiment.quick" for --quick). Not CLI options:
-    // the command sets them.
-    std::vector<std::string> ignoredTables;
-    std::vector<std::string> overlayTables;
-};
-void AddConfigOptions(CLI::App* command, ConfigOptions& options);
-RunConfig ResolveConfig(const ConfigOptions& options);
-
-// Experiment files (presets/*.toml): a RunConfig plus an [experiment] table. Resolves the config
-// with [experiment] skipped by the schema and, when `quick`, [experiment.quick] merged over the
-// file (before --set); returns the file's [experiment] table (empty if absent) in `experiment`.
-RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, toml::table& experiment);
 
 }  // namespace fovrt

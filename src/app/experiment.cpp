@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/build_info.h"
+#include "app/config_cli.h"
+#include "app/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
 #include "app/progress.h"
@@ -275,7 +277,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["scenes"] = sceneRecords;
     manifest["variants"] = spec.variants;
     manifest["build"] = BuildInfoJson();
-    manifest["config"] = base.ToJson();
+    manifest["config"] = ConfigToJson(base);
     manifest["denoise_device"] = deviceDescription;
     manifest["pass_ms"] = timings.ToJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;

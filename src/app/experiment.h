@@ -15,6 +15,8 @@
 
 namespace fovrt {
 
+struct ConfigOptions;  // app/config_cli.h
+
 // An experiment file: a RunConfig plus an [experiment] table (scenes, variants, quick overrides).
 struct ExperimentSpec {
     std::filesystem::path file;

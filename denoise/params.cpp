@@ -1,0 +1,125 @@
+#include "denoise/params.h"
+
+#include <array>
+#include <cmath>
+#include <type_traits>
+
+#include "core/error.h"
+#include "shaders/shared_constants.h"
+
+namespace fovrt {
+namespace {
+
+constexpr ParamRange Closed(double min, double max) { return {min, max, false, false}; }
+constexpr ParamRange OpenMin(double min, double max) { return {min, max, true, false}; }
+constexpr ParamRange kAnyBool{};
+// Iteration counts share the shaders' cap (timestamp pools and step tables are sized by it).
+constexpr ParamRange kIterations = Closed(0, FOVRT_MAX_ATROUS_ITERATIONS);
+
+using S = SvgfParams;
+constexpr std::array<ParamRow<SvgfParams>, 10> kSvgfRows{{
+    {{"denoise.svgf.alpha_color", OpenMin(0, 1), "temporal EMA weight of new colour (paper 0.2)"},
+     &S::alphaColor},
+    {{"denoise.svgf.alpha_moments", OpenMin(0, 1), "temporal EMA weight of new moments (paper 0.2)"},
+     &S::alphaMoments},
+    {{"denoise.svgf.atrous_iterations", kIterations, "à-trous wavelet iterations (paper 5)"},
+     &S::atrousIterations},
+    {{"denoise.svgf.feedback_iteration", kIterations,
+      "à-trous iteration (1-based) fed back as colour history; 0 = unfiltered (paper 1, Falcor 2)"},
+     &S::feedbackIteration},
+    {{"denoise.svgf.sigma_depth", OpenMin(0, 1e6), "depth edge-stopping σz"}, &S::sigmaDepth},
+    {{"denoise.svgf.sigma_normal", Closed(0, 1e6), "normal edge-stopping exponent σn"}, &S::sigmaNormal},
+    {{"denoise.svgf.sigma_luminance", OpenMin(0, 1e6), "luminance edge-stopping σl"},
+     &S::sigmaLuminance},
+    {{"denoise.svgf.variance_history_threshold", Closed(0, 1 << 20),
+      "history length below which variance is estimated spatially (7×7)"},
+     &S::varianceHistoryThreshold},
+    {{"denoise.svgf.filter_combined", kAnyBool, "filter direct+indirect together instead of separately"},
+     &S::filterCombined},
+    {{"denoise.svgf.weight_by_sample_count", kAnyBool, "svgf-weighted: temporal weights × sample count"},
+     &S::weightBySampleCount},
+}};
+
+constexpr std::array<ParamRow<AsvgfParams>, 2> kAsvgfRows{{
+    {{"denoise.asvgf.alpha", OpenMin(0, 1), "base temporal weight α (paper 0.1)"}, &AsvgfParams::alpha},
+    {{"denoise.asvgf.gradient_iterations", kIterations, "à-trous iterations at stratum resolution"},
+     &AsvgfParams::gradientIterations},
+}};
+
+constexpr std::array<ParamRow<TwoHistoryParams>, 2> kTwoHistoryRows{{
+    {{"denoise.two_history.gradient_beta", Closed(0, 1), "β_g of the gradient EMA"},
+     &TwoHistoryParams::gradientBeta},
+    {{"denoise.two_history.q_scale", Closed(0, 1e6), "S in q = clamp(S·|lum g| / std(lum I_u), 0, 1)"},
+     &TwoHistoryParams::qScale},
+}};
+
+constexpr std::array<PrecisionRow, 2> kPrecisionRows{{
+    {Precision::Fp32, "fp32", "32-bit float histories"},
+    {Precision::Fp16, "fp16", "16-bit float histories (half the history bytes)"},
+}};
+
+template <class Row, size_t N>
+constexpr bool WellFormed(const std::array<Row, N>& rows) {
+    for (const Row& row : rows)
+        if (ParamRowProblem(row.info) != nullptr) return false;
+    return true;
+}
+static_assert(WellFormed(kSvgfRows) && WellFormed(kAsvgfRows) && WellFormed(kTwoHistoryRows),
+              "a parameter row lacks a key or doc, or has an empty range (see ParamRowProblem)");
+
+}  // namespace
+
+bool ParamRange::Contains(double value) const {
+    if (!std::isfinite(value)) return false;
+    if (value < min || value > max) return false;
+    return !(minOpen && value == min) && !(maxOpen && value == max);
+}
+
+std::string ParamRange::Describe() const {
+    return fmt::format("{}{}, {}{}", minOpen ? "(" : "[", min, max, maxOpen ? ")" : "]");
+}
+
+std::span<const ParamRow<SvgfParams>> SvgfParamTable() { return kSvgfRows; }
+std::span<const ParamRow<AsvgfParams>> AsvgfParamTable() { return kAsvgfRows; }
+std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable() { return kTwoHistoryRows; }
+std::span<const PrecisionRow> PrecisionTable() { return kPrecisionRows; }
+
+const char* PrecisionName(Precision precision) {
+    for (const PrecisionRow& row : kPrecisionRows)
+        if (row.value == precision) return row.name;
+    return "?";
+}
+
+bool PrecisionFromName(const std::string& name, Precision& precision) {
+    for (const PrecisionRow& row : kPrecisionRows)
+        if (name == row.name) {
+            precision = row.value;
+            return true;
+        }
+    return false;
+}
+
+std::optional<ParamProblem> DenoiserParamConflict(const DenoiserParams& params) {
+    const SvgfParams& s = params.svgf;
+    if (s.feedbackIteration > s.atrousIterations)
+        return ParamProblem{"denoise.svgf.feedback_iteration",
+                            fmt::format("{} must be <= denoise.svgf.atrous_iterations = {}",
+                                        s.feedbackIteration, s.atrousIterations)};
+    return std::nullopt;
+}
+
+void ValidateDenoiserParamRanges(const DenoiserParams& params) {
+    ForEachDenoiserParam(params, [](const ParamInfo& info, const auto& value) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(value)>, bool>)
+            if (!info.range.Contains(double(value)))
+                Fail("{}: {} is out of range {}", info.key, value, info.range.Describe());
+    });
+}
+
+void ValidateDenoiserParams(const DenoiserParams& params) {
+    ValidateDenoiserParamRanges(params);
+    if (std::optional<ParamProblem> problem = DenoiserParamConflict(params))
+        Fail("{}: {}", problem->key, problem->message);
+}
+
+}  // namespace fovrt

@@ -1,0 +1,37 @@
+// Command-line plumbing shared by every subcommand: -c FILE, --set key=value, --memory-budget,
+// resolved into a RunConfig (sources and their order: app/config.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "app/config.h"
+
+namespace CLI {
+class App;
+}
+
+namespace fovrt {
+
+struct ConfigOptions {
+    std::string configPath;            // -c/--config FILE
+    std::vector<std::string> sets;     // --set section.key=value (repeatable, in order)
+    std::string memoryBudget;          // --memory-budget BYTES (empty = not given)
+    // For commands whose files carry their own tables (e.g. [experiment]): top-level tables the
+    // schema skips (no unknown-key error), and dotted tables of the file merged over its root
+    // before the --set overrides, in order (e.g. "experiment.quick" for --quick). Not CLI options:
+    // the command sets them.
+    std::vector<std::string> ignoredTables;
+    std::vector<std::string> overlayTables;
+};
+void AddConfigOptions(CLI::App* command, ConfigOptions& options);
+RunConfig ResolveConfig(const ConfigOptions& options);
+
+// Experiment files (presets/*.toml): a RunConfig plus an [experiment] table. Resolves the config
+// with [experiment] skipped by the schema and, when `quick`, [experiment.quick] merged over the
+// file (before --set); returns the file's [experiment] table (empty if absent) in `experiment`.
+RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, toml::table& experiment);
+
+}  // namespace fovrt
