@@ -48,8 +48,9 @@ TEST_CASE("ForEachPlane, PlaneNames and Bytes describe the same planes", "[core]
     CHECK(f.Bytes() == bytes + 3 * sizeof(GradientSample));
     // The data pointers are the planes' own, with their element sizes.
     f.ForEachPlane([&](const PlaneBytes& p) {
-        if (std::string(p.name) == "linearDepth") CHECK((p.data == f.linearDepth.data() && p.elementSize == 4));
-        if (std::string(p.name) == "sampleCount") CHECK((p.data == f.sampleCount.data() && p.elementSize == 2));
+        const std::string name = p.name;
+        if (name == "linearDepth") CHECK((p.data == f.linearDepth.data() && p.elementSize == 4));
+        if (name == "sampleCount") CHECK((p.data == f.sampleCount.data() && p.elementSize == 2));
     });
 }
 

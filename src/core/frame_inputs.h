@@ -43,22 +43,25 @@ inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indir
 // ForEachPlane and the EXR layers all expand from this list, in this order. The renderer's own
 // working planes (primitive ids, barycentrics, world positions, seeds) are not here: they are its
 // VisibilityBuffer (render/visibility_buffer.h), which no denoiser reads.
-#define FOVRT_FRAME_INPUT_PLANES(X)                                                                     \
-    X(direct, vec3, vec3(0.0f), "RGB",                                                                  \
-      "paths with one reflection, demodulated by the primary albedo (SVGF §3); HDR linear RGB, W/(m²·sr)") \
-    X(indirect, vec3, vec3(0.0f), "RGB", "the other paths, demodulated like direct")                    \
-    X(albedo, vec3, vec3(0.0f), "RGB", "primary-hit albedo used for (de)modulation, in [0,1]")          \
-    X(emission, vec3, vec3(0.0f), "RGB", "emitted radiance at the primary hit (added after remodulation)") \
-    X(normal, vec3, vec3(0.0f), "XYZ", "world-space unit shading normal; 0 for background")             \
-    X(linearDepth, float, std::numeric_limits<float>::infinity(), "",                                   \
-      "metres along the view axis; +inf for background")                                                \
-    X(depthGradient, vec2, vec2(0.0f), "XY", "(d depth/dx, d depth/dy) in metres per pixel")            \
-    X(objectId, uint32_t, kNoObject, "", "instance id, kNoObject for background")                       \
-    X(prevPixel, vec2, vec2(0.0f), "XY",                                                                \
-      "motion: previous-frame continuous pixel of this surface point; (-1, -1) behind the previous eye") \
-    X(sampleCount, uint16_t, uint16_t(1), "",                                                           \
-      "n >= 1: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the previous "  \
-      "frame's n, reused)")
+#define FOVRT_FRAME_INPUT_PLANES(X)                                                               \
+    X(direct, vec3, vec3(0.0f), "RGB",                                                            \
+      "paths with one reflection, demodulated by the primary albedo (SVGF §3); HDR linear RGB, "  \
+      "W/(m²·sr)")                                                                                \
+    X(indirect, vec3, vec3(0.0f), "RGB", "the other paths, demodulated like direct")              \
+    X(albedo, vec3, vec3(0.0f), "RGB", "primary-hit albedo used for (de)modulation, in [0,1]")    \
+    X(emission, vec3, vec3(0.0f), "RGB",                                                          \
+      "emitted radiance at the primary hit (added after remodulation)")                           \
+    X(normal, vec3, vec3(0.0f), "XYZ", "world-space unit shading normal; 0 for background")       \
+    X(linearDepth, float, std::numeric_limits<float>::infinity(), "",                             \
+      "metres along the view axis; +inf for background")                                          \
+    X(depthGradient, vec2, vec2(0.0f), "XY", "(d depth/dx, d depth/dy) in metres per pixel")      \
+    X(objectId, uint32_t, kNoObject, "", "instance id, kNoObject for background")                 \
+    X(prevPixel, vec2, vec2(0.0f), "XY",                                                          \
+      "motion: previous-frame continuous pixel of this surface point; (-1, -1) behind the "       \
+      "previous eye")                                                                             \
+    X(sampleCount, uint16_t, uint16_t(1), "",                                                     \
+      "n >= 1: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the "     \
+      "previous frame's n, reused)")
 
 struct FrameInputs {
     int eye = 0;                 // 0 left, 1 right

@@ -31,8 +31,10 @@ struct PlaneBytes {
 
 // Row expanders for a plane list X-macro.
 #define FOVRT_PLANE_MEMBER(member, Type, neutral, channels, doc) Plane<Type> member;
-#define FOVRT_PLANE_RESIZE(member, Type, neutral, channels, doc) member.Resize(width, height, neutral);
-#define FOVRT_PLANE_VISIT(member, Type, neutral, channels, doc) f(PlaneSpec{#member, channels, doc}, member);
+#define FOVRT_PLANE_RESIZE(member, Type, neutral, channels, doc) \
+    member.Resize(width, height, neutral);
+#define FOVRT_PLANE_VISIT(member, Type, neutral, channels, doc) \
+    f(PlaneSpec{#member, channels, doc}, member);
 #define FOVRT_PLANE_NAME(member, Type, neutral, channels, doc) #member,
 
 // f(PlaneBytes) for every plane of `planes`, in list order.

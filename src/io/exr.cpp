@@ -85,8 +85,8 @@ void ReadUintPlane(const ExrImage& image, const std::string& name, Plane<T>& pla
     for (size_t i = 0; i < src.size(); ++i) {
         if constexpr (sizeof(T) < sizeof(uint32_t)) {
             if (src[i] > std::numeric_limits<T>::max())
-                Fail("EXR '{}': channel '{}' value {} does not fit {} bits", image.path.string(), name,
-                     src[i], 8 * sizeof(T));
+                Fail("EXR '{}': channel '{}' value {} does not fit {} bits", image.path.string(),
+                     name, src[i], 8 * sizeof(T));
         }
         plane[i] = T(src[i]);
     }

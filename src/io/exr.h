@@ -95,20 +95,23 @@ void ReadPlaneLayer(const ExrImage& image, const PlaneSpec& spec, Plane<T>& plan
 template <typename Planes>
 std::vector<ExrLayer> PlaneLayers(const Planes& planes) {
     std::vector<ExrLayer> layers;
-    planes.VisitPlanes([&](const PlaneSpec& spec, const auto& plane) { layers.push_back(PlaneLayer(spec, plane)); });
+    planes.VisitPlanes(
+        [&](const PlaneSpec& spec, const auto& plane) { layers.push_back(PlaneLayer(spec, plane)); });
     return layers;
 }
 // Every plane of a plane list read back from `image`.
 template <typename Planes>
 void ReadPlaneLayers(const ExrImage& image, Planes& planes) {
-    planes.VisitPlanes([&](const PlaneSpec& spec, auto& plane) { ReadPlaneLayer(image, spec, plane); });
+    planes.VisitPlanes(
+        [&](const PlaneSpec& spec, auto& plane) { ReadPlaneLayer(image, spec, plane); });
 }
 
 // Every FrameInputs plane (PlaneLayers), `extraLayers` (e.g. the renderer's visibility buffer,
 // which ReadFrameInputsExr skips), the spp map as layer "spp", and the scalar fields / cameras /
 // gradient samples as fovrt.* attributes.
 void WriteFrameInputsExr(const std::filesystem::path& path, const FrameInputs& inputs,
-                         const Plane<uint16_t>& sppMap, const std::vector<ExrLayer>& extraLayers = {});
+                         const Plane<uint16_t>& sppMap,
+                         const std::vector<ExrLayer>& extraLayers = {});
 // Inverse of WriteFrameInputsExr. `sppMap` may be null.
 FrameInputs ReadFrameInputsExr(const std::filesystem::path& path, Plane<uint16_t>* sppMap = nullptr);
 

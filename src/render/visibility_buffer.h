@@ -14,11 +14,13 @@
 namespace fovrt {
 
 // X(member, element type, neutral value, EXR channels, doc), as FOVRT_FRAME_INPUT_PLANES.
-#define FOVRT_VISIBILITY_PLANES(X)                                                                  \
-    X(primitiveId, uint32_t, kNoObject, "", "triangle index within the instance's mesh")            \
-    X(barycentrics, vec2, vec2(0.0f), "UV", "(u, v) of the hit, Embree convention")                 \
-    X(worldPosition, vec3, vec3(0.0f), "XYZ", "primary hit in world space (this frame); 0 for background") \
-    X(seed, uint32_t, 0u, "", "per-pixel RNG seed of this frame (an A-SVGF gradient pixel: the previous frame's)")
+#define FOVRT_VISIBILITY_PLANES(X)                                                                \
+    X(primitiveId, uint32_t, kNoObject, "", "triangle index within the instance's mesh")          \
+    X(barycentrics, vec2, vec2(0.0f), "UV", "(u, v) of the hit, Embree convention")               \
+    X(worldPosition, vec3, vec3(0.0f), "XYZ",                                                     \
+      "primary hit in world space (this frame); 0 for background")                                \
+    X(seed, uint32_t, 0u, "",                                                                     \
+      "per-pixel RNG seed of this frame (at an A-SVGF gradient pixel the previous frame's)")
 
 struct VisibilityBuffer {
     FOVRT_VISIBILITY_PLANES(FOVRT_PLANE_MEMBER)
