@@ -52,7 +52,6 @@ struct StaticScene {
                 f.linearDepth(x, y) = id == 1 ? 5.0f + 0.01f * float(x) : id == 2 ? 6.0f : 3.0f;
                 f.depthGradient(x, y) = id == 1 ? vec2(0.01f, 0.0f) : vec2(0.0f);
                 f.normal(x, y) = id == 2 ? glm::normalize(vec3(0.3f, 0.0f, 1.0f)) : vec3(0, 0, 1);
-                f.worldPosition(x, y) = vec3(float(x), float(y), -f.linearDepth(x, y));
                 f.albedo(x, y) = id == 1 ? vec3(0.8f, 0.6f, 0.4f) : id == 2 ? vec3(0.5f) : vec3(0.9f, 0.9f, 0.2f);
                 f.emission(x, y) = id == 3 ? vec3(0.1f, 0.0f, 0.0f) : vec3(0.0f);
                 f.direct(x, y) = vec3(std::max(0.0f, direct(x, y) + s * nd));

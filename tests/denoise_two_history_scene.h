@@ -26,7 +26,6 @@ inline void MakeStaticPlane(FrameInputs& f, int w, int h, uint32_t frameIndex) {
             f.depthGradient(x, y) = vec2(0.0f);
             f.objectId(x, y) = 0;
             f.prevPixel(x, y) = vec2(float(x) + 0.5f, float(y) + 0.5f);
-            f.seed(x, y) = frameIndex * 7919u + uint32_t(y * w + x);
         }
 }
 

@@ -8,6 +8,7 @@
 #include "core/rng.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include "render/visibility_buffer.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -30,10 +31,12 @@ bool BitEqual(const Plane<T>& a, const Plane<T>& b) {
 
 float RandomFloat(Pcg32& rng) { return (rng.NextFloat() - 0.5f) * 1000.0f * rng.NextFloat(); }
 
-FrameInputs RandomInputs(int w, int h) {
+// Random FrameInputs, and a random renderer visibility buffer in `vis` (its extra EXR layers).
+FrameInputs RandomInputs(int w, int h, VisibilityBuffer& vis) {
     Pcg32 rng(42);
     FrameInputs fi;
     fi.Allocate(w, h);
+    vis.Allocate(w, h);
     fi.eye = 1;
     fi.frameIndex = 0xFFFFFFF0u;  // does not fit a signed int: must still round-trip
     fi.timeSeconds = 1.0 / 3.0;
@@ -52,11 +55,11 @@ FrameInputs RandomInputs(int w, int h) {
         fi.depthGradient[i] = v2();
         fi.objectId[i] = i % 5 == 0 ? kNoObject : rng.Next();
         fi.prevPixel[i] = v2();
-        fi.primitiveId[i] = rng.Next();
-        fi.barycentrics[i] = v2();
-        fi.worldPosition[i] = v3();
+        vis.primitiveId[i] = rng.Next();
+        vis.barycentrics[i] = v2();
+        vis.worldPosition[i] = v3();
         fi.sampleCount[i] = uint16_t(1 + rng.NextBounded(16));
-        fi.seed[i] = rng.Next();
+        vis.seed[i] = rng.Next();
     }
     fi.direct[3] = vec3(1e-40f, -0.0f, std::numeric_limits<float>::max());  // denormal, -0, max
     fi.gradientSamples.push_back(GradientSample{ivec2(1, 2), ivec2(4, 7), ivec2(3, 8), 0.25f, 1e-7f});
@@ -68,12 +71,13 @@ FrameInputs RandomInputs(int w, int h) {
 
 TEST_CASE("FrameInputs round-trip through EXR bit-exactly", "[io]") {
     const int w = 64, h = 48;
-    FrameInputs fi = RandomInputs(w, h);
+    VisibilityBuffer vis;
+    FrameInputs fi = RandomInputs(w, h, vis);
     Plane<uint16_t> spp(w, h);
     for (size_t i = 0; i < spp.size(); ++i) spp[i] = uint16_t(1 + i % 16);
     fs::path dir = TempDir("frame");
     fs::path path = dir / "frame.exr";
-    WriteFrameInputsExr(path, fi, spp);
+    WriteFrameInputsExr(path, fi, spp, PlaneLayers(vis));
     REQUIRE(fs::exists(path));
 
     Plane<uint16_t> sppBack;
@@ -87,11 +91,13 @@ TEST_CASE("FrameInputs round-trip through EXR bit-exactly", "[io]") {
     CHECK(BitEqual(fi.depthGradient, back.depthGradient));
     CHECK(BitEqual(fi.objectId, back.objectId));
     CHECK(BitEqual(fi.prevPixel, back.prevPixel));
-    CHECK(BitEqual(fi.primitiveId, back.primitiveId));
-    CHECK(BitEqual(fi.barycentrics, back.barycentrics));
-    CHECK(BitEqual(fi.worldPosition, back.worldPosition));
     CHECK(BitEqual(fi.sampleCount, back.sampleCount));
-    CHECK(BitEqual(fi.seed, back.seed));
+    VisibilityBuffer visBack;
+    ReadPlaneLayers(ReadExr(path), visBack);
+    CHECK(BitEqual(vis.primitiveId, visBack.primitiveId));
+    CHECK(BitEqual(vis.barycentrics, visBack.barycentrics));
+    CHECK(BitEqual(vis.worldPosition, visBack.worldPosition));
+    CHECK(BitEqual(vis.seed, visBack.seed));
     CHECK(BitEqual(spp, sppBack));
     CHECK(back.eye == 1);
     CHECK(back.frameIndex == 0xFFFFFFF0u);
@@ -113,7 +119,9 @@ TEST_CASE("FrameInputs round-trip through EXR bit-exactly", "[io]") {
     CHECK(image.channels.at("objectId").isUint);
     CHECK(image.channels.at("spp").isUint);
     CHECK(image.channels.at("sampleCount").isUint);
-    for (const std::string& name : FrameInputs::PlaneNames()) {
+    std::vector<std::string> names = FrameInputs::PlaneNames();
+    vis.VisitPlanes([&](const PlaneSpec& spec, const auto&) { names.push_back(spec.name); });
+    for (const std::string& name : names) {
         bool found = false;
         for (const auto& [channel, data] : image.channels)
             found = found || channel == name || channel.rfind(name + ".", 0) == 0;

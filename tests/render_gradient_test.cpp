@@ -30,6 +30,7 @@ struct TwoFrameRun {
     EyeCamera c0, c1;
     Plane<uint16_t> spp0, spp1;
     FrameInputs f0, f1;
+    VisibilityBuffer v0, v1;  // the renderer's, copied after each frame
     RenderStats stats1;  // frame 1 only
 };
 
@@ -48,11 +49,13 @@ TwoFrameRun RenderTwoFrames(const Scene& scene, bool gradients, const vec3& move
     r.spp1 = RandomSppMap(8, 6);
     r.renderer->SetFrame(0);
     r.renderer->RenderEye(0, r.c0, r.c0, r.spp0, r.f0);
+    r.v0 = r.renderer->Visibility(0);
     CHECK(r.f0.gradientSamples.empty());  // frame 0 has no history
     r.renderer->SetFrame(1);
     r.renderer->ResetStats();
     r.f1.cameraCut = cut;
     r.renderer->RenderEye(0, r.c1, r.c0, r.spp1, r.f1);
+    r.v1 = r.renderer->Visibility(0);
     r.stats1 = r.renderer->Stats();
     // The old luminances are last frame's noisy colours at prevPixel.
     for (const GradientSample& g : r.f1.gradientSamples)
@@ -71,8 +74,8 @@ bool SameBits(const T& a, const T& b) {
     return std::memcmp(&a, &b, sizeof(T)) == 0;
 }
 
-SurfaceSample VisibilityAt(const FrameInputs& f, ivec2 p) {
-    return SurfaceSample{f.objectId(p.x, p.y), f.primitiveId(p.x, p.y), f.barycentrics(p.x, p.y)};
+SurfaceSample VisibilityAt(const FrameInputs& f, const VisibilityBuffer& v, ivec2 p) {
+    return SurfaceSample{f.objectId(p.x, p.y), v.primitiveId(p.x, p.y), v.barycentrics(p.x, p.y)};
 }
 
 }  // namespace
@@ -84,14 +87,15 @@ TEST_CASE("Shade() reproduces RenderEye's pixel colour exactly", "[render]") {
     Plane<uint16_t> spp(kW, kH, uint16_t(3));
     FrameInputs out;
     renderer->RenderEye(0, camera, camera, spp, out);
+    const VisibilityBuffer& vis = renderer->Visibility(0);
     for (int y = 0; y < kH; y += 3)
         for (int x = 0; x < kW; x += 2) {
-            SurfaceSample s{out.objectId(x, y), out.primitiveId(x, y), out.barycentrics(x, y)};
-            vec3 c = renderer->Shade(camera, s, out.seed(x, y), out.sampleCount(x, y));
+            SurfaceSample s{out.objectId(x, y), vis.primitiveId(x, y), vis.barycentrics(x, y)};
+            vec3 c = renderer->Shade(camera, s, vis.seed(x, y), out.sampleCount(x, y));
             vec3 expected = out.NoisyColor(x, y);
             REQUIRE(std::memcmp(&c, &expected, sizeof(vec3)) == 0);
             vec3 p = renderer->WorldPosition(s);
-            REQUIRE(std::memcmp(&p, &out.worldPosition(x, y), sizeof(vec3)) == 0);
+            REQUIRE(std::memcmp(&p, &vis.worldPosition(x, y), sizeof(vec3)) == 0);
         }
 }
 
@@ -111,7 +115,7 @@ TEST_CASE("static scene: every gradient sample has newLuminance == oldLuminance"
         // Same surface, seed and n as last frame: the pixel's demodulated shading repeats bit
         // for bit, and it is the pixel's own sample of this frame.
         ivec2 p = g.pixel;
-        REQUIRE(r.f1.seed(p.x, p.y) == r.f0.seed(p.x, p.y));
+        REQUIRE(r.v1.seed(p.x, p.y) == r.v0.seed(p.x, p.y));
         REQUIRE(r.f1.sampleCount(p.x, p.y) == r.f0.sampleCount(p.x, p.y));
         REQUIRE(SameBits(r.f1.direct(p.x, p.y), r.f0.direct(p.x, p.y)));
         REQUIRE(SameBits(r.f1.indirect(p.x, p.y), r.f0.indirect(p.x, p.y)));
@@ -124,7 +128,7 @@ TEST_CASE("static scene: every gradient sample has newLuminance == oldLuminance"
         for (int x = 0; x < kW; ++x) {
             if (isGradient(x, y)) continue;
             ++others;
-            REQUIRE(r.f1.seed(x, y) != r.f0.seed(x, y));
+            REQUIRE(r.v1.seed(x, y) != r.v0.seed(x, y));
             differing += Luminance(r.f1.NoisyColor(x, y)) != Luminance(r.f0.NoisyColor(x, y));
         }
     CHECK(differing > others / 2);
@@ -169,18 +173,18 @@ TEST_CASE("a gradient pixel is the re-shaded previous surface sample with its ol
     for (const GradientSample& g : r.f1.gradientSamples) {
         ivec2 p = g.pixel, q = g.prevPixel;
         INFO("pixel " << p.x << "," << p.y << " from " << q.x << "," << q.y);
-        SurfaceSample s = VisibilityAt(r.f0, q);
+        SurfaceSample s = VisibilityAt(r.f0, r.v0, q);
         // The visibility-buffer entry, seed and sample count are the previous pixel's.
         REQUIRE(r.f1.objectId(p.x, p.y) == s.instance);
-        REQUIRE(r.f1.primitiveId(p.x, p.y) == s.primitive);
-        REQUIRE(SameBits(r.f1.barycentrics(p.x, p.y), s.barycentrics));
-        REQUIRE(r.f1.seed(p.x, p.y) == r.f0.seed(q.x, q.y));
+        REQUIRE(r.v1.primitiveId(p.x, p.y) == s.primitive);
+        REQUIRE(SameBits(r.v1.barycentrics(p.x, p.y), s.barycentrics));
+        REQUIRE(r.v1.seed(p.x, p.y) == r.v0.seed(q.x, q.y));
         REQUIRE(r.f1.sampleCount(p.x, p.y) == r.f0.sampleCount(q.x, q.y));
         vec3 position = r.renderer->WorldPosition(s);
-        REQUIRE(SameBits(r.f1.worldPosition(p.x, p.y), position));
+        REQUIRE(SameBits(r.v1.worldPosition(p.x, p.y), position));
         REQUIRE(r.f1.linearDepth(p.x, p.y) == r.c1.LinearDepth(position));
         // Its colour is f_i(G→, ξ_{i−1}), bit for bit, and newLuminance is that colour's.
-        vec3 reshaded = r.renderer->Shade(r.c1, s, r.f0.seed(q.x, q.y), r.f0.sampleCount(q.x, q.y));
+        vec3 reshaded = r.renderer->Shade(r.c1, s, r.v0.seed(q.x, q.y), r.f0.sampleCount(q.x, q.y));
         vec3 colour = r.f1.NoisyColor(p.x, p.y);
         REQUIRE(SameBits(reshaded, colour));
         REQUIRE(g.newLuminance == Luminance(colour));
@@ -205,15 +209,16 @@ TEST_CASE("pixels without a gradient sample are as with gradient samples off", "
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
             const FrameInputs &a = on.f1, &b = off.f1;
+            const VisibilityBuffer &va = on.v1, &vb = off.v1;
             bool same = SameBits(a.direct(x, y), b.direct(x, y)) && SameBits(a.indirect(x, y), b.indirect(x, y)) &&
                         SameBits(a.albedo(x, y), b.albedo(x, y)) && SameBits(a.emission(x, y), b.emission(x, y)) &&
                         SameBits(a.normal(x, y), b.normal(x, y)) && SameBits(a.linearDepth(x, y), b.linearDepth(x, y)) &&
                         SameBits(a.depthGradient(x, y), b.depthGradient(x, y)) &&
                         a.objectId(x, y) == b.objectId(x, y) && SameBits(a.prevPixel(x, y), b.prevPixel(x, y)) &&
-                        a.primitiveId(x, y) == b.primitiveId(x, y) &&
-                        SameBits(a.barycentrics(x, y), b.barycentrics(x, y)) &&
-                        SameBits(a.worldPosition(x, y), b.worldPosition(x, y)) &&
-                        a.sampleCount(x, y) == b.sampleCount(x, y) && a.seed(x, y) == b.seed(x, y);
+                        va.primitiveId(x, y) == vb.primitiveId(x, y) &&
+                        SameBits(va.barycentrics(x, y), vb.barycentrics(x, y)) &&
+                        SameBits(va.worldPosition(x, y), vb.worldPosition(x, y)) &&
+                        a.sampleCount(x, y) == b.sampleCount(x, y) && va.seed(x, y) == vb.seed(x, y);
             if (isGradient(x, y)) {
                 ++merged;
                 mergedDiffering += !same;
@@ -259,14 +264,14 @@ TEST_CASE("camera motion forward-projects samples; cuts skip them", "[render]") 
     FrameInputs f0, f1;
     renderer->SetFrame(0);
     renderer->RenderEye(0, c0, c0, spp, f0);
+    VisibilityBuffer v0 = renderer->Visibility(0);
     renderer->SetFrame(1);
     renderer->RenderEye(0, c1, c0, spp, f1);
     REQUIRE(f1.gradientSamples.size() > 50);
     int moved = 0;
     for (const GradientSample& g : f1.gradientSamples) {
         // The current pixel holds the projection of the previous sample's surface point.
-        SurfaceSample s{f0.objectId(g.prevPixel.x, g.prevPixel.y), f0.primitiveId(g.prevPixel.x, g.prevPixel.y),
-                        f0.barycentrics(g.prevPixel.x, g.prevPixel.y)};
+        SurfaceSample s = VisibilityAt(f0, v0, g.prevPixel);
         auto proj = c1.Project(renderer->WorldPosition(s));
         REQUIRE(proj);
         CHECK(ivec2(glm::floor(proj->pixel)) == g.pixel);

@@ -93,6 +93,7 @@ TEST_CASE("object motion: prevPixel follows the previous object transform", "[re
     renderer->SetFrame(1);
     FrameInputs out;
     renderer->RenderEye(0, camera, camera, Plane<uint16_t>(kW, kH, 1), out);
+    const VisibilityBuffer& vis = renderer->Visibility(0);
     float focalPx = 0.5f * kW / std::tan(Radians(35.0f));
     int quadPixels = 0;
     for (int y = 0; y < kH; ++y)
@@ -103,8 +104,8 @@ TEST_CASE("object motion: prevPixel follows the previous object transform", "[re
                 // The quad moved by `motion` since the last frame; screen y points down.
                 CHECK(out.prevPixel(x, y).x == Approx(centre.x - focalPx * motion.x / 2.0f).margin(0.01));
                 CHECK(out.prevPixel(x, y).y == Approx(centre.y + focalPx * motion.y / 2.0f).margin(0.01));
-                CHECK(out.worldPosition(x, y).x == Approx(renderer->WorldPosition(
-                    SurfaceSample{1u, out.primitiveId(x, y), out.barycentrics(x, y)}).x));
+                CHECK(vis.worldPosition(x, y).x == Approx(renderer->WorldPosition(
+                    SurfaceSample{1u, vis.primitiveId(x, y), vis.barycentrics(x, y)}).x));
             } else {
                 REQUIRE(out.objectId(x, y) == 0u);
                 CHECK(out.prevPixel(x, y).x == Approx(centre.x).margin(0.01));
@@ -134,7 +135,7 @@ TEST_CASE("stereo: a point at known depth shows the disparity IPD and FOV predic
         int y = rig.height / 2;
         for (int x = 0; x < rig.width; ++x)
             if (out.objectId(x, y) == 1u) {
-                double px = x + 0.5, wx = out.worldPosition(x, y).x;
+                double px = x + 0.5, wx = renderer->Visibility(eye).worldPosition(x, y).x;
                 n += 1;
                 sx += px;
                 sw += wx;

@@ -1,6 +1,6 @@
 // `fovrt run`: the headless job. Renders N frames of both eyes with the configured gaze source
-// and spp model, writes per frame and eye a multi-layer EXR with every FrameInputs channel and the
-// spp map, denoises with every configured variant, and finishes with a run manifest (JSON: the
+// and spp model, writes per frame and eye a multi-layer EXR with every FrameInputs channel, the
+// renderer's visibility buffer and the spp map, denoises with every configured variant, and finishes with a run manifest (JSON: the
 // fully resolved config, versions, seed, per-stage timings, counters). The manifest is written
 // last: a directory without manifest.json is an interrupted run.
 #include <chrono>
@@ -22,6 +22,7 @@
 #include "denoise/memory_plan.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include "render/visibility_buffer.h"
 
 namespace fovrt {
 namespace {
@@ -44,9 +45,18 @@ size_t FrameInputsBytes(const RunConfig& config) {
     return 2 * (probe.Bytes() + size_t(config.camera.width) * config.camera.height * 2);
 }
 
+// The renderer's visibility buffers, one per eye (the A-SVGF history's second is not counted, as
+// before the buffers left FrameInputs).
+size_t VisibilityBytes(const RunConfig& config) {
+    VisibilityBuffer probe;
+    probe.Allocate(config.camera.width, config.camera.height);
+    return 2 * probe.Bytes();
+}
+
 void EnforceRunBudget(const RunConfig& config) {
     std::vector<BufferPlan> plan = PlanRunMemory(config);
     plan.push_back({"frame_inputs.both_eyes", FrameInputsBytes(config), false});
+    plan.push_back({"render.visibility.both_eyes", VisibilityBytes(config), false});
     EnforceMemoryBudget(plan, config.memoryBudget, "run");
 }
 
@@ -96,7 +106,8 @@ void Run(const RunConfig& config) {
             auto writeStart = std::chrono::steady_clock::now();
             std::string stem = FrameStem(index, eye);
             if (config.output.writeInputs)
-                WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap);
+                WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap,
+                                    PlaneLayers(pipeline.GetRenderer().Visibility(eye)));
             if (config.output.writePng) {
                 WritePng(outDir / "noisy" / (stem + ".png"), e.inputs.NoisyImage(),
                          config.output.exposure);

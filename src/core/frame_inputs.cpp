@@ -1,24 +1,9 @@
 #include "frame_inputs.h"
 
-#include <limits>
-
 namespace fovrt {
 
 void FrameInputs::Allocate(int width, int height) {
-    direct.Resize(width, height, vec3(0.0f));
-    indirect.Resize(width, height, vec3(0.0f));
-    albedo.Resize(width, height, vec3(0.0f));
-    emission.Resize(width, height, vec3(0.0f));
-    normal.Resize(width, height, vec3(0.0f));
-    linearDepth.Resize(width, height, std::numeric_limits<float>::infinity());
-    depthGradient.Resize(width, height, vec2(0.0f));
-    objectId.Resize(width, height, kNoObject);
-    prevPixel.Resize(width, height, vec2(0.0f));
-    primitiveId.Resize(width, height, kNoObject);
-    barycentrics.Resize(width, height, vec2(0.0f));
-    worldPosition.Resize(width, height, vec3(0.0f));
-    sampleCount.Resize(width, height, uint16_t(1));
-    seed.Resize(width, height, 0u);
+    FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_RESIZE)
     gradientSamples.clear();
 }
 
@@ -34,17 +19,11 @@ Plane<vec3> FrameInputs::NoisyImage() const {
 }
 
 size_t FrameInputs::Bytes() const {
-    return direct.bytes() + indirect.bytes() + albedo.bytes() + emission.bytes() + normal.bytes() +
-           linearDepth.bytes() + depthGradient.bytes() + objectId.bytes() + prevPixel.bytes() +
-           primitiveId.bytes() + barycentrics.bytes() + worldPosition.bytes() +
-           sampleCount.bytes() + seed.bytes() + gradientSamples.size() * sizeof(GradientSample);
+    return TotalPlaneBytes(*this) + gradientSamples.size() * sizeof(GradientSample);
 }
 
 const std::vector<std::string>& FrameInputs::PlaneNames() {
-    static const std::vector<std::string> names = {
-        "direct",      "indirect",     "albedo",       "emission",      "normal",
-        "linearDepth", "depthGradient", "objectId",    "prevPixel",     "primitiveId",
-        "barycentrics", "worldPosition", "sampleCount", "seed"};
+    static const std::vector<std::string> names = {FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_NAME)};
     return names;
 }
 

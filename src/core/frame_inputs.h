@@ -3,12 +3,15 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "camera.h"
 #include "image.h"
 #include "math.h"
+#include "plane_list.h"
 
 namespace fovrt {
 
@@ -35,6 +38,31 @@ inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indir
     return albedo * (direct + indirect) + emission;
 }
 
+// The per-pixel planes, declared once (core/plane_list.h): X(member, element type, neutral value,
+// EXR channels, doc). The fields, Allocate (neutral = background everywhere), Bytes, PlaneNames,
+// ForEachPlane and the EXR layers all expand from this list, in this order. The renderer's own
+// working planes (primitive ids, barycentrics, world positions, seeds) are not here: they are its
+// VisibilityBuffer (render/visibility_buffer.h), which no denoiser reads.
+#define FOVRT_FRAME_INPUT_PLANES(X)                                                               \
+    X(direct, vec3, vec3(0.0f), "RGB",                                                            \
+      "paths with one reflection, demodulated by the primary albedo (SVGF §3); HDR linear RGB, "  \
+      "W/(m²·sr)")                                                                                \
+    X(indirect, vec3, vec3(0.0f), "RGB", "the other paths, demodulated like direct")              \
+    X(albedo, vec3, vec3(0.0f), "RGB", "primary-hit albedo used for (de)modulation, in [0,1]")    \
+    X(emission, vec3, vec3(0.0f), "RGB",                                                          \
+      "emitted radiance at the primary hit (added after remodulation)")                           \
+    X(normal, vec3, vec3(0.0f), "XYZ", "world-space unit shading normal; 0 for background")       \
+    X(linearDepth, float, std::numeric_limits<float>::infinity(), "",                             \
+      "metres along the view axis; +inf for background")                                          \
+    X(depthGradient, vec2, vec2(0.0f), "XY", "(d depth/dx, d depth/dy) in metres per pixel")      \
+    X(objectId, uint32_t, kNoObject, "", "instance id, kNoObject for background")                 \
+    X(prevPixel, vec2, vec2(0.0f), "XY",                                                          \
+      "motion: previous-frame continuous pixel of this surface point; (-1, -1) behind the "       \
+      "previous eye")                                                                             \
+    X(sampleCount, uint16_t, uint16_t(1), "",                                                     \
+      "n >= 1: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the "     \
+      "previous frame's n, reused)")
+
 struct FrameInputs {
     int eye = 0;                 // 0 left, 1 right
     uint32_t frameIndex = 0;
@@ -43,23 +71,7 @@ struct FrameInputs {
     EyeCamera camera;            // this frame
     EyeCamera prevCamera;        // previous frame (equal to camera on frame 0 / cuts)
 
-    // Illumination demodulated by the primary albedo (SVGF §3), HDR, linear RGB, W/(m²·sr).
-    Plane<vec3> direct;
-    Plane<vec3> indirect;
-    Plane<vec3> albedo;          // primary-hit albedo used for (de)modulation, in [0,1]
-    Plane<vec3> emission;        // emitted radiance at the primary hit (added after remodulation)
-    Plane<vec3> normal;          // world-space unit shading normal; 0 for background
-    Plane<float> linearDepth;    // metres along the view axis; +inf for background
-    Plane<vec2> depthGradient;   // (d depth/dx, d depth/dy) in metres per pixel
-    Plane<uint32_t> objectId;    // instance id, kNoObject for background
-    Plane<vec2> prevPixel;       // motion: previous-frame continuous pixel of this surface point
-    // Visibility buffer.
-    Plane<uint32_t> primitiveId; // triangle index within the instance's mesh
-    Plane<vec2> barycentrics;    // (u, v) of the hit, Embree convention
-    Plane<vec3> worldPosition;   // primary hit in world space (this frame)
-    Plane<uint16_t> sampleCount; // n ≥ 1: samples the tracer took (= spp map; at an A-SVGF
-                                 // gradient sample's pixel the previous frame's n, reused)
-    Plane<uint32_t> seed;        // per-pixel RNG seed of this frame
+    FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_MEMBER)
 
     std::vector<GradientSample> gradientSamples;  // A-SVGF only; empty otherwise
 
@@ -72,10 +84,19 @@ struct FrameInputs {
     vec3 NoisyColor(int x, int y) const;
     // NoisyColor of every pixel.
     Plane<vec3> NoisyImage() const;
-    // Bytes held by all planes (for memory budgets).
+    // Bytes held by all planes and the gradient samples (for memory budgets).
     size_t Bytes() const;
-    // Names of the planes, in a fixed order (EXR layers, memory tables).
+    // Names of the planes, in list order (EXR layers, memory tables).
     static const std::vector<std::string>& PlaneNames();
+
+    // f(const PlaneSpec&, Plane<T>&) per plane, in list order (EXR layers: io/exr.h PlaneLayers).
+    template <typename F>
+    void VisitPlanes(F&& f) { FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_VISIT) }
+    template <typename F>
+    void VisitPlanes(F&& f) const { FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_VISIT) }
+    // f(PlaneBytes{name, data, element size, byte size}) per plane, in list order (GPU uploads).
+    template <typename F>
+    void ForEachPlane(F&& f) const { ForEachPlaneBytes(*this, std::forward<F>(f)); }
 };
 
 }  // namespace fovrt

@@ -15,7 +15,8 @@ inline constexpr uint32_t HashPcg(uint32_t v) {
 
 inline constexpr uint32_t HashCombine(uint32_t seed, uint32_t v) { return HashPcg(seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2))); }
 
-// The per-pixel seed of one frame: what FrameInputs::seed stores and A-SVGF re-uses.
+// The per-pixel seed of one frame: what the renderer's VisibilityBuffer::seed stores and A-SVGF
+// re-uses.
 inline constexpr uint32_t PixelSeed(uint32_t runSeed, uint32_t eye, uint32_t x, uint32_t y, uint32_t frame) {
     return HashCombine(HashCombine(HashCombine(HashCombine(HashPcg(runSeed), eye), x), y), frame);
 }

@@ -2,6 +2,8 @@
 
 #include <cstring>
 #include <exception>
+#include <limits>
+#include <type_traits>
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -67,26 +69,27 @@ void ReadFloatPlane(const ExrImage& image, const std::string& layer,
     }
 }
 
-// Per-plane description of FrameInputs, in FrameInputs::PlaneNames() order. `fi` is FrameInputs or
-// const FrameInputs; `f(name, plane, channels)` is called for each plane.
-template <typename FI, typename F>
-void ForEachPlane(FI& fi, F&& f) {
-    const std::vector<std::string> rgb = {"R", "G", "B"}, xyz = {"X", "Y", "Z"}, xy = {"X", "Y"},
-                                   uv = {"U", "V"}, one = {""};
-    f("direct", fi.direct, rgb);
-    f("indirect", fi.indirect, rgb);
-    f("albedo", fi.albedo, rgb);
-    f("emission", fi.emission, rgb);
-    f("normal", fi.normal, xyz);
-    f("linearDepth", fi.linearDepth, one);
-    f("depthGradient", fi.depthGradient, xy);
-    f("objectId", fi.objectId, one);
-    f("prevPixel", fi.prevPixel, xy);
-    f("primitiveId", fi.primitiveId, one);
-    f("barycentrics", fi.barycentrics, uv);
-    f("worldPosition", fi.worldPosition, xyz);
-    f("sampleCount", fi.sampleCount, one);
-    f("seed", fi.seed, one);
+// "RGB" -> {"R", "G", "B"}; "" -> {""} (one channel named after the layer).
+std::vector<std::string> ChannelNames(const char* letters) {
+    std::vector<std::string> names;
+    for (const char* c = letters; *c != '\0'; ++c) names.emplace_back(1, *c);
+    if (names.empty()) names.emplace_back();
+    return names;
+}
+
+// Copies a UINT channel into a uint32 or uint16 plane (uint16: values must fit).
+template <typename T>
+void ReadUintPlane(const ExrImage& image, const std::string& name, Plane<T>& plane) {
+    const std::vector<uint32_t>& src = image.Uints(name);
+    plane.Resize(image.width, image.height);
+    for (size_t i = 0; i < src.size(); ++i) {
+        if constexpr (sizeof(T) < sizeof(uint32_t)) {
+            if (src[i] > std::numeric_limits<T>::max())
+                Fail("EXR '{}': channel '{}' value {} does not fit {} bits", image.path.string(),
+                     name, src[i], 8 * sizeof(T));
+        }
+        plane[i] = T(src[i]);
+    }
 }
 
 std::vector<float> CameraToFloats(const EyeCamera& camera) {
@@ -266,57 +269,43 @@ ExrImage ReadExr(const std::filesystem::path& path) {
     return image;
 }
 
-namespace {
-
-ExrLayer MakeLayer(const char* name, const Plane<float>& p, const std::vector<std::string>&) {
-    return ExrLayer::FromPlane(name, p);
-}
-ExrLayer MakeLayer(const char* name, const Plane<vec2>& p, const std::vector<std::string>& ch) {
-    return ExrLayer::FromPlane(name, p, ch);
-}
-ExrLayer MakeLayer(const char* name, const Plane<vec3>& p, const std::vector<std::string>& ch) {
-    return ExrLayer::FromPlane(name, p, ch);
-}
-ExrLayer MakeLayer(const char* name, const Plane<uint32_t>& p, const std::vector<std::string>&) {
-    return ExrLayer::FromPlane(name, p);
-}
-ExrLayer MakeLayer(const char* name, const Plane<uint16_t>& p, const std::vector<std::string>&) {
-    return ExrLayer::FromPlane(name, p);
-}
-
-void ReadPlane(const ExrImage& img, const char* name, Plane<float>& p, const std::vector<std::string>& ch) {
-    ReadFloatPlane(img, name, ch, p);
-}
-void ReadPlane(const ExrImage& img, const char* name, Plane<vec2>& p, const std::vector<std::string>& ch) {
-    ReadFloatPlane(img, name, ch, p);
-}
-void ReadPlane(const ExrImage& img, const char* name, Plane<vec3>& p, const std::vector<std::string>& ch) {
-    ReadFloatPlane(img, name, ch, p);
-}
-void ReadPlane(const ExrImage& img, const char* name, Plane<uint32_t>& p, const std::vector<std::string>&) {
-    const std::vector<uint32_t>& src = img.Uints(name);
-    p.Resize(img.width, img.height);
-    std::copy(src.begin(), src.end(), p.data());
-}
-void ReadPlane(const ExrImage& img, const char* name, Plane<uint16_t>& p, const std::vector<std::string>&) {
-    const std::vector<uint32_t>& src = img.Uints(name);
-    p.Resize(img.width, img.height);
-    for (size_t i = 0; i < src.size(); ++i) {
-        if (src[i] > 0xFFFFu) Fail("EXR '{}': channel '{}' value {} does not fit 16 bits", img.path.string(), name, src[i]);
-        p[i] = uint16_t(src[i]);
+template <typename T>
+ExrLayer PlaneLayer(const PlaneSpec& spec, const Plane<T>& plane) {
+    if constexpr (std::is_integral_v<T>) {
+        FOVRT_CHECK(spec.channels[0] == '\0');  // integer planes are scalar
+        return ExrLayer::FromPlane(spec.name, plane);
+    } else {
+        return FloatLayer(spec.name, plane, ChannelNames(spec.channels), ExrStorage::Float);
     }
 }
 
-}  // namespace
+template <typename T>
+void ReadPlaneLayer(const ExrImage& image, const PlaneSpec& spec, Plane<T>& plane) {
+    if constexpr (std::is_integral_v<T>) ReadUintPlane(image, spec.name, plane);
+    else ReadFloatPlane(image, spec.name, ChannelNames(spec.channels), plane);
+}
+
+#define FOVRT_EXR_PLANE_TYPE(T)                                                  \
+    template ExrLayer PlaneLayer(const PlaneSpec&, const Plane<T>&);            \
+    template void ReadPlaneLayer(const ExrImage&, const PlaneSpec&, Plane<T>&);
+FOVRT_EXR_PLANE_TYPE(float)
+FOVRT_EXR_PLANE_TYPE(vec2)
+FOVRT_EXR_PLANE_TYPE(vec3)
+FOVRT_EXR_PLANE_TYPE(uint32_t)
+FOVRT_EXR_PLANE_TYPE(uint16_t)
+#undef FOVRT_EXR_PLANE_TYPE
 
 void WriteFrameInputsExr(const std::filesystem::path& path, const FrameInputs& inputs,
-                         const Plane<uint16_t>& sppMap) {
+                         const Plane<uint16_t>& sppMap, const std::vector<ExrLayer>& extraLayers) {
     const int width = inputs.width(), height = inputs.height();
-    std::vector<ExrLayer> layers;
-    ForEachPlane(inputs, [&](const char* name, const auto& plane, const std::vector<std::string>& channels) {
+    inputs.VisitPlanes([&](const PlaneSpec&, const auto& plane) {
         FOVRT_CHECK(plane.width() == width && plane.height() == height);
-        layers.push_back(MakeLayer(name, plane, channels));
     });
+    std::vector<ExrLayer> layers = PlaneLayers(inputs);
+    for (const ExrLayer& layer : extraLayers) {
+        FOVRT_CHECK_OP(layer.pixelCount, ==, size_t(width) * size_t(height));
+        layers.push_back(layer);
+    }
     if (!sppMap.empty()) {
         FOVRT_CHECK(sppMap.width() == width && sppMap.height() == height);
         layers.push_back(ExrLayer::FromPlane("spp", sppMap));
@@ -358,9 +347,7 @@ FrameInputs ReadFrameInputsExr(const std::filesystem::path& path, Plane<uint16_t
         return it->second;
     };
     FrameInputs inputs;
-    ForEachPlane(inputs, [&](const char* name, auto& plane, const std::vector<std::string>& channels) {
-        ReadPlane(image, name, plane, channels);
-    });
+    ReadPlaneLayers(image, inputs);
     inputs.eye = intAttr("fovrt.eye");
     inputs.frameIndex = uint32_t(intAttr("fovrt.frameIndex"));
     inputs.cameraCut = intAttr("fovrt.cameraCut") != 0;
@@ -378,7 +365,7 @@ FrameInputs ReadFrameInputsExr(const std::filesystem::path& path, Plane<uint16_t
                                                         ivec2(int(g[i + 4]), int(g[i + 5])), g[i + 6], g[i + 7]});
     }
     if (sppMap) {
-        if (image.Has("spp")) ReadPlane(image, "spp", *sppMap, {""});
+        if (image.Has("spp")) ReadUintPlane(image, "spp", *sppMap);
         else *sppMap = Plane<uint16_t>();
     }
     return inputs;

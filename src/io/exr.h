@@ -17,6 +17,7 @@
 #include "core/frame_inputs.h"
 #include "core/image.h"
 #include "core/math.h"
+#include "core/plane_list.h"
 
 namespace fovrt {
 
@@ -81,10 +82,36 @@ struct ExrImage {
 // Reads every channel of a scanline EXR (data window must start at 0,0).
 ExrImage ReadExr(const std::filesystem::path& path);
 
-// Every FrameInputs plane (FrameInputs::PlaneNames(), stored FLOAT/UINT, bit-exact), the spp map
-// as layer "spp", and the scalar fields / cameras / gradient samples as fovrt.* attributes.
+// A plane of a plane list (core/plane_list.h: FrameInputs, the renderer's VisibilityBuffer) as the
+// layer the list declares: named spec.name, channels spec.channels; floats FLOAT, integers UINT
+// (bit-exact). T is float, vec2, vec3, uint32_t or uint16_t.
+template <typename T>
+ExrLayer PlaneLayer(const PlaneSpec& spec, const Plane<T>& plane);
+// Inverse of PlaneLayer: fills `plane` from its layer in `image` (fovrt::Error if absent).
+template <typename T>
+void ReadPlaneLayer(const ExrImage& image, const PlaneSpec& spec, Plane<T>& plane);
+
+// Every plane of a plane list as layers, in list order.
+template <typename Planes>
+std::vector<ExrLayer> PlaneLayers(const Planes& planes) {
+    std::vector<ExrLayer> layers;
+    planes.VisitPlanes(
+        [&](const PlaneSpec& spec, const auto& plane) { layers.push_back(PlaneLayer(spec, plane)); });
+    return layers;
+}
+// Every plane of a plane list read back from `image`.
+template <typename Planes>
+void ReadPlaneLayers(const ExrImage& image, Planes& planes) {
+    planes.VisitPlanes(
+        [&](const PlaneSpec& spec, auto& plane) { ReadPlaneLayer(image, spec, plane); });
+}
+
+// Every FrameInputs plane (PlaneLayers), `extraLayers` (e.g. the renderer's visibility buffer,
+// which ReadFrameInputsExr skips), the spp map as layer "spp", and the scalar fields / cameras /
+// gradient samples as fovrt.* attributes.
 void WriteFrameInputsExr(const std::filesystem::path& path, const FrameInputs& inputs,
-                         const Plane<uint16_t>& sppMap);
+                         const Plane<uint16_t>& sppMap,
+                         const std::vector<ExrLayer>& extraLayers = {});
 // Inverse of WriteFrameInputsExr. `sppMap` may be null.
 FrameInputs ReadFrameInputsExr(const std::filesystem::path& path, Plane<uint16_t>* sppMap = nullptr);
 

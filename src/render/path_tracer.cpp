@@ -1,5 +1,6 @@
 // The stereo Embree path tracer: TracePath -> ShadePixel (n from the spp map) -> ShadeEntry ->
-// RenderEye. Per eye: visibility buffer (TraceTile), with A-SVGF gradient samples the
+// RenderEye. Per eye: visibility buffer (TraceTile, into the eye's VisibilityBuffer, which the
+// tracer keeps; FrameInputs gets only what denoisers read), with A-SVGF gradient samples the
 // forward-projected previous surface samples merged into it (MergeGradientSamples), then every
 // entry shaded once (ShadeEntry, from TraceTile when nothing is merged, else from ShadeTile).
 //
@@ -104,15 +105,23 @@ struct PixelShade {
 // core's Remodulate, as FrameInputs::NoisyColor uses: re-shaded and stored luminances match bit for bit.
 vec3 Remodulate(const PixelShade& s) { return fovrt::Remodulate(s.albedo, s.direct, s.indirect, s.emission); }
 
+// What A-SVGF's forward projection reads of one eye's previous frame besides its visibility buffer.
 struct EyeHistory {
     bool valid = false;
     uint32_t frame = 0;
     Plane<uint32_t> instance;
-    Plane<uint32_t> primitive;
-    Plane<vec2> barycentrics;
-    Plane<uint32_t> seed;
     Plane<uint16_t> sampleCount;
     Plane<float> luminance;  // of the noisy remodulated colour
+};
+
+// One eye's visibility buffers: the latest frame's and, with gradient samples, the one before
+// (the history's); they trade places each frame instead of being copied.
+struct EyeVisibility {
+    VisibilityBuffer buffers[2];
+    int latest = 0;
+    VisibilityBuffer& Latest() { return buffers[latest]; }
+    const VisibilityBuffer& Latest() const { return buffers[latest]; }
+    const VisibilityBuffer& Previous() const { return buffers[1 - latest]; }
 };
 
 class PathTracer final : public Renderer {
@@ -188,20 +197,24 @@ public:
         Plane<float> luminance(w, h, 0.0f);
 
         EyeHistory& history = history_[eye];
+        EyeVisibility& visibility = visibility_[eye];
+        if (settings_.gradientSamples) visibility.latest = 1 - visibility.latest;  // last frame's is now Previous()
+        VisibilityBuffer& vis = visibility.Latest();
+        vis.Allocate(w, h);
         bool merge = settings_.gradientSamples && history.valid && !cut && history.frame + 1 == frame_ &&
                      history.instance.width() == w && history.instance.height() == h;
         const EyeView view(camera, prevCamera);
         // Nothing to merge: visibility and shading in one sweep.
         ForEachTile(w, h, [&](int x0, int y0, int x1, int y1, RayCounts& counts) {
-            TraceTile(eye, view, spp, x0, y0, x1, y1, !merge, out, luminance, counts);
+            TraceTile(eye, view, spp, x0, y0, x1, y1, !merge, out, vis, luminance, counts);
         });
         if (merge) {
             // A-SVGF (paper §3): the forward-projected previous surface samples and seeds merged
             // into the new visibility buffer, then every entry shaded once.
             Plane<uint8_t> merged(w, h, uint8_t(0));
-            MergeGradientSamples(eye, camera, history, out, merged);
+            MergeGradientSamples(eye, camera, history, visibility.Previous(), out, vis, merged);
             ForEachTile(w, h, [&](int x0, int y0, int x1, int y1, RayCounts& counts) {
-                ShadeTile(view, merged, x0, y0, x1, y1, out, luminance, counts);
+                ShadeTile(view, merged, x0, y0, x1, y1, out, vis, luminance, counts);
             });
             // f_i(G→, ξ_{i−1}) is the merged pixel's own shading.
             for (GradientSample& g : out.gradientSamples) g.newLuminance = luminance(g.pixel.x, g.pixel.y);
@@ -211,9 +224,6 @@ public:
         history.valid = true;
         history.frame = frame_;
         history.instance = out.objectId;
-        history.primitive = out.primitiveId;
-        history.barycentrics = out.barycentrics;
-        history.seed = out.seed;
         history.sampleCount = out.sampleCount;
         history.luminance = std::move(luminance);
     }
@@ -246,6 +256,11 @@ public:
         vec3 color = Remodulate(ShadePixel(camera.Position(), sample, seed, sampleCount, counts));
         AddStats(counts);
         return color;
+    }
+
+    const VisibilityBuffer& Visibility(int eye) const override {
+        FOVRT_CHECK(eye == 0 || eye == 1);
+        return visibility_[eye].Latest();
     }
 
     vec3 WorldPosition(const SurfaceSample& sample) const override {
@@ -688,7 +703,8 @@ private:
     // the row), the fresh per-pixel seeds and the spp map's sample counts. `shade`: nothing will
     // be merged, so each pixel is shaded right after its packet (one sweep, the rays at hand).
     void TraceTile(int eye, const EyeView& view, const Plane<uint16_t>& spp, int x0, int y0, int x1, int y1,
-                   bool shade, FrameInputs& out, Plane<float>& luminance, RayCounts& counts) const {
+                   bool shade, FrameInputs& out, VisibilityBuffer& vis, Plane<float>& luminance,
+                   RayCounts& counts) const {
         for (int y = y0; y < y1; ++y) {
             for (int xs = x0; xs < x1; xs += 8) {
                 vec3 dirs[8];
@@ -705,13 +721,14 @@ private:
                     int x = xs + i;
                     uint32_t seed = PixelSeed(settings_.seed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
                     int n = std::max<int>(1, spp(x, y));
-                    out.seed(x, y) = seed;
+                    vis.seed(x, y) = seed;
                     out.sampleCount(x, y) = uint16_t(n);
                     out.objectId(x, y) = hits[i].instance;
-                    out.primitiveId(x, y) = hits[i].primitive;
-                    out.barycentrics(x, y) = hits[i].barycentrics;
+                    vis.primitiveId(x, y) = hits[i].primitive;
+                    vis.barycentrics(x, y) = hits[i].barycentrics;
                     if (shade)
-                        ShadeEntry(view, x, y, hits[i], seed, n, dirs[i], view.rays.Eye(x, y), out, luminance, counts);
+                        ShadeEntry(view, x, y, hits[i], seed, n, dirs[i], view.rays.Eye(x, y), out, vis, luminance,
+                                   counts);
                 }
             }
         }
@@ -721,21 +738,21 @@ private:
     // the forward-projected gradient samples: their surface point is not at the pixel centre, so
     // view direction and depth gradient use the ray through the point itself.
     void ShadeTile(const EyeView& view, const Plane<uint8_t>& merged, int x0, int y0, int x1, int y1,
-                   FrameInputs& out, Plane<float>& luminance, RayCounts& counts) const {
+                   FrameInputs& out, VisibilityBuffer& vis, Plane<float>& luminance, RayCounts& counts) const {
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-                SurfaceSample s{out.objectId(x, y), out.primitiveId(x, y), out.barycentrics(x, y)};
-                uint32_t seed = out.seed(x, y);
+                SurfaceSample s{out.objectId(x, y), vis.primitiveId(x, y), vis.barycentrics(x, y)};
+                uint32_t seed = vis.seed(x, y);
                 int n = out.sampleCount(x, y);
                 if (!merged(x, y)) {
                     ShadeEntry(view, x, y, s, seed, n, view.rays.Direction(x, y), view.rays.Eye(x, y), out,
-                               luminance, counts);
+                               vis, luminance, counts);
                     continue;
                 }
                 vec3 dir = WorldPosition(s) - view.eyePos;
                 vec3 eyeRay = view.rays.eyeFromWorld * dir;
                 eyeRay /= -eyeRay.z;  // in front of the camera (forward projection checked it)
-                ShadeEntry(view, x, y, s, seed, n, dir, eyeRay, out, luminance, counts);
+                ShadeEntry(view, x, y, s, seed, n, dir, eyeRay, out, vis, luminance, counts);
             }
     }
 
@@ -745,7 +762,8 @@ private:
     // bench ran 1.6 % more instructions than the single-sweep tracer before the split (callgrind).
     [[gnu::always_inline]] void ShadeEntry(const EyeView& view, int x, int y, const SurfaceSample& s,
                                            uint32_t seed, int n, const vec3& dir, const vec3& eyeRay,
-                                           FrameInputs& out, Plane<float>& luminance, RayCounts& counts) const {
+                                           FrameInputs& out, VisibilityBuffer& vis, Plane<float>& luminance,
+                                           RayCounts& counts) const {
         if (s.instance == kNoObject) {
             out.emission(x, y) = scene_.background;
             luminance(x, y) = Luminance(scene_.background);
@@ -765,7 +783,7 @@ private:
         out.normal(x, y) = ns;
         out.linearDepth(x, y) = depth;
         out.depthGradient(x, y) = DepthGradient(view.rays, eyeRay, ng, depth);
-        out.worldPosition(x, y) = hit.position;
+        vis.worldPosition(x, y) = hit.position;
         vec3 prevWorld = vec3(prevXforms_[s.instance].worldFromObject * vec4(embree_->ObjectPosition(s), 1.0f));
         auto prev = view.prevCamera.Project(prevWorld);
         out.prevPixel(x, y) = prev ? prev->pixel : vec2(-1.0f);
@@ -780,7 +798,8 @@ private:
     // (the same random numbers), so its shading is both the pixel's sample of this frame and
     // f_i(G→, ξ_{i−1}): no extra work, but that pixel traces n_prev instead of the spp map's
     // n_cur samples. Appends the gradient samples (newLuminance filled in after shading).
-    void MergeGradientSamples(int eye, const EyeCamera& camera, const EyeHistory& history, FrameInputs& out,
+    void MergeGradientSamples(int eye, const EyeCamera& camera, const EyeHistory& history,
+                              const VisibilityBuffer& prevVis, FrameInputs& out, VisibilityBuffer& vis,
                               Plane<uint8_t>& merged) const {
         int w = camera.width(), h = camera.height();
         int sw = (w + kGradientStratumSize - 1) / kGradientStratumSize;
@@ -794,14 +813,14 @@ private:
                 int px = bx + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, w - bx))));
                 int py = by + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, h - by))));
                 if (history.instance(px, py) == kNoObject) continue;
-                SurfaceSample s{history.instance(px, py), history.primitive(px, py), history.barycentrics(px, py)};
+                SurfaceSample s{history.instance(px, py), prevVis.primitiveId(px, py), prevVis.barycentrics(px, py)};
                 auto proj = camera.Project(WorldPosition(s));
                 if (!proj) continue;
                 int cx = int(std::floor(proj->pixel.x)), cy = int(std::floor(proj->pixel.y));
                 if (!out.objectId.InBounds(cx, cy) || out.objectId(cx, cy) == kNoObject) continue;
                 size_t stratum = size_t(cy / kGradientStratumSize) * size_t(sw) + size_t(cx / kGradientStratumSize);
                 if (taken[stratum]) continue;  // first wins; so (cx, cy) still holds its own entry
-                SurfaceSample here{out.objectId(cx, cy), out.primitiveId(cx, cy), out.barycentrics(cx, cy)};
+                SurfaceSample here{out.objectId(cx, cy), vis.primitiveId(cx, cy), vis.barycentrics(cx, cy)};
                 bool sameSurface = here.instance == s.instance && here.primitive == s.primitive;
                 if (!sameSurface) {
                     float depth = camera.LinearDepth(WorldPosition(here));
@@ -811,9 +830,9 @@ private:
                 taken[stratum] = 1;
                 merged(cx, cy) = 1;
                 out.objectId(cx, cy) = s.instance;
-                out.primitiveId(cx, cy) = s.primitive;
-                out.barycentrics(cx, cy) = s.barycentrics;
-                out.seed(cx, cy) = history.seed(px, py);
+                vis.primitiveId(cx, cy) = s.primitive;
+                vis.barycentrics(cx, cy) = s.barycentrics;
+                vis.seed(cx, cy) = prevVis.seed(px, py);
                 out.sampleCount(cx, cy) = history.sampleCount(px, py);
                 GradientSample g;
                 g.stratum = ivec2(cx / kGradientStratumSize, cy / kGradientStratumSize);
@@ -839,6 +858,7 @@ private:
     std::vector<float> lightCdf_;
     float lightPower_ = 0.0f;
     EyeHistory history_[2];
+    EyeVisibility visibility_[2];
     mutable std::atomic<uint64_t> primaryRays_{0}, shadowRays_{0}, shadowRaysReused_{0},
         bounceRays_{0}, samples_{0}, dropped_{0};
 };

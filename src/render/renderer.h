@@ -8,6 +8,7 @@
 #include "core/camera.h"
 #include "core/frame_inputs.h"
 #include "core/image.h"
+#include "render/visibility_buffer.h"
 #include "scene/scene.h"
 
 namespace fovrt {
@@ -52,13 +53,18 @@ public:
     virtual const Scene& GetScene() const = 0;
 
     // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's
-    // resolution). `prevCamera` and the previous frame's scene state give the motion vectors.
+    // resolution) and the eye's visibility buffer (Visibility(eye)). `prevCamera` and the previous
+    // frame's scene state give the motion vectors.
     // With gradient samples on, each gradient pixel instead holds the forward-projected previous
     // surface sample, shaded once with the previous seed and the previous n (A-SVGF §3; its
     // sampleCount says so). Set out.cameraCut before the call on a cut: gradient samples are then
     // skipped (as on frame 0).
     virtual void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
                            const Plane<uint16_t>& spp, FrameInputs& out) = 0;
+
+    // The visibility buffer `eye`'s latest RenderEye filled (empty before the first): the surface
+    // sample and seed each pixel was shaded with. Overwritten by the next RenderEye of that eye.
+    virtual const VisibilityBuffer& Visibility(int eye) const = 0;
 
     // High-spp ground truth (remodulated colour) of the current frame for one eye.
     virtual void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) = 0;
