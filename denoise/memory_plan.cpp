@@ -10,6 +10,14 @@
 
 namespace fovrt {
 
+std::string UploadBufferOf(std::string_view plane, std::string_view side) {
+    std::string name = plane == "linearDepth"                        ? "geometry.depth"
+                       : plane == "normal" || plane == "objectId" ? "geometry." + std::string(plane)
+                                                                  : "input." + std::string(plane);
+    if (!side.empty() && name.rfind("geometry.", 0) == 0) name.append(".").append(side);
+    return name;
+}
+
 std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserParams& params) {
     if (width <= 0 || height <= 0) Fail("memory plan: invalid size {}x{}", width, height);
     const size_t n = size_t(width) * size_t(height);

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "denoise/denoiser.h"
@@ -15,6 +16,11 @@ namespace fovrt {
 
 // Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
 inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
+
+// The buffer a FrameInputs plane is uploaded to: this frame's geometry into
+// geometry.depth/normal/objectId.<side> (A/B pairs: next frame reads it as the previous one),
+// every other plane into input.<plane>. side "" gives the name without the side.
+std::string UploadBufferOf(std::string_view plane, std::string_view side = "");
 
 // Bytes per element of a history plane scalar.
 inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }

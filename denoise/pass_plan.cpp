@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "core/frame_inputs.h"
 #include "denoise/memory_plan.h"
 #include "denoise/schedule.h"
 #include "denoise/variants.h"
@@ -43,13 +44,14 @@ private:
 
 const char* const kGeometry[] = {"geometry.depth", "geometry.normal", "geometry.objectId"};
 
-// The FrameInputs planes every SVGF-family frame uploads (DenoiserBuffers::RecordUploadInputs).
+// The FrameInputs planes every SVGF-family frame uploads (DenoiserBuffers::RecordUploadInputs):
+// the plane list but the sample counts, which only the variants that read them upload.
+#define FOVRT_PLANE_NAME(member, Type, neutral, channels, doc) #member,
 void UploadInputs(PlanWriter& w) {
-    for (const char* plane : {"input.direct", "input.indirect", "input.albedo", "input.emission",
-                              "input.depthGradient", "input.prevPixel"})
-        w.Upload(plane);
-    for (const char* plane : kGeometry) w.Upload(plane);
+    for (const char* plane : {FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_NAME)})
+        if (std::string_view(plane) != "sampleCount") w.Upload(UploadBufferOf(plane));
 }
+#undef FOVRT_PLANE_NAME
 
 // svgf_pack_guide: this frame's depth, normal, object id → the edge-stopping guide.
 void PackGuide(PlanWriter& w) {

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "denoise/memory_plan.h"
 
 namespace fovrt {
 namespace {
@@ -36,18 +37,14 @@ void DenoiserBuffers::RecordClear(CommandRecorder& rec) {
 
 size_t DenoiserBuffers::RecordUploadInputs(CommandRecorder& rec, const FrameInputs& in,
                                            const std::string& side) {
-    const size_t n = size_t(in.width()) * size_t(in.height());
     Buffer& staging = (*this)["staging"];
     size_t off = 0;
-    off = rec.Upload(in.direct.data(), 12 * n, staging, off, (*this)["input.direct"]);
-    off = rec.Upload(in.indirect.data(), 12 * n, staging, off, (*this)["input.indirect"]);
-    off = rec.Upload(in.albedo.data(), 12 * n, staging, off, (*this)["input.albedo"]);
-    off = rec.Upload(in.emission.data(), 12 * n, staging, off, (*this)["input.emission"]);
-    off = rec.Upload(in.depthGradient.data(), 8 * n, staging, off, (*this)["input.depthGradient"]);
-    off = rec.Upload(in.prevPixel.data(), 8 * n, staging, off, (*this)["input.prevPixel"]);
-    off = rec.Upload(in.linearDepth.data(), 4 * n, staging, off, (*this)["geometry.depth." + side]);
-    off = rec.Upload(in.normal.data(), 12 * n, staging, off, (*this)["geometry.normal." + side]);
-    off = rec.Upload(in.objectId.data(), 4 * n, staging, off, (*this)["geometry.objectId." + side]);
+    in.ForEachPlane([&](const PlaneBytes& plane) {
+        // Sample counts go where each host's staging reserves them (svgf-weighted: "staging",
+        // the two-history family: "staging.extra"), and only for the variants that read them.
+        if (std::string(plane.name) == "sampleCount") return;
+        off = rec.Upload(plane.data, plane.bytes, staging, off, (*this)[UploadBufferOf(plane.name, side)]);
+    });
     rec.Fill((*this)["stats"], 0u);
     return off;
 }

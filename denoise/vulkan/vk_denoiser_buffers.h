@@ -29,8 +29,9 @@ public:
 
     // Drops every history: object ids ~0 (background, so nothing reprojects), all else 0.
     void RecordClear(CommandRecorder& rec);
-    // Uploads the planes every SVGF-family pass reads into input.* and geometry.*.<side>, through
-    // "staging" from offset 0, and zeroes the counters. Returns the next free staging offset.
+    // Uploads every FrameInputs plane (its plane list) but the sample counts into input.* and
+    // geometry.*.<side>, through "staging" from offset 0, and zeroes the counters. Returns the
+    // next free staging offset.
     size_t RecordUploadInputs(CommandRecorder& rec, const FrameInputs& in, const std::string& side);
 
     // Records the download of "output" and "stats" to "staging" at `stagingOffset`; after
