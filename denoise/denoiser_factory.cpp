@@ -18,9 +18,6 @@ namespace fovrt {
 
 namespace {
 
-bool IsSvgf(const std::string& name) { return FindDenoiserVariant(name).family == DenoiserFamily::Svgf; }
-
-void CheckName(const std::string& name) { FindDenoiserVariant(name); }
 
 // The caller's context (not owned), or a new one on the device the setting resolves to
 // (vk/device_choice.h); null → the C++ reference.
@@ -42,23 +39,16 @@ DenoiserParams ParamsForDenoiser(const std::string& name, DenoiserParams params)
 
 std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::string& device,
                                          const DenoiserParams& params, VulkanContext* context) {
-    CheckName(name);
-    const DenoiserParams p = ParamsForDenoiser(name, params);
-    const bool cpu = device == "cpu" && !context;
-    if (IsSvgf(name)) {
-        if (cpu) return std::make_unique<SvgfReferenceDenoiser>(name, p);
-        auto ctx = ResolveContext(device, context);
+    const DenoiserVariant& v = FindDenoiserVariant(name);
+    const DenoiserParams p = ParamsForVariant(v, params);
+    // The family picks the host; the row's flags pick the passes inside it.
+    std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
+    if (v.family == DenoiserFamily::Svgf) {
         if (!ctx) return std::make_unique<SvgfReferenceDenoiser>(name, p);
         return std::make_unique<SvgfVulkanDenoiser>(name, std::move(ctx), p);
     }
-    // Denoisers of other modules register here (two-history, asvgf, two-history-asvgf).
-    if (TwoHistoryVariant v; TwoHistoryVariantOf(name, v)) {
-        if (cpu) return CreateTwoHistoryCpuDenoiser(v, p);
-        auto ctx = ResolveContext(device, context);
-        if (!ctx) return CreateTwoHistoryCpuDenoiser(v, p);
-        return std::make_unique<TwoHistoryVulkanDenoiser>(v, std::move(ctx), p);
-    }
-    Fail("denoiser '{}' is not implemented yet", name);
+    if (!ctx) return CreateTwoHistoryCpuDenoiser(v, p);
+    return std::make_unique<TwoHistoryVulkanDenoiser>(v, std::move(ctx), p);
 }
 
 }  // namespace fovrt

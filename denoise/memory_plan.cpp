@@ -71,8 +71,8 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
 
 std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
                                                   const DenoiserParams& params) {
-    TwoHistoryVariant v;
-    if (!TwoHistoryVariantOf(name, v)) return {};
+    const DenoiserVariant& v = FindDenoiserVariant(name);
+    if (v.family != DenoiserFamily::TwoHistory) return {};
     const size_t n = size_t(width) * size_t(height);
     const size_t hs = HistoryScalarBytes(params.precision);
     std::vector<BufferPlan> plan;
@@ -81,7 +81,7 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
     };
     const size_t sampleCountBytes = ((2 * n + 3) / 4) * 4;
     const size_t sampleBytes = GradientSampleCapacity(width, height) * sizeof(GradientSample);
-    if (v != TwoHistoryVariant::Asvgf) {
+    if (v.twoHistory) {
         for (const std::string& ch : SvgfChannels(params.svgf)) {
             add(ch + ".wcolor.A", 3 * hs * n, true);
             add(ch + ".wcolor.B", 3 * hs * n, true);
@@ -92,14 +92,14 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
             add(std::string("wweight.") + side, hs * n, true);
             add(std::string("powerSums.") + side, 3 * hs * n, true);
             // g as one float (its luminance); two-history-asvgf takes q from A-SVGF instead.
-            if (v == TwoHistoryVariant::TwoHistory)
+            if (v.emaGradient)
                 add(std::string("gradient.") + side, hs * n, true);
         }
         // q of the EMA gradient (two-history-asvgf blends with A-SVGF's λ̂ instead).
-        if (v == TwoHistoryVariant::TwoHistory) add("q", 4 * n, false);
+        if (v.emaGradient) add("q", 4 * n, false);
         if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);
     }
-    if (v != TwoHistoryVariant::TwoHistory) {
+    if (v.asvgfGradient) {
         const ivec2 g = StratumGridSize(width, height);
         const size_t strata = size_t(g.x) * size_t(g.y);
         add("asvgf.samples", sampleBytes, false);

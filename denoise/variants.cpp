@@ -69,30 +69,6 @@ DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams p
     return params;
 }
 
-bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant) {
-    if (name == "asvgf")
-        variant = TwoHistoryVariant::Asvgf;
-    else if (name == "two-history")
-        variant = TwoHistoryVariant::TwoHistory;
-    else if (name == "two-history-asvgf")
-        variant = TwoHistoryVariant::TwoHistoryAsvgf;
-    else
-        return false;
-    return true;
-}
-
-const char* TwoHistoryVariantName(TwoHistoryVariant v) {
-    switch (v) {
-        case TwoHistoryVariant::Asvgf:
-            return "asvgf";
-        case TwoHistoryVariant::TwoHistory:
-            return "two-history";
-        case TwoHistoryVariant::TwoHistoryAsvgf:
-            return "two-history-asvgf";
-    }
-    return "?";
-}
-
 std::vector<std::string> SvgfChannels(const SvgfParams& params) {
     if (params.filterCombined) return {"combined"};
     return {"direct", "indirect"};

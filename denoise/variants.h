@@ -40,12 +40,6 @@ const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 // Names accepted by CreateDenoiser, in table order.
 const std::vector<std::string>& DenoiserNames();
 
-// The variants of the TwoHistory family (their hosts switch passes on it).
-enum class TwoHistoryVariant { Asvgf, TwoHistory, TwoHistoryAsvgf };
-// Variant of a factory name; false when the name is none of the three.
-bool TwoHistoryVariantOf(const std::string& name, TwoHistoryVariant& variant);
-const char* TwoHistoryVariantName(TwoHistoryVariant variant);
-
 // Channels the SVGF stages filter: {"direct", "indirect"}, or {"combined"} with filterCombined.
 std::vector<std::string> SvgfChannels(const SvgfParams& params);
 

@@ -106,7 +106,7 @@ TEST_CASE("asvgf denoiser: no gradient samples behaves like SVGF with alpha 0.1"
     DenoiserParams params;
     params.svgf.alphaColor = params.asvgf.alpha;
     params.svgf.alphaMoments = params.asvgf.alpha;
-    auto asvgf = CreateTwoHistoryCpuDenoiser(TwoHistoryVariant::Asvgf, params);
+    auto asvgf = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("asvgf"), params);
     CHECK(asvgf->Name() == "asvgf");
     auto svgf = test::MakeSvgf(params.svgf);
     std::mt19937 rng(11);

@@ -84,9 +84,9 @@ int FramesToSettle(const std::vector<double>& means, double tolerance) {
 TEST_CASE("A-SVGF follows a light switched off; SVGF lags", "[asvgf][lag]") {
     DenoiserParams params;  // SVGF α = 0.2 (paper), A-SVGF α = 0.1 (paper)
     auto svgf = test::MakeSvgf(params.svgf);
-    auto asvgf = CreateTwoHistoryCpuDenoiser(TwoHistoryVariant::Asvgf, params);
-    auto thAsvgf = CreateTwoHistoryCpuDenoiser(TwoHistoryVariant::TwoHistoryAsvgf, params);
-    auto th = CreateTwoHistoryCpuDenoiser(TwoHistoryVariant::TwoHistory, params);
+    auto asvgf = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("asvgf"), params);
+    auto thAsvgf = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history-asvgf"), params);
+    auto th = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history"), params);
     auto run = [](Denoiser& d) {
         return RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { d.Denoise(f, o); });
     };

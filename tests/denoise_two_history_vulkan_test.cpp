@@ -93,15 +93,15 @@ FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame, bool boxFallback
     return f;
 }
 
-void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames, int width = 64,
+void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int frames, int width = 64,
              int height = 64, bool boxFallback = false) {
     auto ctx = TestContext();
     TwoHistoryVulkanDenoiser vk(variant, ctx, params);
     TwoHistoryReferenceDenoiser ref(variant, params);
     const bool half = params.precision == Precision::Fp16;
     const double histTol = half ? 1e-2 : 2e-3, tol = half ? 1e-2 : 2e-3;
-    const bool two = variant != TwoHistoryVariant::Asvgf;
-    const bool asvgf = variant != TwoHistoryVariant::TwoHistory;
+    const bool two = variant.twoHistory;
+    const bool asvgf = variant.asvgfGradient;
     const std::vector<std::string> channels = params.svgf.filterCombined
                                                   ? std::vector<std::string>{"combined"}
                                                   : std::vector<std::string>{"direct", "indirect"};
@@ -137,10 +137,10 @@ void RunPair(TwoHistoryVariant variant, const DenoiserParams& params, int frames
             check("power sums",
                   Compare(Floats(vk.ReadBuffer("powerSums." + side), half), st.powerSums, histTol));
         }
-        if (variant == TwoHistoryVariant::TwoHistory)  // one float per pixel: lum of g
+        if (variant.emaGradient)  // one float per pixel: lum of g
             check("gradient",
                   Compare(Floats(vk.ReadBuffer("gradient." + side), half), st.gradient, histTol));
-        if (variant == TwoHistoryVariant::TwoHistory)
+        if (variant.emaGradient)
             check("q", Compare(test::AsFloats(vk.ReadBuffer("q")), ref.Q(), tol));
         if (asvgf) {
             check("alpha", Compare(test::AsFloats(vk.ReadBuffer("asvgf.alpha")), ref.Alpha(), tol));
@@ -170,16 +170,17 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
           "[vulkan][two_history][asvgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     DenoiserParams params;
-    for (TwoHistoryVariant v : {TwoHistoryVariant::TwoHistory, TwoHistoryVariant::Asvgf,
-                                TwoHistoryVariant::TwoHistoryAsvgf}) {
-        SECTION(std::string("fp32 separate channels: ") + TwoHistoryVariantName(v)) {
+    for (const char* name : {"two-history", "asvgf", "two-history-asvgf"}) {
+        const DenoiserVariant& v = FindDenoiserVariant(name);
+        SECTION(std::string("fp32 separate channels: ") + std::string(v.name)) {
             RunPair(v, params, 4);
         }
     }
     // σn not a power of two: w_n through exp2(σn·log2) in the à-trous, moments, gradient and
     // A-SVGF reconstruction passes (2^k takes k squarings).
-    for (TwoHistoryVariant v : {TwoHistoryVariant::TwoHistory, TwoHistoryVariant::TwoHistoryAsvgf}) {
-        SECTION(std::string("fp32, sigma_normal 100 (log2 path): ") + TwoHistoryVariantName(v)) {
+    for (const char* name : {"two-history", "two-history-asvgf"}) {
+        const DenoiserVariant& v = FindDenoiserVariant(name);
+        SECTION(std::string("fp32, sigma_normal 100 (log2 path): ") + std::string(v.name)) {
             params.svgf.sigmaNormal = 100.0f;
             params.svgf.atrousIterations = 2;
             RunPair(v, params, 3);
@@ -189,44 +190,44 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.svgf.filterCombined = true;
         params.svgf.feedbackIteration = 0;
         params.svgf.atrousIterations = 2;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+        RunPair(FindDenoiserVariant("two-history"), params, 3);
     }
     SECTION("fp32 combined, feedback 1, 3 iterations: two-history (I_u + I_w as one a-trous pair)") {
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 3;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+        RunPair(FindDenoiserVariant("two-history"), params, 3);
     }
     // Odd size: 2×2 à-trous blocks whose partners fall outside the image at the borders.
     SECTION("fp32 separate channels, odd size 67x45, 4 iterations: two-history") {
         params.svgf.atrousIterations = 4;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 3, 67, 45);
+        RunPair(FindDenoiserVariant("two-history"), params, 3, 67, 45);
     }
     SECTION("fp32 combined, odd size 67x45, 4 iterations: two-history") {
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 4;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 3, 67, 45);
+        RunPair(FindDenoiserVariant("two-history"), params, 3, 67, 45);
     }
     SECTION("fp32 combined: asvgf (one-channel a-trous)") {
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 2;
-        RunPair(TwoHistoryVariant::Asvgf, params, 3);
+        RunPair(FindDenoiserVariant("asvgf"), params, 3);
     }
     SECTION("fp16 combined: two-history") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
         params.precision = Precision::Fp16;
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 2;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
+        RunPair(FindDenoiserVariant("two-history"), params, 3);
     }
     SECTION("fp32, no a-trous: two-history-asvgf") {
         params.svgf.atrousIterations = 0;
-        RunPair(TwoHistoryVariant::TwoHistoryAsvgf, params, 3);
+        RunPair(FindDenoiserVariant("two-history-asvgf"), params, 3);
     }
     // Every patch-edge column through the 3×3 fallback (the Vulkan reprojection's box pass):
     // a broken box pass changes ~6 % of the pixels, beyond the 0.5 % tolerated above.
-    for (TwoHistoryVariant v : {TwoHistoryVariant::TwoHistory, TwoHistoryVariant::Asvgf,
-                                TwoHistoryVariant::TwoHistoryAsvgf}) {
-        SECTION(std::string("fp32, 3x3 reprojection fallback: ") + TwoHistoryVariantName(v)) {
+    for (const char* name : {"two-history", "asvgf", "two-history-asvgf"}) {
+        const DenoiserVariant& v = FindDenoiserVariant(name);
+        SECTION(std::string("fp32, 3x3 reprojection fallback: ") + std::string(v.name)) {
             const int boxPixels = test::CountBoxFallbackPixels(RandomTwoHistoryFrame(64, 64, 1, true),
                                                                RandomTwoHistoryFrame(64, 64, 0, true));
             INFO(boxPixels << " of 4096 pixels reproject through the 3x3 fallback");
@@ -238,13 +239,13 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
     SECTION("fp32 combined, 3x3 reprojection fallback: two-history") {
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 1;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 4, 64, 64, true);
+        RunPair(FindDenoiserVariant("two-history"), params, 4, 64, 64, true);
     }
     SECTION("fp16 histories: two-history and asvgf") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
         params.precision = Precision::Fp16;
-        RunPair(TwoHistoryVariant::TwoHistory, params, 3);
-        RunPair(TwoHistoryVariant::Asvgf, params, 3);
+        RunPair(FindDenoiserVariant("two-history"), params, 3);
+        RunPair(FindDenoiserVariant("asvgf"), params, 3);
     }
 }
 
@@ -252,7 +253,7 @@ TEST_CASE("vulkan two-history with constant n equals vulkan svgf", "[vulkan][two
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     auto ctx = TestContext();
     DenoiserParams params;
-    TwoHistoryVulkanDenoiser th(TwoHistoryVariant::TwoHistory, ctx, params);
+    TwoHistoryVulkanDenoiser th(FindDenoiserVariant("two-history"), ctx, params);
     SvgfVulkanDenoiser svgf("svgf", ctx, params);
     Plane<vec3> a, b;
     double maxRel = 0.0;

@@ -184,13 +184,13 @@ void ValidateTwoHistoryParams(const DenoiserParams& params) {
     ValidateDenoiserParamRanges(params);
 }
 
-TwoHistoryReferenceDenoiser::TwoHistoryReferenceDenoiser(TwoHistoryVariant variant,
+TwoHistoryReferenceDenoiser::TwoHistoryReferenceDenoiser(const DenoiserVariant& variant,
                                                          const DenoiserParams& params)
     : variant_(variant), params_(params) {
     ValidateTwoHistoryParams(params);
 }
 
-std::string TwoHistoryReferenceDenoiser::Name() const { return TwoHistoryVariantName(variant_); }
+std::string TwoHistoryReferenceDenoiser::Name() const { return std::string(variant_.name); }
 
 void TwoHistoryReferenceDenoiser::Reset() {
     width_ = 0;
@@ -208,14 +208,14 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     };
     const SvgfParams& s = params_.svgf;
     const int w = frame.width(), h = frame.height();
-    const bool two = variant_ != TwoHistoryVariant::Asvgf;
-    const bool useAsvgf = variant_ != TwoHistoryVariant::TwoHistory;
+    const bool two = variant_.twoHistory;
+    const bool useAsvgf = variant_.asvgfGradient;
     const int channels = s.filterCombined ? 1 : 2;
     if (frame.cameraCut || w != width_ || h != height_) {
         width_ = w, height_ = h;
         hasPrev_ = false;
         for (auto& st : state_)
-            st.Allocate(w, h, channels, two, variant_ == TwoHistoryVariant::TwoHistory);
+            st.Allocate(w, h, channels, two, variant_.emaGradient);
         prevGeometry_.Allocate(w, h);
     }
     TwoHistoryState& prev = state_[parity_];
@@ -240,7 +240,7 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     ro.alphaMoments = s.alphaMoments;
     ro.gradientBeta = params_.twoHistory.gradientBeta;
     ro.twoHistory = two;
-    ro.gradient = variant_ == TwoHistoryVariant::TwoHistory;  // two-history-asvgf: q = λ̂
+    ro.gradient = variant_.emaGradient;  // two-history-asvgf: q = λ̂
     ro.writeColorHistory = feedback == 0;
     ro.precision = params_.precision;
     const std::array<const Plane<vec3>*, 2> colors = {&frame.direct, &frame.indirect};
@@ -261,10 +261,10 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     }
     lap("filter_moments");
 
-    if (variant_ == TwoHistoryVariant::TwoHistory) {
+    if (variant_.emaGradient) {
         TwoHistoryGradientRef(cur.gradient, u_, channels, frame, s, params_.twoHistory.qScale, q_);
         lap("two_history_gradient");
-    } else if (variant_ == TwoHistoryVariant::TwoHistoryAsvgf) {
+    } else if (two && useAsvgf) {
         q_ = lambda_;  // q = λ̂: the reconstructed A-SVGF gradient (see the report/README)
     }
 
@@ -301,7 +301,7 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     parity_ ^= 1;
 }
 
-std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(TwoHistoryVariant variant,
+std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(const DenoiserVariant& variant,
                                                       const DenoiserParams& params) {
     return std::make_unique<TwoHistoryReferenceDenoiser>(variant, params);
 }

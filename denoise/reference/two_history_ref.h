@@ -103,7 +103,7 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
 // The CPU denoisers "asvgf", "two-history", "two-history-asvgf": the stages above composed.
 class TwoHistoryReferenceDenoiser final : public Denoiser {
   public:
-    TwoHistoryReferenceDenoiser(TwoHistoryVariant variant, const DenoiserParams& params);
+    TwoHistoryReferenceDenoiser(const DenoiserVariant& variant, const DenoiserParams& params);
     std::string Name() const override;
     std::string Backend() const override { return "cpu"; }
     void Reset() override;
@@ -119,7 +119,7 @@ class TwoHistoryReferenceDenoiser final : public Denoiser {
     const Plane<vec2>& ReconstructedGradient() const { return recon_; }
 
   private:
-    TwoHistoryVariant variant_;
+    const DenoiserVariant& variant_;  // a row of DenoiserVariants(): which stages run
     DenoiserParams params_;
     int width_ = 0, height_ = 0;
     bool hasPrev_ = false;
@@ -135,7 +135,7 @@ class TwoHistoryReferenceDenoiser final : public Denoiser {
     DenoiseStats stats_;
 };
 
-std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(TwoHistoryVariant variant,
+std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(const DenoiserVariant& variant,
                                                       const DenoiserParams& params);
 // Checks the parameters this family reads; fovrt::Error naming the key otherwise.
 void ValidateTwoHistoryParams(const DenoiserParams& params);

@@ -108,7 +108,7 @@ constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f, for vkCmdFi
 
 }  // namespace
 
-TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
+TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(const DenoiserVariant& variant,
                                                    std::shared_ptr<VulkanContext> context,
                                                    const DenoiserParams& params)
     : variant_(variant), context_(std::move(context)), params_(params) {
@@ -120,8 +120,8 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
         Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess",
              context_->deviceName());
-    two_ = variant_ != TwoHistoryVariant::Asvgf;
-    asvgf_ = variant_ != TwoHistoryVariant::TwoHistory;
+    two_ = variant_.twoHistory;
+    asvgf_ = variant_.asvgfGradient;
     channels_ = SvgfChannels(params_.svgf);
     const std::string sfx = params_.precision == Precision::Fp16 ? "_fp16" : "";
     constexpr uint32_t kSets = 16;
@@ -132,7 +132,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(TwoHistoryVariant variant,
     const int feedback = FeedbackIteration(params_.svgf, two_);
     uint32_t flags = 0;
     if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
-    if (variant_ == TwoHistoryVariant::TwoHistory) flags |= TH_REPROJECT_FLAG_GRADIENT;
+    if (variant_.emaGradient) flags |= TH_REPROJECT_FLAG_GRADIENT;
     if (!pair) flags |= TH_REPROJECT_FLAG_COMBINED;
     if (asvgf_) flags |= TH_REPROJECT_FLAG_ALPHA_MAP;
     if (feedback == 0) flags |= TH_REPROJECT_FLAG_WRITE_COLOR;
@@ -206,7 +206,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         auto two = [&](const std::string& name) { return two_ ? &Buf(name) : dummyIn; };
         auto twoOut = [&](const std::string& name) { return two_ ? &Buf(name) : dummyOut; };
         // g exists for two-history only (two-history-asvgf takes q from A-SVGF).
-        const bool withGradient = variant_ == TwoHistoryVariant::TwoHistory;
+        const bool withGradient = variant_.emaGradient;
 
         guideSets_[pi] = stages_.GuideSet(buffers_, cur);
 
@@ -255,7 +255,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 b[TH_BLEND_B_WW] = &Buf("wweight." + cur);
                 b[TH_BLEND_B_S] = &Buf("powerSums." + cur);
                 b[TH_BLEND_B_Q] =
-                    &Buf(variant_ == TwoHistoryVariant::TwoHistory ? "q" : "asvgf.lambda");
+                    &Buf(variant_.emaGradient ? "q" : "asvgf.lambda");
                 blendSets_[c][pi] = blend_.MakeSet(b);
             }
         }
@@ -282,7 +282,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             atrousFirst_[pi].push_back({&atrousPair_, MakeAtrousSet(atrousPair_, guide, depthGrad, uw)});
         }
 
-        if (variant_ == TwoHistoryVariant::TwoHistory) {
+        if (variant_.emaGradient) {
             std::array<const Buffer*, TH_GRADIENT_BINDINGS> g{};
             g[TH_GRADIENT_B_GRADIENT] = &Buf("gradient." + cur);
             g[TH_GRADIENT_B_ILLUM_U0] = &Buf(ch0 + ".illum1");
@@ -430,7 +430,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     }
     stages_.RecordFilterMoments(rec, p, w, h, moments);
 
-    if (variant_ == TwoHistoryVariant::TwoHistory) {
+    if (variant_.emaGradient) {
         rec.BeginPass("two_history_gradient");
         const TwoHistoryGradientPush gp{ivec2(w, h), p.sigmaDepth, p.sigmaNormal,
                                         params_.twoHistory.qScale, channels_.size() == 2 ? 1u : 0u};

@@ -24,10 +24,10 @@ namespace fovrt {
 
 class TwoHistoryVulkanDenoiser : public Denoiser {
   public:
-    TwoHistoryVulkanDenoiser(TwoHistoryVariant variant, std::shared_ptr<VulkanContext> context,
+    TwoHistoryVulkanDenoiser(const DenoiserVariant& variant, std::shared_ptr<VulkanContext> context,
                              const DenoiserParams& params);
     ~TwoHistoryVulkanDenoiser() override;
-    std::string Name() const override { return TwoHistoryVariantName(variant_); }
+    std::string Name() const override { return std::string(variant_.name); }
     std::string Backend() const override { return "vulkan"; }
     void Reset() override { needsClear_ = true; }
     void Denoise(const FrameInputs& inputs, Plane<vec3>& output) override;
@@ -45,7 +45,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     void BuildSets();
     Buffer& Buf(const std::string& name);
 
-    TwoHistoryVariant variant_;
+    const DenoiserVariant& variant_;  // a row of DenoiserVariants(): which passes run
     std::shared_ptr<VulkanContext> context_;
     DenoiserParams params_;
     bool two_ = false, asvgf_ = false;
