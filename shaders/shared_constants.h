@@ -91,14 +91,6 @@
 #define SVGF_REPROJECT_FLAG_COMBINED 2u    // one channel = direct + indirect
 #define SVGF_REPROJECT_FLAG_WRITE_COLOR 4u // write the colour history (no à-trous feedback)
 
-// svgf_pack_guide: this frame's edge-stopping guide (normal.xyz, depth), depth = −1 on background
-// pixels (object id kNoObject), so the spatial filters fetch one texel per tap instead of three.
-#define SVGF_GUIDE_B_DEPTH 0               // float[N]
-#define SVGF_GUIDE_B_NORMAL 1              // float[3N]
-#define SVGF_GUIDE_B_OBJECT 2              // uint[N]
-#define SVGF_GUIDE_B_OUT 3                 // vec4[N]
-#define SVGF_GUIDE_BINDINGS 4
-
 // bandwidth_copy (src/vk/bandwidth.cpp): the device's streaming copy through the passes' access
 // layer — read as an rgba32f uniform texel buffer (mode 0) or std430 vec4 (mode 1), write std430.
 #define BANDWIDTH_B_TEXEL_IN 0             // vec4[N] (uniform texel buffer view of the source)
@@ -107,51 +99,33 @@
 #define BANDWIDTH_BINDINGS 3
 #define BANDWIDTH_EXP2_PER_ELEMENT 64     // exp2 per element of the ALU probe (multiple of 4)
 
-// svgf_moments_classify: appends the pixels that need the spatial variance estimate (not
-// background, history length < threshold) to a list, and counts the 1-D workgroups of
-// svgf_filter_moments' indirect dispatch (lavapipe runs masked-off code anyway, so the 49-tap
-// filter is dispatched only over the listed pixels; the rest is a buffer copy).
-#define SVGF_CLASSIFY_B_GUIDE 0            // vec4[N]
-#define SVGF_CLASSIFY_B_LENGTH 1           // hfloat[N]  this frame's history length
-#define SVGF_CLASSIFY_B_ARGS 2             // uint[4]    (groups x, y, z, count), zeroed before
-#define SVGF_CLASSIFY_B_LIST 3             // uint[N]    pixel indices
-#define SVGF_CLASSIFY_BINDINGS 4
 #define FOVRT_SPATIAL_LIST_GROUP 64        // invocations per workgroup of the list dispatch
 // Cap of a list dispatch's group count along x (Vulkan guarantees 65535); longer lists (above
 // 4.19 MPix, e.g. 2064×2208 per eye) take further rows of groups along y (common/pixel_list.glsl).
 #define FOVRT_SPATIAL_LIST_MAX_GROUPS 65535u
 
-// svgf_filter_moments (indirect, one invocation per listed pixel)
-#define SVGF_MOMENTS_B_ILLUM_IN 0          // vec4[N]
-#define SVGF_MOMENTS_B_GUIDE 1             // vec4[N]   (normal, depth or −1 on background)
-#define SVGF_MOMENTS_B_DEPTH_GRAD 2        // float[2N]
-#define SVGF_MOMENTS_B_MOMENTS 3           // hfloat[2N] this frame's moments
-#define SVGF_MOMENTS_B_LENGTH 4            // hfloat[N]  this frame's history length
-#define SVGF_MOMENTS_B_ILLUM_OUT 5         // vec4[N]   (the other pixels: copied from ILLUM_IN)
-#define SVGF_MOMENTS_B_ARGS 6              // uint[4]   count at [3]
-#define SVGF_MOMENTS_B_LIST 7              // uint[N]
-#define SVGF_MOMENTS_BINDINGS 8
-
-// svgf_atrous
 #define FOVRT_ATROUS_BLOCK_Y 2             // an invocation filters 2×this pixels at stride step (1: measured slower on lavapipe)
-#define SVGF_ATROUS_B_ILLUM_IN 0           // vec4[N]
-#define SVGF_ATROUS_B_GUIDE 1              // vec4[N]   (normal, depth or −1 on background)
-#define SVGF_ATROUS_B_DEPTH_GRAD 2         // float[2N]
-#define SVGF_ATROUS_B_ILLUM_OUT 3          // vec4[N]
-#define SVGF_ATROUS_B_HIST_COLOR 4         // hfloat[3N] colour history (written on the feedback iteration)
-#define SVGF_ATROUS_BINDINGS 5             // one channel ("svgf_atrous")
-// second channel of "svgf_atrous_pair" (FOVRT_CHANNELS 2; guide and depth gradient shared)
-#define SVGF_ATROUS_B_ILLUM_IN2 5          // vec4[N]
-#define SVGF_ATROUS_B_ILLUM_OUT2 6         // vec4[N]
-#define SVGF_ATROUS_B_HIST_COLOR2 7        // hfloat[3N]
-#define SVGF_ATROUS_PAIR_BINDINGS 8
-
-// svgf_modulate
-#define SVGF_MODULATE_B_ILLUM0 0           // vec4[N]   filtered direct (or combined)
-#define SVGF_MODULATE_B_ILLUM1 1           // vec4[N]   filtered indirect (ignored when combined)
-#define SVGF_MODULATE_B_ALBEDO 2           // float[3N]
-#define SVGF_MODULATE_B_EMISSION 3         // float[3N]
-#define SVGF_MODULATE_B_OUT 4              // float[3N]
-#define SVGF_MODULATE_BINDINGS 5
+// ---- Bindings declared once (shaders/bindings.h): one list per pass, GLSL and C++ alike.
+#include "bindings.h"
+#include "bindings/svgf_atrous.h"
+#include "bindings/svgf_filter_moments.h"
+#include "bindings/svgf_modulate.h"
+#include "bindings/svgf_moments_classify.h"
+#include "bindings/svgf_pack_guide.h"
+#ifdef __cplusplus
+FOVRT_BINDING_CONSTANTS(SVGF_GUIDE_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(SVGF_CLASSIFY_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(SVGF_MOMENTS_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(SVGF_ATROUS_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(SVGF_ATROUS_PAIR_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(SVGF_MODULATE_BINDING_LIST)
+inline constexpr int SVGF_GUIDE_BINDINGS = FOVRT_BINDING_COUNT(SVGF_GUIDE_BINDING_LIST);
+inline constexpr int SVGF_CLASSIFY_BINDINGS = FOVRT_BINDING_COUNT(SVGF_CLASSIFY_BINDING_LIST);
+inline constexpr int SVGF_MOMENTS_BINDINGS = FOVRT_BINDING_COUNT(SVGF_MOMENTS_BINDING_LIST);
+inline constexpr int SVGF_ATROUS_BINDINGS = FOVRT_BINDING_COUNT(SVGF_ATROUS_BINDING_LIST);  // "svgf_atrous"
+inline constexpr int SVGF_ATROUS_PAIR_BINDINGS =  // "svgf_atrous_pair"
+    SVGF_ATROUS_BINDINGS + FOVRT_BINDING_COUNT(SVGF_ATROUS_PAIR_BINDING_LIST);
+inline constexpr int SVGF_MODULATE_BINDINGS = FOVRT_BINDING_COUNT(SVGF_MODULATE_BINDING_LIST);
+#endif
 
 #endif

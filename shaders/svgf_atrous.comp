@@ -33,16 +33,9 @@ layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 layout(constant_id = FOVRT_SPEC_ATROUS_WRITE_HISTORY) const bool kWriteHistory = false;
 layout(constant_id = FOVRT_SPEC_ATROUS_UNIT_WEIGHTS) const bool kUnitWeights = false;  // bench probe only
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/vulkan/svgf_texel_formats.h).
-PLANE(SVGF_ATROUS_B_GUIDE, guide);             // rgba32f (normal, depth; svgf_pack_guide)
-PLANE(SVGF_ATROUS_B_DEPTH_GRAD, depth_grad);   // rg32f
-PLANE(SVGF_ATROUS_B_ILLUM_IN, illum_in0);      // rgba32f
-layout(std430, binding = SVGF_ATROUS_B_ILLUM_OUT) writeonly buffer IllumOut0 { vec4 illum_out0[]; };
-layout(std430, binding = SVGF_ATROUS_B_HIST_COLOR) writeonly buffer HistColor0 { hfloat hist_color0[]; };
+FOVRT_DECLARE_BINDINGS(SVGF_ATROUS_BINDING_LIST)  // shaders/bindings/svgf_atrous.h
 #if NCH == 2
-PLANE(SVGF_ATROUS_B_ILLUM_IN2, illum_in1);
-layout(std430, binding = SVGF_ATROUS_B_ILLUM_OUT2) writeonly buffer IllumOut1 { vec4 illum_out1[]; };
-layout(std430, binding = SVGF_ATROUS_B_HIST_COLOR2) writeonly buffer HistColor1 { hfloat hist_color1[]; };
+FOVRT_DECLARE_BINDINGS(SVGF_ATROUS_PAIR_BINDING_LIST)
 #define FETCH_ILLUM(v, j) v[0] = FETCH4(illum_in0, j); v[1] = FETCH4(illum_in1, j)
 #elif NCH == 1
 #define FETCH_ILLUM(v, j) v[0] = FETCH4(illum_in0, j)

@@ -16,19 +16,12 @@
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/edge_stopping.glsl"
+FOVRT_DECLARE_BINDINGS(SVGF_MOMENTS_BINDING_LIST)  // shaders/bindings/svgf_filter_moments.h
 #define PIXEL_LIST_B_ARGS SVGF_MOMENTS_B_ARGS
 #define PIXEL_LIST_B_LIST SVGF_MOMENTS_B_LIST
 #include "common/pixel_list.glsl"
 
 layout(local_size_x = FOVRT_SPATIAL_LIST_GROUP) in;
-
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/vulkan/svgf_texel_formats.h).
-PLANE(SVGF_MOMENTS_B_ILLUM_IN, illum_in);      // rgba32f
-PLANE(SVGF_MOMENTS_B_GUIDE, guide);            // rgba32f (normal, depth; svgf_pack_guide)
-PLANE(SVGF_MOMENTS_B_DEPTH_GRAD, depth_grad);  // rg32f
-PLANE(SVGF_MOMENTS_B_MOMENTS, moments);        // rg32f, or rg16f in _fp16
-PLANE(SVGF_MOMENTS_B_LENGTH, hist_length);     // r32f, or r16f in _fp16
-layout(std430, binding = SVGF_MOMENTS_B_ILLUM_OUT) writeonly buffer IllumOut { vec4 illum_out[]; };
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_FILTER_MOMENTS);  // shaders/push_constants.h
 

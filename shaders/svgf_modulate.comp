@@ -12,11 +12,7 @@
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 layout(constant_id = FOVRT_SPEC_MODULATE_COMBINED) const bool kCombined = false;
 
-PLANE(SVGF_MODULATE_B_ILLUM0, illum0);      // rgba32f
-PLANE(SVGF_MODULATE_B_ILLUM1, illum1);      // rgba32f (not read when combined)
-PLANE(SVGF_MODULATE_B_ALBEDO, albedo);      // rgb32f
-PLANE(SVGF_MODULATE_B_EMISSION, emission);  // rgb32f
-layout(std430, binding = SVGF_MODULATE_B_OUT) writeonly buffer Out { float color_out[]; };
+FOVRT_DECLARE_BINDINGS(SVGF_MODULATE_BINDING_LIST)  // shaders/bindings/svgf_modulate.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_IMAGE_SIZE);  // shaders/push_constants.h
 

@@ -9,14 +9,12 @@
 #include "push_constants.h"
 #include "common/packing.glsl"
 #include "common/access.glsl"
+FOVRT_DECLARE_BINDINGS(SVGF_CLASSIFY_BINDING_LIST)  // shaders/bindings/svgf_moments_classify.h
 #define PIXEL_LIST_B_ARGS SVGF_CLASSIFY_B_ARGS
 #define PIXEL_LIST_B_LIST SVGF_CLASSIFY_B_LIST
 #include "common/pixel_list.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
-
-PLANE(SVGF_CLASSIFY_B_GUIDE, guide);           // rgba32f
-PLANE(SVGF_CLASSIFY_B_LENGTH, hist_length);    // r32f, or r16f in _fp16
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_CLASSIFY);  // shaders/push_constants.h
 

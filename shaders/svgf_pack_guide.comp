@@ -12,10 +12,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-PLANE(SVGF_GUIDE_B_DEPTH, depth);          // r32f
-PLANE(SVGF_GUIDE_B_NORMAL, normal);        // rgb32f
-UPLANE(SVGF_GUIDE_B_OBJECT, object_id);    // r32ui
-layout(std430, binding = SVGF_GUIDE_B_OUT) writeonly buffer GuideOut { vec4 guide_out[]; };
+FOVRT_DECLARE_BINDINGS(SVGF_GUIDE_BINDING_LIST)  // shaders/bindings/svgf_pack_guide.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_IMAGE_SIZE);  // shaders/push_constants.h
 

@@ -58,37 +58,67 @@ inline std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> SvgfReprojectTexelForm
     return f;
 }
 
+// The VkFormat a FORMAT column of a binding list names (shaders/bindings.h); storage types
+// (the WRITE and LIST kinds) have none.
+#define FOVRT_VK_FORMAT_R32F VK_FORMAT_R32_SFLOAT
+#define FOVRT_VK_FORMAT_RG32F VK_FORMAT_R32G32_SFLOAT
+#define FOVRT_VK_FORMAT_RGB32F VK_FORMAT_R32G32B32_SFLOAT
+#define FOVRT_VK_FORMAT_RGBA32F VK_FORMAT_R32G32B32A32_SFLOAT
+#define FOVRT_VK_FORMAT_R32UI VK_FORMAT_R32_UINT
+#define FOVRT_VK_FORMAT_vec4 VK_FORMAT_UNDEFINED
+#define FOVRT_VK_FORMAT_float VK_FORMAT_UNDEFINED
+#define FOVRT_VK_FORMAT_hfloat VK_FORMAT_UNDEFINED
+#define FOVRT_VK_FORMAT_uint VK_FORMAT_UNDEFINED
+
+// The descriptor format of one binding by kind: texel buffers their format (history planes their
+// 16-bit twin in fp16), storage buffers VK_FORMAT_UNDEFINED.
+enum class BindingKind { TEXEL, HTEXEL, UTEXEL, WRITE, LIST };
+inline VkFormat BindingTexelFormat(BindingKind kind, VkFormat format, Precision precision) {
+    switch (kind) {
+        case BindingKind::TEXEL:
+        case BindingKind::UTEXEL: return format;
+        case BindingKind::HTEXEL: return HistoryTexelFormat(format, precision);
+        case BindingKind::WRITE:
+        case BindingKind::LIST: return VK_FORMAT_UNDEFINED;
+    }
+    return VK_FORMAT_UNDEFINED;
+}
+#define FOVRT_TEXEL_FORMAT_ROW(pass, name, slot, kind, format, variable) \
+    formats.at(size_t(slot)) = BindingTexelFormat(BindingKind::kind, FOVRT_VK_FORMAT_##format, precision);
+
 inline std::array<VkFormat, SVGF_GUIDE_BINDINGS> SvgfGuideTexelFormats() {
-    return TexelFormats<SVGF_GUIDE_BINDINGS>(
-        {{SVGF_GUIDE_B_DEPTH, kR32}, {SVGF_GUIDE_B_NORMAL, kRGB32}, {SVGF_GUIDE_B_OBJECT, kR32U}});
+    const Precision precision = Precision::Fp32;
+    std::array<VkFormat, SVGF_GUIDE_BINDINGS> formats{};
+    SVGF_GUIDE_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
+    return formats;
 }
 
 inline std::array<VkFormat, SVGF_MODULATE_BINDINGS> SvgfModulateTexelFormats() {
-    return TexelFormats<SVGF_MODULATE_BINDINGS>({{SVGF_MODULATE_B_ILLUM0, kRGBA32},
-                                                 {SVGF_MODULATE_B_ILLUM1, kRGBA32},
-                                                 {SVGF_MODULATE_B_ALBEDO, kRGB32},
-                                                 {SVGF_MODULATE_B_EMISSION, kRGB32}});
+    const Precision precision = Precision::Fp32;
+    std::array<VkFormat, SVGF_MODULATE_BINDINGS> formats{};
+    SVGF_MODULATE_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
+    return formats;
 }
 
 inline std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> SvgfClassifyTexelFormats(Precision precision) {
-    return TexelFormats<SVGF_CLASSIFY_BINDINGS>(
-        {{SVGF_CLASSIFY_B_GUIDE, kRGBA32}, {SVGF_CLASSIFY_B_LENGTH, HistoryTexelFormat(kR32, precision)}});
+    std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> formats{};
+    SVGF_CLASSIFY_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
+    return formats;
 }
 
 inline std::array<VkFormat, SVGF_MOMENTS_BINDINGS> SvgfMomentsTexelFormats(Precision precision) {
-    return TexelFormats<SVGF_MOMENTS_BINDINGS>({{SVGF_MOMENTS_B_ILLUM_IN, kRGBA32},
-                                                {SVGF_MOMENTS_B_GUIDE, kRGBA32},
-                                                {SVGF_MOMENTS_B_DEPTH_GRAD, kRG32},
-                                                {SVGF_MOMENTS_B_MOMENTS, HistoryTexelFormat(kRG32, precision)},
-                                                {SVGF_MOMENTS_B_LENGTH, HistoryTexelFormat(kR32, precision)}});
+    std::array<VkFormat, SVGF_MOMENTS_BINDINGS> formats{};
+    SVGF_MOMENTS_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
+    return formats;
 }
 
 // Formats of "svgf_atrous_pair"; the one-channel "svgf_atrous" uses the first SVGF_ATROUS_BINDINGS.
 inline std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> SvgfAtrousTexelFormats() {
-    return TexelFormats<SVGF_ATROUS_PAIR_BINDINGS>({{SVGF_ATROUS_B_ILLUM_IN, kRGBA32},
-                                                    {SVGF_ATROUS_B_ILLUM_IN2, kRGBA32},
-                                                    {SVGF_ATROUS_B_GUIDE, kRGBA32},
-                                                    {SVGF_ATROUS_B_DEPTH_GRAD, kRG32}});
+    const Precision precision = Precision::Fp32;
+    std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> formats{};
+    SVGF_ATROUS_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
+    SVGF_ATROUS_PAIR_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
+    return formats;
 }
 
 }  // namespace fovrt

@@ -1,0 +1,38 @@
+// Bindings declared once for GLSL and C++. A pass lists its bindings (set 0) in
+// shaders/bindings/<pass>.h as a macro of rows B(PASS, NAME, slot, KIND, FORMAT, variable):
+//   TEXEL   read-only uniform texel buffer (samplerBuffer) of VkBufferView format FORMAT
+//   HTEXEL  read-only history plane as a texel buffer: FORMAT in fp32, its 16-bit twin in the
+//           _fp16 variants (the fetch converts, so the shader code is the same)
+//   UTEXEL  read-only usamplerBuffer of format FORMAT
+//   WRITE   std430 writeonly array of GLSL type FORMAT (vec4, float, hfloat, …)
+//   LIST    a pixel list / its dispatch arguments, declared by common/pixel_list.glsl
+// From the rows, GLSL gets `const int PASS_B_NAME = slot;` and the declaration
+// (FOVRT_DECLARE_BINDINGS(LIST)); C++ gets the same constants, the binding count
+// (FOVRT_BINDING_COUNT) and, on the host, the texel-format table (denoise/vulkan/
+// svgf_texel_formats.h: BindingTexelFormats). Why texel buffers: common/access.glsl.
+#ifndef FOVRT_BINDINGS_H
+#define FOVRT_BINDINGS_H
+
+#define FOVRT_BINDING_PLUS_ONE(pass, name, slot, kind, format, variable) +1
+// Number of bindings of a list (slots are 0 … count − 1).
+#define FOVRT_BINDING_COUNT(LIST) (0 LIST(FOVRT_BINDING_PLUS_ONE))
+
+#ifdef __cplusplus
+#define FOVRT_BINDING_CONSTANT(pass, name, slot, kind, format, variable) inline constexpr int pass##_B_##name = slot;
+// The slot constants of a list, at namespace scope.
+#define FOVRT_BINDING_CONSTANTS(LIST) LIST(FOVRT_BINDING_CONSTANT)
+#else
+#define FOVRT_GLSL_DECL_TEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
+#define FOVRT_GLSL_DECL_HTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
+#define FOVRT_GLSL_DECL_UTEXEL(slot, format, variable, block) layout(binding = slot) uniform usamplerBuffer variable;
+#define FOVRT_GLSL_DECL_WRITE(slot, type, variable, block) \
+    layout(std430, binding = slot) writeonly buffer block { type variable[]; };
+#define FOVRT_GLSL_DECL_LIST(slot, type, variable, block)
+#define FOVRT_GLSL_BINDING(pass, name, slot, kind, format, variable) \
+    const int pass##_B_##name = slot;                                 \
+    FOVRT_GLSL_DECL_##kind(slot, format, variable, pass##_##name##_Block)
+// Every binding of a list: its slot constant and its declaration.
+#define FOVRT_DECLARE_BINDINGS(LIST) LIST(FOVRT_GLSL_BINDING)
+#endif
+
+#endif
