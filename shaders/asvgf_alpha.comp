@@ -14,9 +14,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-PLANE(ASVGF_ALPHA_B_GRAD, grad);  // rg32f (δ̂, Δ̂) per stratum: a uniform texel buffer (common/access.glsl)
-layout(std430, binding = ASVGF_ALPHA_B_ALPHA) writeonly buffer AlphaOut { float alpha_out[]; };
-layout(std430, binding = ASVGF_ALPHA_B_LAMBDA) writeonly buffer LambdaOut { float lambda_out[]; };
+FOVRT_DECLARE_BINDINGS(ASVGF_ALPHA_BINDING_LIST)  // shaders/bindings/asvgf_alpha.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_ALPHA);  // shaders/push_constants.h
 

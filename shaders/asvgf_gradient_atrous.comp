@@ -17,12 +17,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp).
-PLANE(ASVGF_ATROUS_B_GRAD_IN, grad_in);                  // rg32f
-PLANE(ASVGF_ATROUS_B_GUIDE_GEOMETRY, guide_geometry);    // rgba32f: normal, depth (−1: background)
-PLANE(ASVGF_ATROUS_B_GUIDE_LUMINANCE, guide_luminance);  // rgba32f: luminance, depth gradient
-PLANE(ASVGF_ATROUS_B_SIGMA, sigma_l);                    // r32f: σ_l·std
-layout(std430, binding = ASVGF_ATROUS_B_GRAD_OUT) writeonly buffer GradOut { vec2 grad_out[]; };
+FOVRT_DECLARE_BINDINGS(ASVGF_ATROUS_BINDING_LIST)  // shaders/bindings/asvgf_gradient_atrous.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_ATROUS);  // shaders/push_constants.h
 

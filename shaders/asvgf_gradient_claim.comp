@@ -11,8 +11,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_1D) in;
 
-layout(std430, binding = ASVGF_CLAIM_B_SAMPLES) readonly buffer Samples { GradientSample samples[]; };
-layout(std430, binding = ASVGF_CLAIM_B_CLAIM) buffer Claim { uint claim[]; };
+FOVRT_DECLARE_BINDINGS(ASVGF_CLAIM_BINDING_LIST)  // shaders/bindings/asvgf_gradient_claim.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_SAMPLES);  // shaders/push_constants.h
 

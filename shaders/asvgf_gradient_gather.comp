@@ -15,20 +15,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = ASVGF_GATHER_B_SAMPLES) readonly buffer Samples { GradientSample samples[]; };
-layout(std430, binding = ASVGF_GATHER_B_CLAIM) readonly buffer Claim { uint claim[]; };
-layout(std430, binding = ASVGF_GATHER_B_GRAD) writeonly buffer Grad { vec2 grad[]; };
-layout(std430, binding = ASVGF_GATHER_B_GUIDE_GEOMETRY) writeonly buffer GuideGeometry { vec4 guide_geometry[]; };
-layout(std430, binding = ASVGF_GATHER_B_GUIDE_LUMINANCE) writeonly buffer GuideLuminance { vec4 guide_luminance[]; };
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp).
-PLANE(ASVGF_GATHER_B_DEPTH, depth);            // r32f
-PLANE(ASVGF_GATHER_B_NORMAL, normal);          // rgb32f
-UPLANE(ASVGF_GATHER_B_OBJECT, object_id);      // r32ui
-PLANE(ASVGF_GATHER_B_DEPTH_GRAD, depth_grad);  // rg32f
-PLANE(ASVGF_GATHER_B_DIRECT, direct);          // rgb32f
-PLANE(ASVGF_GATHER_B_INDIRECT, indirect);      // rgb32f
-PLANE(ASVGF_GATHER_B_ALBEDO, albedo);          // rgb32f
-PLANE(ASVGF_GATHER_B_EMISSION, emission);      // rgb32f
+FOVRT_DECLARE_BINDINGS(ASVGF_GATHER_BINDING_LIST)  // shaders/bindings/asvgf_gradient_gather.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_SAMPLES);  // shaders/push_constants.h
 

@@ -13,9 +13,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-PLANE(ASVGF_SIGMA_B_GUIDE_GEOMETRY, guide_geometry);    // rgba32f
-PLANE(ASVGF_SIGMA_B_GUIDE_LUMINANCE, guide_luminance);  // rgba32f
-layout(std430, binding = ASVGF_SIGMA_B_OUT) writeonly buffer SigmaOut { float sigma_out[]; };
+FOVRT_DECLARE_BINDINGS(ASVGF_SIGMA_BINDING_LIST)  // shaders/bindings/asvgf_stratum_sigma.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_ASVGF_SIGMA);  // shaders/push_constants.h
 

@@ -4,7 +4,11 @@
 //   HTEXEL  read-only history plane as a texel buffer: FORMAT in fp32, its 16-bit twin in the
 //           _fp16 variants (the fetch converts, so the shader code is the same)
 //   UTEXEL  read-only usamplerBuffer of format FORMAT
+//   HTEXEL3 an RGB history plane: a texel buffer of FORMAT in fp32, a readonly std430 hfloat array
+//           in the _fp16 variants (RGB16F texel buffers are rarely supported)
+//   READ    std430 readonly array of GLSL type FORMAT (uint, GradientSample, …)
 //   WRITE   std430 writeonly array of GLSL type FORMAT (vec4, float, hfloat, …)
+//   RW      std430 array of GLSL type FORMAT, read and written
 //   LIST    a pixel list / its dispatch arguments, declared by common/pixel_list.glsl
 // From the rows, GLSL gets `const int PASS_B_NAME = slot;` and the declaration
 // (FOVRT_DECLARE_BINDINGS(LIST)); C++ gets the same constants, the binding count
@@ -25,8 +29,17 @@
 #define FOVRT_GLSL_DECL_TEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_HTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_UTEXEL(slot, format, variable, block) layout(binding = slot) uniform usamplerBuffer variable;
+#ifdef FOVRT_FP16
+#define FOVRT_GLSL_DECL_HTEXEL3(slot, format, variable, block) \
+    layout(std430, binding = slot) readonly buffer block { hfloat variable[]; };
+#else
+#define FOVRT_GLSL_DECL_HTEXEL3(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
+#endif
+#define FOVRT_GLSL_DECL_READ(slot, type, variable, block) \
+    layout(std430, binding = slot) readonly buffer block { type variable[]; };
 #define FOVRT_GLSL_DECL_WRITE(slot, type, variable, block) \
     layout(std430, binding = slot) writeonly buffer block { type variable[]; };
+#define FOVRT_GLSL_DECL_RW(slot, type, variable, block) layout(std430, binding = slot) buffer block { type variable[]; };
 #define FOVRT_GLSL_DECL_LIST(slot, type, variable, block)
 #define FOVRT_GLSL_BINDING(pass, name, slot, kind, format, variable) \
     const int pass##_B_##name = slot;                                 \

@@ -14,18 +14,10 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-layout(std430, binding = TH_BLEND_B_ILLUM_U) buffer IllumU { vec4 illum_u[]; };  // blended in place
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp), except
-// the fp16 power sums (RGB16F texel buffers are rarely supported).
-PLANE(TH_BLEND_B_ILLUM_W, illum_w);  // rgba32f
-PLANE(TH_BLEND_B_WU, wu);            // r32f / r16f
-PLANE(TH_BLEND_B_WW, ww);            // r32f / r16f
-PLANE(TH_BLEND_B_Q, q);              // r32f
+FOVRT_DECLARE_BINDINGS(TH_BLEND_BINDING_LIST)  // shaders/bindings/two_history_blend.h
 #ifdef FOVRT_FP16
-layout(std430, binding = TH_BLEND_B_S) readonly buffer S { hfloat s[]; };
 #define LOAD_S(i) LOAD3(s, i)
 #else
-PLANE(TH_BLEND_B_S, s);              // rgb32f
 #define LOAD_S(i) FETCH3(s, i)
 #endif
 

@@ -20,13 +20,7 @@
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp).
-PLANE(TH_GRADIENT_B_GRADIENT, gradient);        // r32f / r16f
-PLANE(TH_GRADIENT_B_ILLUM_U0, illum_u0);        // rgba32f
-PLANE(TH_GRADIENT_B_ILLUM_U1, illum_u1);        // rgba32f
-PLANE(TH_GRADIENT_B_GUIDE, guide);              // rgba32f (normal, depth; svgf_pack_guide)
-PLANE(TH_GRADIENT_B_DEPTH_GRAD, depth_grad);    // rg32f
-layout(std430, binding = TH_GRADIENT_B_Q) writeonly buffer Q { float q_out[]; };
+FOVRT_DECLARE_BINDINGS(TH_GRADIENT_BINDING_LIST)  // shaders/bindings/two_history_gradient.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_GRADIENT);  // shaders/push_constants.h
 

@@ -10,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "denoise/params.h"
+#include "shaders/common/two_history_constants.glsl"
 #include "shaders/shared_constants.h"
 
 namespace fovrt {
@@ -58,67 +59,73 @@ inline std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> SvgfReprojectTexelForm
     return f;
 }
 
-// The VkFormat a FORMAT column of a binding list names (shaders/bindings.h); storage types
-// (the WRITE and LIST kinds) have none.
+// The descriptor format of each binding of a list (shaders/bindings.h) by its kind: texel
+// buffers their FORMAT (history planes their 16-bit twin in fp16; HTEXEL3 planes are storage in
+// fp16), storage buffers VK_FORMAT_UNDEFINED.
 #define FOVRT_VK_FORMAT_R32F VK_FORMAT_R32_SFLOAT
 #define FOVRT_VK_FORMAT_RG32F VK_FORMAT_R32G32_SFLOAT
 #define FOVRT_VK_FORMAT_RGB32F VK_FORMAT_R32G32B32_SFLOAT
 #define FOVRT_VK_FORMAT_RGBA32F VK_FORMAT_R32G32B32A32_SFLOAT
 #define FOVRT_VK_FORMAT_R32UI VK_FORMAT_R32_UINT
-#define FOVRT_VK_FORMAT_vec4 VK_FORMAT_UNDEFINED
-#define FOVRT_VK_FORMAT_float VK_FORMAT_UNDEFINED
-#define FOVRT_VK_FORMAT_hfloat VK_FORMAT_UNDEFINED
-#define FOVRT_VK_FORMAT_uint VK_FORMAT_UNDEFINED
-
-// The descriptor format of one binding by kind: texel buffers their format (history planes their
-// 16-bit twin in fp16), storage buffers VK_FORMAT_UNDEFINED.
-enum class BindingKind { TEXEL, HTEXEL, UTEXEL, WRITE, LIST };
-inline VkFormat BindingTexelFormat(BindingKind kind, VkFormat format, Precision precision) {
-    switch (kind) {
-        case BindingKind::TEXEL:
-        case BindingKind::UTEXEL: return format;
-        case BindingKind::HTEXEL: return HistoryTexelFormat(format, precision);
-        case BindingKind::WRITE:
-        case BindingKind::LIST: return VK_FORMAT_UNDEFINED;
-    }
-    return VK_FORMAT_UNDEFINED;
-}
+#define FOVRT_TEXEL_FORMAT_TEXEL(format) FOVRT_VK_FORMAT_##format
+#define FOVRT_TEXEL_FORMAT_UTEXEL(format) FOVRT_VK_FORMAT_##format
+#define FOVRT_TEXEL_FORMAT_HTEXEL(format) HistoryTexelFormat(FOVRT_VK_FORMAT_##format, precision)
+#define FOVRT_TEXEL_FORMAT_HTEXEL3(format) \
+    (precision == Precision::Fp16 ? VK_FORMAT_UNDEFINED : FOVRT_VK_FORMAT_##format)
+#define FOVRT_TEXEL_FORMAT_READ(type) VK_FORMAT_UNDEFINED
+#define FOVRT_TEXEL_FORMAT_WRITE(type) VK_FORMAT_UNDEFINED
+#define FOVRT_TEXEL_FORMAT_RW(type) VK_FORMAT_UNDEFINED
+#define FOVRT_TEXEL_FORMAT_LIST(type) VK_FORMAT_UNDEFINED
 #define FOVRT_TEXEL_FORMAT_ROW(pass, name, slot, kind, format, variable) \
-    formats.at(size_t(slot)) = BindingTexelFormat(BindingKind::kind, FOVRT_VK_FORMAT_##format, precision);
+    formats.at(size_t(slot)) = FOVRT_TEXEL_FORMAT_##kind(format);
+// The texel-format table of a binding list at a precision: std::array<VkFormat, count>.
+#define FOVRT_TEXEL_FORMATS(LIST, PRECISION)                               \
+    [](Precision precision) {                                              \
+        std::array<VkFormat, size_t(FOVRT_BINDING_COUNT(LIST))> formats{}; \
+        LIST(FOVRT_TEXEL_FORMAT_ROW)                                       \
+        (void)precision; /* lists without history planes ignore it */      \
+        return formats;                                                    \
+    }(PRECISION)
 
 inline std::array<VkFormat, SVGF_GUIDE_BINDINGS> SvgfGuideTexelFormats() {
-    const Precision precision = Precision::Fp32;
-    std::array<VkFormat, SVGF_GUIDE_BINDINGS> formats{};
-    SVGF_GUIDE_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
-    return formats;
+    return FOVRT_TEXEL_FORMATS(SVGF_GUIDE_BINDING_LIST, Precision::Fp32);
 }
 
 inline std::array<VkFormat, SVGF_MODULATE_BINDINGS> SvgfModulateTexelFormats() {
-    const Precision precision = Precision::Fp32;
-    std::array<VkFormat, SVGF_MODULATE_BINDINGS> formats{};
-    SVGF_MODULATE_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
-    return formats;
+    return FOVRT_TEXEL_FORMATS(SVGF_MODULATE_BINDING_LIST, Precision::Fp32);
 }
 
 inline std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> SvgfClassifyTexelFormats(Precision precision) {
-    std::array<VkFormat, SVGF_CLASSIFY_BINDINGS> formats{};
-    SVGF_CLASSIFY_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
-    return formats;
+    return FOVRT_TEXEL_FORMATS(SVGF_CLASSIFY_BINDING_LIST, precision);
 }
 
 inline std::array<VkFormat, SVGF_MOMENTS_BINDINGS> SvgfMomentsTexelFormats(Precision precision) {
-    std::array<VkFormat, SVGF_MOMENTS_BINDINGS> formats{};
-    SVGF_MOMENTS_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
-    return formats;
+    return FOVRT_TEXEL_FORMATS(SVGF_MOMENTS_BINDING_LIST, precision);
 }
 
 // Formats of "svgf_atrous_pair"; the one-channel "svgf_atrous" uses the first SVGF_ATROUS_BINDINGS.
 inline std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> SvgfAtrousTexelFormats() {
-    const Precision precision = Precision::Fp32;
-    std::array<VkFormat, SVGF_ATROUS_PAIR_BINDINGS> formats{};
-    SVGF_ATROUS_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
-    SVGF_ATROUS_PAIR_BINDING_LIST(FOVRT_TEXEL_FORMAT_ROW)
-    return formats;
+    return FOVRT_TEXEL_FORMATS(SVGF_ATROUS_PAIR_ALL_BINDING_LIST, Precision::Fp32);
+}
+
+// The texel-format tables of the two-history and A-SVGF passes, from their binding lists.
+inline std::array<VkFormat, ASVGF_GATHER_BINDINGS> GradientGatherTexelFormats() {
+    return FOVRT_TEXEL_FORMATS(ASVGF_GATHER_BINDING_LIST, Precision::Fp32);
+}
+inline std::array<VkFormat, ASVGF_SIGMA_BINDINGS> StratumSigmaTexelFormats() {
+    return FOVRT_TEXEL_FORMATS(ASVGF_SIGMA_BINDING_LIST, Precision::Fp32);
+}
+inline std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
+    return FOVRT_TEXEL_FORMATS(ASVGF_ATROUS_BINDING_LIST, Precision::Fp32);
+}
+inline std::array<VkFormat, TH_BLEND_BINDINGS> BlendTexelFormats(Precision precision) {
+    return FOVRT_TEXEL_FORMATS(TH_BLEND_BINDING_LIST, precision);
+}
+inline std::array<VkFormat, ASVGF_ALPHA_BINDINGS> AlphaTexelFormats() {
+    return FOVRT_TEXEL_FORMATS(ASVGF_ALPHA_BINDING_LIST, Precision::Fp32);
+}
+inline std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
+    return FOVRT_TEXEL_FORMATS(TH_GRADIENT_BINDING_LIST, precision);
 }
 
 }  // namespace fovrt

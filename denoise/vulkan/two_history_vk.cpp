@@ -55,46 +55,6 @@ std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> ReprojectTexelFormats(Precision
     return f;
 }
 
-std::array<VkFormat, ASVGF_GATHER_BINDINGS> GradientGatherTexelFormats() {
-    return TexelFormats<ASVGF_GATHER_BINDINGS>(  // samples, claim slots, outputs: storage buffers
-        {{ASVGF_GATHER_B_NORMAL, kRGB32}, {ASVGF_GATHER_B_DIRECT, kRGB32}, {ASVGF_GATHER_B_INDIRECT, kRGB32},
-         {ASVGF_GATHER_B_ALBEDO, kRGB32}, {ASVGF_GATHER_B_EMISSION, kRGB32}, {ASVGF_GATHER_B_DEPTH, kR32},
-         {ASVGF_GATHER_B_OBJECT, kR32U}, {ASVGF_GATHER_B_DEPTH_GRAD, kRG32}});
-}
-
-std::array<VkFormat, ASVGF_SIGMA_BINDINGS> StratumSigmaTexelFormats() {
-    return TexelFormats<ASVGF_SIGMA_BINDINGS>(
-        {{ASVGF_SIGMA_B_GUIDE_GEOMETRY, kRGBA32}, {ASVGF_SIGMA_B_GUIDE_LUMINANCE, kRGBA32}});
-}
-
-std::array<VkFormat, ASVGF_ATROUS_BINDINGS> GradientAtrousTexelFormats() {
-    return TexelFormats<ASVGF_ATROUS_BINDINGS>({{ASVGF_ATROUS_B_GRAD_IN, kRG32},
-                                                {ASVGF_ATROUS_B_GUIDE_GEOMETRY, kRGBA32},
-                                                {ASVGF_ATROUS_B_GUIDE_LUMINANCE, kRGBA32},
-                                                {ASVGF_ATROUS_B_SIGMA, kR32}});
-}
-
-// I_u is blended in place (storage); fp16 power sums stay storage (RGB16F texel buffers are rare).
-std::array<VkFormat, TH_BLEND_BINDINGS> BlendTexelFormats(Precision precision) {
-    return TexelFormats<TH_BLEND_BINDINGS>(
-        {{TH_BLEND_B_ILLUM_W, kRGBA32},
-         {TH_BLEND_B_WU, HistoryTexelFormat(kR32, precision)},
-         {TH_BLEND_B_WW, HistoryTexelFormat(kR32, precision)},
-         {TH_BLEND_B_S, precision == Precision::Fp16 ? VK_FORMAT_UNDEFINED : kRGB32},
-         {TH_BLEND_B_Q, kR32}});
-}
-
-std::array<VkFormat, ASVGF_ALPHA_BINDINGS> AlphaTexelFormats() {
-    return TexelFormats<ASVGF_ALPHA_BINDINGS>({{ASVGF_ALPHA_B_GRAD, kRG32}});  // (δ̂, Δ̂); α, λ written
-}
-
-std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
-    return TexelFormats<TH_GRADIENT_BINDINGS>({{TH_GRADIENT_B_GRADIENT, HistoryTexelFormat(kR32, precision)},  // lum(g)
-                                               {TH_GRADIENT_B_ILLUM_U0, kRGBA32},
-                                               {TH_GRADIENT_B_ILLUM_U1, kRGBA32},
-                                               {TH_GRADIENT_B_GUIDE, kRGBA32},
-                                               {TH_GRADIENT_B_DEPTH_GRAD, kRG32}});
-}
 }  // namespace
 
 namespace {

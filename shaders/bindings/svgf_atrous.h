@@ -11,3 +11,5 @@
     B(SVGF_ATROUS, ILLUM_IN2, 5, TEXEL, RGBA32F, illum_in1)       \
     B(SVGF_ATROUS, ILLUM_OUT2, 6, WRITE, vec4, illum_out1)        \
     B(SVGF_ATROUS, HIST_COLOR2, 7, WRITE, hfloat, hist_color1)
+// Every binding of "svgf_atrous_pair".
+#define SVGF_ATROUS_PAIR_ALL_BINDING_LIST(B) SVGF_ATROUS_BINDING_LIST(B) SVGF_ATROUS_PAIR_BINDING_LIST(B)

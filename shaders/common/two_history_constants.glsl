@@ -65,68 +65,31 @@
 #define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
 #define TH_REPROJECT_FLAG_GRADIENT 16u     // accumulate g (two-history; not two-history-asvgf)
 
-// two_history_gradient: edge-aware filter of g, then q.
-#define TH_GRADIENT_B_GRADIENT 0
-#define TH_GRADIENT_B_ILLUM_U0 1
-#define TH_GRADIENT_B_ILLUM_U1 2
-#define TH_GRADIENT_B_GUIDE 3
-#define TH_GRADIENT_B_DEPTH_GRAD 4
-#define TH_GRADIENT_B_Q 5
-#define TH_GRADIENT_BINDINGS 6
 
-// two_history_blend: in place on the unweighted channel's à-trous output.
-#define TH_BLEND_B_ILLUM_U 0   // vec4[N] read and written
-#define TH_BLEND_B_ILLUM_W 1
-#define TH_BLEND_B_WU 2
-#define TH_BLEND_B_WW 3
-#define TH_BLEND_B_S 4
-#define TH_BLEND_B_Q 5
-#define TH_BLEND_BINDINGS 6
-
-// asvgf_gradient_claim: per sample, atomicMin of its index into its stratum's slot (the lowest
-// index wins, as the C++ reference's "first sample wins").
-#define ASVGF_CLAIM_B_SAMPLES 0   // GradientSample[count] (32 bytes each)
-#define ASVGF_CLAIM_B_CLAIM 1     // uint[strata], 0xFFFFFFFF = empty
-#define ASVGF_CLAIM_BINDINGS 2
-
-// asvgf_gradient_gather: per stratum, (δ, Δ) and the stratum guide: the geometry and noisy
-// luminance at its guide pixel (the claimed sample's pixel, else the stratum's centre), read once
-// here instead of at every tap of every reconstruction iteration (AsvgfScatterGradientsRef's
-// StratumGuide).
-#define ASVGF_GATHER_B_SAMPLES 0
-#define ASVGF_GATHER_B_CLAIM 1
-#define ASVGF_GATHER_B_GRAD 2          // vec2[strata]
-#define ASVGF_GATHER_B_GUIDE_GEOMETRY 3 // vec4[strata]: normal, depth (−1: background guide pixel)
-#define ASVGF_GATHER_B_GUIDE_LUMINANCE 4 // vec4[strata]: noisy luminance, depth gradient, 0
-#define ASVGF_GATHER_B_DEPTH 5          // per-pixel planes of this frame, read at the guide pixel
-#define ASVGF_GATHER_B_NORMAL 6
-#define ASVGF_GATHER_B_OBJECT 7
-#define ASVGF_GATHER_B_DEPTH_GRAD 8
-#define ASVGF_GATHER_B_DIRECT 9
-#define ASVGF_GATHER_B_INDIRECT 10
-#define ASVGF_GATHER_B_ALBEDO 11
-#define ASVGF_GATHER_B_EMISSION 12
-#define ASVGF_GATHER_BINDINGS 13
-
-// asvgf_stratum_sigma: σ_l times the standard deviation of the guide luminance over the 3×3
-// strata (the w_l scale of every reconstruction iteration; it does not depend on the step).
-#define ASVGF_SIGMA_B_GUIDE_GEOMETRY 0
-#define ASVGF_SIGMA_B_GUIDE_LUMINANCE 1
-#define ASVGF_SIGMA_B_OUT 2             // float[strata]
-#define ASVGF_SIGMA_BINDINGS 3
-
-// asvgf_gradient_atrous: one 3×3-box iteration at stratum resolution.
-#define ASVGF_ATROUS_B_GRAD_IN 0
-#define ASVGF_ATROUS_B_GUIDE_GEOMETRY 1
-#define ASVGF_ATROUS_B_GUIDE_LUMINANCE 2
-#define ASVGF_ATROUS_B_SIGMA 3
-#define ASVGF_ATROUS_B_GRAD_OUT 4
-#define ASVGF_ATROUS_BINDINGS 5
-
-// asvgf_alpha: per pixel α and λ.
-#define ASVGF_ALPHA_B_GRAD 0
-#define ASVGF_ALPHA_B_ALPHA 1
-#define ASVGF_ALPHA_B_LAMBDA 2
-#define ASVGF_ALPHA_BINDINGS 3
+// ---- Bindings declared once (shaders/bindings.h) of the two-history and A-SVGF passes.
+#include "../bindings.h"
+#include "../bindings/asvgf_alpha.h"
+#include "../bindings/asvgf_gradient_atrous.h"
+#include "../bindings/asvgf_gradient_claim.h"
+#include "../bindings/asvgf_gradient_gather.h"
+#include "../bindings/asvgf_stratum_sigma.h"
+#include "../bindings/two_history_blend.h"
+#include "../bindings/two_history_gradient.h"
+#ifdef __cplusplus
+FOVRT_BINDING_CONSTANTS(TH_GRADIENT_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(TH_BLEND_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(ASVGF_CLAIM_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(ASVGF_GATHER_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(ASVGF_SIGMA_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(ASVGF_ATROUS_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(ASVGF_ALPHA_BINDING_LIST)
+inline constexpr int TH_GRADIENT_BINDINGS = FOVRT_BINDING_COUNT(TH_GRADIENT_BINDING_LIST);
+inline constexpr int TH_BLEND_BINDINGS = FOVRT_BINDING_COUNT(TH_BLEND_BINDING_LIST);
+inline constexpr int ASVGF_CLAIM_BINDINGS = FOVRT_BINDING_COUNT(ASVGF_CLAIM_BINDING_LIST);
+inline constexpr int ASVGF_GATHER_BINDINGS = FOVRT_BINDING_COUNT(ASVGF_GATHER_BINDING_LIST);
+inline constexpr int ASVGF_SIGMA_BINDINGS = FOVRT_BINDING_COUNT(ASVGF_SIGMA_BINDING_LIST);
+inline constexpr int ASVGF_ATROUS_BINDINGS = FOVRT_BINDING_COUNT(ASVGF_ATROUS_BINDING_LIST);
+inline constexpr int ASVGF_ALPHA_BINDINGS = FOVRT_BINDING_COUNT(ASVGF_ALPHA_BINDING_LIST);
+#endif
 
 #endif

@@ -1,0 +1,70 @@
+// Binding lists (shaders/bindings/*.h): each pass's slots are 0 … count − 1, each once, and the
+// host's texel-format tables follow the kinds (history planes switch to their 16-bit twin).
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "denoise/vulkan/svgf_texel_formats.h"
+#include "shaders/common/two_history_constants.glsl"
+
+using namespace fovrt;
+
+namespace {
+struct Row {
+    std::string name;
+    int slot;
+};
+#define FOVRT_TEST_ROW(pass, name, slot, kind, format, variable) rows.push_back({#pass "_" #name, slot});
+#define FOVRT_TEST_ROWS(LIST)          \
+    [] {                               \
+        std::vector<Row> rows;         \
+        LIST(FOVRT_TEST_ROW)           \
+        return rows;                   \
+    }()
+
+void CheckSlots(const std::vector<Row>& rows) {
+    std::set<int> slots;
+    for (const Row& r : rows) {
+        INFO(r.name);
+        CHECK(slots.insert(r.slot).second);  // no slot twice
+    }
+    CHECK(*slots.begin() == 0);
+    CHECK(*slots.rbegin() == int(rows.size()) - 1);  // none skipped
+}
+}  // namespace
+
+TEST_CASE("binding lists: slots 0..count-1, each once") {
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_GUIDE_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_CLASSIFY_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_MOMENTS_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_ATROUS_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_ATROUS_PAIR_ALL_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_MODULATE_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(TH_GRADIENT_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(TH_BLEND_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(ASVGF_CLAIM_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(ASVGF_GATHER_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(ASVGF_SIGMA_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(ASVGF_ATROUS_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(ASVGF_ALPHA_BINDING_LIST));
+    CHECK(SVGF_ATROUS_PAIR_BINDINGS == SVGF_ATROUS_BINDINGS + 3);
+}
+
+TEST_CASE("texel-format tables follow the binding kinds") {
+    const auto fp32 = SvgfMomentsTexelFormats(Precision::Fp32), fp16 = SvgfMomentsTexelFormats(Precision::Fp16);
+    CHECK(fp32[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // TEXEL
+    CHECK(fp16[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // not a history plane
+    CHECK(fp32[SVGF_MOMENTS_B_MOMENTS] == VK_FORMAT_R32G32_SFLOAT);              // HTEXEL
+    CHECK(fp16[SVGF_MOMENTS_B_MOMENTS] == VK_FORMAT_R16G16_SFLOAT);
+    CHECK(fp16[SVGF_MOMENTS_B_LENGTH] == VK_FORMAT_R16_SFLOAT);
+    CHECK(fp32[SVGF_MOMENTS_B_ILLUM_OUT] == VK_FORMAT_UNDEFINED);                // WRITE: storage
+    CHECK(fp32[SVGF_MOMENTS_B_LIST] == VK_FORMAT_UNDEFINED);                     // LIST: storage
+    CHECK(SvgfGuideTexelFormats()[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);  // UTEXEL
+    // HTEXEL3: an RGB history is a texel buffer in fp32 and storage in fp16.
+    CHECK(BlendTexelFormats(Precision::Fp32)[TH_BLEND_B_S] == VK_FORMAT_R32G32B32_SFLOAT);
+    CHECK(BlendTexelFormats(Precision::Fp16)[TH_BLEND_B_S] == VK_FORMAT_UNDEFINED);
+    CHECK(SvgfAtrousTexelFormats()[SVGF_ATROUS_B_ILLUM_IN2] == VK_FORMAT_R32G32B32A32_SFLOAT);
+    CHECK(SvgfAtrousTexelFormats()[SVGF_ATROUS_B_HIST_COLOR2] == VK_FORMAT_UNDEFINED);
+}
