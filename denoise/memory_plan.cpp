@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/frame_inputs.h"
 #include "denoise/gradient_strata.h"
 #include "denoise/variants.h"
 
@@ -25,20 +26,31 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
     const bool weighted = params.svgf.weightBySampleCount;
     std::vector<BufferPlan> plan;
     auto add = [&](const std::string& name, size_t bytes, bool history) { plan.push_back({name, bytes, history}); };
-    // Per-frame uploads, in upload order (the staging layout follows it).
-    add("input.direct", 12 * n, false);
-    add("input.indirect", 12 * n, false);
-    add("input.albedo", 12 * n, false);
-    add("input.emission", 12 * n, false);
-    add("input.depthGradient", 8 * n, false);
-    add("input.prevPixel", 8 * n, false);
-    if (weighted) add("input.sampleCount", ((2 * n + 3) / 4) * 4, false);
-    // This frame's geometry becomes the next frame's "previous": A/B pairs.
-    for (const char* side : {"A", "B"}) {
-        add(fmt::format("geometry.depth.{}", side), 4 * n, true);
-        add(fmt::format("geometry.normal.{}", side), 12 * n, true);
-        add(fmt::format("geometry.objectId.{}", side), 4 * n, true);
-    }
+    // Per-frame uploads from the FrameInputs plane list, in its order (the staging layout follows
+    // it): input.<plane>, and this frame's geometry into A/B pairs (next frame's "previous").
+    // Sample counts only for the variants that read them (uint16, padded to whole words).
+    std::vector<BufferPlan> geometry;
+    size_t uploadStaging = 0;
+    auto upload = [&](std::string_view plane, size_t elementBytes) {
+        const std::string name = UploadBufferOf(plane);
+        if (plane == "sampleCount") {
+            if (!weighted) return;
+            const size_t bytes = ((elementBytes * n + 3) / 4) * 4;
+            add(name, bytes, false);
+            uploadStaging += StagingAlign(bytes);
+            return;
+        }
+        uploadStaging += StagingAlign(elementBytes * n);
+        if (name.rfind("geometry.", 0) == 0)
+            geometry.push_back({name, elementBytes * n, true});
+        else
+            add(name, elementBytes * n, false);
+    };
+#define FOVRT_PLANE_UPLOAD(member, Type, neutral, channels, doc) upload(#member, sizeof(Type));
+    FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_UPLOAD)
+#undef FOVRT_PLANE_UPLOAD
+    for (const char* side : {"A", "B"})
+        for (const BufferPlan& g : geometry) add(fmt::format("{}.{}", g.name, side), g.bytes, true);
     for (const std::string& ch : SvgfChannels(params.svgf)) {
         for (const char* side : {"A", "B"}) {
             add(fmt::format("{}.color.{}", ch, side), 3 * hs * n, true);
@@ -59,13 +71,8 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
     add("geometry.guide", 16 * n, false);
     add("output", 12 * n, false);
     add("stats", 8, false);
-    // Staging: every upload (inputs + this frame's depth/normal/objectId), then output + stats.
-    size_t staging = 0;
-    for (const BufferPlan& b : plan)
-        if (b.name.rfind("input.", 0) == 0) staging += StagingAlign(b.bytes);
-    staging += StagingAlign(4 * n) + StagingAlign(12 * n) + StagingAlign(4 * n);
-    staging += StagingAlign(12 * n) + StagingAlign(8);
-    add("staging", staging, false);
+    // Staging: every upload, then output + stats.
+    add("staging", uploadStaging + StagingAlign(12 * n) + StagingAlign(8), false);
     return plan;
 }
 

@@ -50,42 +50,7 @@
 // ---- Bindings (set 0), one list per shader --------------------------------------------------
 // Per-pixel planes are tightly packed arrays indexed i = y·width + x: RGB as 3 floats, vec2 as 2.
 // History planes ("hfloat") are float, or float16_t in the _fp16 variants.
-// svgf_reproject
-#define SVGF_REPROJECT_B_COLOR_IN 0        // float[3N]  demodulated illumination of this channel
-#define SVGF_REPROJECT_B_COLOR_IN2 1       // float[3N]  second channel, added when combined
-#define SVGF_REPROJECT_B_DEPTH 2           // float[N]   linear depth (this frame)
-#define SVGF_REPROJECT_B_NORMAL 3          // float[3N]  world normal (this frame)
-#define SVGF_REPROJECT_B_OBJECT 4          // uint[N]    object id (this frame)
-#define SVGF_REPROJECT_B_PREV_DEPTH 5      // float[N]   previous frame
-#define SVGF_REPROJECT_B_PREV_NORMAL 6     // float[3N]  previous frame
-#define SVGF_REPROJECT_B_PREV_OBJECT 7     // uint[N]    previous frame
-#define SVGF_REPROJECT_B_DEPTH_GRAD 8      // float[2N]  depth gradient (this frame)
-#define SVGF_REPROJECT_B_PREV_PIXEL 9      // float[2N]  motion: previous continuous pixel
-#define SVGF_REPROJECT_B_LIST_ARGS 10      // uint[4]    (groups x, 1, 1, count) of the box-fallback list
-#define SVGF_REPROJECT_B_LIST 11           // uint[N]    pixels whose bilinear taps all failed (common/pixel_list.glsl)
-#define SVGF_REPROJECT_B_SAMPLE_COUNT 12   // uint[N/2]  uint16 sample counts, packed pairs
-#define SVGF_REPROJECT_B_PREV_COLOR 13     // hfloat[3N] colour history (read)
-#define SVGF_REPROJECT_B_PREV_MOMENTS 14   // hfloat[2N] moments history (read)
-#define SVGF_REPROJECT_B_PREV_LENGTH 15    // hfloat[N]  history length (read)
-#define SVGF_REPROJECT_B_PREV_WEIGHT 16    // hfloat[N]  total weight W (read; weighted mode)
-#define SVGF_REPROJECT_B_CUR_COLOR 17      // hfloat[3N] colour history (written when no à-trous feedback)
-#define SVGF_REPROJECT_B_CUR_MOMENTS 18    // hfloat[2N] moments (written)
-#define SVGF_REPROJECT_B_CUR_LENGTH 19     // hfloat[N]  history length (written)
-#define SVGF_REPROJECT_B_CUR_WEIGHT 20     // hfloat[N]  total weight (written; weighted mode)
-#define SVGF_REPROJECT_B_ILLUM_OUT 21      // vec4[N]    accumulated illumination + variance
-#define SVGF_REPROJECT_B_STATS 22          // uint[2]    non-finite, negative counters
-#define SVGF_REPROJECT_BINDINGS 23         // one channel ("svgf_reproject")
-// second channel of "svgf_reproject_pair" (FOVRT_CHANNELS 2: colour in = COLOR_IN2; taps shared)
-#define SVGF_REPROJECT_B_PREV_COLOR2 23
-#define SVGF_REPROJECT_B_PREV_MOMENTS2 24
-#define SVGF_REPROJECT_B_PREV_LENGTH2 25
-#define SVGF_REPROJECT_B_PREV_WEIGHT2 26
-#define SVGF_REPROJECT_B_CUR_COLOR2 27
-#define SVGF_REPROJECT_B_CUR_MOMENTS2 28
-#define SVGF_REPROJECT_B_CUR_LENGTH2 29
-#define SVGF_REPROJECT_B_CUR_WEIGHT2 30
-#define SVGF_REPROJECT_B_ILLUM_OUT2 31
-#define SVGF_REPROJECT_PAIR_BINDINGS 32
+// svgf_reproject's bindings: shaders/bindings/svgf_reproject.h.
 // Mode bits (FOVRT_SPEC_REPROJECT_FLAGS)
 #define SVGF_REPROJECT_FLAG_WEIGHTED 1u    // svgf-weighted: W ← (1−α)W + n, C += n(x − C)/W
 #define SVGF_REPROJECT_FLAG_COMBINED 2u    // one channel = direct + indirect
@@ -112,13 +77,18 @@
 #include "bindings/svgf_modulate.h"
 #include "bindings/svgf_moments_classify.h"
 #include "bindings/svgf_pack_guide.h"
+#include "bindings/svgf_reproject.h"
 #ifdef __cplusplus
+FOVRT_BINDING_CONSTANTS(SVGF_REPROJECT_BINDING_LIST)
+FOVRT_BINDING_CONSTANTS(SVGF_REPROJECT_PAIR_BINDING_LIST)
 FOVRT_BINDING_CONSTANTS(SVGF_GUIDE_BINDING_LIST)
 FOVRT_BINDING_CONSTANTS(SVGF_CLASSIFY_BINDING_LIST)
 FOVRT_BINDING_CONSTANTS(SVGF_MOMENTS_BINDING_LIST)
 FOVRT_BINDING_CONSTANTS(SVGF_ATROUS_BINDING_LIST)
 FOVRT_BINDING_CONSTANTS(SVGF_ATROUS_PAIR_BINDING_LIST)
 FOVRT_BINDING_CONSTANTS(SVGF_MODULATE_BINDING_LIST)
+inline constexpr int SVGF_REPROJECT_BINDINGS = FOVRT_BINDING_COUNT(SVGF_REPROJECT_BINDING_LIST);  // one channel
+inline constexpr int SVGF_REPROJECT_PAIR_BINDINGS = FOVRT_BINDING_COUNT(SVGF_REPROJECT_PAIR_ALL_BINDING_LIST);
 inline constexpr int SVGF_GUIDE_BINDINGS = FOVRT_BINDING_COUNT(SVGF_GUIDE_BINDING_LIST);
 inline constexpr int SVGF_CLASSIFY_BINDINGS = FOVRT_BINDING_COUNT(SVGF_CLASSIFY_BINDING_LIST);
 inline constexpr int SVGF_MOMENTS_BINDINGS = FOVRT_BINDING_COUNT(SVGF_MOMENTS_BINDING_LIST);

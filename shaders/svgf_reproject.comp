@@ -26,9 +26,6 @@
 #include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
-#define PIXEL_LIST_B_ARGS SVGF_REPROJECT_B_LIST_ARGS
-#define PIXEL_LIST_B_LIST SVGF_REPROJECT_B_LIST
-#include "common/pixel_list.glsl"
 
 #ifndef FOVRT_CHANNELS
 #define FOVRT_CHANNELS 1
@@ -45,50 +42,20 @@ const bool kWeighted = (kFlags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
 const bool kCombined = (kFlags & SVGF_REPROJECT_FLAG_COMBINED) != 0u;
 const bool kWriteColor = (kFlags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in denoise/vulkan/svgf_texel_formats.h),
-// except the fp16 colour history (RGB16F texel buffers are not widely supported) and the sample counts.
-PLANE(SVGF_REPROJECT_B_COLOR_IN, color_in);            // rgb32f
-PLANE(SVGF_REPROJECT_B_COLOR_IN2, color_in2);          // rgb32f
-PLANE(SVGF_REPROJECT_B_DEPTH, depth);                  // r32f
-PLANE(SVGF_REPROJECT_B_NORMAL, normal);                // rgb32f
-UPLANE(SVGF_REPROJECT_B_OBJECT, object_id);            // r32ui
-PLANE(SVGF_REPROJECT_B_PREV_DEPTH, prev_depth);        // r32f
-PLANE(SVGF_REPROJECT_B_PREV_NORMAL, prev_normal);      // rgb32f
-UPLANE(SVGF_REPROJECT_B_PREV_OBJECT, prev_object);     // r32ui
-PLANE(SVGF_REPROJECT_B_DEPTH_GRAD, depth_grad);        // rg32f
-PLANE(SVGF_REPROJECT_B_PREV_PIXEL, prev_pixel);        // rg32f
-layout(std430, binding = SVGF_REPROJECT_B_SAMPLE_COUNT) readonly buffer SampleCount { uint sample_count[]; };
-layout(std430, binding = SVGF_REPROJECT_B_STATS) buffer Stats { uint stats[]; };
-
-// The history planes of one channel: binding numbers of channel 0 or (pair) channel 1.
-#ifdef FOVRT_FP16
-#define PREV_COLOR_PLANE(b, name) layout(std430, binding = b) readonly buffer name##_block { hfloat name[]; }
-#define PREV_COLOR_LOAD LOAD3
-#else
-#define PREV_COLOR_PLANE(b, name) PLANE(b, name)  // rgb32f
-#define PREV_COLOR_LOAD FETCH3
-#endif
-#define HISTORY_PLANES(k, b_prev_color, b_prev_moments, b_prev_length, b_prev_weight, b_color, b_moments,     \
-                       b_length, b_weight, b_illum)                                                           \
-    PREV_COLOR_PLANE(b_prev_color, hist_prev_color##k);                                                     \
-    PLANE(b_prev_moments, hist_prev_moments##k); /* rg32f / rg16f */                                        \
-    PLANE(b_prev_length, hist_prev_length##k);   /* r32f / r16f */                                          \
-    PLANE(b_prev_weight, hist_prev_weight##k);   /* r32f / r16f */                                          \
-    layout(std430, binding = b_color) writeonly buffer CurColor##k { hfloat hist_color##k[]; };             \
-    layout(std430, binding = b_moments) writeonly buffer CurMoments##k { hfloat hist_moments##k[]; };       \
-    layout(std430, binding = b_length) writeonly buffer CurLength##k { hfloat hist_length##k[]; };          \
-    layout(std430, binding = b_weight) writeonly buffer CurWeight##k { hfloat hist_weight##k[]; };          \
-    layout(std430, binding = b_illum) writeonly buffer IllumOut##k { vec4 illum_out##k[]; }
-
-HISTORY_PLANES(0, SVGF_REPROJECT_B_PREV_COLOR, SVGF_REPROJECT_B_PREV_MOMENTS, SVGF_REPROJECT_B_PREV_LENGTH,
-               SVGF_REPROJECT_B_PREV_WEIGHT, SVGF_REPROJECT_B_CUR_COLOR, SVGF_REPROJECT_B_CUR_MOMENTS,
-               SVGF_REPROJECT_B_CUR_LENGTH, SVGF_REPROJECT_B_CUR_WEIGHT, SVGF_REPROJECT_B_ILLUM_OUT);
+FOVRT_DECLARE_BINDINGS(SVGF_REPROJECT_BINDING_LIST)  // shaders/bindings/svgf_reproject.h
 #if NCH == 2
-HISTORY_PLANES(1, SVGF_REPROJECT_B_PREV_COLOR2, SVGF_REPROJECT_B_PREV_MOMENTS2, SVGF_REPROJECT_B_PREV_LENGTH2,
-               SVGF_REPROJECT_B_PREV_WEIGHT2, SVGF_REPROJECT_B_CUR_COLOR2, SVGF_REPROJECT_B_CUR_MOMENTS2,
-               SVGF_REPROJECT_B_CUR_LENGTH2, SVGF_REPROJECT_B_CUR_WEIGHT2, SVGF_REPROJECT_B_ILLUM_OUT2);
+FOVRT_DECLARE_BINDINGS(SVGF_REPROJECT_PAIR_BINDING_LIST)
 #elif NCH != 1
 #error "FOVRT_CHANNELS must be 1 or 2"
+#endif
+#define PIXEL_LIST_B_ARGS SVGF_REPROJECT_B_LIST_ARGS
+#define PIXEL_LIST_B_LIST SVGF_REPROJECT_B_LIST
+#include "common/pixel_list.glsl"
+// The fp16 colour history is a storage buffer (RGB16F texel buffers are rarely supported).
+#ifdef FOVRT_FP16
+#define PREV_COLOR_LOAD LOAD3
+#else
+#define PREV_COLOR_LOAD FETCH3
 #endif
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_REPROJECT);  // shaders/push_constants.h

@@ -9,7 +9,7 @@
 //   over the channels (GRADIENT flag; g is one float, the signed luminance of the gradient).
 // Channels: FOVRT_CHANNELS (1: "two_history_reproject", one channel = direct + indirect summed
 //   (combined); 2: "two_history_reproject_pair", direct at the base bindings and indirect at
-//   COLOR_OTHER / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
+//   COLOR_IN2 / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
 //   geometry) and the per-pixel state (W_u, W_w, S, g) are gathered and computed once per pixel;
 //   W_u is the same for both channels (as in the reference) and written into each channel's length.
 // Passes: as svgf_reproject — this shader on every pixel with the bilinear taps, listing the pixels
@@ -28,9 +28,6 @@
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
 #include "common/two_history.glsl"
-#define PIXEL_LIST_B_ARGS TH_REPROJECT_B_LIST_ARGS
-#define PIXEL_LIST_B_LIST TH_REPROJECT_B_LIST
-#include "common/pixel_list.glsl"
 
 #ifndef FOVRT_CHANNELS
 #define FOVRT_CHANNELS 1
@@ -49,58 +46,20 @@ const bool kAlphaMap = (kFlags & TH_REPROJECT_FLAG_ALPHA_MAP) != 0u;
 const bool kWriteColor = (kFlags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 const bool kGradient = (kFlags & TH_REPROJECT_FLAG_GRADIENT) != 0u;
 
-// Read-only planes: uniform texel buffers (common/access.glsl; formats in two_history_vk.cpp),
-// except the fp16 RGB histories (RGB16F texel buffers are rarely supported), sample counts and α.
-PLANE(TH_REPROJECT_B_COLOR, color);                // rgb32f
-PLANE(TH_REPROJECT_B_COLOR_OTHER, color_other);    // rgb32f
-PLANE(TH_REPROJECT_B_DEPTH, depth);                // r32f
-PLANE(TH_REPROJECT_B_NORMAL, normal);              // rgb32f
-UPLANE(TH_REPROJECT_B_OBJECT, object_id);          // r32ui
-PLANE(TH_REPROJECT_B_PREV_DEPTH, prev_depth);      // r32f
-PLANE(TH_REPROJECT_B_PREV_NORMAL, prev_normal);    // rgb32f
-UPLANE(TH_REPROJECT_B_PREV_OBJECT, prev_object);   // r32ui
-PLANE(TH_REPROJECT_B_DEPTH_GRAD, depth_grad);      // rg32f
-PLANE(TH_REPROJECT_B_PREV_PIXEL, prev_pixel);      // rg32f
-layout(std430, binding = TH_REPROJECT_B_SAMPLE_COUNT) readonly buffer SampleCount { uint sample_count[]; };
-layout(std430, binding = TH_REPROJECT_B_ALPHA) readonly buffer AlphaMap { float alpha_map[]; };
-#ifdef FOVRT_FP16
-#define HIST3_PLANE(b, name) layout(std430, binding = b) readonly buffer name##_block { hfloat name[]; }
-#define HIST3_LOAD LOAD3
-#else
-#define HIST3_PLANE(b, name) PLANE(b, name)  // rgb32f
-#define HIST3_LOAD FETCH3
-#endif
-HIST3_PLANE(TH_REPROJECT_B_PREV_S, prev_s);
-PLANE(TH_REPROJECT_B_PREV_G, prev_g);              // r32f / r16f (luminance gradient)
-PLANE(TH_REPROJECT_B_PREV_WW, prev_ww);            // r32f / r16f
-layout(std430, binding = TH_REPROJECT_B_CUR_WW) writeonly buffer CurWw { hfloat cur_ww[]; };
-layout(std430, binding = TH_REPROJECT_B_CUR_S) writeonly buffer CurS { hfloat cur_s[]; };
-layout(std430, binding = TH_REPROJECT_B_CUR_G) writeonly buffer CurG { hfloat cur_g[]; };
-layout(std430, binding = TH_REPROJECT_B_STATS) buffer Stats { uint stats[]; };
-
-// The histories of one channel: binding numbers of channel 0 or (pair) channel 1.
-#define CHANNEL_PLANES(k, b_prev_iu, b_prev_iw, b_prev_m, b_prev_wu, b_cur_iu, b_cur_iw, b_cur_m, b_cur_wu,  \
-                       b_illum_u, b_illum_w)                                                               \
-    HIST3_PLANE(b_prev_iu, prev_iu##k);                                                                    \
-    HIST3_PLANE(b_prev_iw, prev_iw##k);                                                                    \
-    PLANE(b_prev_m, prev_m##k);   /* rg32f / rg16f */                                                      \
-    PLANE(b_prev_wu, prev_wu##k); /* r32f / r16f */                                                        \
-    layout(std430, binding = b_cur_iu) writeonly buffer CurIu##k { hfloat cur_iu##k[]; };                  \
-    layout(std430, binding = b_cur_iw) writeonly buffer CurIw##k { hfloat cur_iw##k[]; };                  \
-    layout(std430, binding = b_cur_m) writeonly buffer CurM##k { hfloat cur_m##k[]; };                     \
-    layout(std430, binding = b_cur_wu) writeonly buffer CurWu##k { hfloat cur_wu##k[]; };                  \
-    layout(std430, binding = b_illum_u) writeonly buffer IllumU##k { vec4 illum_u##k[]; };                 \
-    layout(std430, binding = b_illum_w) writeonly buffer IllumW##k { vec4 illum_w##k[]; }
-
-CHANNEL_PLANES(0, TH_REPROJECT_B_PREV_IU, TH_REPROJECT_B_PREV_IW, TH_REPROJECT_B_PREV_M, TH_REPROJECT_B_PREV_WU,
-               TH_REPROJECT_B_CUR_IU, TH_REPROJECT_B_CUR_IW, TH_REPROJECT_B_CUR_M, TH_REPROJECT_B_CUR_WU,
-               TH_REPROJECT_B_ILLUM_U, TH_REPROJECT_B_ILLUM_W);
+FOVRT_DECLARE_BINDINGS(TH_REPROJECT_BINDING_LIST)  // shaders/bindings/two_history_reproject.h
 #if NCH == 2
-CHANNEL_PLANES(1, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW2, TH_REPROJECT_B_PREV_M2,
-               TH_REPROJECT_B_PREV_WU2, TH_REPROJECT_B_CUR_IU2, TH_REPROJECT_B_CUR_IW2, TH_REPROJECT_B_CUR_M2,
-               TH_REPROJECT_B_CUR_WU2, TH_REPROJECT_B_ILLUM_U2, TH_REPROJECT_B_ILLUM_W2);
+FOVRT_DECLARE_BINDINGS(TH_REPROJECT_PAIR_BINDING_LIST)
 #elif NCH != 1
 #error "FOVRT_CHANNELS must be 1 or 2"
+#endif
+#define PIXEL_LIST_B_ARGS TH_REPROJECT_B_LIST_ARGS
+#define PIXEL_LIST_B_LIST TH_REPROJECT_B_LIST
+#include "common/pixel_list.glsl"
+// fp16 RGB histories are storage buffers (RGB16F texel buffers are rarely supported).
+#ifdef FOVRT_FP16
+#define HIST3_LOAD LOAD3
+#else
+#define HIST3_LOAD FETCH3
 #endif
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_REPROJECT);  // shaders/push_constants.h
@@ -190,11 +149,11 @@ bool reproject_pixel(int i) {
 
     vec3 x[NCH], iu_prev[NCH];
 #if NCH == 2
-    x[0] = sanitize(FETCH3(color, i));
-    x[1] = sanitize(FETCH3(color_other, i));
+    x[0] = sanitize(FETCH3(color_in, i));
+    x[1] = sanitize(FETCH3(color_in2, i));
 #else
-    vec3 raw = FETCH3(color, i);
-    if (kCombined) raw += FETCH3(color_other, i);
+    vec3 raw = FETCH3(color_in, i);
+    if (kCombined) raw += FETCH3(color_in2, i);
     x[0] = sanitize(raw);
 #endif
     ACCUMULATE_CHANNEL(0);

@@ -36,6 +36,10 @@ void CheckSlots(const std::vector<Row>& rows) {
 }  // namespace
 
 TEST_CASE("binding lists: slots 0..count-1, each once") {
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_REPROJECT_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(SVGF_REPROJECT_PAIR_ALL_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(TH_REPROJECT_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(TH_REPROJECT_PAIR_ALL_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(SVGF_GUIDE_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(SVGF_CLASSIFY_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(SVGF_MOMENTS_BINDING_LIST));
@@ -50,6 +54,11 @@ TEST_CASE("binding lists: slots 0..count-1, each once") {
     CheckSlots(FOVRT_TEST_ROWS(ASVGF_ATROUS_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(ASVGF_ALPHA_BINDING_LIST));
     CHECK(SVGF_ATROUS_PAIR_BINDINGS == SVGF_ATROUS_BINDINGS + 3);
+    // Both reprojection shaders bind the shared inputs at the same slots (BindReprojectionInputs).
+    CHECK(TH_REPROJECT_B_LIST == SVGF_REPROJECT_B_LIST);
+    CHECK(TH_REPROJECT_B_COLOR_IN2 == SVGF_REPROJECT_B_COLOR_IN2);
+    CHECK(SVGF_REPROJECT_PAIR_BINDINGS == 32);  // lavapipe: at most 32 storage buffers per stage
+    CHECK(TH_REPROJECT_PAIR_BINDINGS == 41);
 }
 
 TEST_CASE("texel-format tables follow the binding kinds") {
@@ -66,5 +75,10 @@ TEST_CASE("texel-format tables follow the binding kinds") {
     CHECK(BlendTexelFormats(Precision::Fp32)[TH_BLEND_B_S] == VK_FORMAT_R32G32B32_SFLOAT);
     CHECK(BlendTexelFormats(Precision::Fp16)[TH_BLEND_B_S] == VK_FORMAT_UNDEFINED);
     CHECK(SvgfAtrousTexelFormats()[SVGF_ATROUS_B_ILLUM_IN2] == VK_FORMAT_R32G32B32A32_SFLOAT);
+    CHECK(TwoHistoryReprojectTexelFormats(Precision::Fp32)[TH_REPROJECT_B_PREV_IW2] == VK_FORMAT_R32G32B32_SFLOAT);
+    CHECK(TwoHistoryReprojectTexelFormats(Precision::Fp16)[TH_REPROJECT_B_PREV_IW2] == VK_FORMAT_UNDEFINED);
+    CHECK(TwoHistoryReprojectTexelFormats(Precision::Fp16)[TH_REPROJECT_B_PREV_M2] == VK_FORMAT_R16G16_SFLOAT);
+    CHECK(SvgfReprojectTexelFormats(Precision::Fp16)[SVGF_REPROJECT_B_PREV_WEIGHT2] == VK_FORMAT_R16_SFLOAT);
+    CHECK(SvgfReprojectTexelFormats(Precision::Fp32)[SVGF_REPROJECT_B_SAMPLE_COUNT] == VK_FORMAT_UNDEFINED);
     CHECK(SvgfAtrousTexelFormats()[SVGF_ATROUS_B_HIST_COLOR2] == VK_FORMAT_UNDEFINED);
 }

@@ -32,32 +32,6 @@ inline VkFormat HistoryTexelFormat(VkFormat fp32, Precision precision) {
     return fp32 == kR32 ? VK_FORMAT_R16_SFLOAT : fp32 == kRG32 ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_UNDEFINED;
 }
 
-// Formats of "svgf_reproject_pair"; the one-channel "svgf_reproject" uses the first SVGF_REPROJECT_BINDINGS.
-inline std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> SvgfReprojectTexelFormats(Precision precision) {
-    const bool half = precision == Precision::Fp16;
-    std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> f{};
-    f.fill(VK_FORMAT_UNDEFINED);
-    f[SVGF_REPROJECT_B_COLOR_IN] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[SVGF_REPROJECT_B_COLOR_IN2] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[SVGF_REPROJECT_B_DEPTH] = VK_FORMAT_R32_SFLOAT;
-    f[SVGF_REPROJECT_B_NORMAL] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[SVGF_REPROJECT_B_OBJECT] = VK_FORMAT_R32_UINT;
-    f[SVGF_REPROJECT_B_PREV_DEPTH] = VK_FORMAT_R32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_NORMAL] = VK_FORMAT_R32G32B32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_OBJECT] = VK_FORMAT_R32_UINT;
-    f[SVGF_REPROJECT_B_DEPTH_GRAD] = VK_FORMAT_R32G32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_PIXEL] = VK_FORMAT_R32G32_SFLOAT;
-    // fp16 colour history stays a storage buffer (RGB16F texel buffers are rarely supported).
-    f[SVGF_REPROJECT_B_PREV_COLOR] = half ? VK_FORMAT_UNDEFINED : VK_FORMAT_R32G32B32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_MOMENTS] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_LENGTH] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_WEIGHT] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    f[SVGF_REPROJECT_B_PREV_COLOR2] = f[SVGF_REPROJECT_B_PREV_COLOR];
-    f[SVGF_REPROJECT_B_PREV_MOMENTS2] = f[SVGF_REPROJECT_B_PREV_MOMENTS];
-    f[SVGF_REPROJECT_B_PREV_LENGTH2] = f[SVGF_REPROJECT_B_PREV_LENGTH];
-    f[SVGF_REPROJECT_B_PREV_WEIGHT2] = f[SVGF_REPROJECT_B_PREV_WEIGHT];
-    return f;
-}
 
 // The descriptor format of each binding of a list (shaders/bindings.h) by its kind: texel
 // buffers their FORMAT (history planes their 16-bit twin in fp16; HTEXEL3 planes are storage in
@@ -86,6 +60,11 @@ inline std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> SvgfReprojectTexelForm
         (void)precision; /* lists without history planes ignore it */      \
         return formats;                                                    \
     }(PRECISION)
+
+// Formats of "svgf_reproject_pair"; the one-channel "svgf_reproject" uses the first SVGF_REPROJECT_BINDINGS.
+inline std::array<VkFormat, SVGF_REPROJECT_PAIR_BINDINGS> SvgfReprojectTexelFormats(Precision precision) {
+    return FOVRT_TEXEL_FORMATS(SVGF_REPROJECT_PAIR_ALL_BINDING_LIST, precision);
+}
 
 inline std::array<VkFormat, SVGF_GUIDE_BINDINGS> SvgfGuideTexelFormats() {
     return FOVRT_TEXEL_FORMATS(SVGF_GUIDE_BINDING_LIST, Precision::Fp32);
@@ -126,6 +105,11 @@ inline std::array<VkFormat, ASVGF_ALPHA_BINDINGS> AlphaTexelFormats() {
 }
 inline std::array<VkFormat, TH_GRADIENT_BINDINGS> GradientTexelFormats(Precision precision) {
     return FOVRT_TEXEL_FORMATS(TH_GRADIENT_BINDING_LIST, precision);
+}
+
+// Formats of "two_history_reproject_pair"; the one-channel shader uses the first TH_REPROJECT_BINDINGS.
+inline std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> TwoHistoryReprojectTexelFormats(Precision precision) {
+    return FOVRT_TEXEL_FORMATS(TH_REPROJECT_PAIR_ALL_BINDING_LIST, precision);
 }
 
 }  // namespace fovrt

@@ -17,45 +17,10 @@
 
 namespace fovrt {
 
-// two_history_reproject binds colour, geometry and motion at svgf_reproject's slots 0–9
-// (BindReprojectionInputs).
-static_assert(TH_REPROJECT_B_COLOR == SVGF_REPROJECT_B_COLOR_IN &&
-              TH_REPROJECT_B_COLOR_OTHER == SVGF_REPROJECT_B_COLOR_IN2 &&
-              TH_REPROJECT_B_DEPTH == SVGF_REPROJECT_B_DEPTH && TH_REPROJECT_B_NORMAL == SVGF_REPROJECT_B_NORMAL &&
-              TH_REPROJECT_B_OBJECT == SVGF_REPROJECT_B_OBJECT &&
-              TH_REPROJECT_B_PREV_DEPTH == SVGF_REPROJECT_B_PREV_DEPTH &&
-              TH_REPROJECT_B_PREV_NORMAL == SVGF_REPROJECT_B_PREV_NORMAL &&
-              TH_REPROJECT_B_PREV_OBJECT == SVGF_REPROJECT_B_PREV_OBJECT &&
-              TH_REPROJECT_B_DEPTH_GRAD == SVGF_REPROJECT_B_DEPTH_GRAD &&
-              TH_REPROJECT_B_PREV_PIXEL == SVGF_REPROJECT_B_PREV_PIXEL);
+// two_history_reproject binds colour, geometry and motion at svgf_reproject's slots 0–11: both
+// lists begin with REPROJECT_INPUT_BINDINGS (shaders/bindings/reprojection_inputs.h), so
+// BindReprojectionInputs serves both.
 
-namespace {
-// Read-only planes of two_history_reproject bound as uniform texel buffers (common/access.glsl);
-// fp16 RGB histories, sample counts and α stay storage buffers (as the shader declares them).
-// Formats of "two_history_reproject_pair"; the one-channel shader uses the first TH_REPROJECT_BINDINGS.
-std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> ReprojectTexelFormats(Precision precision) {
-    const bool half = precision == Precision::Fp16;
-    std::array<VkFormat, TH_REPROJECT_PAIR_BINDINGS> f{};
-    f.fill(VK_FORMAT_UNDEFINED);
-    for (int b : {TH_REPROJECT_B_COLOR, TH_REPROJECT_B_COLOR_OTHER, TH_REPROJECT_B_NORMAL, TH_REPROJECT_B_PREV_NORMAL})
-        f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
-    for (int b : {TH_REPROJECT_B_DEPTH, TH_REPROJECT_B_PREV_DEPTH}) f[size_t(b)] = VK_FORMAT_R32_SFLOAT;
-    for (int b : {TH_REPROJECT_B_OBJECT, TH_REPROJECT_B_PREV_OBJECT}) f[size_t(b)] = VK_FORMAT_R32_UINT;
-    for (int b : {TH_REPROJECT_B_DEPTH_GRAD, TH_REPROJECT_B_PREV_PIXEL}) f[size_t(b)] = VK_FORMAT_R32G32_SFLOAT;
-    if (!half)
-        for (int b : {TH_REPROJECT_B_PREV_IU, TH_REPROJECT_B_PREV_IU_OTHER, TH_REPROJECT_B_PREV_IW,
-                      TH_REPROJECT_B_PREV_IW2, TH_REPROJECT_B_PREV_S})
-            f[size_t(b)] = VK_FORMAT_R32G32B32_SFLOAT;
-    for (int b : {TH_REPROJECT_B_PREV_M, TH_REPROJECT_B_PREV_M2})
-        f[size_t(b)] = half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
-    for (int b : {TH_REPROJECT_B_PREV_WU, TH_REPROJECT_B_PREV_WU2})
-        f[size_t(b)] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    f[TH_REPROJECT_B_PREV_WW] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    f[TH_REPROJECT_B_PREV_G] = half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;  // lum(g)
-    return f;
-}
-
-}  // namespace
 
 namespace {
 
@@ -88,7 +53,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(const DenoiserVariant& varian
     // Direct and indirect in one dispatch (two_history_reproject_pair: taps and per-pixel state once).
     const bool pair = channels_.size() == 2;
     const uint32_t reprojectBindings = pair ? TH_REPROJECT_PAIR_BINDINGS : TH_REPROJECT_BINDINGS;
-    const auto reprojectFormats = ReprojectTexelFormats(params_.precision);
+    const auto reprojectFormats = TwoHistoryReprojectTexelFormats(params_.precision);
     const int feedback = FeedbackIteration(params_.svgf, two_);
     uint32_t flags = 0;
     if (two_) flags |= TH_REPROJECT_FLAG_TWO_HISTORY;
@@ -171,7 +136,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
         guideSets_[pi] = stages_.GuideSet(buffers_, cur);
 
         // Channel 0 (direct, or combined) at the base bindings; the pair's indirect at
-        // COLOR_OTHER, PREV_IU_OTHER and the *2 bindings.
+        // COLOR_IN2, PREV_IU_OTHER and the *2 bindings.
         std::array<const Buffer*, TH_REPROJECT_PAIR_BINDINGS> r{};
         BindReprojectionInputs(r, buffers_, cur, prev, ch0);  // slots 0–11, as svgf_reproject
         r[TH_REPROJECT_B_SAMPLE_COUNT] = two("input.sampleCount");
