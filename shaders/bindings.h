@@ -25,6 +25,15 @@
 #define FOVRT_BINDING_CONSTANT(pass, name, slot, kind, format, variable) inline constexpr int pass##_B_##name = slot;
 // The slot constants of a list, at namespace scope.
 #define FOVRT_BINDING_CONSTANTS(LIST) LIST(FOVRT_BINDING_CONSTANT)
+// A pass's slot constants PASS_B_* and its count PASS_BINDINGS, from PASS_BINDING_LIST.
+#define FOVRT_PASS_BINDINGS(PASS)                      \
+    FOVRT_BINDING_CONSTANTS(PASS##_BINDING_LIST)       \
+    inline constexpr int PASS##_BINDINGS = FOVRT_BINDING_COUNT(PASS##_BINDING_LIST);
+// Its pair variant (two channels per dispatch): the second channel's constants
+// (PASS_PAIR_BINDING_LIST) and PASS_PAIR_BINDINGS over both (PASS_PAIR_ALL_BINDING_LIST).
+#define FOVRT_PAIR_BINDINGS(PASS)                      \
+    FOVRT_BINDING_CONSTANTS(PASS##_PAIR_BINDING_LIST)  \
+    inline constexpr int PASS##_PAIR_BINDINGS = FOVRT_BINDING_COUNT(PASS##_PAIR_ALL_BINDING_LIST);
 #else
 #define FOVRT_GLSL_DECL_TEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_HTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
