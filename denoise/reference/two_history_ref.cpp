@@ -180,14 +180,10 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
     });
 }
 
-void ValidateTwoHistoryParams(const DenoiserParams& params) {
-    ValidateDenoiserParamRanges(params);
-}
-
 TwoHistoryReferenceDenoiser::TwoHistoryReferenceDenoiser(const DenoiserVariant& variant,
                                                          const DenoiserParams& params)
     : variant_(variant), params_(params) {
-    ValidateTwoHistoryParams(params);
+    ValidateDenoiserParamRanges(params);
 }
 
 std::string TwoHistoryReferenceDenoiser::Name() const { return std::string(variant_.name); }

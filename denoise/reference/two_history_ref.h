@@ -137,7 +137,5 @@ class TwoHistoryReferenceDenoiser final : public Denoiser {
 
 std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(const DenoiserVariant& variant,
                                                       const DenoiserParams& params);
-// Checks the parameters this family reads; fovrt::Error naming the key otherwise.
-void ValidateTwoHistoryParams(const DenoiserParams& params);
 
 }  // namespace fovrt

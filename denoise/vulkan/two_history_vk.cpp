@@ -7,7 +7,6 @@
 #include <span>
 
 #include "core/error.h"
-#include "denoise/reference/asvgf_ref.h"
 #include "denoise/memory_plan.h"
 #include "denoise/schedule.h"
 #include "denoise/vulkan/svgf_layout.h"
@@ -40,7 +39,7 @@ TwoHistoryVulkanDenoiser::TwoHistoryVulkanDenoiser(const DenoiserVariant& varian
     FOVRT_CHECK(context_ != nullptr);
     commands_ = CommandSlot(*context_);
     buffers_ = DenoiserBuffers(Name());
-    ValidateTwoHistoryParams(params_);
+    ValidateDenoiserParamRanges(params_);
     params_.svgf.weightBySampleCount = false;  // the weighted history is this family's own
     if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
         Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess",

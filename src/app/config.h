@@ -25,7 +25,7 @@
 //                amplitude = [640, 360], frequency_hz = [0.4, 0.5], phase_deg = [90, 0],
 //                offset = [0, 0], reference_width = 1280, reference_height = 720,
 //                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0
-//   [denoise]    denoisers = ["svgf"], device = "auto"|"cpu"|"<index>"
+//   [denoise]    denoisers = ["svgf"], device = "auto"|"vulkan"|"cpu"|"<index>" (vk/device_choice.h)
 //   denoise.precision and [denoise.svgf], [denoise.asvgf], [denoise.two_history]: the parameter
 //                tables in denoise/params.cpp (key, default, range, doc; `fovrt config --keys`)
 //   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = true,
@@ -72,7 +72,7 @@ using GazeConfig = GazeParams;
 
 struct DenoiseConfig {
     std::vector<std::string> denoisers = {"svgf"};
-    std::string device = "auto";  // auto | cpu | <Vulkan device index>
+    std::string device = "auto";  // auto | vulkan | cpu | <Vulkan device index> (vk/device_choice.h)
     DenoiserParams params;        // includes precision (fp32 | fp16)
 };
 
