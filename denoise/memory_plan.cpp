@@ -104,8 +104,8 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
         }
         // q of the EMA gradient (two-history-asvgf blends with A-SVGF's λ̂ instead).
         if (v.emaGradient) add("q", 4 * n, false);
-        if (!params.svgf.weightBySampleCount) add("input.sampleCount", sampleCountBytes, false);
     }
+    if (v.needsSampleCount) add("input.sampleCount", sampleCountBytes, false);
     if (v.asvgfGradient) {
         const ivec2 g = StratumGridSize(width, height);
         const size_t strata = size_t(g.x) * size_t(g.y);

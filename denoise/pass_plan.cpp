@@ -106,14 +106,14 @@ void ModulateAndDownload(PlanWriter& w, const std::vector<std::string>& channels
     w.Pass("download").Read("output").Write("output");
 }
 
-void PlanSvgf(PlanWriter& w, const DenoiserParams& params) {
+void PlanSvgf(PlanWriter& w, const DenoiserVariant& v, const DenoiserParams& params) {
     const SvgfParams& p = params.svgf;
     const std::vector<std::string> channels = SvgfChannels(p);
     const bool weighted = p.weightBySampleCount;
     const int feedback = FeedbackIteration(p, false);
     w.Pass("upload");
     UploadInputs(w);
-    if (weighted) w.Upload("input.sampleCount");
+    if (v.needsSampleCount) w.Upload("input.sampleCount");
     PackGuide(w);
     // One dispatch for both channels (svgf_reproject_pair; combined: one channel of direct + indirect).
     w.Pass("reproject");
@@ -169,7 +169,7 @@ void PlanTwoHistoryFamily(PlanWriter& w, const DenoiserVariant& v, const Denoise
     const int feedback = FeedbackIteration(p, two);
     w.Pass("upload");
     UploadInputs(w);
-    if (two) w.Upload("input.sampleCount");
+    if (v.needsSampleCount) w.Upload("input.sampleCount");
     if (v.asvgfGradient) w.Upload("asvgf.samples", Coverage::UploadedSamples);
     if (v.asvgfGradient) PlanAsvgfGradient(w, params);
     PackGuide(w);
@@ -238,7 +238,7 @@ DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& para
     plan.buffers = PlanDenoiserMemory(std::string(name), width, height, p);
     PlanWriter w(plan.passes);
     if (v.family == DenoiserFamily::Svgf)
-        PlanSvgf(w, p);
+        PlanSvgf(w, v, p);
     else
         PlanTwoHistoryFamily(w, v, p);
     return plan;

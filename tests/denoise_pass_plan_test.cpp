@@ -70,3 +70,13 @@ TEST_CASE("pass order: A-SVGF's gradient before the guide, the blend right after
     CHECK(names == std::vector<std::string>{"upload", "pack_guide", "two_history_reproject", "filter_moments",
                                             "two_history_gradient", "two_history_blend", "modulate", "download"});
 }
+
+TEST_CASE("variant rows are consistent: sample counts where a history weighs by them") {
+    for (const DenoiserVariant& v : DenoiserVariants()) {
+        INFO(v.name);
+        CHECK(v.needsSampleCount == (v.weightBySampleCount || v.twoHistory));
+        CHECK(v.needsGradientSamples == v.asvgfGradient);
+        CHECK(!(v.emaGradient && v.asvgfGradient));  // q comes from one of them
+        CHECK((v.family == DenoiserFamily::Svgf) == !(v.twoHistory || v.asvgfGradient));
+    }
+}

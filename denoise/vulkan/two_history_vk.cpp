@@ -287,7 +287,7 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     }
     const size_t off = buffers_.RecordUploadInputs(rec, in, cur);
     size_t offExtra = 0;
-    if (two_)
+    if (variant_.needsSampleCount)
         offExtra = rec.Upload(in.sampleCount.data(), 2 * n, stagingExtra, offExtra,
                               Buf("input.sampleCount"));
     if (sampleCount > 0)
