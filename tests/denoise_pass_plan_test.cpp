@@ -76,7 +76,8 @@ TEST_CASE("variant rows are consistent: sample counts where a history weighs by 
         INFO(v.name);
         CHECK(v.needsSampleCount == (v.weightBySampleCount || v.twoHistory));
         CHECK(v.needsGradientSamples == v.asvgfGradient);
-        CHECK(!(v.emaGradient && v.asvgfGradient));  // q comes from one of them
+        if (v.twoHistory) CHECK(v.emaGradient != v.asvgfGradient);  // q comes from exactly one of them
+        CHECK(!(v.emaGradient && !v.twoHistory));                      // g feeds only the blend's q
         CHECK((v.family == DenoiserFamily::Svgf) == !(v.twoHistory || v.asvgfGradient));
     }
 }
