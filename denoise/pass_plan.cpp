@@ -13,18 +13,20 @@ namespace {
 
 // Appends passes and the planes they use, in recording order.
 class PlanWriter {
-public:
+  public:
     explicit PlanWriter(std::vector<PlannedPass>& passes) : passes_(passes) {}
 
     PlanWriter& Pass(std::string name) {
         passes_.push_back({std::move(name), {}});
         return *this;
     }
-    PlanWriter& Read(const std::string& plane, double times = 1.0, Coverage coverage = Coverage::EveryPixel) {
+    PlanWriter& Read(const std::string& plane, double times = 1.0,
+                     Coverage coverage = Coverage::EveryPixel) {
         passes_.back().uses.push_back({plane, Access::Read, times, coverage});
         return *this;
     }
-    PlanWriter& Write(const std::string& plane, double times = 1.0, Coverage coverage = Coverage::EveryPixel) {
+    PlanWriter& Write(const std::string& plane, double times = 1.0,
+                      Coverage coverage = Coverage::EveryPixel) {
         passes_.back().uses.push_back({plane, Access::Write, times, coverage});
         return *this;
     }
@@ -34,11 +36,12 @@ public:
     }
     // A placeholder binding the shader loads on every pixel (its bytes are fixed, not a plane's).
     PlanWriter& ReadPlaceholder(const std::string& plane, double bytesPerPixel) {
-        passes_.back().uses.push_back({plane, Access::Read, 1.0, Coverage::EveryPixel, bytesPerPixel});
+        passes_.back().uses.push_back(
+            {plane, Access::Read, 1.0, Coverage::EveryPixel, bytesPerPixel});
         return *this;
     }
 
-private:
+  private:
     std::vector<PlannedPass>& passes_;
 };
 
@@ -73,20 +76,25 @@ void ReprojectionInputs(PlanWriter& w) {
 // estimate of the listed pixels. `classify`: this history's channel is classified here (one list
 // per channel serves both histories of two-history).
 void FilterMoments(PlanWriter& w, const std::string& ch, const std::string& illum, bool classify) {
-    const std::string in = ch + "." + illum + "0", out = ch + "." + illum + "1", list = ch + ".spatialList";
+    const std::string in = ch + "." + illum + "0", out = ch + "." + illum + "1",
+                      list = ch + ".spatialList";
     w.Read(in).Write(out);  // vkCmdCopyBuffer
-    if (classify) w.Read("geometry.guide").Read(ch + ".length").Write(list, 1.0, Coverage::ListedPixels);
+    if (classify)
+        w.Read("geometry.guide").Read(ch + ".length").Write(list, 1.0, Coverage::ListedPixels);
     const Coverage listed = Coverage::ListedPixels;
-    w.Read(in, 1.0, listed).Read("geometry.guide", 1.0, listed).Read("input.depthGradient", 1.0, listed);
+    w.Read(in, 1.0, listed)
+        .Read("geometry.guide", 1.0, listed)
+        .Read("input.depthGradient", 1.0, listed);
     w.Read(ch + ".moments", 1.0, listed).Read(ch + ".length", 1.0, listed).Read(list, 1.0, listed);
     w.Write(out, 1.0, listed);
 }
 
 // One à-trous history filtered at iteration i (0-based): illumination in → out, the colour
 // history written on the feedback iteration.
-void AtrousHistory(PlanWriter& w, const std::string& ch, const std::string& illum, const std::string& history,
-                   int i, bool feedback) {
-    w.Read(ch + "." + illum + ((i + 1) & 1 ? "1" : "0")).Write(ch + "." + illum + (i & 1 ? "1" : "0"));
+void AtrousHistory(PlanWriter& w, const std::string& ch, const std::string& illum,
+                   const std::string& history, int i, bool feedback) {
+    w.Read(ch + "." + illum + ((i + 1) & 1 ? "1" : "0"))
+        .Write(ch + "." + illum + (i & 1 ? "1" : "0"));
     if (feedback) w.Write(ch + "." + history);
 }
 
@@ -101,7 +109,8 @@ void AtrousShared(PlanWriter& w, int histories) {
 // output downloaded (device read + staging write).
 void ModulateAndDownload(PlanWriter& w, const std::vector<std::string>& channels, int iterations) {
     w.Pass("modulate").Read("input.albedo").Read("input.emission");
-    for (const std::string& ch : channels) w.Read(ch + ".illum" + std::to_string(FilteredIlluminationPlane(iterations)));
+    for (const std::string& ch : channels)
+        w.Read(ch + ".illum" + std::to_string(FilteredIlluminationPlane(iterations)));
     w.Write("output");
     w.Pass("download").Read("output").Write("output");
 }
@@ -115,7 +124,8 @@ void PlanSvgf(PlanWriter& w, const DenoiserVariant& v, const DenoiserParams& par
     UploadInputs(w);
     if (v.needsSampleCount) w.Upload("input.sampleCount");
     PackGuide(w);
-    // One dispatch for both channels (svgf_reproject_pair; combined: one channel of direct + indirect).
+    // One dispatch for both channels (svgf_reproject_pair; combined: one channel of direct +
+    // indirect).
     w.Pass("reproject");
     ReprojectionInputs(w);
     if (weighted) w.Read("input.sampleCount");
@@ -132,7 +142,8 @@ void PlanSvgf(PlanWriter& w, const DenoiserVariant& v, const DenoiserParams& par
     for (int i = 0; i < p.atrousIterations; ++i) {
         w.Pass(fmt::format("atrous{}", i));
         AtrousShared(w, int(channels.size()));
-        for (const std::string& ch : channels) AtrousHistory(w, ch, "illum", "color", i, i + 1 == feedback);
+        for (const std::string& ch : channels)
+            AtrousHistory(w, ch, "illum", "color", i, i + 1 == feedback);
     }
     ModulateAndDownload(w, channels, p.atrousIterations);
 }
@@ -143,12 +154,14 @@ void PlanAsvgfGradient(PlanWriter& w, const DenoiserParams& params) {
     w.Pass("asvgf_gradient");
     w.Write("asvgf.claim");  // vkCmdFillBuffer: every slot empty
     // asvgf_gradient_claim: the uploaded samples, atomicMin on the claimed slots.
-    w.Read("asvgf.samples", 1.0, Coverage::UploadedSamples).Write("asvgf.claim", 2.0, Coverage::ClaimedStrata);
+    w.Read("asvgf.samples", 1.0, Coverage::UploadedSamples)
+        .Write("asvgf.claim", 2.0, Coverage::ClaimedStrata);
     // asvgf_gradient_gather: the claimed samples → (δ, Δ), and the stratum guide from the per-pixel
     // planes at the guide pixels.
     w.Read("asvgf.claim").Read("asvgf.samples", 0.5, Coverage::ClaimedStrata).Write("asvgf.grad0");
-    for (const char* plane : {"geometry.objectId", "geometry.depth", "geometry.normal", "input.depthGradient",
-                              "input.direct", "input.indirect", "input.albedo", "input.emission"})
+    for (const char* plane :
+         {"geometry.objectId", "geometry.depth", "geometry.normal", "input.depthGradient",
+          "input.direct", "input.indirect", "input.albedo", "input.emission"})
         w.Read(plane, 1.0, Coverage::StratumGuidePixels);
     w.Write("asvgf.guideGeometry").Write("asvgf.guideLuminance");
     // asvgf_stratum_sigma
@@ -202,7 +215,10 @@ void PlanTwoHistoryFamily(PlanWriter& w, const DenoiserVariant& v, const Denoise
     }
     if (ema) {
         // 5×5 filter of g on the packed guide, each channel's variance → q.
-        w.Pass("two_history_gradient").Read("gradient").Read("geometry.guide").Read("input.depthGradient");
+        w.Pass("two_history_gradient")
+            .Read("gradient")
+            .Read("geometry.guide")
+            .Read("input.depthGradient");
         for (const std::string& ch : channels) w.Read(ch + ".illum1");
         w.Write("q");
     }
@@ -212,7 +228,10 @@ void PlanTwoHistoryFamily(PlanWriter& w, const DenoiserVariant& v, const Denoise
         w.Pass("two_history_blend");
         for (const std::string& ch : channels) {
             w.Read(ch + ".illum" + illum).Write(ch + ".illum" + illum).Read(ch + ".willum" + illum);
-            w.Read(channels[0] + ".length").Read("wweight").Read("powerSums").Read(ema ? "q" : "asvgf.lambda");
+            w.Read(channels[0] + ".length")
+                .Read("wweight")
+                .Read("powerSums")
+                .Read(ema ? "q" : "asvgf.lambda");
         }
     };
     if (two && p.atrousIterations == 0) blend("1");
@@ -231,7 +250,8 @@ void PlanTwoHistoryFamily(PlanWriter& w, const DenoiserVariant& v, const Denoise
 
 }  // namespace
 
-DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& params, int width, int height) {
+DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& params, int width,
+                               int height) {
     const DenoiserVariant& v = FindDenoiserVariant(name);
     const DenoiserParams p = ParamsForVariant(v, params);
     DenoiserPlan plan;

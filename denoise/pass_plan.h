@@ -21,7 +21,8 @@ namespace fovrt {
 // Which part of a plane a use touches, resolved when the bytes are counted (PassBytesOptions).
 enum class Coverage {
     EveryPixel,          // the whole plane
-    ListedPixels,        // the pixels on the spatial-variance list (svgf_filter_moments' indirect dispatch)
+    ListedPixels,        // the pixels on the spatial-variance list (svgf_filter_moments' indirect
+                         // dispatch)
     StratumGuidePixels,  // one pixel per 3×3 stratum (A-SVGF's gather of the stratum guide)
     ClaimedStrata,       // strata that received a gradient sample
     UploadedSamples,     // the uploaded share of the gradient-sample capacity (two per stratum)
@@ -32,7 +33,8 @@ enum class Access { Read, Write };
 struct PlaneUse {
     std::string plane;  // memory-plan buffer name without its ".A"/".B" history side
     Access access = Access::Read;
-    double times = 1.0;  // whole-plane transfers: 2 for an upload (staging read + device write) or a copy
+    double times =
+        1.0;  // whole-plane transfers: 2 for an upload (staging read + device write) or a copy
     Coverage coverage = Coverage::EveryPixel;
     // > 0: bytes per pixel of a binding the shader loads whatever is bound (a placeholder plane).
     double fixedBytesPerPixel = 0.0;
@@ -44,12 +46,13 @@ struct PlannedPass {
 };
 
 struct DenoiserPlan {
-    std::vector<BufferPlan> buffers;   // the memory plan (PlanDenoiserMemory)
-    std::vector<PlannedPass> passes;   // Vulkan recording order
+    std::vector<BufferPlan> buffers;  // the memory plan (PlanDenoiserMemory)
+    std::vector<PlannedPass> passes;  // Vulkan recording order
 };
 
 // The plan of the named variant (DenoiserVariants()) at W×H for one eye. fovrt::Error for an
 // unknown name or size.
-DenoiserPlan BuildDenoiserPlan(std::string_view variant, const DenoiserParams& params, int width, int height);
+DenoiserPlan BuildDenoiserPlan(std::string_view variant, const DenoiserParams& params, int width,
+                               int height);
 
 }  // namespace fovrt

@@ -1,8 +1,8 @@
 #include "denoise/variants.h"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include "core/error.h"
 
@@ -10,14 +10,18 @@ namespace fovrt {
 
 const std::vector<DenoiserVariant>& DenoiserVariants() {
     using F = DenoiserFamily;
-    // name, summary, family, weighted, twoHistory, emaGradient, asvgfGradient, gradient samples, sample count
+    // name, summary, family, weighted, twoHistory, emaGradient, asvgfGradient, gradient samples,
+    // sample count
     static const std::vector<DenoiserVariant> rows = {
         {"svgf", "SVGF (Schied 2017)", F::Svgf, false, false, false, false, false, false},
-        {"svgf-weighted", "SVGF with temporal weights x sample count", F::Svgf, true, false, false, false, false, true},
-        {"asvgf", "A-SVGF temporal gradients (Schied 2018)", F::TwoHistory, false, false, false, true, true, false},
-        {"two-history", "two-history SVGF (Tu 2024)", F::TwoHistory, false, true, true, false, false, true},
-        {"two-history-asvgf", "two-history SVGF with A-SVGF's gradient as q", F::TwoHistory, false, true, false, true,
-         true, true},
+        {"svgf-weighted", "SVGF with temporal weights x sample count", F::Svgf, true, false, false,
+         false, false, true},
+        {"asvgf", "A-SVGF temporal gradients (Schied 2018)", F::TwoHistory, false, false, false,
+         true, true, false},
+        {"two-history", "two-history SVGF (Tu 2024)", F::TwoHistory, false, true, true, false,
+         false, true},
+        {"two-history-asvgf", "two-history SVGF with A-SVGF's gradient as q", F::TwoHistory, false,
+         true, false, true, true, true},
     };
     return rows;
 }

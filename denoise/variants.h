@@ -33,7 +33,8 @@ struct DenoiserVariant {
 const std::vector<DenoiserVariant>& DenoiserVariants();
 // The row of `name`; fovrt::Error naming the key `what` (e.g. "denoise.denoisers"), listing the
 // known names and suggesting the nearest one otherwise.
-const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what = "denoiser");
+const DenoiserVariant& FindDenoiserVariant(std::string_view name,
+                                           std::string_view what = "denoiser");
 // Null when `name` is not a variant.
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 

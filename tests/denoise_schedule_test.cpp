@@ -6,7 +6,9 @@
 
 using namespace fovrt;
 
-TEST_CASE("feedback iteration: SVGF keeps the configured one, two-history feeds back iteration 1 at the latest") {
+TEST_CASE(
+    "feedback iteration: SVGF keeps the configured one, two-history feeds back iteration 1 at the "
+    "latest") {
     SvgfParams p;
     p.atrousIterations = 5;
     p.feedbackIteration = 2;  // Falcor's choice
@@ -21,7 +23,9 @@ TEST_CASE("feedback iteration: SVGF keeps the configured one, two-history feeds 
     CHECK(FeedbackIteration(p, true) == 0);
 }
 
-TEST_CASE("filtered illumination plane follows the ping-pong: reprojection 0, moments 1, iteration i writes i&1") {
+TEST_CASE(
+    "filtered illumination plane follows the ping-pong: reprojection 0, moments 1, iteration i "
+    "writes i&1") {
     CHECK(FilteredIlluminationPlane(0) == 1);  // the variance estimate's output
     CHECK(FilteredIlluminationPlane(1) == 0);
     CHECK(FilteredIlluminationPlane(2) == 1);
