@@ -10,18 +10,31 @@ namespace fovrt {
 
 const std::vector<DenoiserVariant>& DenoiserVariants() {
     using F = DenoiserFamily;
-    // name, summary, family, weighted, twoHistory, emaGradient, asvgfGradient, gradient samples,
-    // sample count
     static const std::vector<DenoiserVariant> rows = {
-        {"svgf", "SVGF (Schied 2017)", F::Svgf, false, false, false, false, false, false},
-        {"svgf-weighted", "SVGF with temporal weights x sample count", F::Svgf, true, false, false,
-         false, false, true},
-        {"asvgf", "A-SVGF temporal gradients (Schied 2018)", F::TwoHistory, false, false, false,
-         true, true, false},
-        {"two-history", "two-history SVGF (Tu 2024)", F::TwoHistory, false, true, true, false,
-         false, true},
-        {"two-history-asvgf", "two-history SVGF with A-SVGF's gradient as q", F::TwoHistory, false,
-         true, false, true, true, true},
+        {.name = "svgf", .summary = "SVGF (Schied 2017)", .family = F::Svgf},
+        {.name = "svgf-weighted",
+         .summary = "SVGF with temporal weights x sample count",
+         .family = F::Svgf,
+         .weightBySampleCount = true,
+         .needsSampleCount = true},
+        {.name = "asvgf",
+         .summary = "A-SVGF temporal gradients (Schied 2018)",
+         .family = F::TwoHistory,
+         .asvgfGradient = true,
+         .needsGradientSamples = true},
+        {.name = "two-history",
+         .summary = "two-history SVGF (Tu 2024)",
+         .family = F::TwoHistory,
+         .twoHistory = true,
+         .emaGradient = true,
+         .needsSampleCount = true},
+        {.name = "two-history-asvgf",
+         .summary = "two-history SVGF with A-SVGF's gradient as q",
+         .family = F::TwoHistory,
+         .twoHistory = true,
+         .asvgfGradient = true,
+         .needsGradientSamples = true,
+         .needsSampleCount = true},
     };
     return rows;
 }

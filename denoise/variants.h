@@ -19,14 +19,14 @@ enum class DenoiserFamily { Svgf, TwoHistory };
 struct DenoiserVariant {
     std::string_view name;     // the factory name, e.g. "two-history-asvgf"
     std::string_view summary;  // one line for `fovrt info` and error messages
-    DenoiserFamily family;
-    bool weightBySampleCount;  // svgf-weighted: temporal weights × n (SvgfParams)
-    bool twoHistory;           // keeps the weighted history I_w, W_w, S_k and blends (Tu 2024)
-    bool emaGradient;          // two-history's EMA luminance gradient g → q
-    bool asvgfGradient;        // A-SVGF temporal gradient → per-pixel α (Schied 2018)
+    DenoiserFamily family = DenoiserFamily::Svgf;
+    bool weightBySampleCount = false;  // svgf-weighted: temporal weights × n (SvgfParams)
+    bool twoHistory = false;     // keeps the weighted history I_w, W_w, S_k and blends (Tu 2024)
+    bool emaGradient = false;    // two-history's EMA luminance gradient g → q
+    bool asvgfGradient = false;  // A-SVGF temporal gradient → per-pixel α (Schied 2018)
     // What the renderer must produce for it (FrameInputs):
-    bool needsGradientSamples;  // A-SVGF forward-projected gradient samples
-    bool needsSampleCount;      // per-pixel sample counts uploaded to the device
+    bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
+    bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device
 };
 
 // Every variant, in the order tables list them.

@@ -68,6 +68,10 @@ else
 fi
 expect_error "unknown bench denoiser" "svgf-typo" bench --denoisers --denoiser svgf-typo
 expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
+# info lists every denoiser variant of the table with its summary.
+"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 5 ]] &&
+  grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||
+  bad "info: $(cat info.txt err.txt)"
 # config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"

@@ -1,10 +1,12 @@
 // `fovrt info`: versions of fovrt and the libraries it was built with, the Vulkan devices the
-// loader reports (the indices `--set denoise.device=<index>` accepts), and the CPU thread count.
+// loader reports (the indices `--set denoise.device=<index>` accepts), the CPU thread count, and
+// the denoiser variants with one line each (denoise/variants.cpp).
 #include <cstdio>
 #include <thread>
 
 #include "app/build_info.h"
 #include "app/commands.h"
+#include "denoise/variants.h"
 #include "vk/context.h"
 
 namespace fovrt {
@@ -20,6 +22,9 @@ void RegisterInfoCommand(CLI::App& app) {
         if (devices.empty()) std::printf("vulkan devices   none (denoisers fall back to the C++ reference)\n");
         for (const VulkanDeviceInfo& d : devices)
             std::printf("vulkan device %u  %s (%s)\n", d.index, d.name.c_str(), d.type.c_str());
+        for (const DenoiserVariant& v : DenoiserVariants())  // the names denoise.denoisers accepts
+            std::printf("denoiser         %-18.*s %.*s\n", int(v.name.size()), v.name.data(),
+                        int(v.summary.size()), v.summary.data());
     });
 }
 
