@@ -11,6 +11,9 @@
 
 namespace fovrt {
 
+// uint16 sample counts, padded to whole 32-bit words (the shaders read packed pairs).
+size_t SampleCountBytes(size_t pixels) { return ((sizeof(uint16_t) * pixels + 3) / 4) * 4; }
+
 std::string UploadBufferOf(std::string_view plane, std::string_view side) {
     std::string name = plane == "linearDepth"                        ? "geometry.depth"
                        : plane == "normal" || plane == "objectId" ? "geometry." + std::string(plane)
@@ -33,11 +36,10 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
     size_t uploadStaging = 0;
     auto upload = [&](std::string_view plane, size_t elementBytes) {
         const std::string name = UploadBufferOf(plane);
-        if (plane == "sampleCount") {
+        if (!UploadedWithInputs(plane)) {  // the sample counts: svgf-weighted's own upload
             if (!weighted) return;
-            const size_t bytes = ((elementBytes * n + 3) / 4) * 4;
-            add(name, bytes, false);
-            uploadStaging += StagingAlign(bytes);
+            add(name, SampleCountBytes(n), false);
+            uploadStaging += StagingAlign(SampleCountBytes(n));
             return;
         }
         uploadStaging += StagingAlign(elementBytes * n);
@@ -86,7 +88,7 @@ std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int w
     auto add = [&](const std::string& what, size_t bytes, bool history) {
         plan.push_back({what, bytes, history});
     };
-    const size_t sampleCountBytes = ((2 * n + 3) / 4) * 4;
+    const size_t sampleCountBytes = SampleCountBytes(n);
     const size_t sampleBytes = GradientSampleCapacity(width, height) * sizeof(GradientSample);
     if (v.twoHistory) {
         for (const std::string& ch : SvgfChannels(params.svgf)) {

@@ -21,6 +21,12 @@ inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
 // geometry.depth/normal/objectId.<side> (A/B pairs: next frame reads it as the previous one),
 // every other plane into input.<plane>. side "" gives the name without the side.
 std::string UploadBufferOf(std::string_view plane, std::string_view side = "");
+// Bytes of the input.sampleCount buffer for `pixels` pixels.
+size_t SampleCountBytes(size_t pixels);
+
+// Whether a frame uploads this FrameInputs plane with the others: all but the sample counts,
+// which only the variants that read them (DenoiserVariant::needsSampleCount) upload.
+inline bool UploadedWithInputs(std::string_view plane) { return plane != "sampleCount"; }
 
 // Bytes per element of a history plane scalar.
 inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }

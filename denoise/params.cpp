@@ -99,6 +99,14 @@ bool PrecisionFromName(const std::string& name, Precision& precision) {
     return false;
 }
 
+Precision ParsePrecision(const std::string& name, const std::string& what) {
+    Precision precision = Precision::Fp32;
+    if (PrecisionFromName(name, precision)) return precision;
+    std::string names;
+    for (const PrecisionRow& row : kPrecisionRows) names += std::string(names.empty() ? "" : " or ") + row.name;
+    Fail("{} '{}': expected {}", what, name, names);
+}
+
 std::optional<ParamProblem> DenoiserParamConflict(const DenoiserParams& params) {
     const SvgfParams& s = params.svgf;
     if (s.feedbackIteration > s.atrousIterations)

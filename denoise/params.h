@@ -86,6 +86,9 @@ std::span<const PrecisionRow> PrecisionTable();
 const char* PrecisionName(Precision precision);
 // False when `name` is none of the table's names.
 bool PrecisionFromName(const std::string& name, Precision& precision);
+// The precision a command-line or config value names; fovrt::Error naming `what` (e.g.
+// "--precision") and the valid names otherwise.
+Precision ParsePrecision(const std::string& name, const std::string& what);
 
 // Calls visit(info, value) for every row of every table, in table order ([denoise.svgf],
 // [denoise.asvgf], [denoise.two_history]); `value` is the member inside `params` (float&, int& or

@@ -52,7 +52,7 @@ const char* const kGeometry[] = {"geometry.depth", "geometry.normal", "geometry.
 #define FOVRT_PLANE_NAME(member, Type, neutral, channels, doc) #member,
 void UploadInputs(PlanWriter& w) {
     for (const char* plane : {FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_NAME)})
-        if (std::string_view(plane) != "sampleCount") w.Upload(UploadBufferOf(plane));
+        if (UploadedWithInputs(plane)) w.Upload(UploadBufferOf(plane));
 }
 #undef FOVRT_PLANE_NAME
 

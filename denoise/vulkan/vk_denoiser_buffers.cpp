@@ -40,9 +40,8 @@ size_t DenoiserBuffers::RecordUploadInputs(CommandRecorder& rec, const FrameInpu
     Buffer& staging = (*this)["staging"];
     size_t off = 0;
     in.ForEachPlane([&](const PlaneBytes& plane) {
-        // Sample counts go where each host's staging reserves them (svgf-weighted: "staging",
-        // the two-history family: "staging.extra"), and only for the variants that read them.
-        if (std::string(plane.name) == "sampleCount") return;
+        // Sample counts: each host uploads them where its staging reserves them.
+        if (!UploadedWithInputs(plane.name)) return;
         off = rec.Upload(plane.data, plane.bytes, staging, off, (*this)[UploadBufferOf(plane.name, side)]);
     });
     rec.Fill((*this)["stats"], 0u);

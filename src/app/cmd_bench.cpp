@@ -239,16 +239,11 @@ void RegisterBenchCommand(CLI::App& app) {
             DenoiserBenchOptions options;  // named fields: no -Wmissing-field-initializers
             options.width = o->width;
             options.height = o->height;
-            const std::vector<std::string> known = DenoiserNames();
-            for (const std::string& name : o->denoiserNames)
-                if (std::find(known.begin(), known.end(), name) == known.end())
-                    Fail("bench --denoiser '{}': unknown denoiser (known: {})", name, fmt::join(known, ", "));
-            if (o->precision != "fp32" && o->precision != "fp16")
-                Fail("bench --precision '{}': must be fp32 or fp16", o->precision);
+            for (const std::string& name : o->denoiserNames) FindDenoiserVariant(name, "bench --denoiser");
+            options.params.precision = ParsePrecision(o->precision, "bench --precision");
             options.denoisers = o->denoiserNames;
             options.reference = o->reference;
             options.device = o->device;
-            options.params.precision = o->precision == "fp16" ? Precision::Fp16 : Precision::Fp32;
             (void)RunDenoiserBench(options);
             return;
         }

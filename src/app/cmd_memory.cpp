@@ -29,10 +29,8 @@ struct MemoryOptions {
 
 void PrintMemory(const MemoryOptions& o) {
     DenoiserParams params;
-    if (o.precision == "fp16")
-        params.precision = Precision::Fp16;
-    else if (o.precision != "fp32")
-        Fail("--precision '{}': expected fp32 or fp16", o.precision);
+    params.precision = ParsePrecision(o.precision, "--precision");
+    FindDenoiserVariant(o.denoiser, "--denoiser");
     params.svgf.filterCombined = o.filterCombined;
     const uint64_t budget = o.budget.empty() ? 0 : ParseByteSize(o.budget, "--memory-budget");
     auto plan = PlanDenoiserMemory(o.denoiser, o.width, o.height, params);

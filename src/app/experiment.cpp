@@ -126,10 +126,8 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
         if (!value || *value < -1) Fail("{}: experiment.visual_frame must be an integer ≥ -1", file);
         spec.visualFrame = int(*value);
     }
-    const auto& names = DenoiserNames();
     for (const std::string& variant : spec.variants)
-        if (std::find(names.begin(), names.end(), variant) == names.end())
-            Fail("{}: experiment.variants: unknown denoiser '{}'", file, variant);
+        FindDenoiserVariant(variant, file + ": experiment.variants");
     spec.config.denoise.denoisers = spec.variants;
     return spec;
 }
