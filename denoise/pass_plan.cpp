@@ -130,11 +130,12 @@ void PlanSvgf(PlanWriter& w, const DenoiserVariant& v, const DenoiserParams& par
     ReprojectionInputs(w);
     if (weighted) w.Read("input.sampleCount");
     for (const std::string& ch : channels) {
-        for (const char* history : {".color", ".moments", ".length", ".weight"}) {
-            if (std::string(history) == ".weight" && !weighted) continue;
-            w.Read(ch + history);  // previous frame's, gathered
-            if (std::string(history) != ".color" || feedback == 0) w.Write(ch + history);
-        }
+        // Previous frame's histories gathered, this frame's written; the colour history only
+        // without à-trous feedback (else the feedback iteration writes it).
+        w.Read(ch + ".color").Read(ch + ".moments").Read(ch + ".length");
+        if (feedback == 0) w.Write(ch + ".color");
+        w.Write(ch + ".moments").Write(ch + ".length");
+        if (weighted) w.Read(ch + ".weight").Write(ch + ".weight");
         w.Write(ch + ".illum0");
     }
     w.Pass("filter_moments");
