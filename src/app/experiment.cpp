@@ -181,11 +181,10 @@ Results RunExperiment(const ExperimentSpec& spec) {
         for (int i = 0; i < config.run.frames; ++i) {
             const uint32_t index = uint32_t(config.run.firstFrame + i);
             pipeline.Render(index, frame);
-            StereoRig rig = pipeline.RigAt(index);
             for (int eye = 0; eye < 2; ++eye) {
                 EyeFrame& e = frame.eyes[size_t(eye)];
                 renderMs += e.renderMs;
-                EyeCamera camera = rig.Eye(eye);
+                const EyeCamera& camera = e.camera;
 
                 auto start = std::chrono::steady_clock::now();
                 ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, index,

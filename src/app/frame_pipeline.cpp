@@ -61,18 +61,29 @@ void FramePipeline::SetFrame(uint32_t frame) {
     hasPrevious_ = false;  // the next Render() after a jump is a cut
 }
 
-void FramePipeline::Render(uint32_t frame, StereoFrame& out) {
+FrameRequest FramePipeline::RequestAt(uint32_t frame) const {
+    FrameRequest request;
+    request.frame = frame;
+    request.timeSeconds = TimeOf(frame);
+    const StereoRig rig = RigAt(frame);
+    for (int eye = 0; eye < 2; ++eye) request.eyes[size_t(eye)] = rig.Eye(eye);
+    request.gaze = gaze_->At(request.timeSeconds);
+    return request;
+}
+
+void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
+    const uint32_t frame = request.frame;
     bool cut = !hasPrevious_ || frame != previousFrame_ + 1;
-    renderer_->SetFrame(frame);
-    StereoRig rig = RigAt(frame);
+    renderer_->SetFrame(frame, float(request.timeSeconds));
     out.frame = frame;
-    out.timeSeconds = TimeOf(frame);
-    out.gaze = gaze_->At(out.timeSeconds);
+    out.timeSeconds = request.timeSeconds;
+    out.gaze = request.gaze;
 
     for (int eye = 0; eye < 2; ++eye) {
         EyeFrame& eyeFrame = out.eyes[size_t(eye)];
-        EyeCamera camera = rig.Eye(eye);
+        const EyeCamera& camera = request.eyes[size_t(eye)];
         EyeCamera prevCamera = cut ? camera : previousCameras_[size_t(eye)];
+        eyeFrame.camera = camera;
 
         auto start = std::chrono::steady_clock::now();
         eyeFrame.gazeEye = GazeInEye(camera, out.gaze.direction);

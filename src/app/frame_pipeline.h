@@ -16,7 +16,18 @@
 
 namespace fovrt {
 
+// What one stereo frame is rendered from. Headless runs take it from the scene's camera path and
+// the configured gaze source (FramePipeline::RequestAt); a live session builds it from the window
+// or headset, and a recording replays it (src/live/session_record.h).
+struct FrameRequest {
+    uint32_t frame = 0;        // sequential index: seeds the sampler; not frame+1 = camera cut
+    double timeSeconds = 0.0;  // scene time (animation)
+    std::array<EyeCamera, 2> eyes;
+    GazeSample gaze;           // head space
+};
+
 struct EyeFrame {
+    EyeCamera camera;
     FrameInputs inputs;
     Plane<uint16_t> sppMap;
     vec3 gazeEye = vec3(0, 0, -1);  // gaze direction in this eye's space
@@ -47,10 +58,16 @@ public:
     // The stereo rig (head pose from the scene's camera path, IPD and FOV from the config).
     StereoRig RigAt(uint32_t frame) const;
 
-    // Renders `frame` for both eyes into `out`. Frames are rendered in the order asked; the
+    // The headless request for `frame`: time frame / fps, eyes from RigAt, the gaze source.
+    FrameRequest RequestAt(uint32_t frame) const;
+
+    // Renders both eyes of `request` into `out`. Frames are rendered in the order asked; the
     // previous call's cameras give the motion vectors, and a jump that is not the next frame is
     // treated as a camera cut (cameraCut = true, no history may be reused).
-    void Render(uint32_t frame, StereoFrame& out);
+    void Render(const FrameRequest& request, StereoFrame& out);
+    void Render(uint32_t frame, StereoFrame& out) { Render(RequestAt(frame), out); }
+    // The next Render() is a camera cut (a teleport, a denoiser switch, a resumed recording).
+    void Cut() { hasPrevious_ = false; }
 
     // Moves the scene to `frame` without rendering noisy inputs (for reference-only work).
     void SetFrame(uint32_t frame);

@@ -161,14 +161,15 @@ public:
         prevXforms_ = embree_->xforms();
     }
 
-    void SetFrame(uint32_t frame) override {
+    using Renderer::SetFrame;
+    void SetFrame(uint32_t frame, float timeSeconds) override {
         if (hasFrame_ && frame == frame_) return;
         if (hasFrame_) {
             prevState_ = state_;
             prevXforms_ = embree_->xforms();
         }
         frame_ = frame;
-        state_ = scene_.StateAt(float(frame) / scene_.frameRate);
+        state_ = scene_.StateAt(timeSeconds);
         embree_->Update(state_);
         if (!hasFrame_) {
             prevState_ = state_;

@@ -47,8 +47,12 @@ class Renderer {
 public:
     virtual ~Renderer() = default;
 
-    // Moves the scene to `frame` (time = frame / frameRate): instance transforms, lights, BVH.
-    virtual void SetFrame(uint32_t frame) = 0;
+    // Moves the scene to `frame` at scene time `timeSeconds`: instance transforms, lights, BVH.
+    // `frame` seeds the sampler and names the frame (the same frame twice is a no-op); a live
+    // session's time need not be frame / frameRate (pause, playback speed).
+    virtual void SetFrame(uint32_t frame, float timeSeconds) = 0;
+    // The headless clock: time = frame / frameRate.
+    void SetFrame(uint32_t frame) { SetFrame(frame, float(frame) / GetScene().frameRate); }
     virtual const SceneState& State() const = 0;
     virtual const Scene& GetScene() const = 0;
 

@@ -29,6 +29,7 @@ struct VulkanContext::State {
     bool validation = false;
     std::atomic<uint32_t> errors{0};
     std::atomic<uint32_t> warnings{0};
+    mutable std::mutex queueMutex;
     VulkanAllocator allocator;
 
     ~State() {
@@ -101,13 +102,15 @@ std::vector<VkPhysicalDevice> EnumerateDevices(VkInstance instance) {
     return devices;
 }
 
-std::optional<uint32_t> ComputeQueueFamily(VkPhysicalDevice pd) {
+using QueueFamilyFilter = std::function<bool(VkPhysicalDevice, uint32_t)>;
+
+std::optional<uint32_t> ComputeQueueFamily(VkPhysicalDevice pd, const QueueFamilyFilter& accepts = {}) {
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, families.data());
     for (uint32_t i = 0; i < count; ++i)
-        if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) return i;
+        if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && (!accepts || accepts(pd, i))) return i;
     return std::nullopt;
 }
 
@@ -208,6 +211,7 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
         info.pNext = &debugInfo;  // also covers instance creation/destruction
     }
+    for (const std::string& e : options.instanceExtensions) extensions.push_back(e.c_str());
     info.enabledLayerCount = uint32_t(layers.size());
     info.ppEnabledLayerNames = layers.data();
     info.enabledExtensionCount = uint32_t(extensions.size());
@@ -221,12 +225,17 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
     }
 
     std::vector<VkPhysicalDevice> devices = EnumerateDevices(s->instance);
+    QueueFamilyFilter accepts;
+    if (options.queueFamilyAccepts)
+        accepts = [&options, instance = s->instance](VkPhysicalDevice pd, uint32_t family) {
+            return options.queueFamilyAccepts(instance, pd, family);
+        };
     if (devices.empty()) Fail("no Vulkan device found (vkEnumeratePhysicalDevices returned none)");
     std::vector<VulkanDeviceInfo> infos;
     for (uint32_t i = 0; i < devices.size(); ++i) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devices[i], &p);
-        infos.push_back({i, p.deviceName, TypeName(p.deviceType), ComputeQueueFamily(devices[i]).has_value()});
+        infos.push_back({i, p.deviceName, TypeName(p.deviceType), ComputeQueueFamily(devices[i], accepts).has_value()});
     }
     // The one device resolution every command uses, against this instance's devices.
     const DeviceDecision decision = ResolveVulkanDevice(options.device, infos);
@@ -236,8 +245,10 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
                                      : "no Vulkan device with a compute queue");
     const uint32_t pick = decision.index;
     s->physicalDevice = devices[pick];
-    auto family = ComputeQueueFamily(s->physicalDevice);
-    if (!family) Fail("Vulkan device {} has no compute queue", pick);
+    auto family = ComputeQueueFamily(s->physicalDevice, accepts);
+    if (!family)
+        Fail("Vulkan device {} has no compute queue{}", pick,
+             accepts ? " that can also present to the window" : "");
     s->queueFamily = *family;
 
     // 16-bit storage for fp16 histories, when the device has it.
@@ -258,6 +269,10 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
     deviceInfo.pNext = &enable16;
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
+    std::vector<const char*> deviceExtensions;
+    for (const std::string& e : options.deviceExtensions) deviceExtensions.push_back(e.c_str());
+    deviceInfo.enabledExtensionCount = uint32_t(deviceExtensions.size());
+    deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
     r = vkCreateDevice(s->physicalDevice, &deviceInfo, nullptr, &s->device);
     if (r != VK_SUCCESS) Fail("cannot create Vulkan device {}: {}", pick, VkResultName(r));
     vkGetDeviceQueue(s->device, s->queueFamily, 0, &s->queue);
@@ -295,6 +310,9 @@ VkDevice VulkanContext::device() const { return s_->device; }
 VkQueue VulkanContext::queue() const { return s_->queue; }
 uint32_t VulkanContext::queueFamily() const { return s_->queueFamily; }
 VkCommandPool VulkanContext::commandPool() const { return s_->commandPool; }
+std::unique_lock<std::mutex> VulkanContext::LockQueue() const {
+    return std::unique_lock<std::mutex>(s_->queueMutex);
+}
 const std::string& VulkanContext::deviceName() const { return s_->deviceName; }
 bool VulkanContext::isCpuDevice() const { return s_->cpu; }
 bool VulkanContext::supports16BitStorage() const { return s_->storage16; }

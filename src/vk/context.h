@@ -6,6 +6,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <mutex>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -25,6 +27,11 @@ struct VulkanContextOptions {
     std::string device = "auto";
     Validation validation = Validation::Auto;
     bool quiet = false;           // no notice when validation was asked for but is unavailable
+    // A window's needs (GLFW's required instance extensions, VK_KHR_swapchain, a queue family that
+    // can present): the one queue then serves compute, transfer and presentation.
+    std::vector<std::string> instanceExtensions;
+    std::vector<std::string> deviceExtensions;
+    std::function<bool(VkInstance, VkPhysicalDevice, uint32_t queueFamily)> queueFamilyAccepts;
 };
 
 // Handles owned by someone else (window or OpenXR). They must outlive the context.
@@ -69,6 +76,9 @@ public:
     VkQueue queue() const;
     uint32_t queueFamily() const;
     VkCommandPool commandPool() const;
+    // Held around every vkQueueSubmit / vkQueuePresentKHR: a live session submits the denoisers'
+    // work from its render thread and presents from its window thread on the same queue.
+    std::unique_lock<std::mutex> LockQueue() const;
     const std::string& deviceName() const;
     bool isCpuDevice() const;
     bool supports16BitStorage() const;

@@ -215,7 +215,10 @@ void CommandRecorder::Submit() {
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd_;
     FOVRT_VK(vkResetFences(context_.device(), 1, &fence_));
-    FOVRT_VK(vkQueueSubmit(context_.queue(), 1, &submit, fence_));
+    {
+        auto queueLock = context_.LockQueue();
+        FOVRT_VK(vkQueueSubmit(context_.queue(), 1, &submit, fence_));
+    }
     FOVRT_VK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
     FOVRT_VK(vkResetCommandBuffer(cmd_, 0));
 }
