@@ -11,20 +11,11 @@
 #include "core/frame_inputs.h"
 #include "foveation/spp_model.h"
 #include "gaze/gaze_source.h"
+#include "live/frame_request.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace fovrt {
-
-// What one stereo frame is rendered from. Headless runs take it from the scene's camera path and
-// the configured gaze source (FramePipeline::RequestAt); a live session builds it from the window
-// or headset, and a recording replays it (src/live/session_record.h).
-struct FrameRequest {
-    uint32_t frame = 0;        // sequential index: seeds the sampler; not frame+1 = camera cut
-    double timeSeconds = 0.0;  // scene time (animation)
-    std::array<EyeCamera, 2> eyes;
-    GazeSample gaze;           // head space
-};
 
 struct EyeFrame {
     EyeCamera camera;
