@@ -9,6 +9,7 @@
 
 #include "core/frame_inputs.h"
 #include "core/image.h"
+#include "denoise/debug_views.h"
 #include "denoise/params.h"
 #include "denoise/variants.h"
 
@@ -44,6 +45,21 @@ public:
     // Per-pass timings of the last Denoise() call (GPU timestamps on Vulkan, wall clock on CPU).
     virtual std::vector<PassTiming> LastTimings() const = 0;
     virtual DenoiseStats Stats() const = 0;
+
+    // Debug views (denoise/debug_views.h): the internal per-pixel planes this variant offers, by
+    // name, in table order (e.g. {"historyLength", "alpha", "lambda"} for asvgf); the same on both
+    // backends. Empty when Name() is not a variant of the table.
+    std::vector<std::string> DebugViews() const;
+    // Copies view `name` of the last Denoise() call into `out` (W×H, one float per pixel; fp16
+    // history storage read back as float). Returns false, leaving `out` untouched, for a name
+    // DebugViews() does not list, or when no frame was denoised since construction or the last
+    // Reset(). On Vulkan a synchronous read-back (debug speed); nothing is done per frame for it.
+    bool ReadDebugView(const std::string& name, Plane<float>& out);
+
+private:
+    // The plane of `view`, one DebugViews() lists, of the last Denoise(); false (and `out`
+    // untouched) when there was none since construction or Reset().
+    virtual bool ReadDebugPlane(DebugViewId view, Plane<float>& out) = 0;
 };
 
 // Every buffer the named denoiser allocates at W×H for one eye.

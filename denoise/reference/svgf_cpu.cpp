@@ -35,6 +35,7 @@ void SvgfReferenceDenoiser::Allocate(int width, int height) {
         for (auto& h : ch.hist) h.Allocate(width, height, params_.svgf.weightBySampleCount);
     prevGeometry_.Allocate(width, height);
     parity_ = 0;
+    hasFrame_ = false;
 }
 
 void SvgfReferenceDenoiser::Reset() {
@@ -92,6 +93,27 @@ void SvgfReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) 
     clock.Lap("modulate");
     prevGeometry_.CopyFrom(in);
     parity_ ^= 1;
+    hasFrame_ = true;
+}
+
+bool SvgfReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
+    if (!hasFrame_) return false;
+    const SvgfHistory& history = CurrentHistory(0);  // every channel has the same length
+    switch (view) {
+        case DebugViewId::HistoryLength:
+            out = history.length;
+            return true;
+        case DebugViewId::HistorySamples:  // W of svgf-weighted (the channels share it too)
+            if (history.weight.empty()) return false;
+            out = history.weight;
+            return true;
+        case DebugViewId::Alpha:
+        case DebugViewId::Lambda:
+        case DebugViewId::P:
+        case DebugViewId::Q:
+            return false;  // views of the two-history family
+    }
+    return false;
 }
 
 }  // namespace fovrt

@@ -35,6 +35,8 @@ public:
     size_t ChannelCount() const { return channels_.size(); }
 
 private:
+    bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
+
     struct Channel {
         SvgfHistory hist[2];  // A/B: hist[parity] is written this frame
         Plane<vec4> illum[2];
@@ -46,6 +48,7 @@ private:
     DenoiserParams params_;
     int width_ = 0, height_ = 0;
     int parity_ = 0;
+    bool hasFrame_ = false;  // a Denoise() since construction, Reset() or a resize (debug views)
     SvgfGeometryPlanes prevGeometry_;
     std::vector<Channel> channels_;
     std::vector<PassTiming> timings_;

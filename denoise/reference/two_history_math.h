@@ -3,7 +3,8 @@
 // the variance-optimal blend factor p, the (luminance) gradient EMA and the gradient-guided
 // factor q.
 // Header-only and templated on the colour type so the CPU reference, the tests and the GLSL
-// (shaders/common/two_history.glsl, same formulas) agree line by line.
+// (shaders/common/two_history.glsl, same formulas) agree line by line; the Vulkan host includes
+// it too (no link dependency) for its debug view p, evaluated from the state it downloads.
 #pragma once
 
 #include <algorithm>
@@ -21,6 +22,15 @@ struct TwoHistoryWeights {
     float s0 = 0.0f;       // S_0  = Σ β^{2(t-i)}
     float s1 = 0.0f;       // S_1  = Σ β^{2(t-i)} n_i
 };
+
+// One pixel's state as the histories store it: W_u, W_w and the power sums (S_{-1}, S_0, S_1).
+inline TwoHistoryWeights StoredTwoHistoryWeights(float wu, float ww, const vec3& powerSums) {
+    TwoHistoryWeights w;
+    w.wu = wu;
+    w.ww = ww;
+    w.sMinus1 = powerSums.x, w.s0 = powerSums.y, w.s1 = powerSums.z;
+    return w;
+}
 
 // Decay β of this frame for temporal weight α. The steady state is β = 1 − α (SPEC §5); during
 // warm-up SVGF uses α' = max(α, 1/historyLength) (SPEC §3, Falcor). In weight form that is "W_u

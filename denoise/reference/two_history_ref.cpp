@@ -170,11 +170,9 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
     out.Resize(illumU.width(), illumU.height());
     tbb::parallel_for(0, illumU.height(), [&](int y) {
         for (size_t i = size_t(y) * width, end = i + width; i < end; ++i) {
-            TwoHistoryWeights w;
-            w.wu = wu[i];
-            w.ww = ww[i];
-            w.sMinus1 = powerSums[i].x, w.s0 = powerSums[i].y, w.s1 = powerSums[i].z;
-            const float t = TwoHistoryFinalBlend(TwoHistoryOptimalBlend(w), q[i]);
+            const float p =
+                TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums[i]));
+            const float t = TwoHistoryFinalBlend(p, q[i]);
             out[i] = glm::mix(illumW[i], illumU[i], t);
         }
     });
@@ -191,6 +189,7 @@ std::string TwoHistoryReferenceDenoiser::Name() const { return std::string(varia
 void TwoHistoryReferenceDenoiser::Reset() {
     width_ = 0;
     hasPrev_ = false;
+    hasFrame_ = false;
 }
 
 void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>& output) {
@@ -294,7 +293,41 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
 
     prevGeometry_.CopyFrom(frame);
     hasPrev_ = true;
+    hasFrame_ = true;
     parity_ ^= 1;
+}
+
+bool TwoHistoryReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
+    if (!hasFrame_) return false;
+    const TwoHistoryState& st = CurrentState();
+    // Planes a variant does not compute are empty: false rather than an empty view.
+    auto copy = [&out](const Plane<float>& plane) {
+        if (plane.empty()) return false;
+        out = plane;
+        return true;
+    };
+    switch (view) {
+        case DebugViewId::HistoryLength:
+            return copy(st.wu);
+        case DebugViewId::HistorySamples:
+            return copy(st.ww);
+        case DebugViewId::Alpha:
+            return variant_.asvgfGradient && copy(alpha_);
+        case DebugViewId::Lambda:
+            return variant_.asvgfGradient && copy(lambda_);
+        case DebugViewId::P: {  // not stored: the blend evaluates it from the state, as here
+            if (st.ww.empty()) return false;
+            Plane<float> p(st.wu.width(), st.wu.height());
+            for (size_t i = 0; i < p.size(); ++i)
+                p[i] = TwoHistoryOptimalBlend(
+                    StoredTwoHistoryWeights(st.wu[i], st.ww[i], st.powerSums[i]));
+            out = std::move(p);
+            return true;
+        }
+        case DebugViewId::Q:
+            return variant_.twoHistory && copy(q_);
+    }
+    return false;
 }
 
 std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(const DenoiserVariant& variant,

@@ -119,10 +119,13 @@ class TwoHistoryReferenceDenoiser final : public Denoiser {
     const Plane<vec2>& ReconstructedGradient() const { return recon_; }
 
   private:
+    bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
+
     const DenoiserVariant& variant_;  // a row of DenoiserVariants(): which stages run
     DenoiserParams params_;
     int width_ = 0, height_ = 0;
     bool hasPrev_ = false;
+    bool hasFrame_ = false;  // a Denoise() since construction or Reset() (debug views)
     int parity_ = 0;  // during Denoise: state_[parity_] previous, state_[parity_ ^ 1] this frame
                       // (then flipped)
     std::array<TwoHistoryState, 2> state_;

@@ -62,6 +62,7 @@ void SvgfVulkanDenoiser::Allocate(int width, int height) {
     BuildSets();
     parity_ = 0;
     needsClear_ = true;
+    hasFrame_ = false;
 }
 
 void SvgfVulkanDenoiser::BuildSets() {
@@ -125,7 +126,10 @@ void SvgfVulkanDenoiser::BuildSets() {
     modulateSet_ = stages_.ModulateSet(buffers_, channels_[0] + last, channels_.back() + last);
 }
 
-void SvgfVulkanDenoiser::Reset() { needsClear_ = true; }
+void SvgfVulkanDenoiser::Reset() {
+    needsClear_ = true;
+    hasFrame_ = false;
+}
 
 void SvgfVulkanDenoiser::SetParams(const DenoiserParams& params) {
     buffers_.Release();  // descriptor sets refer to them; rebuilt with the new layout
@@ -192,6 +196,29 @@ void SvgfVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) {
     buffers_.FinishOutput(w, h, output, stats_);
     timings_ = PassTimings(timestamps_);
     parity_ ^= 1;
+    hasFrame_ = true;
+}
+
+bool SvgfVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
+    if (!hasFrame_) return false;
+    // A plane of this frame's history side; every channel holds the same length (and weight).
+    auto readHistory = [&](const char* plane) {
+        buffers_.ReadPlane(*context_, channels_[0] + plane + LastWrittenSide(), width_, height_,
+                           HistoryScalarBytes(params_.precision), out);
+        return true;
+    };
+    switch (view) {
+        case DebugViewId::HistoryLength:
+            return readHistory(".length.");
+        case DebugViewId::HistorySamples:  // W of svgf-weighted
+            return params_.svgf.weightBySampleCount && readHistory(".weight.");
+        case DebugViewId::Alpha:
+        case DebugViewId::Lambda:
+        case DebugViewId::P:
+        case DebugViewId::Q:
+            return false;  // views of the two-history family
+    }
+    return false;
 }
 
 std::vector<uint8_t> SvgfVulkanDenoiser::ReadBuffer(const std::string& name) {

@@ -41,6 +41,7 @@ public:
     std::string LastWrittenSide() const { return parity_ ? "A" : "B"; }
 
 private:
+    bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
     void CreatePipelines();
     void Allocate(int width, int height);
     void BuildSets();
@@ -53,6 +54,7 @@ private:
     int width_ = 0, height_ = 0;
     int parity_ = 0;          // history side written this frame: 0 → A, 1 → B
     bool needsClear_ = true;  // histories must be cleared before the next frame
+    bool hasFrame_ = false;   // a Denoise() since construction, Reset() or a resize (debug views)
     DenoiserBuffers buffers_{"svgf"};
     SvgfStagePipelines stages_;  // guide, moments, à-trous, modulate (svgf_atrous_vk.h)
     ReprojectionPipelines reproject_;  // main + box-fallback passes

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
+#include "denoise/reference/two_history_math.h"  // header-only: p of the debug view
 #include "denoise/schedule.h"
 #include "denoise/vulkan/svgf_layout.h"
 #include "denoise/vulkan/svgf_atrous_vk.h"
@@ -106,6 +107,7 @@ void TwoHistoryVulkanDenoiser::Allocate(int width, int height) {
     BuildSets();
     parity_ = 0;
     needsClear_ = true;
+    hasFrame_ = false;
 }
 
 void TwoHistoryVulkanDenoiser::BuildSets() {
@@ -178,8 +180,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
                 b[TH_BLEND_B_WU] = &Buf(ch0 + ".length." + cur);
                 b[TH_BLEND_B_WW] = &Buf("wweight." + cur);
                 b[TH_BLEND_B_S] = &Buf("powerSums." + cur);
-                b[TH_BLEND_B_Q] =
-                    &Buf(variant_.emaGradient ? "q" : "asvgf.lambda");
+                b[TH_BLEND_B_Q] = &Buf(QBuffer());
                 blendSets_[c][pi] = blend_.MakeSet(b);
             }
         }
@@ -395,7 +396,51 @@ void TwoHistoryVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     buffers_.FinishOutput(w, h, output, stats_);
     timings_ = PassTimings(timestamps_);
     hasPrev_ = true;
+    hasFrame_ = true;
     parity_ ^= 1;
+}
+
+bool TwoHistoryVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
+    if (!hasFrame_) return false;
+    const std::string side = LastWrittenSide();
+    const size_t history = HistoryScalarBytes(params_.precision);
+    const size_t scratch = sizeof(float);  // α, λ̂ and q are fp32 at every precision
+    auto read = [&](const std::string& buffer, size_t scalarBytes) {
+        buffers_.ReadPlane(*context_, buffer, width_, height_, scalarBytes, out);
+        return true;
+    };
+    switch (view) {
+        case DebugViewId::HistoryLength:  // W_u, the same in every channel's length
+            return read(channels_[0] + ".length." + side, history);
+        case DebugViewId::HistorySamples:  // W_w
+            return two_ && read("wweight." + side, history);
+        case DebugViewId::Alpha:
+            return asvgf_ && read("asvgf.alpha", scratch);
+        case DebugViewId::Lambda:
+            return asvgf_ && read("asvgf.lambda", scratch);
+        case DebugViewId::P: {
+            // Not stored: the blend evaluates p from this frame's state, and so does this, with
+            // the shader's formula (two_history_math.h, mirrored by common/two_history.glsl).
+            if (!two_) return false;
+            auto floats = [&](const std::string& buffer) {
+                return buffers_.ReadFloats(*context_, buffer, history);
+            };
+            const std::vector<float> wu = floats(channels_[0] + ".length." + side);
+            const std::vector<float> ww = floats("wweight." + side);
+            const std::vector<float> s = floats("powerSums." + side);
+            Plane<float> p(width_, height_);
+            FOVRT_CHECK(wu.size() == p.size() && ww.size() == p.size() && s.size() == 3 * p.size());
+            for (size_t i = 0; i < p.size(); ++i) {
+                const vec3 powerSums(s[3 * i], s[3 * i + 1], s[3 * i + 2]);
+                p[i] = TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums));
+            }
+            out = std::move(p);
+            return true;
+        }
+        case DebugViewId::Q:
+            return two_ && read(QBuffer(), scratch);
+    }
+    return false;
 }
 
 std::vector<uint8_t> TwoHistoryVulkanDenoiser::ReadBuffer(const std::string& name) {

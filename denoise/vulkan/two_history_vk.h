@@ -31,7 +31,10 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     ~TwoHistoryVulkanDenoiser() override;
     std::string Name() const override { return std::string(variant_.name); }
     std::string Backend() const override { return "vulkan"; }
-    void Reset() override { needsClear_ = true; }
+    void Reset() override {
+        needsClear_ = true;
+        hasFrame_ = false;
+    }
     void Denoise(const FrameInputs& inputs, Plane<vec3>& output) override;
     std::vector<PassTiming> LastTimings() const override { return timings_; }
     DenoiseStats Stats() const override { return stats_; }
@@ -43,6 +46,9 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     std::string LastWrittenSide() const { return parity_ ? "A" : "B"; }
 
   private:
+    bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
+    // The buffer of q the blend reads: the EMA gradient's "q", or A-SVGF's λ̂ (two-history-asvgf).
+    std::string QBuffer() const { return variant_.emaGradient ? "q" : "asvgf.lambda"; }
     void Allocate(int width, int height);
     void BuildSets();
     Buffer& Buf(const std::string& name);
@@ -57,6 +63,7 @@ class TwoHistoryVulkanDenoiser : public Denoiser {
     int parity_ = 0;
     bool needsClear_ = true;
     bool hasPrev_ = false;
+    bool hasFrame_ = false;  // a Denoise() since construction, Reset() or a resize (debug views)
     DenoiserBuffers buffers_;
     SvgfStagePipelines stages_;  // guide, moments, à-trous, modulate (svgf_atrous_vk.h)
     ReprojectionPipelines reproject_;  // main + box-fallback passes

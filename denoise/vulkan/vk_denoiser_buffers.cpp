@@ -2,6 +2,9 @@
 
 #include <cstring>
 
+#include <glm/gtc/packing.hpp>
+
+#include "core/check.h"
 #include "core/error.h"
 #include "denoise/memory_plan.h"
 
@@ -77,6 +80,34 @@ std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const std::st
     std::vector<uint8_t> out(src.size());
     std::memcpy(out.data(), tmp.mapped(), src.size());
     return out;
+}
+
+std::vector<float> DenoiserBuffers::ReadFloats(VulkanContext& context, const std::string& name,
+                                               size_t scalarBytes) {
+    FOVRT_CHECK(scalarBytes == 2 || scalarBytes == 4);
+    const std::vector<uint8_t> bytes = Read(context, name);
+    std::vector<float> out(bytes.size() / scalarBytes);
+    if (scalarBytes == 4) {
+        std::memcpy(out.data(), bytes.data(), out.size() * sizeof(float));
+    } else {
+        for (size_t i = 0; i < out.size(); ++i) {
+            uint16_t half;
+            std::memcpy(&half, bytes.data() + 2 * i, sizeof(half));
+            out[i] = glm::unpackHalf1x16(half);
+        }
+    }
+    return out;
+}
+
+void DenoiserBuffers::ReadPlane(VulkanContext& context, const std::string& name, int width,
+                                int height, size_t scalarBytes, Plane<float>& out) {
+    std::vector<float> values = ReadFloats(context, name, scalarBytes);
+    const size_t pixels = size_t(width) * size_t(height);
+    if (values.size() != pixels)
+        Fail("{}: buffer '{}' holds {} scalars, not one per pixel of {}x{}", owner_, name,
+             values.size(), width, height);
+    out.Resize(width, height);
+    std::memcpy(out.data(), values.data(), out.bytes());
 }
 
 std::vector<PassTiming> PassTimings(const TimestampPool& timestamps) {

@@ -1,7 +1,8 @@
 // DenoiserBuffers: the named GPU buffers of one Vulkan denoiser, allocated by iterating its memory
 // plan (so `fovrt memory` lists exactly what exists), and the per-frame steps every Vulkan
 // denoiser shares: clearing histories on Reset(), uploading the FrameInputs planes all SVGF-family
-// passes read, downloading the output and the sanitising counters, reading a buffer back (tests).
+// passes read, downloading the output and the sanitising counters, reading a buffer back (tests
+// and debug views).
 #pragma once
 
 #include <map>
@@ -41,6 +42,13 @@ public:
 
     // Synchronous read-back of one buffer (tests: history contents after Denoise()).
     std::vector<uint8_t> Read(VulkanContext& context, const std::string& name);
+    // The same as floats, stored with `scalarBytes` per scalar: 2 for fp16 history storage, 4
+    // otherwise (HistoryScalarBytes of the plan's precision for history planes).
+    std::vector<float> ReadFloats(VulkanContext& context, const std::string& name,
+                                  size_t scalarBytes);
+    // A one-scalar-per-pixel buffer as a W×H plane (debug views); checks the buffer's size.
+    void ReadPlane(VulkanContext& context, const std::string& name, int width, int height,
+                   size_t scalarBytes, Plane<float>& out);
 
 private:
     std::string owner_;

@@ -1,0 +1,76 @@
+#include "denoise/debug_views.h"
+
+#include <limits>
+
+#include "denoise/denoiser.h"
+#include "denoise/variants.h"
+
+namespace fovrt {
+
+const std::vector<DebugView>& DebugViewTable() {
+    using V = DenoiserVariant;
+    constexpr float kUnbounded = std::numeric_limits<float>::infinity();
+    static const std::vector<DebugView> rows = {
+        {.id = DebugViewId::HistoryLength,
+         .name = "historyLength",
+         .meaning = "frames in the temporal history: SVGF's history length (at most 64), the "
+                    "two-history family's W_u (saturates at 1/alpha); 1 where it was dropped",
+         .lo = 1.0f,
+         .hi = kUnbounded,
+         .offeredBy = [](const V&) { return true; }},
+        {.id = DebugViewId::HistorySamples,
+         .name = "historySamples",
+         .meaning = "samples in the weighted history, sum of beta^(t-i) n_i: svgf-weighted's W, "
+                    "two-history's W_w",
+         .lo = 1.0f,
+         .hi = kUnbounded,
+         .offeredBy = [](const V& v) { return v.weightBySampleCount || v.twoHistory; }},
+        {.id = DebugViewId::Alpha,
+         .name = "alpha",
+         .meaning = "A-SVGF's temporal alpha_i = (1 - lambda) alpha + lambda of colour and "
+                    "moments (1 on a frame without a previous one)",
+         .offeredBy = [](const V& v) { return v.asvgfGradient; }},
+        {.id = DebugViewId::Lambda,
+         .name = "lambda",
+         .meaning = "A-SVGF's lambda = min(1, |delta|/Delta) of the reconstructed temporal "
+                    "gradient, max over 3x3 strata",
+         .offeredBy = [](const V& v) { return v.asvgfGradient; }},
+        {.id = DebugViewId::P,
+         .name = "p",
+         .meaning = "two-history's variance-optimal blend factor: I_opt = lerp(I_w, I_u, p)",
+         .offeredBy = [](const V& v) { return v.twoHistory; }},
+        {.id = DebugViewId::Q,
+         .name = "q",
+         .meaning = "two-history's gradient-guided blend factor: I_b = lerp(I_opt, I_u, q) "
+                    "(two-history-asvgf: A-SVGF's lambda)",
+         .offeredBy = [](const V& v) { return v.twoHistory; }},
+    };
+    return rows;
+}
+
+std::vector<std::string> DebugViewNames(const DenoiserVariant& variant) {
+    std::vector<std::string> names;
+    for (const DebugView& view : DebugViewTable())
+        if (view.offeredBy(variant)) names.emplace_back(view.name);
+    return names;
+}
+
+const DebugView* FindDebugView(const DenoiserVariant& variant, std::string_view name) {
+    for (const DebugView& view : DebugViewTable())
+        if (view.name == name) return view.offeredBy(variant) ? &view : nullptr;
+    return nullptr;
+}
+
+// The Denoiser side (denoise/denoiser.h): names and the unknown-name rule once, for every host.
+std::vector<std::string> Denoiser::DebugViews() const {
+    const DenoiserVariant* variant = LookupDenoiserVariant(Name());
+    return variant ? DebugViewNames(*variant) : std::vector<std::string>{};
+}
+
+bool Denoiser::ReadDebugView(const std::string& name, Plane<float>& out) {
+    const DenoiserVariant* variant = LookupDenoiserVariant(Name());
+    const DebugView* view = variant ? FindDebugView(*variant, name) : nullptr;
+    return view && ReadDebugPlane(view->id, out);
+}
+
+}  // namespace fovrt
