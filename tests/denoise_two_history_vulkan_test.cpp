@@ -25,6 +25,7 @@
 #include "vk_test_support.h"
 
 using namespace fovrt;
+using fovrt::test::RandomTwoHistoryFrame;
 using fovrt::test::TestContext;
 
 namespace {
@@ -59,38 +60,6 @@ Mismatch Compare(const std::vector<float>& vk, const Plane<T>& ref, double tol) 
         }
     }
     return m;
-}
-
-// Random frame with per-frame sample counts and gradient samples (some strata twice, some none,
-// one outside the grid).
-FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame, bool boxFallback = false) {
-    FrameInputs f = boxFallback ? test::FallbackFrame(w, h, 5, frame) : test::RandomFrame(w, h, 5, frame);
-    std::mt19937 rng(1000 + frame);
-    std::uniform_int_distribution<int> spp(1, 16), off(0, 2);
-    std::uniform_real_distribution<float> lum(0.0f, 4.0f), u(0.0f, 1.0f);
-    for (size_t i = 0; i < f.sampleCount.size(); ++i) f.sampleCount[i] = uint16_t(spp(rng));
-    const ivec2 grid = StratumGridSize(w, h);
-    for (int sy = 0; sy < grid.y; ++sy)
-        for (int sx = 0; sx < grid.x; ++sx) {
-            const int copies = u(rng) < 0.3f ? 0 : (u(rng) < 0.1f ? 2 : 1);
-            for (int k = 0; k < copies; ++k) {
-                GradientSample s;
-                s.stratum = ivec2(sx, sy);
-                s.pixel =
-                    glm::min(ivec2(sx * 3 + off(rng), sy * 3 + off(rng)), ivec2(w - 1, h - 1));
-                s.prevPixel = s.pixel;
-                s.newLuminance = lum(rng);
-                s.oldLuminance = u(rng) < 0.5f ? s.newLuminance : lum(rng);
-                f.gradientSamples.push_back(s);
-            }
-        }
-    GradientSample outside;
-    outside.stratum = ivec2(grid.x + 3, 0);
-    outside.pixel = ivec2(0, 0);
-    outside.newLuminance = 1.0f;
-    outside.oldLuminance = 0.0f;
-    f.gradientSamples.push_back(outside);
-    return f;
 }
 
 void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int frames, int width = 64,
