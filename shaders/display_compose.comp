@@ -61,15 +61,17 @@ uint overlay(ivec2 p, ivec2 gaze, int radius, uint under) {
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.out_size))) return;
+    // The slot first, then one fetch, one transform and one overlay test: lavapipe runs both sides
+    // of a divergent branch, so a transform per slot would cost twice.
+    int slot = inside(p, pc.origin0, pc.extent0) ? 0 : inside(p, pc.origin1, pc.extent1) ? 1 : -1;
     uint rgb = FOVRT_DISPLAY_BACKGROUND_RGB;
-    if (inside(p, pc.origin0, pc.extent0)) {
-        int i = eye_index(p, pc.origin0, pc.extent0);
-        bool right = (pc.flags & DISPLAY_FLAG_SLOT0_RIGHT) != 0u;
+    if (slot >= 0) {
+        bool first = slot == 0;
+        int i = eye_index(p, first ? pc.origin0 : pc.origin1, first ? pc.extent0 : pc.extent1);
+        bool right = !first || (pc.flags & DISPLAY_FLAG_SLOT0_RIGHT) != 0u;
         rgb = display_rgb(right ? LOAD3(right_eye, i) : LOAD3(left_eye, i));
-        if ((pc.flags & DISPLAY_FLAG_MARK0) != 0u) rgb = overlay(p, pc.gaze0, pc.radius0, rgb);
-    } else if (inside(p, pc.origin1, pc.extent1)) {
-        rgb = display_rgb(LOAD3(right_eye, eye_index(p, pc.origin1, pc.extent1)));
-        if ((pc.flags & DISPLAY_FLAG_MARK1) != 0u) rgb = overlay(p, pc.gaze1, pc.radius1, rgb);
+        if ((pc.flags & (first ? DISPLAY_FLAG_MARK0 : DISPLAY_FLAG_MARK1)) != 0u)
+            rgb = overlay(p, first ? pc.gaze0 : pc.gaze1, first ? pc.radius0 : pc.radius1, rgb);
     }
     // Little-endian words: 0xAARRGGBB is B,G,R,A in memory; R,G,B,A swaps the outer bytes.
     uint bgra = 0xFF000000u | rgb;
