@@ -81,6 +81,15 @@ Plane<vec3> EyeImage(int w, int h, uint64_t seed) {
 
 }  // namespace
 
+TEST_CASE("display_compose's bindings are slots 0..count-1, each once", "[live]") {
+    std::multiset<int> slots;
+#define FOVRT_TEST_SLOT(pass, name, slot, kind, format, variable) slots.insert(slot);
+    DISPLAY_COMPOSE_BINDING_LIST(FOVRT_TEST_SLOT)
+#undef FOVRT_TEST_SLOT
+    CHECK(slots == std::multiset<int>{0, 1, 2});
+    CHECK(DISPLAY_COMPOSE_BINDINGS == 3);
+}
+
 TEST_CASE("a constant HDR image gives the byte the tonemap + sRGB formula predicts", "[live]") {
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     // Spot values worked out by hand as well: 0.18 → 117.65 → 118, 0.5 → 187.52 → 188.
