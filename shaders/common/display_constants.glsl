@@ -4,11 +4,12 @@
 #define FOVRT_DISPLAY_CONSTANTS_GLSL
 
 // Push-constant flags (FOVRT_PUSH_DISPLAY_COMPOSE's `flags`).
-#define DISPLAY_FLAG_BGRA 1u         // bytes B,G,R,A (B8G8R8A8_*); else R,G,B,A (R8G8B8A8_*)
-#define DISPLAY_FLAG_REINHARD 2u     // tone curve x/(1+x) instead of the clamp (Tonemap::Reinhard)
-#define DISPLAY_FLAG_SLOT0_RIGHT 4u  // slot 0 shows the right eye (layout: the right eye alone)
-#define DISPLAY_FLAG_MARK0 8u        // draw the gaze marker and fovea outline in slot 0
-#define DISPLAY_FLAG_MARK1 16u       // … in slot 1
+#define DISPLAY_FLAG_BGRA 1u          // bytes B,G,R,A (B8G8R8A8_*); else R,G,B,A (R8G8B8A8_*)
+#define DISPLAY_FLAG_REINHARD 2u      // tone curve x/(1+x) instead of the clamp (Tonemap::Reinhard)
+#define DISPLAY_FLAG_SIDE_BY_SIDE 4u  // slot 1 (the right eye at origin1) is shown
+#define DISPLAY_FLAG_SLOT0_RIGHT 8u   // slot 0 shows the right eye (layout: the right eye alone)
+#define DISPLAY_FLAG_MARK0 16u        // draw the gaze marker and fovea outline in slot 0
+#define DISPLAY_FLAG_MARK1 32u        // … in slot 1
 
 // Overlay geometry in output pixels × FOVRT_DISPLAY_SUBPIXELS (fixed point, so that the shader
 // and the C++ reference decide every overlay pixel with the same integer arithmetic).

@@ -67,18 +67,28 @@ DisplayComposePush MakeDisplayComposePush(const DisplaySettings& settings, ivec2
                                           const std::array<FoveaMark, 2>& marks, ivec2 outSize) {
     FOVRT_CHECK(outSize.x > 0 && outSize.y > 0);
     FOVRT_CHECK(eyeSize.x >= 0 && eyeSize.y >= 0);
-    // The shader's nearest-pixel index (2·x + 1)·W stays a 32-bit int.
-    FOVRT_CHECK_OP((2 * int64_t(outSize.x) + 1) * eyeSize.x, <, int64_t(INT32_MAX));
-    FOVRT_CHECK_OP((2 * int64_t(outSize.y) + 1) * eyeSize.y, <, int64_t(INT32_MAX));
+    // Pixel coordinates stay exact in float, and both eyes' floats indexable by a 32-bit int.
+    FOVRT_CHECK_OP(std::max(outSize.x, outSize.y), <, 1 << 24);
+    FOVRT_CHECK_OP(int64_t(eyeSize.x) * eyeSize.y * 6, <, int64_t(INT32_MAX));
     const auto viewports = DisplayViewports(settings.layout, eyeSize, outSize);
     // The eye each slot shows: slot 0 the left eye unless the right one is shown alone.
     const bool slot0Right = settings.layout == DisplayLayout::RightEye;
     const std::array<const FoveaMark*, 2> slotMarks = {&marks[slot0Right ? 1 : 0], &marks[1]};
 
+    const bool sideBySide = settings.layout == DisplayLayout::SideBySide;
+    // Both slots shown have one extent (same eyes, same halves): the shader keeps one.
+    if (sideBySide) FOVRT_CHECK(viewports[0].extent == viewports[1].extent);
+    const ivec2 extent = viewports[0].extent;
+
     uint32_t flags = 0;
     if (settings.byteOrder == DisplayByteOrder::Bgra) flags |= DISPLAY_FLAG_BGRA;
     if (settings.mode == DisplayMode::Hdr && settings.tonemap == Tonemap::Reinhard) flags |= DISPLAY_FLAG_REINHARD;
+    if (sideBySide) flags |= DISPLAY_FLAG_SIDE_BY_SIDE;
     if (slot0Right) flags |= DISPLAY_FLAG_SLOT0_RIGHT;
+    // Eye pixels per output pixel, rounded to float once: the shader and the reference multiply
+    // by the same number.
+    const float stepX = extent.x > 0 ? float(double(eyeSize.x) / extent.x) : 0.0f;
+    const float stepY = extent.y > 0 ? float(double(eyeSize.y) / extent.y) : 0.0f;
     std::array<ivec2, 2> gaze{ivec2(0), ivec2(0)};
     std::array<int, 2> radius{0, 0};
     for (int s = 0; s < 2; ++s) {
@@ -96,9 +106,21 @@ DisplayComposePush MakeDisplayComposePush(const DisplaySettings& settings, ivec2
         radius[size_t(s)] = int(std::clamp(r, 0.0, double(FOVRT_DISPLAY_MAX_RADIUS)));
     }
     const float scale = settings.mode == DisplayMode::Hdr ? std::exp2(settings.exposure) : 1.0f;
-    return DisplayComposePush{outSize,     eyeSize,   viewports[0].origin, viewports[0].extent,
-                              gaze[0],     viewports[1].origin, viewports[1].extent, gaze[1],
-                              radius[0],   radius[1], scale,   flags};
+    DisplayComposePush push{};
+    push.out_size = outSize;
+    push.eye_size = eyeSize;
+    push.extent = extent;
+    push.origin0 = viewports[0].origin;
+    push.origin1 = viewports[1].origin;
+    push.gaze0 = gaze[0];
+    push.gaze1 = gaze[1];
+    push.step_x = stepX;
+    push.step_y = stepY;
+    push.radius0 = radius[0];
+    push.radius1 = radius[1];
+    push.scale = scale;
+    push.flags = flags;
+    return push;
 }
 
 std::vector<uint32_t> ComposeDisplayReference(const Plane<vec3>& left, const Plane<vec3>& right,
@@ -106,32 +128,34 @@ std::vector<uint32_t> ComposeDisplayReference(const Plane<vec3>& left, const Pla
     const int outW = push.out_size.x, outH = push.out_size.y;
     FOVRT_CHECK(outW > 0 && outH > 0);
     const ivec2 eye = push.eye_size;
-    const bool anyShown = push.extent0.x > 0 || push.extent1.x > 0;
-    if (anyShown) {
+    if (push.extent.x > 0) {
         FOVRT_CHECK(left.width() == eye.x && left.height() == eye.y);
         FOVRT_CHECK(right.width() == eye.x && right.height() == eye.y);
     }
     const bool reinhard = (push.flags & DISPLAY_FLAG_REINHARD) != 0;
     struct Slot {
-        ivec2 origin, extent, gaze;
+        bool shown;
+        ivec2 origin, gaze;
         int radius;
         bool mark;
         const Plane<vec3>* image;
     };
     const std::array<Slot, 2> slots = {
-        Slot{push.origin0, push.extent0, push.gaze0, push.radius0, (push.flags & DISPLAY_FLAG_MARK0) != 0,
+        Slot{true, push.origin0, push.gaze0, push.radius0, (push.flags & DISPLAY_FLAG_MARK0) != 0,
              (push.flags & DISPLAY_FLAG_SLOT0_RIGHT) ? &right : &left},
-        Slot{push.origin1, push.extent1, push.gaze1, push.radius1, (push.flags & DISPLAY_FLAG_MARK1) != 0, &right}};
+        Slot{(push.flags & DISPLAY_FLAG_SIDE_BY_SIDE) != 0, push.origin1, push.gaze1, push.radius1,
+             (push.flags & DISPLAY_FLAG_MARK1) != 0, &right}};
 
     std::vector<uint32_t> out(size_t(outW) * size_t(outH));
     for (int y = 0; y < outH; ++y) {
         for (int x = 0; x < outW; ++x) {
             uint32_t rgb = FOVRT_DISPLAY_BACKGROUND_RGB;
             for (const Slot& s : slots) {
-                if (!Inside(x, y, s.origin, s.extent)) continue;
-                // Nearest eye pixel: the one holding the output pixel's centre.
-                const int ex = int((int64_t(2 * (x - s.origin.x) + 1) * eye.x) / (2 * int64_t(s.extent.x)));
-                const int ey = int((int64_t(2 * (y - s.origin.y) + 1) * eye.y) / (2 * int64_t(s.extent.y)));
+                if (!s.shown || !Inside(x, y, s.origin, push.extent)) continue;
+                // Nearest eye pixel: the one under the output pixel's centre, (x − origin + ½)·step
+                // in float, as the shader computes it.
+                const int ex = std::min(int((float(x - s.origin.x) + 0.5f) * push.step_x), eye.x - 1);
+                const int ey = std::min(int((float(y - s.origin.y) + 0.5f) * push.step_y), eye.y - 1);
                 rgb = DisplayRgb((*s.image)(ex, ey), push.scale, reinhard);
                 if (s.mark) {
                     const int on = OverlayAt(x, y, s.gaze, s.radius);

@@ -38,8 +38,7 @@ DisplayPass::DisplayPass(VulkanContext& context)
       pipeline_(context, "display_compose", DISPLAY_COMPOSE_BINDINGS, sizeof(DisplayComposePush), 1) {
     // Placeholder eyes (no image yet: both slots empty, the window is background) and a 1×1 output,
     // so that the descriptor set is always complete.
-    left_ = context.allocator().CreateBuffer("display.left", kBytesPerEyePixel);
-    right_ = context.allocator().CreateBuffer("display.right", kBytesPerEyePixel);
+    eyes_ = context.allocator().CreateBuffer("display.eyes", 2 * kBytesPerEyePixel);
     Resize(1, 1);
 }
 
@@ -52,8 +51,7 @@ void DisplayPass::SetEyes(const Plane<vec3>& left, const Plane<vec3>& right, con
     if (size != eyeSize_) {
         VulkanAllocator& alloc = context_->allocator();
         staging_ = alloc.CreateBuffer("display.staging", 2 * eyeBytes, MemoryUsage::Staging);
-        left_ = alloc.CreateBuffer("display.left", eyeBytes);
-        right_ = alloc.CreateBuffer("display.right", eyeBytes);
+        eyes_ = alloc.CreateBuffer("display.eyes", 2 * eyeBytes);
         eyeSize_ = size;
         RebuildSet();
     }
@@ -75,8 +73,7 @@ void DisplayPass::Resize(int outWidth, int outHeight) {
 void DisplayPass::RebuildSet() {
     pipeline_.ResetSets();
     std::array<const Buffer*, DISPLAY_COMPOSE_BINDINGS> buffers{};
-    buffers[DISPLAY_COMPOSE_B_LEFT] = &left_;
-    buffers[DISPLAY_COMPOSE_B_RIGHT] = &right_;
+    buffers[DISPLAY_COMPOSE_B_EYES] = &eyes_;
     buffers[DISPLAY_COMPOSE_B_OUT] = &output_;
     set_ = pipeline_.MakeSet(buffers);
 }
@@ -91,9 +88,8 @@ void DisplayPass::Record(VkCommandBuffer cmd, const DisplaySettings& settings, i
     //    copy out of Output()) is done with these buffers before they are written again.
     {
         const VkAccessFlags written = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-        const std::array<VkBufferMemoryBarrier, 3> barriers = {
-            BufferBarrier(left_, written, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT),
-            BufferBarrier(right_, written, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT),
+        const std::array<VkBufferMemoryBarrier, 2> barriers = {
+            BufferBarrier(eyes_, written, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT),
             BufferBarrier(output_, written, VK_ACCESS_SHADER_WRITE_BIT)};
         vkCmdPipelineBarrier(cmd, kTransferCompute, kTransferCompute, 0, 0, nullptr, uint32_t(barriers.size()),
                              barriers.data(), 0, nullptr);
@@ -101,16 +97,11 @@ void DisplayPass::Record(VkCommandBuffer cmd, const DisplaySettings& settings, i
     // 2. The eyes, staging → device-local, when SetEyes gave new ones (host writes to the coherent
     //    staging memory are visible to the device at submit).
     if (uploadPending_) {
-        const VkDeviceSize eyeBytes = VkDeviceSize(eyeSize_.x) * VkDeviceSize(eyeSize_.y) * kBytesPerEyePixel;
-        const VkBufferCopy leftRegion{0, 0, eyeBytes};
-        const VkBufferCopy rightRegion{eyeBytes, 0, eyeBytes};
-        vkCmdCopyBuffer(cmd, staging_.handle(), left_.handle(), 1, &leftRegion);
-        vkCmdCopyBuffer(cmd, staging_.handle(), right_.handle(), 1, &rightRegion);
-        const std::array<VkBufferMemoryBarrier, 2> barriers = {
-            BufferBarrier(left_, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT),
-            BufferBarrier(right_, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT)};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr,
-                             uint32_t(barriers.size()), barriers.data(), 0, nullptr);
+        const VkBufferCopy region{0, 0, VkDeviceSize(eyeSize_.x) * VkDeviceSize(eyeSize_.y) * 2 * kBytesPerEyePixel};
+        vkCmdCopyBuffer(cmd, staging_.handle(), eyes_.handle(), 1, &region);
+        const VkBufferMemoryBarrier uploaded = BufferBarrier(eyes_, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1,
+                             &uploaded, 0, nullptr);
         uploadPending_ = false;
     }
     // 3. The composition, one invocation per output pixel.

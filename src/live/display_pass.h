@@ -76,9 +76,8 @@ private:
 
     VulkanContext* context_ = nullptr;
     ComputePipeline pipeline_;
-    Buffer staging_;  // host-visible: left eye, then right eye
-    Buffer left_;     // device-local eyes, float[3·W·H] each
-    Buffer right_;
+    Buffer staging_;  // host-visible: left eye, then right eye, float[2·3·W·H]
+    Buffer eyes_;     // device-local, the same layout
     Buffer output_;   // device-local, uint[outW·outH]
     Buffer readback_; // host-visible, Run only
     VkDescriptorSet set_ = VK_NULL_HANDLE;
