@@ -318,7 +318,8 @@ TEST_CASE("display pass on Vulkan equals the C++ reference", "[live][vulkan]") {
                     }
     }
     WARN("display pass: " << mismatched << " of " << compared << " pixels differ from the reference (max "
-                          << worst << " LSB) on " << ctx->deviceName());
+                          << worst << " LSB) on " << ctx->deviceName() << ", validation "
+                          << (ctx->validationEnabled() ? "on" : "off"));
     CHECK(mismatched * 100 <= compared);  // off-by-one bytes are rare, not the rule
     CHECK(ctx->validationErrors() == 0);
 }
@@ -415,15 +416,18 @@ TEST_CASE("Record in the caller's command buffer, then a copy into a swapchain-f
     const std::array<FoveaMark, 2> marks = {FoveaMark{vec2(10.0f, 12.0f), 6.0f}, FoveaMark{vec2(20.0f, 5.0f), 4.0f}};
     // UNORM and SRGB formats of both byte orders receive the same bytes: copies do not convert.
     const std::array<std::pair<VkFormat, DisplayByteOrder>, 4> formats = {
-        std::pair{VK_FORMAT_B8G8R8A8_UNORM, DisplayByteOrder::Bgra}, std::pair{VK_FORMAT_B8G8R8A8_SRGB, DisplayByteOrder::Bgra},
-        std::pair{VK_FORMAT_R8G8B8A8_UNORM, DisplayByteOrder::Rgba}, std::pair{VK_FORMAT_R8G8B8A8_SRGB, DisplayByteOrder::Rgba}};
+        std::pair{VK_FORMAT_B8G8R8A8_UNORM, DisplayByteOrder::Bgra},
+        std::pair{VK_FORMAT_B8G8R8A8_SRGB, DisplayByteOrder::Bgra},
+        std::pair{VK_FORMAT_R8G8B8A8_UNORM, DisplayByteOrder::Rgba},
+        std::pair{VK_FORMAT_R8G8B8A8_SRGB, DisplayByteOrder::Rgba}};
     for (const auto& [format, order] : formats) {
         INFO("format " << int(format));
         DisplaySettings s;
         s.byteOrder = order;
         pass.SetEyes(left, right, marks);
         TestImage image(*ctx, format, out);
-        Buffer readback = ctx->allocator().CreateBuffer("test.readback", size_t(out.x) * size_t(out.y) * 4, MemoryUsage::Staging);
+        Buffer readback =
+            ctx->allocator().CreateBuffer("test.readback", size_t(out.x) * size_t(out.y) * 4, MemoryUsage::Staging);
         {
             CommandRecorder recorder(*ctx);
             VkCommandBuffer cmd = recorder.commandBuffer();
@@ -459,7 +463,8 @@ TEST_CASE("display pass resizes with the window and the eyes", "[live][vulkan]")
         for (ivec2 out : {ivec2(64, 64), ivec2(129, 33), ivec2(1, 1), ivec2(64, 64)}) {
             const DisplaySettings s;
             size_t m = 0;
-            CHECK(MaxChannelDiff(pass.Run(s, out.x, out.y), ComposeDisplayReference(left, right, {}, s, out.x, out.y), &m) <= 1);
+            const auto reference = ComposeDisplayReference(left, right, {}, s, out.x, out.y);
+            CHECK(MaxChannelDiff(pass.Run(s, out.x, out.y), reference, &m) <= 1);
             CHECK(pass.outputSize() == out);
             CHECK(pass.Output().size() == size_t(out.x) * size_t(out.y) * 4);
         }

@@ -102,7 +102,8 @@ DisplayComposePush MakeDisplayComposePush(const DisplaySettings& settings, ivec2
         const double sx = double(v.extent.x) / eyeSize.x, sy = double(v.extent.y) / eyeSize.y;
         gaze[size_t(s)] = ivec2(Subpixels(v.origin.x + double(m.gazePixel.x) * sx),
                                 Subpixels(v.origin.y + double(m.gazePixel.y) * sy));
-        const double r = std::isfinite(m.foveaRadius) ? std::round(double(m.foveaRadius) * sx * FOVRT_DISPLAY_SUBPIXELS) : 0.0;
+        const double r =
+            std::isfinite(m.foveaRadius) ? std::round(double(m.foveaRadius) * sx * FOVRT_DISPLAY_SUBPIXELS) : 0.0;
         radius[size_t(s)] = int(std::clamp(r, 0.0, double(FOVRT_DISPLAY_MAX_RADIUS)));
     }
     const float scale = settings.mode == DisplayMode::Hdr ? std::exp2(settings.exposure) : 1.0f;

@@ -197,7 +197,9 @@ DisplayBenchResult BenchDisplayPass(VulkanContext& context, ivec2 outSize, ivec2
 std::string FormatDisplayBench(const DisplayBenchResult& r) {
     const std::string sizes =
         fmt::format("display compose {}x{} (eyes {}x{})", r.outSize.x, r.outSize.y, r.eyeSize.x, r.eyeSize.y);
-    if (!r.timestamps) return fmt::format("{}: {:.3f} ms per submit of upload + 2 compositions (no GPU timestamps)", sizes, r.submitMs);
+    if (!r.timestamps)
+        return fmt::format("{}: {:.3f} ms per submit of upload + 2 compositions (no GPU timestamps)", sizes,
+                           r.submitMs);
     return fmt::format("{}: {:.3f} ms, with the eyes' upload {:.3f} ms (GPU); submit+wait of both {:.3f} ms", sizes,
                        r.composeMs, r.uploadComposeMs, r.submitMs);
 }
