@@ -37,6 +37,17 @@
 #define FOVRT_PUSH_ASVGF_ALPHA(F) F(ivec2, size) F(ivec2, grid) F(float, alpha)
 // bandwidth_copy: elements as rows × columns.
 #define FOVRT_PUSH_BANDWIDTH(F) F(ivec2, size)
+// display_compose (shaders/common/display_constants.glsl; filled by MakeDisplayComposePush in
+// src/live/display_compose.h). out_size: output pixels; eye_size: each eye's pixels; extent: the
+// letterboxed viewport of every slot shown (0: none); origin0/origin1: where slot 0 (the left eye,
+// or the one eye shown) and slot 1 (the right eye, side by side only) start; gaze_s = the gaze
+// point and radius_s = the fovea radius, in output pixels × FOVRT_DISPLAY_SUBPIXELS (radius ≤ 0:
+// no outline); step = eye pixels per output pixel (float(eye / extent), rounded once on the host);
+// scale = 2^exposure (HDR) or 1 (display data); flags = DISPLAY_FLAG_*.
+#define FOVRT_PUSH_DISPLAY_COMPOSE(F)                                                               \
+    F(ivec2, out_size) F(ivec2, eye_size) F(ivec2, extent) F(ivec2, origin0) F(ivec2, origin1)          \
+    F(ivec2, gaze0) F(ivec2, gaze1) F(float, step_x) F(float, step_y) F(int, radius0) F(int, radius1) \
+    F(float, scale) F(uint, flags)
 
 #define FOVRT_PUSH_FIELD(type, name) type name;
 
@@ -68,6 +79,7 @@ FOVRT_DECLARE_PUSH(AsvgfAtrousPush, FOVRT_PUSH_ASVGF_ATROUS);
 FOVRT_DECLARE_PUSH(AsvgfSigmaPush, FOVRT_PUSH_ASVGF_SIGMA);
 FOVRT_DECLARE_PUSH(AsvgfAlphaPush, FOVRT_PUSH_ASVGF_ALPHA);
 FOVRT_DECLARE_PUSH(BandwidthPush, FOVRT_PUSH_BANDWIDTH);
+FOVRT_DECLARE_PUSH(DisplayComposePush, FOVRT_PUSH_DISPLAY_COMPOSE);
 #undef FOVRT_DECLARE_PUSH
 #undef FOVRT_PUSH_FIELD_QUALIFIED
 // 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
@@ -76,6 +88,8 @@ static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && s
               sizeof(TwoHistoryReprojectPush) == 24 && sizeof(TwoHistoryGradientPush) == 24 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
               sizeof(AsvgfAlphaPush) == 20 && sizeof(BandwidthPush) == 8);
+// Seven ivec2 first, then the scalars: 80 bytes, within the 128 every device allows.
+static_assert(sizeof(DisplayComposePush) == 80);
 }  // namespace fovrt
 #else
 // GLSL: the block every shader reads as `pc`.

@@ -9,13 +9,10 @@
 #include "core/atomic_file.h"
 #include "core/check.h"
 #include "core/error.h"
+#include "shaders/common/display_transform.glsl"
 
 namespace fovrt {
 namespace {
-
-float SrgbOetf(float linear) {
-    return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
 
 void AppendBytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<uint8_t>*>(context);
@@ -26,16 +23,14 @@ void AppendBytes(void* context, void* data, int size) {
 }  // namespace
 
 std::vector<uint8_t> TonemapToRgb8(const Plane<vec3>& hdr, float exposure, Tonemap tonemap) {
+    // The display transform shared with the live preview's shader
+    // (shaders/common/display_transform.glsl).
     const float scale = std::exp2(exposure);
+    const bool reinhard = tonemap == Tonemap::Reinhard;
     std::vector<uint8_t> rgb(hdr.size() * 3);
-    for (size_t i = 0; i < hdr.size(); ++i) {
-        for (int c = 0; c < 3; ++c) {
-            float v = hdr[i][c] * scale;
-            if (!std::isfinite(v) || v < 0.0f) v = 0.0f;
-            v = tonemap == Tonemap::Reinhard ? v / (1.0f + v) : std::min(v, 1.0f);
-            rgb[i * 3 + size_t(c)] = uint8_t(std::lround(SrgbOetf(v) * 255.0f));
-        }
-    }
+    for (size_t i = 0; i < hdr.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            rgb[i * 3 + size_t(c)] = uint8_t(glsl::fovrt_display_byte(hdr[i][c], scale, reinhard));
     return rgb;
 }
 

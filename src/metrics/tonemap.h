@@ -10,13 +10,13 @@
 
 #include "core/image.h"
 #include "core/math.h"
+#include "shaders/common/display_transform.glsl"
 
 namespace fovrt {
 
-// sRGB OETF (IEC 61966-2-1), linear [0,1] -> encoded [0,1].
-inline float SrgbEncode(float linear) {
-    return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
+// sRGB OETF (IEC 61966-2-1), linear [0,1] -> encoded [0,1]: the display transform's, written once
+// for C++ and GLSL (shaders/common/display_transform.glsl; PNG output and the live preview use it).
+inline float SrgbEncode(float linear) { return glsl::fovrt_srgb_encode(linear); }
 // sRGB EOTF, encoded [0,1] -> linear [0,1].
 inline float SrgbDecode(float encoded) {
     return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
