@@ -20,10 +20,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// This process's scratch directory, removed when the tests end.
 fs::path TempDir() {
-    fs::path dir = fs::temp_directory_path() / fmt::format("fovrt-replay-test-{}", ::getpid());
-    fs::create_directories(dir);
-    return dir;
+    struct Scratch {
+        fs::path dir = fs::temp_directory_path() / fmt::format("fovrt-replay-test-{}", ::getpid());
+        Scratch() { fs::create_directories(dir); }
+        ~Scratch() {
+            std::error_code ignored;
+            fs::remove_all(dir, ignored);
+        }
+    };
+    static const Scratch scratch;
+    return scratch.dir;
 }
 
 RunConfig SmallCornell() {

@@ -21,10 +21,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// This process's scratch directory, removed when the tests end.
 fs::path TempDir() {
-    fs::path dir = fs::temp_directory_path() / fmt::format("fovrt-session-test-{}", ::getpid());
-    fs::create_directories(dir);
-    return dir;
+    struct Scratch {
+        fs::path dir = fs::temp_directory_path() / fmt::format("fovrt-session-test-{}", ::getpid());
+        Scratch() { fs::create_directories(dir); }
+        ~Scratch() {
+            std::error_code ignored;
+            fs::remove_all(dir, ignored);
+        }
+    };
+    static const Scratch scratch;
+    return scratch.dir;
 }
 
 // Any finite float (all exponents, subnormals and signed zeros included).
