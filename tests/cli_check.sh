@@ -29,6 +29,40 @@ else
   bad "run failed: $(cat err.txt)"
 fi
 
+# Record and replay: `run --record` writes a session recording; `run --replay` re-renders it with
+# bit-identical noisy and denoised images; frames.jsonl has one line per frame; a truncated or
+# corrupt recording and a config change that alters the frames are one-line errors.
+if "$fovrt" run "${small[@]}" --set output.dir=rec1 --set denoise.device=cpu --record rec.jsonl >/dev/null 2>err.txt &&
+   "$fovrt" run --replay rec.jsonl --set output.dir=replay1 >/dev/null 2>err.txt; then
+  [[ $(wc -l < rec.jsonl) -eq 3 ]] && ok "recording: header + 2 frames" || bad "recording has $(wc -l < rec.jsonl) lines"
+  for d in rec1 replay1; do
+    [[ $(wc -l < $d/frames.jsonl) -eq 2 ]] && ok "$d/frames.jsonl: one line per frame" || bad "$d/frames.jsonl lines"
+    grep -q '"records": "frames.jsonl"' $d/manifest.json && ok "$d manifest points at frames.jsonl" || bad "$d manifest"
+  done
+  same=1
+  for f in rec1/noisy/*.png rec1/denoised/svgf/*.png rec1/inputs/*.exr; do cmp -s "$f" "${f/rec1/replay1}" || same=0; done
+  [[ $same -eq 1 ]] && ok "replay: bit-identical inputs, noisy and denoised images" || bad "replay differs from the run"
+  grep -q '"replay"' replay1/manifest.json && ok "replay manifest names the recording" || bad "replay manifest"
+else
+  bad "record/replay failed: $(cat err.txt)"
+fi
+head -c -40 rec.jsonl > truncated.jsonl
+sed '3s/"fov":{/"fov_typo":{/' rec.jsonl > corrupt.jsonl
+expect_error "truncated recording" "truncated.jsonl: line 3 (after frame 0): truncated line" run --replay truncated.jsonl --set output.dir=e10
+expect_error "corrupt recording" "corrupt.jsonl: line 3 (frame 1): unknown key eyes\[0\].fov_typo" run --replay corrupt.jsonl --set output.dir=e11
+expect_error "missing recording" "no_such.jsonl: cannot open" run --replay no_such.jsonl --set output.dir=e12
+expect_error "replay refuses a changed spp model" "rec.jsonl: replay: foveation.model = \"uniform\" differs" run --replay rec.jsonl --set foveation.model=uniform --set output.dir=e13
+# experiment --replay: the recording's scene and frames, the file's variants and reference.
+printf '[reference]\nspp = 4\ncache_dir = "refcache"\n[output]\ndir = "exp1"\n[experiment]\nscenes = ["room"]\nvariants = ["svgf"]\n' > exp.toml
+if "$fovrt" experiment exp.toml --replay rec.jsonl >/dev/null 2>err.txt; then
+  [[ -f exp1/manifest.json && -f exp1/frames-cornell.csv ]] && grep -q '"replay"' exp1/manifest.json &&
+    ok "experiment --replay renders the recording's scene" || bad "experiment --replay outputs: $(ls exp1)"
+  grep -q "experiment.scenes is ignored" err.txt && ok "experiment --replay notes the ignored scenes" || bad "no note: $(cat err.txt)"
+else
+  bad "experiment --replay failed: $(cat err.txt)"
+fi
+expect_error "experiment replay truncated" "truncated.jsonl: line 3" experiment exp.toml --replay truncated.jsonl --set output.dir=e14
+
 echo 'name = "broken"' > broken.toml
 echo '[camera]' >> broken.toml
 echo 'position = [0, 1, "x"]' >> broken.toml
@@ -77,7 +111,7 @@ expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 
 # config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9; do
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
 done
 ok "no manifest after any error"

@@ -1,4 +1,4 @@
-// `fovrt experiment FILE [--quick]`: same noisy inputs, several denoisers, metrics per region
+// `fovrt experiment FILE [--quick] [--replay REC]`: same noisy inputs, several denoisers, metrics per region
 // against a cached reference; CSV, summary JSON, stdout table and an HTML report (experiment.h).
 #include "app/commands.h"
 #include "app/config_cli.h"
@@ -17,7 +17,15 @@ void RegisterExperimentCommand(CLI::App& app) {
     cmd->add_option("--scene", *scenes, "Run only these scenes (repeatable; replaces experiment.scenes)");
     cmd->add_option("--set", options->sets, "Override a config key: section.key=value (TOML value)");
     cmd->add_option("--memory-budget", options->memoryBudget, "Refuse to start above BYTES (e.g. 2GiB)");
-    cmd->callback([options, quick, scenes] { RunExperiment(LoadExperiment(*options, *quick, *scenes)); });
+    auto replay = std::make_shared<std::string>();
+    auto allowChanges = std::make_shared<bool>(false);
+    cmd->add_option("--replay", *replay,
+                    "Render a session recording's frames (its scene, cameras and gaze) instead of the scene's path");
+    cmd->add_flag("--allow-changes", *allowChanges,
+                  "With --replay: accept config changes that make the frames differ from the recording");
+    cmd->callback([options, quick, scenes, replay, allowChanges] {
+        RunExperiment(LoadExperiment(*options, *quick, *scenes, *replay, *allowChanges));
+    });
 }
 
 }  // namespace fovrt

@@ -1,11 +1,21 @@
 // `fovrt run`: the headless job. Renders N frames of both eyes with the configured gaze source
-// and spp model, writes per frame and eye a multi-layer EXR with every FrameInputs channel, the
-// renderer's visibility buffer and the spp map, denoises with every configured variant, and finishes with a run manifest (JSON: the
-// fully resolved config, versions, seed, per-stage timings, counters). The manifest is written
-// last: a directory without manifest.json is an interrupted run.
+// and spp model (or, with --replay, a session recording's frames: app/replay.h), writes per frame
+// and eye a multi-layer EXR with every FrameInputs channel, the renderer's visibility buffer and
+// the spp map, denoises with every configured variant, appends one line per frame to frames.jsonl
+// (gaze, samples, per-stage timings) and finishes with a run manifest (JSON: the fully resolved
+// config, versions, seed, counters, timing aggregates). Memory stays flat however many frames:
+// nothing per frame is kept. The manifest is written last: a directory without manifest.json is
+// an interrupted run. --record FILE writes the rendered frames as a session recording.
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <map>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -18,7 +28,9 @@
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
 #include "app/progress.h"
+#include "app/replay.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "denoise/memory_plan.h"
 #include "io/exr.h"
 #include "io/png.h"
@@ -60,7 +72,72 @@ void EnforceRunBudget(const RunConfig& config) {
     EnforceMemoryBudget(plan, config.memoryBudget, "run");
 }
 
-void Run(const RunConfig& config) {
+// Mean, min and max of one timing over a run: what the manifest keeps of the per-frame timings
+// (each frame's own are in frames.jsonl), so the manifest's size does not grow with the run.
+class TimingStats {
+public:
+    // `key`: the path of the entry in the JSON ({"denoise", "svgf", "wall"}).
+    void Add(const std::vector<std::string>& key, double ms) {
+        Stat& s = stats_[key];
+        s.sum += ms;
+        s.min = s.count == 0 ? ms : std::min(s.min, ms);
+        s.max = s.count == 0 ? ms : std::max(s.max, ms);
+        ++s.count;
+    }
+    // Nested objects along each key, ending in {"mean", "min", "max", "count"}.
+    nlohmann::json ToJson() const {
+        nlohmann::json out = nlohmann::json::object();
+        for (const auto& [key, s] : stats_) {
+            nlohmann::json* node = &out;
+            for (const std::string& part : key) node = &(*node)[part];
+            *node = {{"mean", s.sum / double(s.count)}, {"min", s.min}, {"max", s.max}, {"count", s.count}};
+        }
+        return out;
+    }
+
+private:
+    struct Stat {
+        double sum = 0.0, min = 0.0, max = 0.0;
+        uint64_t count = 0;
+    };
+    std::map<std::vector<std::string>, Stat> stats_;
+};
+
+// frames.jsonl: one JSON line per frame, written (and flushed) as the frame completes.
+class FrameLog {
+public:
+    explicit FrameLog(const std::filesystem::path& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+        if (!file_) Fail("cannot create '{}': {}", path.string(), std::strerror(errno));
+    }
+    ~FrameLog() {
+        if (file_) std::fclose(file_);
+    }
+    FrameLog(const FrameLog&) = delete;
+    FrameLog& operator=(const FrameLog&) = delete;
+    void Write(const nlohmann::json& record) {
+        const std::string line = record.dump() + "\n";
+        if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0)
+            Fail("failed writing '{}': {}", path_.string(), std::strerror(errno));
+    }
+    void Close() {
+        std::FILE* file = std::exchange(file_, nullptr);
+        if (file && std::fclose(file) != 0) Fail("failed writing '{}': {}", path_.string(), std::strerror(errno));
+    }
+
+private:
+    std::filesystem::path path_;
+    std::FILE* file_;
+};
+
+struct RunOptions {
+    ConfigOptions config;
+    std::string replay;      // --replay FILE
+    bool allowChanges = false;
+    std::string record;      // --record FILE
+};
+
+// `config` is the job's config; `replay` (optional) the recording it re-renders.
+void Run(const RunConfig& config, Replay* replay, const std::string& recordPath) {
     namespace fs = std::filesystem;
     EnforceRunBudget(config);
     const fs::path outDir = config.output.dir;
@@ -69,22 +146,31 @@ void Run(const RunConfig& config) {
     fs::remove(outDir / "manifest.json");
 
     auto totalStart = std::chrono::steady_clock::now();
-    FramePipeline pipeline(config);
+    FramePipeline pipeline(replay ? ReplayPipelineConfig(config) : config);
+    if (replay) CheckReplayScene(*replay, pipeline);
+    FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
     DenoiserSet denoisers(config.denoise);
-    std::fprintf(stderr, "fovrt run: scene '%s', %d frames, %d×%d per eye, denoisers on %s -> %s\n",
-                 pipeline.GetScene().name.c_str(), config.run.frames, config.camera.width,
-                 config.camera.height, denoisers.DeviceDescription().c_str(),
-                 outDir.string().c_str());
+    std::optional<SessionRecorder> recorder;
+    if (!recordPath.empty()) recorder.emplace(recordPath, ConfigToJson(config), SessionHeaderExtra(pipeline));
+    std::fprintf(stderr, "fovrt run: scene '%s', %d frames%s, %d×%d per eye, denoisers on %s -> %s\n",
+                 pipeline.GetScene().name.c_str(), sequence.Count(),
+                 replay ? (" replayed from " + replay->file.string()).c_str() : "", config.camera.width,
+                 config.camera.height, denoisers.DeviceDescription().c_str(), outDir.string().c_str());
 
-    nlohmann::json frames = nlohmann::json::array();
-    Progress progress("rendering", config.run.frames);
+    FrameLog frameLog(outDir / "frames.jsonl");
+    TimingStats timings;
+    Progress progress("rendering", sequence.Count());
+    RecordedFrame request;
     StereoFrame frame;
     Plane<vec3> denoised;
     uint64_t totalSamples = 0;
     uint64_t recordedSamples = 0;  // Σ FrameInputs::sampleCount: A-SVGF gradient pixels trace n_prev
-    for (int i = 0; i < config.run.frames; ++i) {
-        uint32_t index = uint32_t(config.run.firstFrame + i);
-        pipeline.Render(index, frame);
+    int framesRendered = 0;
+    uint32_t firstIndex = 0, lastIndex = 0;
+    while (sequence.Next(request)) {
+        const uint32_t index = request.request.frame;
+        pipeline.Render(request.request, frame);
+        if (recorder) recorder->Append(request);
 
         nlohmann::json record;
         record["frame"] = index;
@@ -97,6 +183,8 @@ void Run(const RunConfig& config) {
             eyeRecord["gaze_pixel"] = {e.gazePixel.x, e.gazePixel.y};
             eyeRecord["spp_ms"] = e.sppMs;
             eyeRecord["render_ms"] = e.renderMs;
+            timings.Add({"spp"}, e.sppMs);
+            timings.Add({"render"}, e.renderMs);
             uint64_t samples = 0;
             for (size_t p = 0; p < e.sppMap.size(); ++p) samples += e.sppMap[p];
             totalSamples += samples;
@@ -113,15 +201,21 @@ void Run(const RunConfig& config) {
                          config.output.exposure);
             }
             eyeRecord["write_inputs_ms"] = MsSince(writeStart);
+            timings.Add({"write_inputs"}, eyeRecord["write_inputs_ms"].get<double>());
 
             nlohmann::json denoiseRecord = nlohmann::json::object();
             for (size_t v = 0; v < denoisers.size(); ++v) {
                 Denoiser& denoiser = denoisers.At(v, eye);
                 auto start = std::chrono::steady_clock::now();
                 denoiser.Denoise(e.inputs, denoised);
+                const double wallMs = MsSince(start);
                 nlohmann::json passes = nlohmann::json::object();
-                for (const PassTiming& t : denoiser.LastTimings()) passes[t.pass] = t.ms;
-                denoiseRecord[denoisers.Name(v)] = {{"wall_ms", MsSince(start)}, {"passes_ms", passes}};
+                for (const PassTiming& t : denoiser.LastTimings()) {
+                    passes[t.pass] = t.ms;
+                    timings.Add({"denoise", denoisers.Name(v), "passes", t.pass}, t.ms);
+                }
+                timings.Add({"denoise", denoisers.Name(v), "wall"}, wallMs);
+                denoiseRecord[denoisers.Name(v)] = {{"wall_ms", wallMs}, {"passes_ms", passes}};
                 fs::path dir = outDir / "denoised" / denoisers.Name(v);
                 if (config.output.writePng)
                     WritePng(dir / (stem + ".png"), denoised, config.output.exposure);
@@ -130,10 +224,14 @@ void Run(const RunConfig& config) {
             eyeRecord["denoise"] = denoiseRecord;
             record[kEyeNames[eye]] = eyeRecord;
         }
-        frames.push_back(record);
+        frameLog.Write(record);
+        if (framesRendered++ == 0) firstIndex = index;
+        lastIndex = index;
         progress.Step(fmt::format("frame {}", index));
     }
     progress.Finish();
+    frameLog.Close();
+    if (recorder) recorder->Close();
 
     RenderStats stats = pipeline.GetRenderer().Stats();
     nlohmann::json manifest;
@@ -145,6 +243,8 @@ void Run(const RunConfig& config) {
     manifest["scene"] = {{"name", pipeline.GetScene().name},
                          {"source", pipeline.GetScene().sourcePath.string()},
                          {"frame_rate", pipeline.FramesPerSecond()}};
+    if (replay) manifest["replay"] = replay->ToJson();
+    if (recorder) manifest["recorded_to"] = recorder->Path().string();
     manifest["denoise_device"] = denoisers.DeviceDescription();
     manifest["counters"] = {{"samples", totalSamples},
                             {"recorded_samples", recordedSamples},
@@ -165,12 +265,32 @@ void Run(const RunConfig& config) {
         replaced[denoisers.Name(v)] = {{"nonfinite", nonFinite}, {"negative", negative}};
     }
     manifest["counters"]["denoiser_replaced_samples"] = replaced;
-    manifest["frames"] = frames;
+    // Per-frame records are frames.jsonl's lines; the manifest keeps their count and the timings'
+    // aggregates (per eye and frame), so it stays the same size however long the run.
+    manifest["frames"] = {{"count", framesRendered},
+                          {"first", firstIndex},
+                          {"last", lastIndex},
+                          {"records", "frames.jsonl"}};
+    manifest["timings_ms"] = timings.ToJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
     std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
-                 config.run.frames, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
+                 framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
                  (outDir / "manifest.json").string().c_str());
+}
+
+void RunCommand(const RunOptions& options) {
+    if (options.allowChanges && options.replay.empty()) Fail("--allow-changes needs --replay FILE");
+    if (options.replay.empty()) {
+        Run(ResolveConfig(options.config), nullptr, options.record);
+        return;
+    }
+    if (!options.record.empty() && std::filesystem::exists(options.record) &&
+        std::filesystem::equivalent(options.record, options.replay))
+        Fail("--record {}: is the recording being replayed", options.record);
+    Replay replay = OpenReplay(options.replay, options.allowChanges);
+    RunConfig config = ResolveReplayConfig(replay, options.config, ResolveConfig, "fovrt run");
+    Run(config, &replay, options.record);
 }
 
 }  // namespace
@@ -179,9 +299,14 @@ void RegisterRunCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "run", "Headless job: render N stereo frames with foveated spp maps, write FrameInputs EXRs, "
                "denoise, write a run manifest");
-    auto options = std::make_shared<ConfigOptions>();
-    AddConfigOptions(cmd, *options);
-    cmd->callback([options] { Run(ResolveConfig(*options)); });
+    auto options = std::make_shared<RunOptions>();
+    AddConfigOptions(cmd, options->config);
+    cmd->add_option("--replay", options->replay,
+                    "Re-render a session recording frame for frame (its config, with -c/--set on top)");
+    cmd->add_flag("--allow-changes", options->allowChanges,
+                  "With --replay: accept config changes that make the frames differ from the recording");
+    cmd->add_option("--record", options->record, "Record the rendered frames as a session recording (JSON Lines)");
+    cmd->callback([options] { RunCommand(*options); });
 }
 
 }  // namespace fovrt

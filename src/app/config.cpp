@@ -671,9 +671,21 @@ RunConfig ResolveConfig(const ConfigOptions& options) {
     toml::table root;
     Origins origins;
     std::string sources = "defaults";
-    if (!options.configPath.empty()) {
+    if (!options.base.is_null()) {
+        if (!options.base.is_object()) Fail("{}: the config is not a JSON object", options.baseOrigin);
+        JsonIntoTable(options.base, root, "");
+        RecordAll(root, "", options.baseOrigin, origins);
+        sources = options.baseOrigin;
+    }
+    if (!options.configPath.empty() && options.base.is_null()) {
         root = ParseTomlFile(options.configPath, origins);
         sources = options.configPath;
+    } else if (!options.configPath.empty()) {
+        Origins fileOrigins;
+        toml::table file = ParseTomlFile(options.configPath, fileOrigins);
+        Merge(root, file, "", options.configPath, origins);
+        for (const auto& [key, origin] : fileOrigins) origins[key] = origin;  // file:line
+        sources += " + " + options.configPath;
     }
     for (const std::string& overlay : options.overlayTables) {
         toml::node_view<toml::node> view = root.at_path(overlay);

@@ -2,7 +2,7 @@
 // writing TOML/JSON is in app/config_io.h, the command-line options in app/config_cli.h.
 //
 // Sources, applied to one TOML table before validation: built-in defaults (the default job runs
-// with no file at all) <- `-c FILE` (TOML) <- each `--set section.key=value` in order (value in
+// with no file at all; a replay starts from the recording's config instead) <- `-c FILE` (TOML) <- each `--set section.key=value` in order (value in
 // TOML syntax; a value that is not valid TOML is taken as a bare string, so
 // `--set scene.name=veach-ajar` works) <- `--memory-budget BYTES`. Unknown keys, wrong types and
 // out-of-range values are fovrt::Error naming the key (and file:line or "--set").

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "app/config.h"
@@ -25,6 +26,10 @@ struct ConfigOptions {
     // the command sets them.
     std::vector<std::string> ignoredTables;
     std::vector<std::string> overlayTables;
+    // A resolved config (e.g. a session recording's, as ConfigToJson writes it) that replaces the
+    // built-in defaults under -c and --set; null = the defaults. `baseOrigin` names it in errors.
+    nlohmann::json base;
+    std::string baseOrigin;
 };
 void AddConfigOptions(CLI::App* command, ConfigOptions& options);
 RunConfig ResolveConfig(const ConfigOptions& options);

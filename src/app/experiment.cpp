@@ -106,29 +106,47 @@ ReportTable MemoryTable(const RunConfig& config) {
 }  // namespace
 
 ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
-                              const std::vector<std::string>& scenes) {
+                              const std::vector<std::string>& scenes, const std::string& replayPath,
+                              bool allowChanges) {
     if (options.configPath.empty()) Fail("fovrt experiment needs an experiment file (e.g. presets/thesis-foveated.toml)");
+    if (allowChanges && replayPath.empty()) Fail("--allow-changes needs --replay FILE");
+    if (!replayPath.empty() && !scenes.empty())
+        Fail("--scene and --replay exclude each other (a recording has its own scene)");
     ExperimentSpec spec;
     spec.file = options.configPath;
     spec.quick = quick;
-    toml::table experiment;
-    spec.config = ResolveExperimentConfig(options, quick, experiment);
     const std::string file = spec.file.string();
-    for (const auto& [key, node] : experiment) {
-        std::string k(key.str());
-        if (k != "scenes" && k != "variants" && k != "visual_frame" && k != "quick")
-            Fail("{}: unknown key experiment.{}", file, k);
+    toml::table experiment;
+    // The config with the variants as its denoisers (a replay checks the list it renders with).
+    auto resolve = [&](const ConfigOptions& resolved) {
+        RunConfig config = ResolveExperimentConfig(resolved, quick, experiment);
+        for (const auto& [key, node] : experiment) {
+            std::string k(key.str());
+            if (k != "scenes" && k != "variants" && k != "visual_frame" && k != "quick")
+                Fail("{}: unknown key experiment.{}", file, k);
+        }
+        spec.variants = StringArray(experiment, "variants", file);
+        for (const std::string& variant : spec.variants)
+            FindDenoiserVariant(variant, file + ": experiment.variants");
+        config.denoise.denoisers = spec.variants;
+        return config;
+    };
+    if (replayPath.empty()) {
+        spec.config = resolve(options);
+        spec.scenes = scenes.empty() ? StringArray(experiment, "scenes", file) : scenes;
+    } else {
+        spec.replay = OpenReplay(replayPath, allowChanges);
+        spec.config = ResolveReplayConfig(*spec.replay, options, resolve, "fovrt experiment");
+        spec.scenes = {spec.config.scene.name};
+        if (experiment.contains("scenes"))
+            std::fprintf(stderr, "fovrt experiment: replay: experiment.scenes is ignored (the recording's scene '%s' "
+                                 "is rendered)\n", spec.config.scene.name.c_str());
     }
-    spec.scenes = scenes.empty() ? StringArray(experiment, "scenes", file) : scenes;
-    spec.variants = StringArray(experiment, "variants", file);
     if (const toml::node* frame = experiment.get("visual_frame")) {
         auto value = frame->value<int64_t>();
         if (!value || *value < -1) Fail("{}: experiment.visual_frame must be an integer ≥ -1", file);
         spec.visualFrame = int(*value);
     }
-    for (const std::string& variant : spec.variants)
-        FindDenoiserVariant(variant, file + ": experiment.variants");
-    spec.config.denoise.denoisers = spec.variants;
     return spec;
 }
 
@@ -146,6 +164,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                                spec.quick ? " (--quick)" : "");
     report.results = &results;
     nlohmann::json sceneRecords = nlohmann::json::array();
+    nlohmann::json replayRecord;  // the recording replayed, with what CheckReplayScene found
     std::string deviceDescription;
 
     Progress progress("experiment", int(spec.scenes.size()) * base.run.frames);
@@ -155,15 +174,20 @@ Results RunExperiment(const ExperimentSpec& spec) {
         std::vector<BufferPlan> plan = PlanRunMemory(config);
         EnforceMemoryBudget(plan, config.memoryBudget, "experiment");
 
-        FramePipeline pipeline(config);
+        FramePipeline pipeline(spec.replay ? ReplayPipelineConfig(config) : config);
+        std::optional<Replay> replay = spec.replay;
+        if (replay) {
+            CheckReplayScene(*replay, pipeline);
+            replayRecord = replay->ToJson();
+        }
+        FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
         DenoiserSet denoisers(config.denoise);
         deviceDescription = denoisers.DeviceDescription();
         ReferenceCache cache(config.reference.cacheDir);
         const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
         MetricsCollector collector(results);
         const FoveaRadius fovea = FoveaOf(config);
-        const int lastFrame = config.run.firstFrame + config.run.frames - 1;
-        const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : lastFrame;
+        const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
 
         SceneVisuals visuals;
         visuals.scene = sceneName;
@@ -176,11 +200,12 @@ Results RunExperiment(const ExperimentSpec& spec) {
         double renderMs = 0.0, referenceMs = 0.0;
         int referenceHits = 0;
 
+        RecordedFrame request;
         StereoFrame frame;
         std::vector<Plane<vec3>> outputs(denoisers.size());
-        for (int i = 0; i < config.run.frames; ++i) {
-            const uint32_t index = uint32_t(config.run.firstFrame + i);
-            pipeline.Render(index, frame);
+        while (sequence.Next(request)) {
+            const uint32_t index = request.request.frame;
+            pipeline.Render(request.request, frame);
             for (int eye = 0; eye < 2; ++eye) {
                 EyeFrame& e = frame.eyes[size_t(eye)];
                 renderMs += e.renderMs;
@@ -271,6 +296,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["complete"] = true;
     manifest["experiment_file"] = spec.file.string();
     manifest["quick"] = spec.quick;
+    if (spec.replay) manifest["replay"] = replayRecord;
     manifest["scenes"] = sceneRecords;
     manifest["variants"] = spec.variants;
     manifest["build"] = BuildInfoJson();

@@ -3,14 +3,17 @@
 // denoiser variant, and scores each output per region (whole, fovea, periphery, eccentricity
 // bands) against the reference. Writes a per-frame CSV per scene, a summary JSON, the thesis-style
 // table on stdout, a self-contained HTML report and a manifest that records everything needed to
-// rerun. Same config and seed -> identical CSV.
+// rerun. Same config and seed -> identical CSV. With a session recording (--replay), the frames
+// are the recording's (cameras, gaze, scene time) instead of the scene's camera path.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/config.h"
+#include "app/replay.h"
 #include "app/report.h"
 
 namespace fovrt {
@@ -25,11 +28,16 @@ struct ExperimentSpec {
     std::vector<std::string> variants;  // becomes denoise.denoisers; "svgf" is the baseline
     int visualFrame = -1;               // frame shown in the report's images; -1 = the last
     bool quick = false;
+    // --replay: every frame comes from this recording, whose scene is the only one; the config is
+    // the recording's with the file and --set on top (app/replay.h says which keys may differ).
+    std::optional<Replay> replay;
 };
 
 // `scenes`: when non-empty, replaces the file's experiment.scenes (e.g. `--scene veach-ajar`).
+// `replayPath`: when non-empty, the recording to replay (`allowChanges`: its --allow-changes).
 ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
-                              const std::vector<std::string>& scenes = {});
+                              const std::vector<std::string>& scenes = {},
+                              const std::string& replayPath = "", bool allowChanges = false);
 
 // Runs the experiment and writes its outputs under spec.config.output.dir. Returns the results.
 Results RunExperiment(const ExperimentSpec& spec);
