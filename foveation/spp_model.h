@@ -65,6 +65,8 @@ struct FoveationParams {
     // Fixed ray budget: total samples per eye per frame (0 = none). Any model's map is scaled and
     // dithered to it; clamped to the feasible [W*H, kMaxSpp*W*H].
     int64_t rayBudget = 0;
+
+    bool operator==(const FoveationParams&) const = default;
 };
 
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and

@@ -40,7 +40,7 @@ vec2 GazePixel(const EyeCamera& eye, const vec3& gazeHead);
 
 // Parameters of every source, as loaded from the [gaze] config table (defaults = thesis).
 struct GazeParams {
-    std::string source = "lissajous";  // lissajous | trace | static
+    std::string source = "lissajous";  // lissajous | trace | static | mouse (live windows only)
 
     // lissajous: p(t) = centre + offset + amplitude ⊙ sin(2π t frequency + phase).
     // units = "px": positions on a referenceWidth × referenceHeight image with the eye's FOV,

@@ -207,8 +207,8 @@ GazeSample TraceGaze::At(double timeSeconds) const {
 // ---- Factory ---------------------------------------------------------------------------------
 
 void ValidateGazeParams(const GazeParams& p) {
-    if (p.source != "lissajous" && p.source != "trace" && p.source != "static")
-        Fail("gaze.source = '{}' is not one of lissajous, trace, static", p.source);
+    if (p.source != "lissajous" && p.source != "trace" && p.source != "static" && p.source != "mouse")
+        Fail("gaze.source = '{}' is not one of lissajous, trace, static, mouse", p.source);
     if (p.units != "px" && p.units != "deg") Fail("gaze.units = '{}' is not one of px, deg", p.units);
     if (p.referenceWidth <= 0) Fail("gaze.reference_width = {} must be > 0", p.referenceWidth);
     if (p.referenceHeight <= 0) Fail("gaze.reference_height = {} must be > 0", p.referenceHeight);
@@ -229,6 +229,9 @@ void ValidateGazeParams(const GazeParams& p) {
 
 std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov& referenceFov) {
     ValidateGazeParams(params);
+    if (params.source == "mouse")
+        Fail("gaze.source = 'mouse' needs a window: use `fovrt preview` (headless runs take lissajous, "
+             "trace or static, or replay a recorded session with --replay)");
     if (params.source == "lissajous") return std::make_unique<LissajousGaze>(params, referenceFov);
     if (params.source == "static") return std::make_unique<StaticGaze>(params.yawDeg, params.pitchDeg);
     return std::make_unique<TraceGaze>(LoadGazeTraceCsv(params.tracePath), params.traceStartMs);

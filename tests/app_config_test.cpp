@@ -151,7 +151,7 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     fails({"foveation.model=gaussian"}, "foveation.model");
     fails({"foveation.peripheral_deg=1"}, "foveation.peripheral_deg");
     fails({"foveation.ray_budget=10"}, "foveation.ray_budget");
-    fails({"gaze.source=mouse"}, "gaze.source");
+    fails({"gaze.source=eyelink"}, "gaze.source");
     fails({"gaze.source=trace"}, "gaze.trace_path");
     fails({"denoise.precision=fp64"}, "denoise.precision");
     fails({"denoise.device=gpu0"}, "denoise.device");

@@ -46,9 +46,6 @@ double MsSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
-std::string FrameStem(uint32_t frame, int eye) {
-    return fmt::format("f{:05d}_{}", frame, kEyeNames[eye]);
-}
 
 // Per-frame working memory: two eyes of FrameInputs plus the spp maps.
 size_t FrameInputsBytes(const RunConfig& config) {
@@ -192,7 +189,7 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
             eyeRecord["samples"] = samples;
 
             auto writeStart = std::chrono::steady_clock::now();
-            std::string stem = FrameStem(index, eye);
+            std::string stem = FrameOutputStem(index, eye);
             if (config.output.writeInputs)
                 WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap,
                                     PlaneLayers(pipeline.GetRenderer().Visibility(eye)));

@@ -13,5 +13,6 @@ void RegisterExperimentCommand(CLI::App& app);
 void RegisterReferenceCommand(CLI::App& app);
 void RegisterBenchCommand(CLI::App& app);
 void RegisterMemoryCommand(CLI::App& app);
+void RegisterPreviewCommand(CLI::App& app);  // src/preview
 
 }  // namespace fovrt

@@ -346,7 +346,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
               fmt::format("{} must be > foveation.foveal_deg = {}", f.peripheralDeg, f.fovealDeg));
 
     GazeConfig& g = c.gaze;
-    r.String("gaze.source", g.source, {"lissajous", "trace", "static"});
+    r.String("gaze.source", g.source, {"lissajous", "trace", "static", "mouse"});
     r.String("gaze.units", g.units, {"px", "deg"});
     r.Vec2("gaze.amplitude", g.amplitude);
     r.Vec2("gaze.frequency_hz", g.frequencyHz);

@@ -21,7 +21,7 @@
 //                radius_px = 200, radius_reference_width = 1280, radius_deg = 0, spp_max = 8,
 //                spp_min = 1, foveal_deg = 5, peripheral_deg = 30, omega0_deg = 1/48,
 //                mar_slope = 0.022, uniform_spp = 1, ray_budget = 0 (samples per eye per frame)
-//   [gaze]       source = "lissajous"|"trace"|"static", units = "px"|"deg",
+//   [gaze]       source = "lissajous"|"trace"|"static"|"mouse" (preview only), units = "px"|"deg",
 //                amplitude = [640, 360], frequency_hz = [0.4, 0.5], phase_deg = [90, 0],
 //                offset = [0, 0], reference_width = 1280, reference_height = 720,
 //                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 #include "denoise/variants.h"
 
@@ -20,6 +22,10 @@ bool AnyDenoiserNeedsGradients(const DenoiseConfig& denoise) {
 }
 
 }  // namespace
+
+std::string FrameOutputStem(uint32_t frame, int eye) {
+    return fmt::format("f{:05d}_{}", frame, eye == 0 ? "left" : "right");
+}
 
 Fov ResolveFov(const RunConfig& config, const Scene& scene) {
     if (config.camera.fovDeg) {
@@ -46,9 +52,14 @@ FramePipeline::FramePipeline(const RunConfig& config)
     gaze_ = CreateGazeSource(config.gaze, ResolveFov(config, scene_));
 }
 
-StereoRig FramePipeline::RigAt(uint32_t frame) const {
+void FramePipeline::SetFoveation(const FoveationParams& params) {
+    sppModel_ = CreateSppModel(params);
+    config_.foveation = params;
+}
+
+StereoRig FramePipeline::RigAtTime(double timeSeconds) const {
     StereoRig rig;
-    rig.head = scene_.HeadAt(float(TimeOf(frame)));
+    rig.head = scene_.HeadAt(float(timeSeconds));
     rig.ipd = config_.camera.ipd;
     rig.fov[0] = rig.fov[1] = ResolveFov(config_, scene_);
     rig.width = config_.camera.width;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "app/config.h"
 #include "core/frame_inputs.h"
@@ -47,7 +48,8 @@ public:
     double TimeOf(uint32_t frame) const { return double(frame) / double(scene_.frameRate); }
 
     // The stereo rig (head pose from the scene's camera path, IPD and FOV from the config).
-    StereoRig RigAt(uint32_t frame) const;
+    StereoRig RigAt(uint32_t frame) const { return RigAtTime(TimeOf(frame)); }
+    StereoRig RigAtTime(double timeSeconds) const;
 
     // The headless request for `frame`: time frame / fps, eyes from RigAt, the gaze source.
     FrameRequest RequestAt(uint32_t frame) const;
@@ -57,6 +59,9 @@ public:
     // treated as a camera cut (cameraCut = true, no history may be reused).
     void Render(const FrameRequest& request, StereoFrame& out);
     void Render(uint32_t frame, StereoFrame& out) { Render(RequestAt(frame), out); }
+    // Live changes: a new spp model (foveation panel), gradient samples for the denoiser shown.
+    void SetFoveation(const FoveationParams& params);
+    void SetGradientSamples(bool on) { renderer_->SetGradientSamples(on); }
     // The next Render() is a camera cut (a teleport, a denoiser switch, a resumed recording).
     void Cut() { hasPrevious_ = false; }
 
@@ -73,6 +78,9 @@ private:
     uint32_t previousFrame_ = 0;
     std::array<EyeCamera, 2> previousCameras_;
 };
+
+// The file stem of a frame's per-eye outputs: "f00012_left" (run, preview, replays).
+std::string FrameOutputStem(uint32_t frame, int eye);
 
 // The per-eye FOV the config asks for, or the symmetric default from the scene.
 Fov ResolveFov(const RunConfig& config, const Scene& scene);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
     fovrt::RegisterConfigCommand(app);
     fovrt::RegisterBenchCommand(app);
     fovrt::RegisterMemoryCommand(app);
+    fovrt::RegisterPreviewCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

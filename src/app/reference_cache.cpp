@@ -73,26 +73,32 @@ std::filesystem::path ReferenceCache::PathOf(const ReferenceKey& key) const {
     return dir_ / fmt::format("f{:05d}-e{}-{}spp-{}.exr", key.frame, key.eye, key.spp, key.Hex());
 }
 
-Plane<vec3> ReferenceCache::GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit) {
+std::optional<Plane<vec3>> ReferenceCache::Find(const ReferenceKey& key) {
     const std::string hex = key.Hex();
     for (const auto& [recentHex, image] : recent_)
-        if (recentHex == hex) {
-            if (hit) *hit = true;
-            return image;
-        }
-    std::filesystem::path path = PathOf(key);
-    Plane<vec3> image;
-    if (std::filesystem::exists(path)) {
+        if (recentHex == hex) return image;
+    const std::filesystem::path path = PathOf(key);
+    if (!std::filesystem::exists(path)) return std::nullopt;
+    Remember(hex, ReadRgbExr(path));
+    return recent_.back().second;
+}
+
+Plane<vec3> ReferenceCache::GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit) {
+    if (std::optional<Plane<vec3>> cached = Find(key)) {
         if (hit) *hit = true;
-        image = ReadRgbExr(path);
-    } else {
-        if (hit) *hit = false;
-        renderer.RenderReference(key.eye, key.camera, key.spp, image);
-        WriteRgbExr(path, image);
+        return std::move(*cached);
     }
-    if (recent_.size() == kInMemoryEntries) recent_.erase(recent_.begin());
-    recent_.emplace_back(hex, image);
+    if (hit) *hit = false;
+    Plane<vec3> image;
+    renderer.RenderReference(key.eye, key.camera, key.spp, image);
+    WriteRgbExr(PathOf(key), image);
+    Remember(key.Hex(), image);
     return image;
+}
+
+void ReferenceCache::Remember(const std::string& hex, Plane<vec3> image) {
+    if (recent_.size() == kInMemoryEntries) recent_.erase(recent_.begin());
+    recent_.emplace_back(hex, std::move(image));
 }
 
 }  // namespace fovrt

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,8 +49,13 @@ public:
     // stores it. `hit` (optional) says which happened. The most recent entries also stay in
     // memory, so a static scene's reference is read from disk once per eye, not once per frame.
     Plane<vec3> GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit = nullptr);
+    // The cached image, or nullopt when none was rendered yet (never renders: a live session
+    // shows its error view only where `fovrt reference` or an experiment left a reference).
+    std::optional<Plane<vec3>> Find(const ReferenceKey& key);
 
 private:
+    void Remember(const std::string& hex, Plane<vec3> image);
+
     static constexpr size_t kInMemoryEntries = 2;  // one per eye
     std::filesystem::path dir_;
     std::vector<std::pair<std::string, Plane<vec3>>> recent_;  // most recent last

@@ -180,6 +180,7 @@ public:
     }
 
     const SceneState& State() const override { return state_; }
+    void SetGradientSamples(bool on) override { settings_.gradientSamples = on; }
     const Scene& GetScene() const override { return scene_; }
 
     void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,

@@ -54,6 +54,9 @@ public:
     // The headless clock: time = frame / frameRate.
     void SetFrame(uint32_t frame) { SetFrame(frame, float(frame) / GetScene().frameRate); }
     virtual const SceneState& State() const = 0;
+    // Turns A-SVGF gradient samples on or off (a live session switching denoisers); they start
+    // on the frame after the next, once a previous frame's surface samples exist.
+    virtual void SetGradientSamples(bool on) = 0;
     virtual const Scene& GetScene() const = 0;
 
     // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's

@@ -1,0 +1,260 @@
+#include "live/live_loop.h"
+
+#include <cstdio>
+
+#include "app/reference_cache.h"
+#include "core/error.h"
+#include "denoise/denoiser_factory.h"
+#include "denoise/variants.h"
+#include "metrics/regions.h"
+
+namespace fovrt {
+namespace {
+
+double MsBetween(LiveClock::time_point a, LiveClock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+void AddTimings(const std::vector<PassTiming>& eye, std::vector<PassTiming>& sum) {
+    for (const PassTiming& t : eye) {
+        auto it = std::find_if(sum.begin(), sum.end(), [&](const PassTiming& s) { return s.pass == t.pass; });
+        if (it == sum.end()) sum.push_back(t);
+        else it->ms += t.ms;
+    }
+}
+
+}  // namespace
+
+float FoveaOutlineRadiusPixels(const FoveationParams& p, const EyeCamera& camera) {
+    const float ppd = camera.PixelsPerDegree();
+    if (p.model == "disc")
+        return p.radiusDeg > 0.0f ? p.radiusDeg * ppd
+                                  : p.radiusPx * float(camera.width()) / float(p.radiusReferenceWidth);
+    if (p.model == "linear") return p.fovealDeg * ppd;
+    const FoveaRadius metricFovea;
+    return metricFovea.unit == FoveaRadius::Unit::kPixels
+               ? metricFovea.value * float(camera.width()) / 1280.0f
+               : metricFovea.value * ppd;
+}
+
+namespace {
+// The pipeline's own gaze source is never asked in a live session (the FrameSource gives the
+// gaze); the mouse, which only a window has, is stood in for by a static one.
+RunConfig PipelineConfig(RunConfig config) {
+    if (config.gaze.source == "mouse") config.gaze.source = "static";
+    return config;
+}
+}  // namespace
+
+LiveLoop::LiveLoop(const RunConfig& config, VulkanContext* context, FrameSource& source)
+    : config_(config), context_(context), source_(source), pipeline_(PipelineConfig(config)) {
+    if (config.denoise.denoisers.empty()) Fail("denoise.denoisers: a live session needs one denoiser");
+    controls_.denoiser = config.denoise.denoisers.front();
+    controls_.foveation = config.foveation;
+    runningFoveation_ = config.foveation;
+    ApplyDenoiser(controls_.denoiser);
+}
+
+LiveLoop::~LiveLoop() { Stop(); }
+
+void LiveLoop::Start(uint64_t maxFrames) {
+    maxFrames_ = maxFrames;
+    thread_ = std::thread([this] { RenderThread(); });
+}
+
+void LiveLoop::Stop() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+}
+
+bool LiveLoop::Finished() const { return finished_.load(); }
+
+std::optional<std::string> LiveLoop::Error() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return error_;
+}
+
+std::shared_ptr<const LiveFrame> LiveLoop::Latest() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return latest_;
+}
+
+LiveControls LiveLoop::Controls() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return controls_;
+}
+
+void LiveLoop::SetDenoiser(const std::string& name) {
+    FindDenoiserVariant(name, "denoiser");  // an unknown name fails here, not on the render thread
+    std::lock_guard<std::mutex> lock(mutex_);
+    controls_.denoiser = name;
+}
+
+void LiveLoop::SetView(const std::string& name) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    controls_.view = name;
+}
+
+void LiveLoop::SetFoveation(const FoveationParams& params) {
+    ValidateFoveationParams(params);
+    std::lock_guard<std::mutex> lock(mutex_);
+    controls_.foveation = params;
+}
+
+void LiveLoop::SetPaused(bool paused) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        controls_.paused = paused;
+    }
+    wake_.notify_all();
+}
+
+void LiveLoop::Step() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++pendingSteps_;
+    }
+    wake_.notify_all();
+}
+
+void LiveLoop::SetSpeed(float speed) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    controls_.speed = std::max(0.0f, speed);
+}
+
+std::vector<std::string> LiveLoop::ViewNames() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return viewNames_;
+}
+
+std::vector<BufferPlan> LiveLoop::DenoiserMemory() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return memory_;
+}
+
+void LiveLoop::OnFrameStart(std::function<void(const SourcedFrame&)> callback) {
+    onFrameStart_ = std::move(callback);
+}
+
+void LiveLoop::OnFrameDone(std::function<void(const LiveFrame&)> callback) {
+    onFrameDone_ = std::move(callback);
+}
+
+void LiveLoop::ApplyDenoiser(const std::string& name) {
+    const DenoiserVariant& variant = FindDenoiserVariant(name, "denoiser");
+    const DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
+    for (auto& d : denoisers_) d = CreateDenoiser(name, config_.denoise.device, params, context_);
+    pipeline_.SetGradientSamples(variant.needsGradientSamples);
+    pipeline_.Cut();  // the new histories start from this frame; motion vectors restart too
+    if (!runningDenoiser_.empty())
+        std::fprintf(stderr, "fovrt preview: denoiser %s -> %s (histories reset)\n",
+                     runningDenoiser_.c_str(), name.c_str());
+    runningDenoiser_ = name;
+    std::vector<BufferPlan> memory;
+    for (int eye = 0; eye < 2; ++eye)
+        for (BufferPlan b : PlanDenoiserMemory(name, config_.camera.width, config_.camera.height, params)) {
+            b.name = (eye == 0 ? "left." : "right.") + b.name;
+            memory.push_back(std::move(b));
+        }
+    std::lock_guard<std::mutex> lock(mutex_);
+    viewNames_ = ViewNamesFor(*denoisers_[0]);
+    memory_ = std::move(memory);
+}
+
+void LiveLoop::ApplyFoveation(const FoveationParams& params) {
+    pipeline_.SetFoveation(params);
+    runningFoveation_ = params;
+}
+
+void LiveLoop::RenderThread() {
+    try {
+        while (true) {
+            LiveControls controls;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                wake_.wait(lock, [&] { return stop_ || !controls_.paused || pendingSteps_ > 0; });
+                if (stop_) break;
+                if (controls_.paused) --pendingSteps_;
+                controls = controls_;
+            }
+            RenderOne(controls);
+            if (maxFrames_ && rendered_ >= maxFrames_) break;
+        }
+    } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = e.what();
+    }
+    finished_ = true;
+}
+
+void LiveLoop::RenderOne(const LiveControls& controls) {
+    if (controls.denoiser != runningDenoiser_) ApplyDenoiser(controls.denoiser);
+    if (!(controls.foveation == runningFoveation_)) ApplyFoveation(controls.foveation);
+
+    auto frame = std::make_shared<LiveFrame>();
+    const auto start = LiveClock::now();
+    frame->source = source_.Next(frameIndex_, sceneTime_);
+    if (onFrameStart_) onFrameStart_(frame->source);
+
+    const RenderStats before = pipeline_.GetRenderer().Stats();
+    pipeline_.Render(frame->source.request, frame->stereo);
+    frame->timings.rays = pipeline_.GetRenderer().Stats().Rays() - before.Rays();
+
+    for (int eye = 0; eye < 2; ++eye) {
+        EyeFrame& e = frame->stereo.eyes[size_t(eye)];
+        frame->timings.sppMs += e.sppMs;
+        frame->timings.traceMs += e.renderMs;
+        const auto denoiseStart = LiveClock::now();
+        denoisers_[size_t(eye)]->Denoise(e.inputs, frame->denoised[size_t(eye)]);
+        frame->timings.denoiseMs += MsBetween(denoiseStart, LiveClock::now());
+        AddTimings(denoisers_[size_t(eye)]->LastTimings(), frame->timings.passes);
+        frame->gazePixel[size_t(eye)] = e.gazePixel;
+        frame->foveaRadiusPixels[size_t(eye)] = FoveaOutlineRadiusPixels(runningFoveation_, e.camera);
+    }
+
+    const auto viewStart = LiveClock::now();
+    std::array<std::optional<Plane<vec3>>, 2> references;
+    if (controls.view == "error") {
+        if (!referenceCache_) {
+            referenceCache_ = std::make_unique<ReferenceCache>(config_.reference.cacheDir);
+            fingerprint_ = SceneFingerprint(pipeline_.GetScene());
+        }
+        for (int eye = 0; eye < 2; ++eye) {
+            const EyeFrame& e = frame->stereo.eyes[size_t(eye)];
+            references[size_t(eye)] = referenceCache_->Find(MakeReferenceKey(
+                pipeline_.GetScene(), fingerprint_, frame->stereo.frame, frame->stereo.timeSeconds, eye,
+                e.camera, config_.reference.spp, config_.run.maxDepth, config_.run.seed));
+        }
+    }
+    frame->view = controls.view;
+    for (int eye = 0; eye < 2; ++eye) {
+        const EyeFrame& e = frame->stereo.eyes[size_t(eye)];
+        ViewSources sources{&e.inputs, &e.sppMap, &frame->denoised[size_t(eye)],
+                            references[size_t(eye)] ? &*references[size_t(eye)] : nullptr,
+                            denoisers_[size_t(eye)].get()};
+        if (!BuildView(controls.view, sources, frame->shown[size_t(eye)])) {
+            BuildView("denoised", sources, frame->shown[size_t(eye)]);
+            frame->shown[size_t(eye)].legend =
+                controls.view == "error" ? "no cached reference for this view: showing denoised (run `fovrt reference`)"
+                                         : "view '" + controls.view + "' not available: showing denoised";
+        }
+    }
+    frame->timings.viewMs = MsBetween(viewStart, LiveClock::now());
+    frame->denoiser = runningDenoiser_;
+    frame->finishedAt = LiveClock::now();
+    frame->timings.frameMs = MsBetween(start, frame->finishedAt);
+    frame->number = rendered_ + 1;
+    if (onFrameDone_) onFrameDone_(*frame);
+    ++rendered_;
+
+    ++frameIndex_;
+    sceneTime_ += double(controls.speed) / double(pipeline_.FramesPerSecond());
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_ = std::move(frame);
+}
+
+}  // namespace fovrt

@@ -1,0 +1,177 @@
+#include "preview/preview_panel.h"
+
+#include <algorithm>
+#include <vector>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "denoise/variants.h"
+
+namespace fovrt {
+namespace {
+
+bool Combo(const char* label, const std::vector<std::string>& items, std::string& current) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, current.c_str())) {
+        for (const std::string& item : items) {
+            const bool selected = item == current;
+            if (ImGui::Selectable(item.c_str(), selected)) {
+                changed = item != current;
+                current = item;
+            }
+            if (selected) ImGui::SetItemDefaultFocus();
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+void Text(const std::string& s) { ImGui::TextUnformatted(s.c_str()); }
+
+std::string Bytes(size_t b) {
+    return b >= (1u << 20) ? fmt::format("{:.2f} MiB", double(b) / double(1u << 20))
+                           : fmt::format("{:.1f} KiB", double(b) / 1024.0);
+}
+
+bool FoveationControls(FoveationParams& f) {
+    bool changed = Combo("model", {"disc", "linear", "acuity", "uniform"}, f.model);
+    if (f.model == "disc") {
+        changed |= ImGui::SliderInt("spp inside", &f.sppInside, 1, 16);
+        changed |= ImGui::SliderInt("spp outside", &f.sppOutside, 1, 16);
+        changed |= ImGui::SliderFloat("radius px @1280", &f.radiusPx, 10.0f, 640.0f, "%.0f");
+    } else if (f.model == "linear" || f.model == "acuity") {
+        changed |= ImGui::SliderInt("spp max", &f.sppMax, 1, 16);
+        changed |= ImGui::SliderInt("spp min", &f.sppMin, 1, 16);
+        if (f.model == "linear") {
+            changed |= ImGui::SliderFloat("foveal deg", &f.fovealDeg, 0.5f, 30.0f, "%.1f");
+            changed |= ImGui::SliderFloat("peripheral deg", &f.peripheralDeg, 1.0f, 90.0f, "%.1f");
+        } else {
+            changed |= ImGui::SliderFloat("MAR slope", &f.marSlope, 0.005f, 0.05f, "%.4f");
+        }
+    } else {
+        changed |= ImGui::SliderInt("spp", &f.uniformSpp, 1, 16);
+    }
+    int budget = int(f.rayBudget);
+    if (ImGui::InputInt("ray budget (0: none)", &budget, 1000, 10000)) {
+        f.rayBudget = std::max(0, budget);
+        changed = true;
+    }
+    return changed;
+}
+
+}  // namespace
+
+void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStats& stats,
+                      const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
+                      PanelState& state) {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    if (!ImGui::Begin("fovrt preview")) {
+        ImGui::End();
+        return;
+    }
+    LiveControls controls = loop.Controls();
+
+    if (ImGui::CollapsingHeader("Denoiser and view", ImGuiTreeNodeFlags_DefaultOpen)) {
+        std::string denoiser = controls.denoiser;
+        if (Combo("denoiser", DenoiserNames(), denoiser)) loop.SetDenoiser(denoiser);
+        std::string view = controls.view;
+        if (Combo("view", loop.ViewNames(), view)) loop.SetView(view);
+        if (shown) ImGui::TextWrapped("%s", shown->shown[0].legend.c_str());
+        int layout = int(state.display.layout);
+        ImGui::RadioButton("both eyes", &layout, int(DisplayLayout::SideBySide));
+        ImGui::SameLine();
+        ImGui::RadioButton("left", &layout, int(DisplayLayout::LeftEye));
+        ImGui::SameLine();
+        ImGui::RadioButton("right", &layout, int(DisplayLayout::RightEye));
+        state.display.layout = DisplayLayout(layout);
+        ImGui::Checkbox("gaze + fovea overlay (O)", &state.display.overlay);
+        ImGui::SliderFloat("exposure (stops)", &state.display.exposure, -6.0f, 6.0f, "%.1f");
+    }
+    if (ImGui::CollapsingHeader("Foveation")) {
+        if (FoveationControls(controls.foveation)) {
+            try {
+                loop.SetFoveation(controls.foveation);
+            } catch (const std::exception&) {
+                // an inconsistent pair (e.g. spp min > max) while dragging: keep the running model
+            }
+        }
+    }
+    if (ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
+        bool mouse = source.MouseGaze();
+        if (ImGui::Checkbox("mouse is the gaze (G)", &mouse)) source.UseMouseGaze(mouse);
+        const bool free = source.FreeHead().has_value();
+        Text(free ? "head: free camera (WASD, Q/E, right-drag)" : "head: the scene's camera path");
+        if (free && ImGui::Button("back to the camera path (C)")) state.requestReturnToPath = true;
+    }
+    if (ImGui::CollapsingHeader("Playback", ImGuiTreeNodeFlags_DefaultOpen)) {
+        bool paused = controls.paused;
+        if (ImGui::Checkbox("pause (space)", &paused)) loop.SetPaused(paused);
+        ImGui::SameLine();
+        if (ImGui::Button("step (N)")) loop.Step();
+        float speed = controls.speed;
+        if (ImGui::SliderFloat("speed", &speed, 0.0f, 4.0f, "%.2fx")) loop.SetSpeed(speed);
+        if (ImGui::Button("save frame (F12)")) state.requestCapture = true;
+    }
+    if (ImGui::CollapsingHeader("Timing", ImGuiTreeNodeFlags_DefaultOpen) && shown) {
+        const LiveTimings& t = shown->timings;
+        Text(fmt::format("frame {}  {:.1f} frames/s  (window {:.0f} Hz, {})", shown->number,
+                         stats.FramesPerSecond(), stats.DisplayFramesPerSecond(), presentMode));
+        const auto& history = stats.History();
+        if (!history.empty())
+            Text(fmt::format("gaze-to-photon {:.1f} ms (median {:.1f}, p95 {:.1f})", history.back().latencyMs,
+                             stats.LatencyPercentile(0.5), stats.LatencyPercentile(0.95)));
+        Text(fmt::format("spp {:.1f}  trace {:.1f}  denoise {:.1f}  view {:.1f} ms", t.sppMs, t.traceMs,
+                         t.denoiseMs, t.viewMs));
+        if (!history.empty()) Text(fmt::format("present {:.1f} ms", history.back().presentMs));
+        Text(fmt::format("{:.2f} Mrays/s ({} rays)", t.RaysPerSecond() * 1e-6, t.rays));
+        std::vector<float> frameMs, denoiseMs;
+        for (const auto& f : history) {
+            frameMs.push_back(float(f.timings.frameMs));
+            denoiseMs.push_back(float(f.timings.denoiseMs));
+        }
+        if (!frameMs.empty()) {
+            ImGui::PlotLines("frame ms", frameMs.data(), int(frameMs.size()), 0, nullptr, 0.0f, FLT_MAX,
+                             ImVec2(0, 40));
+            ImGui::PlotLines("denoise ms", denoiseMs.data(), int(denoiseMs.size()), 0, nullptr, 0.0f,
+                             FLT_MAX, ImVec2(0, 40));
+        }
+        if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_SizingStretchProp)) {
+            for (const PassTiming& p : t.passes) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                Text(p.pass);
+                ImGui::TableNextColumn();
+                Text(fmt::format("{:.3f} ms", p.ms));
+            }
+            ImGui::EndTable();
+        }
+    }
+    if (ImGui::CollapsingHeader("Memory")) {
+        const std::vector<BufferPlan> memory = loop.DenoiserMemory();
+        size_t total = 0;
+        for (const BufferPlan& b : memory) total += b.bytes;
+        const RunConfig& config = loop.Config();
+        const double pixels = 2.0 * config.camera.width * config.camera.height;
+        Text(fmt::format("{}: {} for both eyes, {:.1f} B/pixel", controls.denoiser, Bytes(total),
+                         double(total) / pixels));
+        if (ImGui::BeginTable("memory", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_ScrollY,
+                              ImVec2(0, 160))) {
+            for (const BufferPlan& b : memory) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                Text(b.name);
+                ImGui::TableNextColumn();
+                Text(Bytes(b.bytes));
+                ImGui::TableNextColumn();
+                Text(b.history ? "history" : "scratch");
+            }
+            ImGui::EndTable();
+        }
+    }
+    ImGui::End();
+}
+
+}  // namespace fovrt

@@ -1,0 +1,25 @@
+// The preview's ImGui panel: the live controls (denoiser, view, layout and overlay, foveation,
+// gaze, head, pause / step / speed) and what the session measures (frame time split, per-pass
+// plot, latency, rays per second, the running denoiser's memory table).
+#pragma once
+
+#include <memory>
+
+#include "live/display_compose.h"
+#include "live/live_loop.h"
+#include "live/live_stats.h"
+#include "preview/preview_source.h"
+
+namespace fovrt {
+
+struct PanelState {
+    DisplaySettings display;
+    bool requestCapture = false;  // "save" pressed (as F12)
+    bool requestReturnToPath = false;
+};
+
+void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStats& stats,
+                      const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
+                      PanelState& state);
+
+}  // namespace fovrt

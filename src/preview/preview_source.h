@@ -1,0 +1,66 @@
+// PreviewFrameSource: the desktop preview's FrameSource. The head pose is the scene's camera path
+// or a free-flying camera (WASD + right-drag); the gaze is the mouse pointer over an eye image or
+// the configured synthetic source (Lissajous, trace, static). The window thread feeds the pointer
+// and the fly camera; the render thread takes one request per frame.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "app/config.h"
+#include "app/frame_pipeline.h"
+#include "live/frame_source.h"
+
+namespace fovrt {
+
+// A free-flying head: position plus yaw (about +Y) and pitch (about the rotated +X), radians.
+struct FlyCamera {
+    vec3 position = vec3(0.0f);
+    float yaw = 0.0f;
+    float pitch = 0.0f;
+
+    Pose ToPose() const;
+    static FlyCamera FromPose(const Pose& pose);
+    // Moves by `local` metres in the head's own frame (+X right, +Y up, -Z forward).
+    void Move(const vec3& local);
+    void Turn(float dYaw, float dPitch);  // pitch clamped short of straight up/down
+};
+
+class PreviewFrameSource : public FrameSource {
+public:
+    explicit PreviewFrameSource(const RunConfig& config);
+    // The pipeline gives the scene's camera path and the rig (FOV, IPD, resolution).
+    void Bind(const FramePipeline& pipeline);
+
+    // Gaze: the mouse (true) or the configured synthetic source (false; not offered when the
+    // configured source is the mouse itself: the fallback is then static straight ahead).
+    void UseMouseGaze(bool on);
+    bool MouseGaze() const;
+    // The pointer's gaze, head space, polled at `takenAt` (the window polls it every iteration).
+    void SetPointerGaze(const vec3& directionHead, LiveClock::time_point takenAt);
+
+    // Head: the scene's camera path (nullopt) or a free camera.
+    void SetFreeHead(std::optional<FlyCamera> camera);
+    std::optional<FlyCamera> FreeHead() const;
+    // The head pose a frame at `sceneTime` would use now (to start a fly camera where the path is).
+    Pose HeadAt(double sceneTime) const;
+    // The eyes of the latest request (the window maps the pointer through them).
+    std::array<EyeCamera, 2> LatestEyes() const;
+
+    SourcedFrame Next(uint32_t frame, double sceneTime) override;
+
+private:
+    const FramePipeline* pipeline_ = nullptr;
+    std::unique_ptr<GazeSource> synthetic_;
+    mutable std::mutex mutex_;
+    LiveClock::time_point start_;  // the mouse's clock starts with the session
+    bool mouse_ = false;
+    TimedGaze pointer_;
+    std::vector<TimedGaze> pointerSamples_;  // since the previous frame
+    std::optional<FlyCamera> free_;
+    std::array<EyeCamera, 2> latestEyes_;
+};
+
+}  // namespace fovrt

@@ -1,0 +1,126 @@
+// LiveLoop (src/live/live_loop.h) without a window: frames come out in order on the render
+// thread, pause holds and step renders exactly one frame, a denoiser switch starts from empty
+// histories (the first frame after it equals a fresh denoiser's), and a failure on the render
+// thread is reported instead of lost.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "app/config.h"
+#include "app/frame_pipeline.h"
+#include "denoise/denoiser_factory.h"
+#include "live/live_loop.h"
+
+using namespace fovrt;
+
+namespace {
+
+RunConfig SmallConfig() {
+    RunConfig config = DefaultConfig();
+    config.scene.name = "cornell";
+    config.camera.width = 32;
+    config.camera.height = 18;
+    config.gaze.source = "static";
+    config.denoise.device = "cpu";
+    config.denoise.denoisers = {"svgf"};
+    return config;
+}
+
+// The scene's camera path and the static gaze, as a headless run would take them.
+class PathSource : public FrameSource {
+public:
+    explicit PathSource(const RunConfig& config) : pipeline_(config) {}
+    SourcedFrame Next(uint32_t frame, double) override {
+        if (failAt_ && frame == *failAt_) throw std::runtime_error("gaze tracker unplugged");
+        SourcedFrame f;
+        f.request = pipeline_.RequestAt(frame);
+        f.gazeTakenAt = LiveClock::now();
+        return f;
+    }
+    std::optional<uint32_t> failAt_;
+
+private:
+    FramePipeline pipeline_;
+};
+
+template <typename F>
+void WaitFor(F done) {  // a bound on a hang, not a timing assertion
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!done() && std::chrono::steady_clock::now() < give_up)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    REQUIRE(done());
+}
+
+}  // namespace
+
+TEST_CASE("live loop publishes every frame in order and stops after maxFrames", "[live]") {
+    const RunConfig config = SmallConfig();
+    PathSource source(config);
+    LiveLoop loop(config, nullptr, source);
+    std::vector<uint64_t> seen;
+    loop.OnFrameDone([&](const LiveFrame& f) { seen.push_back(f.number); });
+    loop.Start(4);
+    WaitFor([&] { return loop.Finished(); });
+    CHECK_FALSE(loop.Error());
+    CHECK(seen == std::vector<uint64_t>{1, 2, 3, 4});
+    const auto latest = loop.Latest();
+    REQUIRE(latest);
+    CHECK(latest->number == 4);
+    CHECK(latest->stereo.frame == 3);
+    CHECK(latest->shown[0].rgb.width() == 32);
+    CHECK(latest->timings.rays > 0);
+}
+
+TEST_CASE("live loop: pause holds, step renders exactly one frame", "[live]") {
+    const RunConfig config = SmallConfig();
+    PathSource source(config);
+    LiveLoop loop(config, nullptr, source);
+    loop.SetPaused(true);
+    loop.Start();
+    loop.Step();
+    WaitFor([&] { return loop.FramesRendered() == 1; });
+    loop.Step();
+    loop.Step();
+    WaitFor([&] { return loop.FramesRendered() == 3; });
+    loop.Stop();
+    CHECK(loop.FramesRendered() == 3);
+}
+
+TEST_CASE("live loop: a denoiser switch starts from empty histories", "[live]") {
+    const RunConfig config = SmallConfig();
+    PathSource source(config);
+    LiveLoop loop(config, nullptr, source);
+    loop.SetPaused(true);
+    loop.Start();
+    for (int i = 0; i < 3; ++i) loop.Step();
+    WaitFor([&] { return loop.FramesRendered() == 3; });
+    loop.SetDenoiser("two-history");
+    loop.Step();
+    WaitFor([&] { return loop.FramesRendered() == 4; });
+    const auto frame = loop.Latest();
+    REQUIRE(frame->denoiser == "two-history");
+    for (int eye = 0; eye < 2; ++eye) {
+        const FrameInputs& inputs = frame->stereo.eyes[size_t(eye)].inputs;
+        CHECK(inputs.cameraCut);  // motion vectors restart with the new histories
+        auto fresh = CreateDenoiser("two-history", "cpu", ParamsForDenoiser("two-history", config.denoise.params));
+        Plane<vec3> expected;
+        fresh->Denoise(inputs, expected);
+        CHECK(expected.vector() == frame->denoised[size_t(eye)].vector());
+    }
+    const auto views = loop.ViewNames();
+    CHECK(std::find(views.begin(), views.end(), "spp") != views.end());
+}
+
+TEST_CASE("live loop: a render-thread failure is reported", "[live]") {
+    const RunConfig config = SmallConfig();
+    PathSource source(config);
+    source.failAt_ = 2;
+    LiveLoop loop(config, nullptr, source);
+    loop.Start();
+    WaitFor([&] { return loop.Finished(); });
+    REQUIRE(loop.Error());
+    CHECK(loop.Error()->find("gaze tracker unplugged") != std::string::npos);
+    CHECK(loop.FramesRendered() == 2);
+}

@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# The desktop preview, for real, under Xvfb (run by ctest as preview_window): frames presented with
+# zero Vulkan validation messages; the X server's own screenshot of the window equals the app's
+# readback of its swapchain image and shows scene content in both eye halves; the pointer moves the
+# gaze (the spp map's bright disc follows it); the overlay toggle changes pixels; a key press
+# switches the denoiser (logged, histories reset); a recorded session replays headless to
+# bit-identical spp maps and noisy inputs; no display is one clear line.
+# Usage: preview_check.sh FOVRT IMAGE_PROBE WORK_DIR
+set -uo pipefail
+fovrt=$(realpath "$1"); probe=$(realpath "$2"); work=$(realpath -m "$3")
+for tool in xvfb-run xdotool xwd xwdtopnm pnmtopng; do
+  if ! command -v $tool >/dev/null; then
+    echo "SKIP: $tool is missing (scripts/install-deps.sh installs xvfb, xdotool, x11-apps, netpbm)"
+    exit 77
+  fi
+done
+if [[ -z "${FOVRT_IN_XVFB:-}" ]]; then
+  rm -rf "$work"; mkdir -p "$work"
+  # (-noreset: the server would reset, pointer and all, whenever its last client leaves.)
+  # No display at all: one line pointing to `fovrt run`, non-zero exit.
+  if env -u DISPLAY -u WAYLAND_DISPLAY "$fovrt" preview --frames 1 >/dev/null 2>"$work/nodisplay.txt"; then
+    echo "FAIL: preview without a display exited 0"; exit 1
+  fi
+  if [[ $(grep -c . "$work/nodisplay.txt") -eq 1 ]] && grep -q "fovrt run" "$work/nodisplay.txt"; then
+    echo "ok: no display: $(cat "$work/nodisplay.txt")"
+  else
+    echo "FAIL: no display: expected one line naming fovrt run, got: $(cat "$work/nodisplay.txt")"; exit 1
+  fi
+  exec env FOVRT_IN_XVFB=1 xvfb-run -a -s "-screen 0 1280x720x24 -noreset" bash "$0" "$@"
+fi
+
+cd "$work"
+passed=0; failed=0
+ok() { echo "ok: $1"; passed=$((passed + 1)); }
+bad() { echo "FAIL: $1"; failed=$((failed + 1)); }
+# Small eyes in a small window: 160×90 per eye, letterboxed 320×180 into each half of 640×360.
+small=(--window 640x360 --no-panel --set camera.width=160 --set camera.height=90 --set scene.name=cornell
+       --set run.seed=7)
+wait_for() {  # wait_for FILE PID: until FILE exists or PID is gone
+  for _ in $(seq 1 1200); do [[ -s $1 ]] && return 0; kill -0 "$2" 2>/dev/null || return 1; sleep 0.1; done
+  return 1
+}
+screenshot_root() { xwd -root -silent | xwdtopnm 2>/dev/null | pnmtopng > "$1"; }
+
+# 1. Frames presented, validation clean; the X server's pixels = the app's swapchain readback.
+FOVRT_VK_VALIDATION=1 "$fovrt" preview "${small[@]}" --set gaze.source=static --frames 5 \
+  --screenshot app.png --linger 3 2>err1.txt &
+pid=$!
+if wait_for app.png $pid; then
+  sleep 0.5; screenshot_root root.png
+  wait $pid; rc=$?
+  [[ $rc -eq 0 ]] && ok "5 frames presented, exit 0" || bad "exit $rc: $(tail -3 err1.txt)"
+  if grep -q "vulkan validation" err1.txt; then bad "validation messages: $(grep -m3 'vulkan validation' err1.txt)"
+  elif grep -q "0 Vulkan validation errors, 0 warnings" err1.txt; then ok "zero Vulkan validation messages"
+  else bad "validation was not on: $(tail -2 err1.txt)"; fi
+  diff=$("$probe" diff app.png root.png)
+  [[ $diff == "max=0 "* ]] && ok "X screenshot equals the swapchain readback ($diff)" || bad "screenshot differs: $diff"
+  for half in "0 90 320 270" "320 90 640 270"; do
+    std=$("$probe" stats app.png $half | sed 's/.*std=//')
+    awk -v s="$std" 'BEGIN { exit !(s > 10) }' && ok "eye half ($half) shows scene content (luma std $std)" \
+      || bad "eye half ($half) looks empty (luma std $std)"
+  done
+else
+  wait $pid; bad "no screenshot: $(tail -3 err1.txt)"
+fi
+
+# 2. The pointer is the gaze: the spp map's bright disc follows it.
+for pos in "160 180" "110 200"; do
+  set -- $pos
+  # (the first fake motion after the server starts can be lost: move until the pointer is there)
+  for _ in $(seq 1 50); do
+    xdotool mousemove "$1" "$2" sleep 0.05
+    [[ $(xdotool getmouselocation) == "x:$1 y:$2 "* ]] && break
+  done
+  if "$fovrt" preview "${small[@]}" --set gaze.source=mouse --view spp --no-overlay --frames 3 \
+       --screenshot spp.png 2>err2.txt; then
+    c=$("$probe" centroid spp.png 0 90 320 270)
+    if awk -v c="$c" -v x="$1" -v y="$2" 'BEGIN { split(c, p, " "); exit !((p[1]-x)^2 + (p[2]-y)^2 < 36) }'; then
+      ok "pointer at ($1, $2): spp disc centred at ($c)"
+    else bad "pointer at ($1, $2): spp disc centred at ($c)"; fi
+  else bad "mouse gaze run failed: $(tail -2 err2.txt)"; fi
+done
+
+# 3. The overlay toggle changes a few pixels and nothing else.
+"$fovrt" preview "${small[@]}" --set gaze.source=static --frames 2 --screenshot on.png 2>/dev/null
+"$fovrt" preview "${small[@]}" --set gaze.source=static --frames 2 --screenshot off.png --no-overlay 2>/dev/null
+d=$("$probe" diff on.png off.png)
+frac=${d#*differing=}
+awk -v f="$frac" 'BEGIN { exit !(f > 0 && f < 0.05) }' && ok "overlay toggle changes $frac of the pixels" \
+  || bad "overlay toggle: $d"
+
+# 4. A key switches the denoiser (logged, histories reset); Escape closes the window mid-run
+#    with a clean exit and a complete recording.
+"$fovrt" preview "${small[@]}" --set gaze.source=static --frames 100000 --record closed.jsonl \
+  --stats stats.jsonl 2>err4.txt &
+pid=$!
+for _ in $(seq 1 600); do [[ $(grep -c . stats.jsonl 2>/dev/null) -ge 2 ]] && break; sleep 0.1; done
+win=$(timeout 60 xdotool search --sync --name "fovrt preview" | head -1)
+timeout 30 xdotool windowfocus --sync "$win" key 4
+for _ in $(seq 1 600); do grep -q "denoiser svgf -> two-history" err4.txt && break; sleep 0.1; done
+sleep 1
+timeout 30 xdotool windowfocus --sync "$win" key Escape || kill $pid
+wait $pid; rc=$?
+[[ $rc -eq 0 ]] && ok "window closed mid-run: exit 0" || bad "closed mid-run: exit $rc: $(tail -2 err4.txt)"
+grep -q "denoiser svgf -> two-history (histories reset)" err4.txt && ok "key 4: $(grep -m1 'histories reset' err4.txt)" \
+  || bad "denoiser switch not logged: $(tail -3 err4.txt)"
+grep -q '"reproject' stats.jsonl && tail -1 stats.jsonl | grep -q 'blend' && ok "stats stream shows the new denoiser's passes" \
+  || bad "passes did not change: $(tail -1 stats.jsonl)"
+if "$fovrt" run --replay closed.jsonl --set output.dir=closed-replay --set output.write_png=false 2>err4r.txt; then
+  ok "the recording of a closed session replays ($(ls closed-replay/inputs | wc -l) EXRs)"
+else bad "recording of a closed session: $(tail -2 err4r.txt)"; fi
+
+# 5. Record in the preview, replay headless: identical spp maps and noisy inputs.
+"$fovrt" preview "${small[@]}" --set gaze.source=lissajous --frames 4 --record rec.jsonl --write-inputs \
+  --set output.dir=live 2>err5.txt || bad "record run failed: $(tail -2 err5.txt)"
+if "$fovrt" run --replay rec.jsonl --set output.dir=replay --set output.write_png=false 2>err5r.txt; then
+  n=0; same=0
+  for f in live/inputs/*.exr; do
+    n=$((n + 1))
+    "$probe" exr-equal "$f" "replay/inputs/$(basename "$f")" >/dev/null && same=$((same + 1)) \
+      || echo "  $(basename "$f"): $("$probe" exr-equal "$f" "replay/inputs/$(basename "$f")")"
+  done
+  [[ $n -eq 8 && $same -eq 8 ]] && ok "replay: $same of $n FrameInputs + spp EXRs bit-identical" \
+    || bad "replay: $same of $n EXRs identical"
+else bad "replay failed: $(tail -2 err5r.txt)"; fi
+
+echo "preview_check: $passed passed, $failed failed"
+[[ $failed -eq 0 ]]
