@@ -16,7 +16,7 @@ for scene in cornell veach-ajar; do
   for size in 320x180 640x360; do
     for denoiser in svgf two-history; do
       w=${size%x*}; h=${size#*x}
-      line=$(xvfb-run -a -s "-screen 0 1920x1080x24" "$fovrt" preview --frames "$frames" --window 1280x720 \
+      line=$(xvfb-run -a -s "-screen 0 1920x1080x24" "$fovrt" preview --frames "$frames" \
         --set scene.name="$scene" --set camera.width="$w" --set camera.height="$h" \
         --set "denoise.denoisers=[\"$denoiser\"]" --set output.dir="$out" 2>&1 | grep 'frames in' || true)
       printf '%-10s %-8s %-12s %s\n' "$scene" "$size" "$denoiser" "${line#fovrt preview: }"

@@ -92,12 +92,14 @@ awk -v f="$frac" 'BEGIN { exit !(f > 0 && f < 0.05) }' && ok "overlay toggle cha
 # 4. A key switches the denoiser (logged, histories reset); Escape closes the window mid-run
 #    with a clean exit and a complete recording.
 "$fovrt" preview "${small[@]}" --set gaze.source=static --frames 100000 --record closed.jsonl \
-  --stats stats.jsonl 2>err4.txt &
+  --stats stats.jsonl --capture-dir captures 2>err4.txt &
 pid=$!
 for _ in $(seq 1 600); do [[ $(grep -c . stats.jsonl 2>/dev/null) -ge 2 ]] && break; sleep 0.1; done
 win=$(timeout 60 xdotool search --sync --name "fovrt preview" | head -1)
 timeout 30 xdotool windowfocus --sync "$win" key 4
 for _ in $(seq 1 600); do grep -q "denoiser svgf -> two-history" err4.txt && break; sleep 0.1; done
+timeout 30 xdotool windowfocus --sync "$win" key F12
+for _ in $(seq 1 300); do grep -q "saved frame" err4.txt && break; sleep 0.1; done
 sleep 1
 timeout 30 xdotool windowfocus --sync "$win" key Escape || kill $pid
 wait $pid; rc=$?
@@ -106,6 +108,9 @@ grep -q "denoiser svgf -> two-history (histories reset)" err4.txt && ok "key 4: 
   || bad "denoiser switch not logged: $(tail -3 err4.txt)"
 grep -q '"reproject' stats.jsonl && tail -1 stats.jsonl | grep -q 'blend' && ok "stats stream shows the new denoiser's passes" \
   || bad "passes did not change: $(tail -1 stats.jsonl)"
+shots=$(ls captures/*_window.png captures/*_left.exr captures/*_right.exr 2>/dev/null | wc -l)
+[[ $shots -eq 3 ]] && ok "F12 saved the window PNG and both eyes' FrameInputs + output EXRs" \
+  || bad "F12 saved $shots files: $(ls captures 2>&1)"
 if "$fovrt" run --replay closed.jsonl --set output.dir=closed-replay --set output.write_png=false 2>err4r.txt; then
   ok "the recording of a closed session replays ($(ls closed-replay/inputs | wc -l) EXRs)"
 else bad "recording of a closed session: $(tail -2 err4r.txt)"; fi

@@ -57,9 +57,12 @@ LiveLoop::LiveLoop(const RunConfig& config, VulkanContext* context, FrameSource&
 
 LiveLoop::~LiveLoop() { Stop(); }
 
-void LiveLoop::Start(uint64_t maxFrames) {
+void LiveLoop::Start(uint64_t maxFrames, bool pipelined) {
     maxFrames_ = maxFrames;
-    thread_ = std::thread([this] { RenderThread(); });
+    pipelined_ = pipelined;
+    tracing_ = true;
+    traceThread_ = std::thread([this] { TraceThread(); });
+    if (pipelined_) denoiseThread_ = std::thread([this] { DenoiseThread(); });
 }
 
 void LiveLoop::Stop() {
@@ -68,7 +71,10 @@ void LiveLoop::Stop() {
         stop_ = true;
     }
     wake_.notify_all();
-    if (thread_.joinable()) thread_.join();
+    handoffFree_.notify_all();
+    handoffFull_.notify_all();
+    if (traceThread_.joinable()) traceThread_.join();
+    if (denoiseThread_.joinable()) denoiseThread_.join();
 }
 
 bool LiveLoop::Finished() const { return finished_.load(); }
@@ -145,11 +151,8 @@ void LiveLoop::OnFrameDone(std::function<void(const LiveFrame&)> callback) {
 }
 
 void LiveLoop::ApplyDenoiser(const std::string& name) {
-    const DenoiserVariant& variant = FindDenoiserVariant(name, "denoiser");
     const DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
     for (auto& d : denoisers_) d = CreateDenoiser(name, config_.denoise.device, params, context_);
-    pipeline_.SetGradientSamples(variant.needsGradientSamples);
-    pipeline_.Cut();  // the new histories start from this frame; motion vectors restart too
     if (!runningDenoiser_.empty())
         std::fprintf(stderr, "fovrt preview: denoiser %s -> %s (histories reset)\n",
                      runningDenoiser_.c_str(), name.c_str());
@@ -170,7 +173,7 @@ void LiveLoop::ApplyFoveation(const FoveationParams& params) {
     runningFoveation_ = params;
 }
 
-void LiveLoop::RenderThread() {
+void LiveLoop::TraceThread() {
     try {
         while (true) {
             LiveControls controls;
@@ -181,39 +184,90 @@ void LiveLoop::RenderThread() {
                 if (controls_.paused) --pendingSteps_;
                 controls = controls_;
             }
-            RenderOne(controls);
-            if (maxFrames_ && rendered_ >= maxFrames_) break;
+            auto frame = Trace(controls);
+            if (!pipelined_) {
+                Finish(*frame, controls);
+            } else {
+                std::unique_lock<std::mutex> lock(mutex_);
+                handoffFree_.wait(lock, [&] { return stop_ || !handoff_; });
+                if (stop_) break;
+                handoff_ = Handoff{std::move(frame), controls};
+                handoffFull_.notify_all();
+            }
+            if (maxFrames_ && ++traced_ >= maxFrames_) break;
         }
     } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(mutex_);
         error_ = e.what();
     }
+    std::lock_guard<std::mutex> lock(mutex_);
+    tracing_ = false;
+    if (!pipelined_) finished_ = true;
+    handoffFull_.notify_all();
+}
+
+void LiveLoop::DenoiseThread() {
+    try {
+        while (true) {
+            Handoff next;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                handoffFull_.wait(lock, [&] { return stop_ || handoff_ || !tracing_; });
+                if (stop_ || !handoff_) break;
+                next = std::move(*handoff_);
+                handoff_.reset();
+                handoffFree_.notify_all();
+            }
+            Finish(*next.frame, next.controls);
+        }
+    } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = e.what();
+        stop_ = true;
+        wake_.notify_all();
+        handoffFree_.notify_all();
+    }
     finished_ = true;
 }
 
-void LiveLoop::RenderOne(const LiveControls& controls) {
-    if (controls.denoiser != runningDenoiser_) ApplyDenoiser(controls.denoiser);
+std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
+    if (controls.denoiser != tracedDenoiser_) {
+        // Gradient samples as the new denoiser needs them; its histories start at this frame.
+        pipeline_.SetGradientSamples(FindDenoiserVariant(controls.denoiser, "denoiser").needsGradientSamples);
+        pipeline_.Cut();
+        tracedDenoiser_ = controls.denoiser;
+    }
     if (!(controls.foveation == runningFoveation_)) ApplyFoveation(controls.foveation);
 
     auto frame = std::make_shared<LiveFrame>();
-    const auto start = LiveClock::now();
+    frame->startedAt = LiveClock::now();
     frame->source = source_.Next(frameIndex_, sceneTime_);
     if (onFrameStart_) onFrameStart_(frame->source);
 
     const RenderStats before = pipeline_.GetRenderer().Stats();
     pipeline_.Render(frame->source.request, frame->stereo);
     frame->timings.rays = pipeline_.GetRenderer().Stats().Rays() - before.Rays();
-
     for (int eye = 0; eye < 2; ++eye) {
-        EyeFrame& e = frame->stereo.eyes[size_t(eye)];
+        const EyeFrame& e = frame->stereo.eyes[size_t(eye)];
         frame->timings.sppMs += e.sppMs;
         frame->timings.traceMs += e.renderMs;
+        frame->gazePixel[size_t(eye)] = e.gazePixel;
+        frame->foveaRadiusPixels[size_t(eye)] = FoveaOutlineRadiusPixels(runningFoveation_, e.camera);
+    }
+    ++frameIndex_;
+    sceneTime_ += double(controls.speed) / double(pipeline_.FramesPerSecond());
+    return frame;
+}
+
+void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
+    LiveFrame* frame = &frameRef;
+    if (controls.denoiser != runningDenoiser_) ApplyDenoiser(controls.denoiser);
+    for (int eye = 0; eye < 2; ++eye) {
+        EyeFrame& e = frame->stereo.eyes[size_t(eye)];
         const auto denoiseStart = LiveClock::now();
         denoisers_[size_t(eye)]->Denoise(e.inputs, frame->denoised[size_t(eye)]);
         frame->timings.denoiseMs += MsBetween(denoiseStart, LiveClock::now());
         AddTimings(denoisers_[size_t(eye)]->LastTimings(), frame->timings.passes);
-        frame->gazePixel[size_t(eye)] = e.gazePixel;
-        frame->foveaRadiusPixels[size_t(eye)] = FoveaOutlineRadiusPixels(runningFoveation_, e.camera);
     }
 
     const auto viewStart = LiveClock::now();
@@ -246,15 +300,13 @@ void LiveLoop::RenderOne(const LiveControls& controls) {
     frame->timings.viewMs = MsBetween(viewStart, LiveClock::now());
     frame->denoiser = runningDenoiser_;
     frame->finishedAt = LiveClock::now();
-    frame->timings.frameMs = MsBetween(start, frame->finishedAt);
+    frame->timings.frameMs = MsBetween(frame->startedAt, frame->finishedAt);
     frame->number = rendered_ + 1;
     if (onFrameDone_) onFrameDone_(*frame);
     ++rendered_;
-
-    ++frameIndex_;
-    sceneTime_ += double(controls.speed) / double(pipeline_.FramesPerSecond());
+    auto published = std::make_shared<const LiveFrame>(std::move(frameRef));
     std::lock_guard<std::mutex> lock(mutex_);
-    latest_ = std::move(frame);
+    latest_ = std::move(published);
 }
 
 }  // namespace fovrt

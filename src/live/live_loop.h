@@ -44,6 +44,7 @@ struct LiveTimings {
 struct LiveFrame {
     uint64_t number = 0;  // 1 for the first frame the loop rendered
     SourcedFrame source;
+    LiveClock::time_point startedAt;   // the trace stage took the request
     LiveClock::time_point finishedAt;
     std::string denoiser;
     std::string view;
@@ -72,7 +73,10 @@ public:
     ~LiveLoop();  // stops the render thread
 
     // Starts rendering; stops by itself after `maxFrames` frames (0 = until Stop()).
-    void Start(uint64_t maxFrames = 0);
+    // pipelined: frame N+1 is traced while frame N is denoised (two threads, more frames per
+    // second on a CPU where neither stage fills every core); otherwise each frame is traced and
+    // denoised in turn (the gaze is sampled closest to the photons: lower latency).
+    void Start(uint64_t maxFrames = 0, bool pipelined = false);
     void Stop();
     bool Finished() const;  // stopped after maxFrames, or failed
     // The render thread's error, if it failed (the window shows it and exits non-zero).
@@ -100,8 +104,10 @@ public:
     void OnFrameDone(std::function<void(const LiveFrame&)> callback);
 
 private:
-    void RenderThread();
-    void RenderOne(const LiveControls& controls);
+    void TraceThread();
+    void DenoiseThread();
+    std::shared_ptr<LiveFrame> Trace(const LiveControls& controls);    // source -> spp -> tracer
+    void Finish(LiveFrame& frame, const LiveControls& controls);       // denoise -> view -> publish
     void ApplyDenoiser(const std::string& name);
     void ApplyFoveation(const FoveationParams& params);
 
@@ -110,13 +116,23 @@ private:
     FrameSource& source_;
     FramePipeline pipeline_;
     std::array<std::unique_ptr<Denoiser>, 2> denoisers_;
-    std::string runningDenoiser_;
+    std::string runningDenoiser_;  // the denoise stage's
+    std::string tracedDenoiser_;   // the trace stage's (gradient samples, cut on a switch)
     FoveationParams runningFoveation_;
     std::function<void(const SourcedFrame&)> onFrameStart_;
     std::function<void(const LiveFrame&)> onFrameDone_;
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;
+    struct Handoff {
+        std::shared_ptr<LiveFrame> frame;
+        LiveControls controls;  // as the trace stage saw them: both stages switch on one frame
+    };
+    std::optional<Handoff> handoff_;  // one traced frame waiting for the denoise stage
+    std::condition_variable handoffFree_, handoffFull_;
+    bool pipelined_ = true;
+    bool tracing_ = false;
+    uint64_t traced_ = 0;
     LiveControls controls_;
     int pendingSteps_ = 0;
     bool stop_ = false;
@@ -133,7 +149,7 @@ private:
 
     uint32_t frameIndex_ = 0;
     double sceneTime_ = 0.0;
-    std::thread thread_;
+    std::thread traceThread_, denoiseThread_;
 };
 
 // The radius of the fovea outline drawn around the gaze, in pixels of `camera`'s image: the disc

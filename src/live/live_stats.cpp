@@ -63,10 +63,10 @@ void LiveStats::Add(const ShownFrameStats& f) {
         for (const PassTiming& p : f.timings.passes)
             passes += fmt::format("{}\"{}\":{:.4f}", passes.empty() ? "" : ",", p.pass, p.ms);
         fmt::print(stream_,
-                   "{{\"frame\":{},\"latency_ms\":{:.3f},\"present_ms\":{:.3f},\"spp_ms\":{:.3f},"
+                   "{{\"frame\":{},\"shown_s\":{:.4f},\"latency_ms\":{:.3f},\"present_ms\":{:.3f},\"spp_ms\":{:.3f},"
                    "\"trace_ms\":{:.3f},\"denoise_ms\":{:.3f},\"view_ms\":{:.3f},\"frame_ms\":{:.3f},"
                    "\"rays\":{},\"passes_ms\":{{{}}}}}\n",
-                   f.number, f.latencyMs, f.presentMs, f.timings.sppMs, f.timings.traceMs,
+                   f.number, SecondsBetween(start_, now), f.latencyMs, f.presentMs, f.timings.sppMs, f.timings.traceMs,
                    f.timings.denoiseMs, f.timings.viewMs, f.timings.frameMs, f.timings.rays, passes);
     }
 }

@@ -43,6 +43,7 @@ public:
     // Median / 95th percentile of the history's latency.
     double LatencyPercentile(double q) const;
     // "60 frames in 5.8 s: 10.3 frames/s; gaze-to-photon latency median 95 ms, p95 120 ms; ..."
+    // (frames shown: a frame rendered faster than the window presents may never be shown)
     std::string Summary() const;
 
 private:

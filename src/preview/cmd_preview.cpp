@@ -18,7 +18,7 @@ void RegisterPreviewCommand(CLI::App& app) {
     auto config = std::make_shared<ConfigOptions>();
     auto options = std::make_shared<PreviewOptions>();
     auto layout = std::make_shared<std::string>("both");
-    auto window = std::make_shared<std::string>("1280x720");
+    auto window = std::make_shared<std::string>("960x540");
     auto noOverlay = std::make_shared<bool>(false);
     auto noPanel = std::make_shared<bool>(false);
     AddConfigOptions(cmd, *config);
@@ -42,6 +42,9 @@ void RegisterPreviewCommand(CLI::App& app) {
     cmd->add_flag("--no-overlay", *noOverlay, "start without the gaze marker and fovea outline");
     cmd->add_flag("--no-panel", *noPanel, "start without the control panel (Tab shows it)");
     cmd->add_flag("--vsync", options->window.vsync, "present with FIFO (default: mailbox/immediate)");
+    cmd->add_flag("--pipelined", options->pipelined,
+                  "trace frame N+1 while denoising N: more frames/s where the stages use different "
+                  "processors (a GPU denoiser); on a 2-core CPU with lavapipe it is slower");
     cmd->add_option("--fly-speed", options->flySpeed, "free camera speed, metres per second");
     cmd->callback([config, options, layout, window, noOverlay, noPanel] {
         PreviewOptions o = *options;

@@ -149,13 +149,13 @@ public:
     }
 
     void Run() {
-        std::fprintf(stderr, "fovrt preview: scene '%s', %d×%d per eye, denoiser %s on %s, present %s%s\n",
+        std::fprintf(stderr, "fovrt preview: scene '%s', %d×%d per eye, denoiser %s on %s, present %s, %s%s\n",
                      loop_->Pipeline().GetScene().name.c_str(), config_.camera.width, config_.camera.height,
                      loop_->Controls().denoiser.c_str(), context_.deviceName().c_str(), window_.PresentModeName(),
-                     options_.frames ? fmt::format(", {} frames", options_.frames).c_str() : "");
+                     options_.pipelined ? "pipelined (trace N+1 while denoising N)" : "serial", options_.frames ? fmt::format(", {} frames", options_.frames).c_str() : "");
         glfwPollEvents();
         HandleInput(0.0);  // the first frame already sees the pointer
-        loop_->Start(options_.frames);
+        loop_->Start(options_.frames, options_.pipelined);
         auto lastPresent = LiveClock::now() - std::chrono::seconds(1);
         auto lastInput = LiveClock::now();
         auto lastPoll = LiveClock::now();
@@ -185,7 +185,8 @@ public:
         window_.WaitIdle();
         if (recorder_) recorder_->Close();
         if (auto error = loop_->Error()) Fail("render thread: {}", *error);
-        std::fprintf(stderr, "fovrt preview: %s\n", stats_.Summary().c_str());
+        std::fprintf(stderr, "fovrt preview: %s (%llu frames rendered)\n", stats_.Summary().c_str(),
+                     (unsigned long long)loop_->FramesRendered());
         if (context_.validationEnabled())
             std::fprintf(stderr, "fovrt preview: %u Vulkan validation errors, %u warnings\n",
                          context_.validationErrors(), context_.validationWarnings());

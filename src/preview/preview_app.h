@@ -26,6 +26,7 @@ struct PreviewOptions {
     bool overlay = true;
     bool panel = true;
     float flySpeed = 1.0f;        // metres per second
+    bool pipelined = false;       // trace frame N+1 while denoising N (LiveLoop::Start)
 };
 
 // Runs the session until the window closes (or `frames` are done). fovrt::Error for bad input

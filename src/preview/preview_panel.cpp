@@ -138,6 +138,12 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStat
             ImGui::PlotLines("denoise ms", denoiseMs.data(), int(denoiseMs.size()), 0, nullptr, 0.0f,
                              FLT_MAX, ImVec2(0, 40));
         }
+        // Per-pass plot: the last frame's denoiser passes (both eyes), one bar each, in order.
+        std::vector<float> passMs;
+        for (const PassTiming& p : t.passes) passMs.push_back(float(p.ms));
+        if (!passMs.empty())
+            ImGui::PlotHistogram("passes ms", passMs.data(), int(passMs.size()), 0, nullptr, 0.0f, FLT_MAX,
+                                 ImVec2(0, 50));
         if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_SizingStretchProp)) {
             for (const PassTiming& p : t.passes) {
                 ImGui::TableNextRow();
