@@ -20,19 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// This process's scratch directory, removed when the tests end.
-fs::path TempDir() {
-    struct Scratch {
-        fs::path dir = fs::temp_directory_path() / fmt::format("fovrt-replay-test-{}", ::getpid());
-        Scratch() { fs::create_directories(dir); }
-        ~Scratch() {
-            std::error_code ignored;
-            fs::remove_all(dir, ignored);
-        }
-    };
-    static const Scratch scratch;
-    return scratch.dir;
-}
+fs::path TempDir() { return test::ScratchDir("fovrt-replay-test"); }
 
 RunConfig SmallCornell() {
     RunConfig config = DefaultConfig();

@@ -13,6 +13,7 @@
 #include "io/png.h"
 #include "live/display_compose.h"
 #include "live/display_pass.h"
+#include "vk/recorder.h"
 #include "shaders/common/display_constants.glsl"
 #include "test_support.h"
 #include "vk/context.h"
@@ -390,19 +391,11 @@ struct TestImage {
     TestImage& operator=(const TestImage&) = delete;
 };
 
+// A transfer-to-transfer layout transition.
 void Transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags srcAccess,
                 VkAccessFlags dstAccess) {
-    auto b = VkInit<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-    b.srcAccessMask = srcAccess;
-    b.dstAccessMask = dstAccess;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
+    RecordImageBarrier(cmd, image, from, to, srcAccess, dstAccess, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT);
 }
 
 }  // namespace

@@ -21,19 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// This process's scratch directory, removed when the tests end.
-fs::path TempDir() {
-    struct Scratch {
-        fs::path dir = fs::temp_directory_path() / fmt::format("fovrt-session-test-{}", ::getpid());
-        Scratch() { fs::create_directories(dir); }
-        ~Scratch() {
-            std::error_code ignored;
-            fs::remove_all(dir, ignored);
-        }
-    };
-    static const Scratch scratch;
-    return scratch.dir;
-}
+fs::path TempDir() { return test::ScratchDir("fovrt-session-test"); }
 
 // Any finite float (all exponents, subnormals and signed zeros included).
 float AnyFiniteFloat(Pcg32& rng) {

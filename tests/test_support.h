@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -20,6 +23,24 @@ inline std::filesystem::path SharedScenes() {
     if (const char* env = std::getenv("FOVRT_SHARED_SCENES")) return env;
     auto dir = SourceDir().parent_path() / "shared" / "scenes";
     return std::filesystem::exists(dir) ? dir : std::filesystem::path();
+}
+
+// This process's scratch directory under the system temp dir, "<prefix>-<pid>", created on first
+// use and removed when the test executable ends (one per executable: prefix is fixed per file).
+inline std::filesystem::path ScratchDir(const std::string& prefix) {
+    struct Scratch {
+        std::filesystem::path dir;
+        explicit Scratch(const std::string& p)
+            : dir(std::filesystem::temp_directory_path() / (p + "-" + std::to_string(::getpid()))) {
+            std::filesystem::create_directories(dir);
+        }
+        ~Scratch() {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    };
+    static const Scratch scratch(prefix);
+    return scratch.dir;
 }
 
 // An HDR test image with uniform random channels in [0, scale).

@@ -5,6 +5,7 @@
 #include <backends/imgui_impl_vulkan.h>
 
 #include "core/error.h"
+#include "vk/recorder.h"
 #include "vk/vk_check.h"
 
 namespace fovrt {
@@ -44,12 +45,7 @@ ImGuiLayer::ImGuiLayer(PreviewWindow& window, VulkanContext& context) : context_
     ImGui_ImplVulkan_Init(&info, window.OverlayRenderPass());
 
     // The font atlas: one upload on the window's own command pool.
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    auto alloc = VkInit<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-    alloc.commandPool = window.CommandPool();
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    FOVRT_VK(vkAllocateCommandBuffers(context.device(), &alloc, &cmd));
+    VkCommandBuffer cmd = AllocateCommandBuffer(context.device(), window.CommandPool());
     auto begin = VkInit<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     FOVRT_VK(vkBeginCommandBuffer(cmd, &begin));

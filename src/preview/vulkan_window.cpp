@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include "core/error.h"
+#include "vk/recorder.h"
 #include "vk/vk_check.h"
 
 namespace fovrt {
@@ -42,20 +43,6 @@ VkPresentModeKHR PickPresentMode(VkPhysicalDevice pd, VkSurfaceKHR surface, bool
     for (VkPresentModeKHR want : {VK_PRESENT_MODE_MAILBOX_KHR, VK_PRESENT_MODE_IMMEDIATE_KHR})
         if (std::find(modes.begin(), modes.end(), want) != modes.end()) return want;
     return VK_PRESENT_MODE_FIFO_KHR;
-}
-
-void ImageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
-                  VkAccessFlags srcAccess, VkAccessFlags dstAccess, VkPipelineStageFlags srcStage,
-                  VkPipelineStageFlags dstStage) {
-    auto b = VkInit<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcAccessMask = srcAccess;
-    b.dstAccessMask = dstAccess;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
 }  // namespace
@@ -146,11 +133,7 @@ void PreviewWindow::AttachVulkan(VulkanContext& context) {
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = context.queueFamily();
     FOVRT_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool_));
-    auto alloc = VkInit<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-    alloc.commandPool = pool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    FOVRT_VK(vkAllocateCommandBuffers(device, &alloc, &cmd_));
+    cmd_ = AllocateCommandBuffer(device, pool_);
     auto fenceInfo = VkInit<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
     FOVRT_VK(vkCreateFence(device, &fenceInfo, nullptr, &inFlight_));
     auto semInfo = VkInit<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
@@ -292,7 +275,7 @@ std::optional<PreviewWindow::Frame> PreviewWindow::BeginFrame() {
     auto begin = VkInit<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     FOVRT_VK(vkBeginCommandBuffer(cmd_, &begin));
-    ImageBarrier(cmd_, images_[index], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+    RecordImageBarrier(cmd_, images_[index], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     return Frame{cmd_, index, images_[index], framebuffers_[index], extent_};
 }
@@ -304,7 +287,7 @@ void PreviewWindow::EndFrame(const Frame& frame, bool capture) {
         const size_t bytes = size_t(frame.extent.width) * frame.extent.height * 4;
         if (!captureBuffer_.valid() || captureBuffer_.size() < bytes)
             captureBuffer_ = context_->allocator().CreateBuffer("preview.capture", bytes, MemoryUsage::Staging);
-        ImageBarrier(frame.cmd, frame.image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        RecordImageBarrier(frame.cmd, frame.image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
         VkBufferImageCopy region{};
@@ -312,7 +295,7 @@ void PreviewWindow::EndFrame(const Frame& frame, bool capture) {
         region.imageExtent = {frame.extent.width, frame.extent.height, 1};
         vkCmdCopyImageToBuffer(frame.cmd, frame.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                captureBuffer_.handle(), 1, &region);
-        ImageBarrier(frame.cmd, frame.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+        RecordImageBarrier(frame.cmd, frame.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                      VK_ACCESS_TRANSFER_READ_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                      VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
         auto hostBarrier = VkInit<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);

@@ -50,12 +50,32 @@ std::vector<std::pair<std::string, double>> TimestampPool::Results() const {
     return out;
 }
 
-CommandSlot::CommandSlot(VulkanContext& context) : device_(context.device()), pool_(context.commandPool()) {
+VkCommandBuffer AllocateCommandBuffer(VkDevice device, VkCommandPool pool) {
     auto info = VkInit<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-    info.commandPool = pool_;
+    info.commandPool = pool;
     info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     info.commandBufferCount = 1;
-    FOVRT_VK(vkAllocateCommandBuffers(device_, &info, &cmd_));
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    FOVRT_VK(vkAllocateCommandBuffers(device, &info, &cmd));
+    return cmd;
+}
+
+void RecordImageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                        VkAccessFlags srcAccess, VkAccessFlags dstAccess, VkPipelineStageFlags srcStage,
+                        VkPipelineStageFlags dstStage) {
+    auto b = VkInit<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+CommandSlot::CommandSlot(VulkanContext& context) : device_(context.device()), pool_(context.commandPool()) {
+    cmd_ = AllocateCommandBuffer(device_, pool_);
     auto fenceInfo = VkInit<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
     FOVRT_VK(vkCreateFence(device_, &fenceInfo, nullptr, &fence_));
 }

@@ -19,6 +19,14 @@ namespace fovrt {
 class VulkanContext;
 class ComputePipeline;
 
+// One primary command buffer from `pool` (a thread records on its own pool: pools are not
+// thread-safe).
+VkCommandBuffer AllocateCommandBuffer(VkDevice device, VkCommandPool pool);
+// A layout transition (and memory dependency) of mip 0, layer 0 of a colour image.
+void RecordImageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                        VkAccessFlags srcAccess, VkAccessFlags dstAccess, VkPipelineStageFlags srcStage,
+                        VkPipelineStageFlags dstStage);
+
 class TimestampPool {
 public:
     TimestampPool() = default;
