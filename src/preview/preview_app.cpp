@@ -267,7 +267,9 @@ private:
             case GLFW_KEY_F12: captureRequested_ = true; break;
             case GLFW_KEY_TAB: panelShown_ = !panelShown_; break;
             case GLFW_KEY_O: panel_.display.overlay = !panel_.display.overlay; break;
-            case GLFW_KEY_G: source_.UseMouseGaze(!source_.MouseGaze()); break;
+            case GLFW_KEY_G:
+                source_.SetGazeSource(source_.MouseGaze() ? source_.SyntheticDefault() : "mouse");
+                break;
             case GLFW_KEY_C: source_.SetFreeHead(std::nullopt); break;
             case GLFW_KEY_L:
                 panel_.display.layout = DisplayLayout((int(panel_.display.layout) + 1) % 3);

@@ -100,8 +100,8 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStat
         }
     }
     if (ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
-        bool mouse = source.MouseGaze();
-        if (ImGui::Checkbox("mouse is the gaze (G)", &mouse)) source.UseMouseGaze(mouse);
+        std::string gaze = source.GazeSourceName();
+        if (Combo("gaze (G: mouse)", source.GazeSourceNames(), gaze)) source.SetGazeSource(gaze);
         const bool free = source.FreeHead().has_value();
         Text(free ? "head: free camera (WASD, Q/E, right-drag)" : "head: the scene's camera path");
         if (free && ImGui::Button("back to the camera path (C)")) state.requestReturnToPath = true;

@@ -31,27 +31,44 @@ void FlyCamera::Turn(float dYaw, float dPitch) {
 }
 
 PreviewFrameSource::PreviewFrameSource(const RunConfig& config) {
-    mouse_ = config.gaze.source == "mouse";
+    gazeSource_ = config.gaze.source;
     start_ = pointer_.takenAt = LiveClock::now();
 }
 
 void PreviewFrameSource::Bind(const FramePipeline& pipeline) {
     pipeline_ = &pipeline;
-    GazeParams params = pipeline.Config().gaze;
-    if (params.source == "mouse") params.source = "static";
-    synthetic_ = CreateGazeSource(params, ResolveFov(pipeline.Config(), pipeline.GetScene()));
+    gazeParams_ = pipeline.Config().gaze;
+    referenceFov_ = ResolveFov(pipeline.Config(), pipeline.GetScene());
+    SetGazeSource(gazeSource_);
     const StereoRig rig = pipeline.RigAtTime(0.0);  // the pointer maps through these until frame 0
     for (int eye = 0; eye < 2; ++eye) latestEyes_[size_t(eye)] = rig.Eye(eye);
 }
 
-void PreviewFrameSource::UseMouseGaze(bool on) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    mouse_ = on;
+std::vector<std::string> PreviewFrameSource::GazeSourceNames() const {
+    std::vector<std::string> names = {"mouse", "lissajous", "static"};
+    if (!gazeParams_.tracePath.empty()) names.push_back("trace");
+    return names;
 }
 
-bool PreviewFrameSource::MouseGaze() const {
+void PreviewFrameSource::SetGazeSource(const std::string& name) {
+    std::unique_ptr<GazeSource> synthetic;
+    if (name != "mouse") {
+        GazeParams params = gazeParams_;
+        params.source = name;
+        synthetic = CreateGazeSource(params, referenceFov_);  // loads a trace here, not per frame
+    }
     std::lock_guard<std::mutex> lock(mutex_);
-    return mouse_;
+    gazeSource_ = name;
+    if (synthetic) synthetic_ = std::move(synthetic);
+}
+
+std::string PreviewFrameSource::GazeSourceName() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return gazeSource_;
+}
+
+std::string PreviewFrameSource::SyntheticDefault() const {
+    return gazeParams_.source == "mouse" ? "lissajous" : gazeParams_.source;
 }
 
 void PreviewFrameSource::SetPointerGaze(const vec3& directionHead, LiveClock::time_point takenAt) {
@@ -94,7 +111,7 @@ SourcedFrame PreviewFrameSource::Next(uint32_t frame, double sceneTime) {
     out.head = rig.head;
     for (int eye = 0; eye < 2; ++eye) out.request.eyes[size_t(eye)] = rig.Eye(eye);
     latestEyes_ = out.request.eyes;
-    if (mouse_) {
+    if (gazeSource_ == "mouse" || !synthetic_) {
         out.request.gaze = pointer_.gaze;
         out.gazeTakenAt = pointer_.takenAt;
         out.gazeSamples = std::move(pointerSamples_);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "app/config.h"
@@ -34,10 +35,14 @@ public:
     // The pipeline gives the scene's camera path and the rig (FOV, IPD, resolution).
     void Bind(const FramePipeline& pipeline);
 
-    // Gaze: the mouse (true) or the configured synthetic source (false; not offered when the
-    // configured source is the mouse itself: the fallback is then static straight ahead).
-    void UseMouseGaze(bool on);
-    bool MouseGaze() const;
+    // Gaze: "mouse" or a synthetic source with the configured gaze.* parameters ("lissajous",
+    // "static", and "trace" when gaze.trace_path is set). Unknown names: fovrt::Error.
+    std::vector<std::string> GazeSourceNames() const;
+    void SetGazeSource(const std::string& name);
+    std::string GazeSourceName() const;
+    bool MouseGaze() const { return GazeSourceName() == "mouse"; }
+    // The synthetic source G toggles to from the mouse (the configured one, else lissajous).
+    std::string SyntheticDefault() const;
     // The pointer's gaze, head space, polled at `takenAt` (the window polls it every iteration).
     void SetPointerGaze(const vec3& directionHead, LiveClock::time_point takenAt);
 
@@ -53,10 +58,12 @@ public:
 
 private:
     const FramePipeline* pipeline_ = nullptr;
+    GazeParams gazeParams_;
+    Fov referenceFov_;
     std::unique_ptr<GazeSource> synthetic_;
     mutable std::mutex mutex_;
     LiveClock::time_point start_;  // the mouse's clock starts with the session
-    bool mouse_ = false;
+    std::string gazeSource_;
     TimedGaze pointer_;
     std::vector<TimedGaze> pointerSamples_;  // since the previous frame
     std::optional<FlyCamera> free_;
