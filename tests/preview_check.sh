@@ -129,5 +129,11 @@ if "$fovrt" run --replay rec.jsonl --set output.dir=replay --set output.write_pn
     || bad "replay: $same of $n EXRs identical"
 else bad "replay failed: $(tail -2 err5r.txt)"; fi
 
+# 6. A view the denoiser does not have: one line naming it and the views there are.
+if "$fovrt" preview "${small[@]}" --frames 1 --view alpha >/dev/null 2>err6.txt; then bad "--view alpha with svgf exited 0"
+elif [[ $(grep -c . err6.txt) -eq 1 ]] && grep -q "view alpha: not a view of denoiser svgf" err6.txt; then
+  ok "bad view: $(cat err6.txt)"
+else bad "bad view: $(cat err6.txt)"; fi
+
 echo "preview_check: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

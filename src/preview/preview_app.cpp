@@ -9,6 +9,7 @@
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/build_info.h"
 #include "app/config_io.h"
@@ -101,12 +102,11 @@ public:
     PreviewSession(const RunConfig& config, const PreviewOptions& options)
         : config_(config), options_(options), window_(options.window),
           context_(VulkanContext::Create(window_.ContextOptions(ResolveDenoiseDevice(config)))),
-          source_(config), stats_(options.stats) {
-        window_.AttachVulkan(context_);
+          attachment_(window_, context_), source_(config), stats_(options.stats) {
         glfwSetWindowUserPointer(window_.handle(), &keys_);
         glfwSetKeyCallback(window_.handle(), OnKey);  // before ImGui, which chains to it
-        imgui_.emplace(window_, context_);
         display_.emplace(context_);
+        imgui_.emplace(window_, context_);
         panelShown_ = options.panel;
         panel_.display.layout = options.layout;
         panel_.display.overlay = options.overlay;
@@ -117,6 +117,10 @@ public:
                                        : DisplayByteOrder::Bgra;
         loop_.emplace(config, &context_, source_);
         source_.Bind(loop_->Pipeline());
+        const std::vector<std::string> views = loop_->ViewNames();
+        if (std::find(views.begin(), views.end(), options.view) == views.end())
+            Fail("--view {}: not a view of denoiser {} (views: {})", options.view, loop_->Controls().denoiser,
+                 fmt::format("{}", fmt::join(views, ", ")));
         loop_->SetView(options.view);
         if (options.writeInputs) {
             const fs::path dir = fs::path(config.output.dir) / "inputs";
@@ -138,15 +142,8 @@ public:
         }
     }
 
-    ~PreviewSession() {
-        // The render thread first, then everything on the context, then the window's swapchain,
-        // all before the context itself goes (members die in reverse order: window_ is older).
-        loop_.reset();
-        window_.WaitIdle();
-        display_.reset();
-        imgui_.reset();
-        window_.DetachVulkan();
-    }
+    // Members die in reverse order, also when the constructor throws: the render thread first,
+    // then ImGui (it idles the queue), the display pass, the window's swapchain, the context.
 
     void Run() {
         std::fprintf(stderr, "fovrt preview: scene '%s', %d×%d per eye, denoiser %s on %s, present %s, %s%s\n",
@@ -342,14 +339,24 @@ private:
         return true;
     }
 
+    // The window's swapchain on the context, released before the context goes.
+    struct Attachment {
+        PreviewWindow& window;
+        Attachment(PreviewWindow& w, VulkanContext& context) : window(w) { w.AttachVulkan(context); }
+        ~Attachment() { window.DetachVulkan(); }
+        Attachment(const Attachment&) = delete;
+        Attachment& operator=(const Attachment&) = delete;
+    };
+
     RunConfig config_;
     PreviewOptions options_;
     PreviewWindow window_;
     VulkanContext context_;
+    Attachment attachment_;
     PreviewFrameSource source_;
     LiveStats stats_;
-    std::optional<ImGuiLayer> imgui_;
     std::optional<DisplayPass> display_;
+    std::optional<ImGuiLayer> imgui_;
     std::optional<SessionRecorder> recorder_;
     std::optional<LiveLoop> loop_;
     PanelState panel_;

@@ -85,6 +85,16 @@ VulkanContextOptions PreviewWindow::ContextOptions(const std::string& device) co
 
 void PreviewWindow::AttachVulkan(VulkanContext& context) {
     context_ = &context;
+    try {
+        CreateVulkanObjects();
+    } catch (...) {
+        DetachVulkan();  // a half-made attachment must not outlive the context it was made on
+        throw;
+    }
+}
+
+void PreviewWindow::CreateVulkanObjects() {
+    VulkanContext& context = *context_;
     VkDevice device = context.device();
     FOVRT_VK(glfwCreateWindowSurface(context.instance(), window_, nullptr, &surface_));
     VkBool32 supported = VK_FALSE;

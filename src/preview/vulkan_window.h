@@ -72,6 +72,7 @@ public:
     void WaitIdle();
 
 private:
+    void CreateVulkanObjects();
     void CreateSwapchain();
     void DestroySwapchain();
 
