@@ -102,6 +102,24 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStat
     if (ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
         std::string gaze = source.GazeSourceName();
         if (Combo("gaze (G: mouse)", source.GazeSourceNames(), gaze)) source.SetGazeSource(gaze);
+        GazeParams params = source.SyntheticParams();
+        bool changed = false;
+        if (gaze == "lissajous") {
+            const float top = params.units == "deg" ? 60.0f : 1280.0f;
+            changed |= ImGui::SliderFloat2(params.units == "deg" ? "amplitude deg" : "amplitude px",
+                                           &params.amplitude.x, 0.0f, top, "%.0f");
+            changed |= ImGui::SliderFloat2("frequency Hz", &params.frequencyHz.x, 0.0f, 2.0f, "%.2f");
+        } else if (gaze == "static") {
+            changed |= ImGui::SliderFloat("yaw deg", &params.yawDeg, -60.0f, 60.0f, "%.1f");
+            changed |= ImGui::SliderFloat("pitch deg", &params.pitchDeg, -60.0f, 60.0f, "%.1f");
+        }
+        if (changed) {
+            try {
+                source.SetSyntheticParams(params);
+            } catch (const std::exception&) {
+                // a value the gaze checks refuse while dragging: keep the running source
+            }
+        }
         const bool free = source.FreeHead().has_value();
         Text(free ? "head: free camera (WASD, Q/E, right-drag)" : "head: the scene's camera path");
         if (free && ImGui::Button("back to the camera path (C)")) state.requestReturnToPath = true;

@@ -53,7 +53,7 @@ std::vector<std::string> PreviewFrameSource::GazeSourceNames() const {
 void PreviewFrameSource::SetGazeSource(const std::string& name) {
     std::unique_ptr<GazeSource> synthetic;
     if (name != "mouse") {
-        GazeParams params = gazeParams_;
+        GazeParams params = SyntheticParams();
         params.source = name;
         synthetic = CreateGazeSource(params, referenceFov_);  // loads a trace here, not per frame
     }
@@ -65,6 +65,23 @@ void PreviewFrameSource::SetGazeSource(const std::string& name) {
 std::string PreviewFrameSource::GazeSourceName() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return gazeSource_;
+}
+
+GazeParams PreviewFrameSource::SyntheticParams() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return gazeParams_;
+}
+
+void PreviewFrameSource::SetSyntheticParams(const GazeParams& params) {
+    GazeParams checked = params;
+    checked.source = "static";
+    ValidateGazeParams(checked);
+    const std::string name = GazeSourceName();
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        gazeParams_ = params;
+    }
+    SetGazeSource(name);
 }
 
 std::string PreviewFrameSource::SyntheticDefault() const {

@@ -41,6 +41,9 @@ public:
     void SetGazeSource(const std::string& name);
     std::string GazeSourceName() const;
     bool MouseGaze() const { return GazeSourceName() == "mouse"; }
+    // The synthetic sources' parameters (gaze.* keys); a change rebuilds the running source.
+    GazeParams SyntheticParams() const;
+    void SetSyntheticParams(const GazeParams& params);  // fovrt::Error names a bad gaze.* key
     // The synthetic source G toggles to from the mouse (the configured one, else lissajous).
     std::string SyntheticDefault() const;
     // The pointer's gaze, head space, polled at `takenAt` (the window polls it every iteration).
