@@ -18,9 +18,7 @@
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 layout(constant_id = 0) const uint kMode = 0u;
 
-PLANE(BANDWIDTH_B_TEXEL_IN, src_texel);  // rgba32f
-layout(std430, binding = BANDWIDTH_B_STORAGE_IN) readonly buffer Src { vec4 src[]; };
-layout(std430, binding = BANDWIDTH_B_OUT) writeonly buffer Dst { vec4 dst[]; };
+FOVRT_DECLARE_BINDINGS(BANDWIDTH_BINDING_LIST)  // shaders/bindings/bandwidth_copy.h
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_BANDWIDTH);  // shaders/push_constants.h
 

@@ -56,12 +56,7 @@
 #define SVGF_REPROJECT_FLAG_COMBINED 2u    // one channel = direct + indirect
 #define SVGF_REPROJECT_FLAG_WRITE_COLOR 4u // write the colour history (no à-trous feedback)
 
-// bandwidth_copy (src/vk/bandwidth.cpp): the device's streaming copy through the passes' access
-// layer — read as an rgba32f uniform texel buffer (mode 0) or std430 vec4 (mode 1), write std430.
-#define BANDWIDTH_B_TEXEL_IN 0             // vec4[N] (uniform texel buffer view of the source)
-#define BANDWIDTH_B_STORAGE_IN 1           // vec4[N] (the same source as a storage buffer)
-#define BANDWIDTH_B_OUT 2                  // vec4[N]
-#define BANDWIDTH_BINDINGS 3
+// bandwidth_copy (src/vk/bandwidth.cpp): bindings in shaders/bindings/bandwidth_copy.h.
 #define BANDWIDTH_EXP2_PER_ELEMENT 64     // exp2 per element of the ALU probe (multiple of 4)
 
 #define FOVRT_SPATIAL_LIST_GROUP 64        // invocations per workgroup of the list dispatch
@@ -78,6 +73,7 @@
 #include "bindings/svgf_moments_classify.h"
 #include "bindings/svgf_pack_guide.h"
 #include "bindings/svgf_reproject.h"
+#include "bindings/bandwidth_copy.h"
 #ifdef __cplusplus
 FOVRT_PASS_BINDINGS(SVGF_REPROJECT)  // one channel ("svgf_reproject")
 FOVRT_PAIR_BINDINGS(SVGF_REPROJECT)  // "svgf_reproject_pair"
@@ -87,6 +83,7 @@ FOVRT_PASS_BINDINGS(SVGF_MOMENTS)
 FOVRT_PASS_BINDINGS(SVGF_ATROUS)  // "svgf_atrous"
 FOVRT_PAIR_BINDINGS(SVGF_ATROUS)  // "svgf_atrous_pair"
 FOVRT_PASS_BINDINGS(SVGF_MODULATE)
+FOVRT_PASS_BINDINGS(BANDWIDTH)
 #endif
 
 #endif
