@@ -5,6 +5,7 @@
 # Usage: cli_check.sh FOVRT WORK_DIR
 set -uo pipefail
 fovrt=$1; work=$2
+src=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 passed=0; failed=0
 ok() { echo "ok: $1"; passed=$((passed + 1)); }
@@ -62,6 +63,34 @@ else
   bad "experiment --replay failed: $(cat err.txt)"
 fi
 expect_error "experiment replay truncated" "truncated.jsonl: line 3" experiment exp.toml --replay truncated.jsonl --set output.dir=e14
+
+# A scene given by path is labelled by its `name`: the CSV and EXRs go under output.dir in a
+# folder named "cornell" (never a folder named after the path, never outside output.dir), and the
+# manifest's config names the scene rendered, with the path as the scene's source.
+printf '[reference]\nspp = 2\ncache_dir = "refcache"\n[camera]\nwidth = 32\nheight = 24\n[run]\nframes = 1\n[output]\ndir = "exp2"\nwrite_exr = true\n[experiment]\nscenes = ["room"]\nvariants = ["svgf"]\n' > exp2.toml
+scene_file="$src/scenes/cornell.toml"
+if "$fovrt" experiment exp2.toml --scene "$scene_file" >/dev/null 2>err.txt; then
+  [[ -f exp2/frames-cornell.csv ]] && ok "scene by path: exp2/frames-cornell.csv" || bad "scene by path: CSV not at exp2/frames-cornell.csv: $(find exp2 -name '*.csv')"
+  [[ -f exp2/cornell/svgf/f00000_left.exr ]] && ok "scene by path: EXRs under exp2/cornell" || bad "scene by path: EXRs at $(find exp2 -name '*.exr' | head -1)"
+  [[ -e "$scene_file/svgf" || -e "exp2/frames-$scene_file.csv" ]] && bad "scene by path: wrote under a folder named after the path" || ok "scene by path: nothing named after the path"
+  grep -q '"scene": "cornell"' exp2/manifest.json && grep -q "\"source\": \"$scene_file\"" exp2/manifest.json &&
+    ok "scene by path: manifest labels it cornell with its source" || bad "scene by path: manifest scene record"
+  python3 -c 'import json,sys; m=json.load(open("exp2/manifest.json")); sys.exit(m["config"]["scene"]["name"] != sys.argv[1])' "$scene_file" &&
+    ok "scene by path: manifest config names the scene rendered" || bad "scene by path: manifest config.scene.name is not $scene_file"
+  grep -q '"cornell"' exp2/summary.json && ! grep -q "$scene_file" exp2/summary.json && ok "scene by path: summary labels it cornell" || bad "scene by path: summary label"
+else
+  bad "experiment --scene PATH failed: $(cat err.txt)"
+fi
+rm -rf "$scene_file/svgf" 2>/dev/null; rmdir "$scene_file" 2>/dev/null
+# run --set scene.name=PATH: the manifest's scene is labelled by name, the path is its source.
+if "$fovrt" run "${small[@]}" --set run.frames=1 --set "scene.name=$scene_file" --set output.dir=run2 --set denoise.device=cpu \
+    --set output.write_exr=true >/dev/null 2>err.txt; then
+  python3 -c 'import json,sys; m=json.load(open("run2/manifest.json")); sys.exit(not (m["scene"]["name"] == "cornell" and m["scene"]["source"] == sys.argv[1] and m["config"]["scene"]["name"] == sys.argv[1]))' "$scene_file" &&
+    ok "run scene by path: manifest scene cornell, source the path" || bad "run scene by path: manifest scene"
+  [[ -f run2/denoised/svgf/$(ls run2/denoised/svgf | grep -m1 exr) ]] && ok "run scene by path: EXRs under output.dir" || bad "run scene by path: no EXR under run2"
+else
+  bad "run --set scene.name=PATH failed: $(cat err.txt)"
+fi
 
 echo 'name = "broken"' > broken.toml
 echo '[camera]' >> broken.toml
