@@ -21,7 +21,9 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/nearest_name.h"
 #include "denoise/params.h"
+#include "denoise/variants.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
@@ -194,7 +196,7 @@ public:
                 ok = ok || v == a;
                 list += (list.empty() ? "" : ", ") + a;
             }
-            if (!ok) Bad(key, fmt::format("'{}' is not one of {}", v, list));
+            if (!ok) Bad(key, fmt::format("'{}' is not one of {} (did you mean '{}'?)", v, list, NearestName(v, allowed)));
         }
         out = v;
     }
@@ -254,17 +256,23 @@ public:
                 // An unknown table: report its first key (which has an origin).
                 CheckUnknownLeaf(*node.as_table(), path);
             }
-            Fail("unknown config key '{}'{}", path, it != origins_.end() ? " (" + it->second + ")" : "");
+            Fail("unknown config key '{}'{}{}", path, it != origins_.end() ? " (" + it->second + ")" : "", Suggest(path));
         }
     }
 
 private:
+    // " (did you mean 'camera.width'?)": the nearest key the schema knows.
+    std::string Suggest(const std::string& key) const {
+        const std::string nearest = NearestName(key, used_);
+        return nearest.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", nearest);
+    }
+
     void CheckUnknownLeaf(const toml::table& table, const std::string& prefix) const {
         for (const auto& [key, node] : table) {
             std::string path = prefix + "." + std::string(key.str());
             auto it = origins_.find(path);
             if (it != origins_.end())
-                Fail("unknown config key '{}' ({})", path, it->second);
+                Fail("unknown config key '{}' ({}){}", path, it->second, Suggest(path));
             if (node.is_table()) CheckUnknownLeaf(*node.as_table(), path);
         }
     }
@@ -364,8 +372,10 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
 
     DenoiseConfig& d = c.denoise;
     r.Strings("denoise.denoisers", d.denoisers);
-    for (const std::string& name : d.denoisers)
+    for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
+        if (!LookupDenoiserVariant(name)) r.Bad("denoise.denoisers", UnknownDenoiserMessage(name));
+    }
     // A device index may be given as a number (device = 1) or a string ("1").
     if (const toml::node* n = r.Find("denoise.device"); n && n->is_integer()) {
         if (n->as_integer()->get() < 0) r.Bad("denoise.device", "a device index must be >= 0");
