@@ -103,7 +103,20 @@ expect_error "zero resolution" "camera.width" run --set camera.width=0 --set out
 expect_error "negative spp" "foveation.spp_inside" run --set foveation.spp_inside=-2 --set output.dir=e5
 expect_error "garbage trace row" "bad_trace.csv:3" run --set gaze.source=trace --set gaze.trace_path=bad_trace.csv --set output.dir=e6
 expect_error "unknown device" "denoise.device\|device" run "${small[@]}" --set denoise.device=7 --set output.dir=e7
-expect_error "unknown denoiser" "svgf-typo" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
+expect_error "unknown denoiser" "denoise.denoisers.*unknown denoiser 'svgf-typo' (did you mean 'svgf'?" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
+expect_error "unknown scene names the nearest" "scene 'cornel'.*did you mean 'cornell'?" run --set scene.name=cornel --set output.dir=e15
+expect_error "unknown key names the nearest" "camera.widht.*did you mean 'camera.width'?" run --set camera.widht=3 --set output.dir=e16
+expect_error "unknown enum value names the nearest" "foveation.model.*did you mean 'acuity'?" run --set foveation.model=acuty --set output.dir=e17
+# An output folder that cannot be written (a file in its path) is one line naming the key and the
+# path; so is a reference cache that cannot be, and before any rendering.
+touch afile
+expect_error "unwritable output.dir" "config key 'output.dir': cannot write to 'afile/sub'" run "${small[@]}" --set output.dir=afile/sub
+expect_error "unwritable reference.cache_dir" "config key 'reference.cache_dir': cannot write to 'afile/c'" experiment exp2.toml --set reference.cache_dir=afile/c --set output.dir=e18
+expect_error "unwritable reference.cache_dir (reference)" "config key 'reference.cache_dir': cannot write to 'afile/c'" reference "${small[@]}" --set reference.cache_dir=afile/c
+# A run that fails leaves no output folder it created, and keeps one that was there before.
+mkdir -p pre
+expect_error "failing run in an existing dir" "no_such_scene.toml" run --set scene.name=no_such_scene.toml --set output.dir=pre/deeper/out
+[[ -d pre && ! -e pre/deeper ]] && ok "failed run: removed the folders it created, kept pre/" || bad "failed run: pre/ missing or pre/deeper left behind"
 expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --set output.dir=e9
 expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
 # The denoiser bench at a small size: every denoiser has a per-pass byte model and a bound.
@@ -140,9 +153,12 @@ expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 
 # config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14; do
+left=""
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
+  [[ -e $d ]] && left="$left $d"
 done
 ok "no manifest after any error"
+[[ -z $left ]] && ok "no output folder left behind by a failed run" || bad "failed runs left output folders:$left"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

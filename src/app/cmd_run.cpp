@@ -27,6 +27,7 @@
 #include "app/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
+#include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/replay.h"
 #include "core/atomic_file.h"
@@ -137,8 +138,8 @@ struct RunOptions {
 void Run(const RunConfig& config, Replay* replay, const std::string& recordPath) {
     namespace fs = std::filesystem;
     EnforceRunBudget(config);
-    const fs::path outDir = config.output.dir;
-    fs::create_directories(outDir);
+    OutputDir out(config.output.dir, "output.dir");
+    const fs::path outDir = out.Path();
     // A stale manifest from an earlier run would make this one look complete while it runs.
     fs::remove(outDir / "manifest.json");
 
@@ -271,6 +272,7 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
     manifest["timings_ms"] = timings.ToJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+    out.Keep();
     std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
                  framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
                  (outDir / "manifest.json").string().c_str());

@@ -13,6 +13,7 @@
 #include "app/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
+#include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
 #include "app/report_collect.h"
@@ -171,8 +172,9 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
 
 Results RunExperiment(const ExperimentSpec& spec) {
     const RunConfig& base = spec.config;
-    const fs::path outDir = base.output.dir;
-    fs::create_directories(outDir);
+    OutputDir out(base.output.dir, "output.dir");
+    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
+    const fs::path outDir = out.Path();
     fs::remove(outDir / "manifest.json");  // present only once this run is complete
 
     auto totalStart = std::chrono::steady_clock::now();
@@ -331,6 +333,8 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["pass_ms"] = timings.ToJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+    out.Keep();
+    cacheDir.Keep();
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
     return results;
