@@ -92,6 +92,19 @@ else
   bad "run --set scene.name=PATH failed: $(cat err.txt)"
 fi
 
+# A blink (NaN rows of a trace; frames 1..3 here) is counted in the manifest and marked in
+# frames.jsonl with how it was rendered (gaze.blink).
+printf 'n,x,y\n0,0,0\n33,1,0\n66,NaN,NaN\n100,NaN,NaN\n133,5,1\n166,6,1\n' > blink.csv
+if "$fovrt" run "${small[@]}" --set run.frames=5 --set gaze.source=trace --set gaze.trace_path=blink.csv --set gaze.blink=uniform \
+    --set output.dir=blink1 --set denoise.device=cpu >/dev/null 2>err.txt; then
+  python3 -c 'import json,sys; m=json.load(open("blink1/manifest.json")); sys.exit(not (m["counters"]["blink_frames"] == 3 and m["config"]["gaze"]["blink"] == "uniform"))' &&
+    ok "blink: manifest counts 3 blink frames" || bad "blink: manifest counters.blink_frames"
+  [[ $(grep -c '"blink":"uniform"' blink1/frames.jsonl) -eq 3 ]] && ok "blink: frames.jsonl marks the blink frames" || bad "blink: frames.jsonl"
+else
+  bad "blink run failed: $(cat err.txt)"
+fi
+expect_error "unknown gaze.blink" "gaze.blink.*did you mean 'hold'" run --set gaze.blink=hld --set output.dir=e19
+
 echo 'name = "broken"' > broken.toml
 echo '[camera]' >> broken.toml
 echo 'position = [0, 1, "x"]' >> broken.toml
@@ -154,7 +167,7 @@ expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
 left=""
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18; do
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
   [[ -e $d ]] && left="$left $d"
 done

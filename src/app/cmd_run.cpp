@@ -164,6 +164,7 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
     uint64_t totalSamples = 0;
     uint64_t recordedSamples = 0;  // Σ FrameInputs::sampleCount: A-SVGF gradient pixels trace n_prev
     int framesRendered = 0;
+    int blinkFrames = 0;  // frames whose gaze sample was invalid (gaze.blink says how rendered)
     uint32_t firstIndex = 0, lastIndex = 0;
     while (sequence.Next(request)) {
         const uint32_t index = request.request.frame;
@@ -175,6 +176,10 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
         record["time_s"] = frame.timeSeconds;
         record["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y,
                                frame.gaze.direction.z};
+        if (!frame.gaze.valid) {
+            record["blink"] = config.gaze.blink;
+            ++blinkFrames;
+        }
         for (int eye = 0; eye < 2; ++eye) {
             EyeFrame& e = frame.eyes[size_t(eye)];
             nlohmann::json eyeRecord;
@@ -252,7 +257,8 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
                             {"shadow_tests", stats.shadowRays},
                             {"shadow_rays_reused", stats.shadowRaysReused},
                             {"bounce_rays", stats.bounceRays},
-                            {"dropped_nonfinite_samples", stats.droppedSamples}};
+                            {"dropped_nonfinite_samples", stats.droppedSamples},
+                            {"blink_frames", blinkFrames}};
     nlohmann::json replaced = nlohmann::json::object();
     for (size_t v = 0; v < denoisers.size(); ++v) {
         uint64_t nonFinite = 0, negative = 0;

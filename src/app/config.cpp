@@ -364,6 +364,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Int("gaze.reference_height", g.referenceHeight, 1, 16384);
     r.String("gaze.trace_path", g.tracePath);
     r.Double("gaze.trace_start_ms", g.traceStartMs);
+    r.String("gaze.blink", g.blink, {"hold", "uniform"});
     r.Float("gaze.yaw_deg", g.yawDeg, -89.999, 89.999);
     r.Float("gaze.pitch_deg", g.pitchDeg, -89.999, 89.999);
     if (g.source == "trace" && g.tracePath.empty())
@@ -497,6 +498,7 @@ toml::table ToTable(const RunConfig& c) {
                              {"reference_height", g.referenceHeight},
                              {"trace_path", g.tracePath},
                              {"trace_start_ms", g.traceStartMs},
+                             {"blink", g.blink},
                              {"yaw_deg", CleanFloat(g.yawDeg)},
                              {"pitch_deg", CleanFloat(g.pitchDeg)}}},
         {"denoise", toml::table{{"denoisers", denoisers}, {"device", c.denoise.device}}},

@@ -222,6 +222,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                                         : fovea.value * pipeline.RigAt(0).Eye(0).PixelsPerDegree();
         double renderMs = 0.0, referenceMs = 0.0;
         int referenceHits = 0;
+        int blinkFrames = 0;
 
         RecordedFrame request;
         StereoFrame frame;
@@ -229,6 +230,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
         while (sequence.Next(request)) {
             const uint32_t index = request.request.frame;
             pipeline.Render(request.request, frame);
+            blinkFrames += frame.gaze.valid ? 0 : 1;
             for (int eye = 0; eye < 2; ++eye) {
                 EyeFrame& e = frame.eyes[size_t(eye)];
                 renderMs += e.renderMs;
@@ -293,7 +295,8 @@ Results RunExperiment(const ExperimentSpec& spec) {
                                 {"reference_ms_per_eye", referenceMs / (2.0 * config.run.frames)},
                                 {"reference_cache_hits", referenceHits},
                                 {"rays", stats.Rays()},
-                                {"dropped_nonfinite_samples", stats.droppedSamples}});
+                                {"dropped_nonfinite_samples", stats.droppedSamples},
+                                {"blink_frames", blinkFrames}});
     }
     progress.Finish();
 
