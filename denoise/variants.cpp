@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/nearest_name.h"
 
 namespace fovrt {
 
@@ -45,31 +46,15 @@ const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
     return nullptr;
 }
 
-namespace {
-// Levenshtein distance, for "did you mean".
-size_t EditDistance(std::string_view a, std::string_view b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diag = up;
-        }
-    }
-    return row[b.size()];
+
+std::string UnknownDenoiserMessage(std::string_view name) {
+    return fmt::format("unknown denoiser '{}' (did you mean '{}'? known: {})", name, NearestName(name, DenoiserNames()),
+                       fmt::join(DenoiserNames(), ", "));
 }
-}  // namespace
 
 const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
     if (const DenoiserVariant* v = LookupDenoiserVariant(name)) return *v;
-    const DenoiserVariant* nearest = &DenoiserVariants().front();
-    for (const DenoiserVariant& v : DenoiserVariants())
-        if (EditDistance(name, v.name) < EditDistance(name, nearest->name)) nearest = &v;
-    Fail("{}: unknown denoiser '{}' (did you mean '{}'? known: {})", what, name, nearest->name,
-         fmt::join(DenoiserNames(), ", "));
+    Fail("{}: {}", what, UnknownDenoiserMessage(name));
 }
 
 const std::vector<std::string>& DenoiserNames() {

@@ -35,6 +35,8 @@ const std::vector<DenoiserVariant>& DenoiserVariants();
 // known names and suggesting the nearest one otherwise.
 const DenoiserVariant& FindDenoiserVariant(std::string_view name,
                                            std::string_view what = "denoiser");
+// "unknown denoiser 'x' (did you mean 'y'? known: ...)", for callers that name the key themselves.
+std::string UnknownDenoiserMessage(std::string_view name);
 // Null when `name` is not a variant.
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 

@@ -63,6 +63,12 @@ struct GazeParams {
     // static: fixed angles.
     float yawDeg = 0.0f;
     float pitchDeg = 0.0f;
+
+    // A blink (an invalid sample: a trace's NaN rows, tracker loss): "hold" foveates on the last
+    // valid direction; "uniform" renders the frame with a uniform spp map at the foveated map's
+    // mean (the same rays, spread evenly), since a closed eye has no fovea. The gaze pixel the
+    // metrics use stays the held direction either way.
+    std::string blink = "hold";
 };
 
 // Throws fovrt::Error naming the first bad gaze.* key.

@@ -209,6 +209,7 @@ GazeSample TraceGaze::At(double timeSeconds) const {
 void ValidateGazeParams(const GazeParams& p) {
     if (p.source != "lissajous" && p.source != "trace" && p.source != "static" && p.source != "mouse")
         Fail("gaze.source = '{}' is not one of lissajous, trace, static, mouse", p.source);
+    if (p.blink != "hold" && p.blink != "uniform") Fail("gaze.blink = '{}' is not one of hold, uniform", p.blink);
     if (p.units != "px" && p.units != "deg") Fail("gaze.units = '{}' is not one of px, deg", p.units);
     if (p.referenceWidth <= 0) Fail("gaze.reference_width = {} must be > 0", p.referenceWidth);
     if (p.referenceHeight <= 0) Fail("gaze.reference_height = {} must be > 0", p.referenceHeight);

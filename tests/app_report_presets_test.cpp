@@ -9,6 +9,7 @@
 #include "app/config.h"
 #include "app/config_io.h"
 #include "denoise/denoiser.h"
+#include "scene/scene.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -104,4 +105,43 @@ TEST_CASE("asvgf-lag preset: room and pillars, svgf vs asvgf", "[app][presets]")
     CHECK(p.scenes == std::vector<std::string>{"room", "pillars"});
     CHECK(p.variants == std::vector<std::string>{"svgf", "asvgf"});
     CHECK(p.config.denoise.params.asvgf.alpha == Approx(0.1f));
+}
+
+namespace {
+
+// Which lights and emitters are on at `time`: a switch is a change of this between two frames.
+std::vector<bool> LitAt(const Scene& scene, double time) {
+    SceneState state = scene.StateAt(float(time));
+    std::vector<bool> lit;
+    for (float scale : state.emissionScale) lit.push_back(scale > 0.0f);
+    for (const LightState& light : state.lights) lit.push_back(light.radiantIntensity.x + light.radiantIntensity.y +
+                                                                light.radiantIntensity.z > 0.0f);
+    return lit;
+}
+
+// The frames (of run.first_frame .. + run.frames) lit differently from the frame before.
+std::vector<int> SwitchFrames(const Scene& scene, const RunSettings& run) {
+    std::vector<int> frames;
+    for (int f = run.firstFrame + 1; f < run.firstFrame + run.frames; ++f)
+        if (LitAt(scene, FrameTimeSeconds(run, scene.frameRate, f)) !=
+            LitAt(scene, FrameTimeSeconds(run, scene.frameRate, f - 1)))
+            frames.push_back(f);
+    return frames;
+}
+
+}  // namespace
+
+TEST_CASE("asvgf-lag preset: the quick run covers a light switch in room, with frames either side", "[app][presets]") {
+    Preset p = LoadPreset("asvgf-lag.toml");
+    Scene room = LoadScene(test::SourceDir() / "scenes" / "room.toml");
+    const std::vector<int> full = SwitchFrames(room, p.config.run);
+    REQUIRE(!full.empty());
+    const std::vector<int> quick = SwitchFrames(room, p.quick.run);
+    INFO("quick frames " << p.quick.run.firstFrame << " + " << p.quick.run.frames << ", first switch of the full run at frame "
+                         << full.front());
+    REQUIRE(!quick.empty());
+    // Lag is measured after the switch, against histories built before it: a few frames of each.
+    CHECK(quick.front() - p.quick.run.firstFrame >= 4);
+    CHECK(p.quick.run.firstFrame + p.quick.run.frames - quick.front() >= 4);
+    CHECK(p.quick.run.frames <= 16);  // still quick
 }

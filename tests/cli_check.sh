@@ -5,6 +5,7 @@
 # Usage: cli_check.sh FOVRT WORK_DIR
 set -uo pipefail
 fovrt=$1; work=$2
+src=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 passed=0; failed=0
 ok() { echo "ok: $1"; passed=$((passed + 1)); }
@@ -63,6 +64,47 @@ else
 fi
 expect_error "experiment replay truncated" "truncated.jsonl: line 3" experiment exp.toml --replay truncated.jsonl --set output.dir=e14
 
+# A scene given by path is labelled by its `name`: the CSV and EXRs go under output.dir in a
+# folder named "cornell" (never a folder named after the path, never outside output.dir), and the
+# manifest's config names the scene rendered, with the path as the scene's source.
+printf '[reference]\nspp = 2\ncache_dir = "refcache"\n[camera]\nwidth = 32\nheight = 24\n[run]\nframes = 1\n[output]\ndir = "exp2"\nwrite_exr = true\n[experiment]\nscenes = ["room"]\nvariants = ["svgf"]\n' > exp2.toml
+scene_file="$src/scenes/cornell.toml"
+if "$fovrt" experiment exp2.toml --scene "$scene_file" >/dev/null 2>err.txt; then
+  [[ -f exp2/frames-cornell.csv ]] && ok "scene by path: exp2/frames-cornell.csv" || bad "scene by path: CSV not at exp2/frames-cornell.csv: $(find exp2 -name '*.csv')"
+  [[ -f exp2/cornell/svgf/f00000_left.exr ]] && ok "scene by path: EXRs under exp2/cornell" || bad "scene by path: EXRs at $(find exp2 -name '*.exr' | head -1)"
+  [[ -e "$scene_file/svgf" || -e "exp2/frames-$scene_file.csv" ]] && bad "scene by path: wrote under a folder named after the path" || ok "scene by path: nothing named after the path"
+  grep -q '"scene": "cornell"' exp2/manifest.json && grep -q "\"source\": \"$scene_file\"" exp2/manifest.json &&
+    ok "scene by path: manifest labels it cornell with its source" || bad "scene by path: manifest scene record"
+  python3 -c 'import json,sys; m=json.load(open("exp2/manifest.json")); sys.exit(m["config"]["scene"]["name"] != sys.argv[1])' "$scene_file" &&
+    ok "scene by path: manifest config names the scene rendered" || bad "scene by path: manifest config.scene.name is not $scene_file"
+  grep -q '"cornell"' exp2/summary.json && ! grep -q "$scene_file" exp2/summary.json && ok "scene by path: summary labels it cornell" || bad "scene by path: summary label"
+else
+  bad "experiment --scene PATH failed: $(cat err.txt)"
+fi
+rm -rf "$scene_file/svgf" 2>/dev/null; rmdir "$scene_file" 2>/dev/null
+# run --set scene.name=PATH: the manifest's scene is labelled by name, the path is its source.
+if "$fovrt" run "${small[@]}" --set run.frames=1 --set "scene.name=$scene_file" --set output.dir=run2 --set denoise.device=cpu \
+    --set output.write_exr=true >/dev/null 2>err.txt; then
+  python3 -c 'import json,sys; m=json.load(open("run2/manifest.json")); sys.exit(not (m["scene"]["name"] == "cornell" and m["scene"]["source"] == sys.argv[1] and m["config"]["scene"]["name"] == sys.argv[1]))' "$scene_file" &&
+    ok "run scene by path: manifest scene cornell, source the path" || bad "run scene by path: manifest scene"
+  [[ -f run2/denoised/svgf/$(ls run2/denoised/svgf | grep -m1 exr) ]] && ok "run scene by path: EXRs under output.dir" || bad "run scene by path: no EXR under run2"
+else
+  bad "run --set scene.name=PATH failed: $(cat err.txt)"
+fi
+
+# A blink (NaN rows of a trace; frames 1..3 here) is counted in the manifest and marked in
+# frames.jsonl with how it was rendered (gaze.blink).
+printf 'n,x,y\n0,0,0\n33,1,0\n66,NaN,NaN\n100,NaN,NaN\n133,5,1\n166,6,1\n' > blink.csv
+if "$fovrt" run "${small[@]}" --set run.frames=5 --set gaze.source=trace --set gaze.trace_path=blink.csv --set gaze.blink=uniform \
+    --set output.dir=blink1 --set denoise.device=cpu >/dev/null 2>err.txt; then
+  python3 -c 'import json,sys; m=json.load(open("blink1/manifest.json")); sys.exit(not (m["counters"]["blink_frames"] == 3 and m["config"]["gaze"]["blink"] == "uniform"))' &&
+    ok "blink: manifest counts 3 blink frames" || bad "blink: manifest counters.blink_frames"
+  [[ $(grep -c '"blink":"uniform"' blink1/frames.jsonl) -eq 3 ]] && ok "blink: frames.jsonl marks the blink frames" || bad "blink: frames.jsonl"
+else
+  bad "blink run failed: $(cat err.txt)"
+fi
+expect_error "unknown gaze.blink" "gaze.blink.*did you mean 'hold'" run --set gaze.blink=hld --set output.dir=e19
+
 echo 'name = "broken"' > broken.toml
 echo '[camera]' >> broken.toml
 echo 'position = [0, 1, "x"]' >> broken.toml
@@ -74,7 +116,20 @@ expect_error "zero resolution" "camera.width" run --set camera.width=0 --set out
 expect_error "negative spp" "foveation.spp_inside" run --set foveation.spp_inside=-2 --set output.dir=e5
 expect_error "garbage trace row" "bad_trace.csv:3" run --set gaze.source=trace --set gaze.trace_path=bad_trace.csv --set output.dir=e6
 expect_error "unknown device" "denoise.device\|device" run "${small[@]}" --set denoise.device=7 --set output.dir=e7
-expect_error "unknown denoiser" "svgf-typo" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
+expect_error "unknown denoiser" "denoise.denoisers.*unknown denoiser 'svgf-typo' (did you mean 'svgf'?" run "${small[@]}" --set 'denoise.denoisers=["svgf-typo"]' --set output.dir=e8
+expect_error "unknown scene names the nearest" "scene 'cornel'.*did you mean 'cornell'?" run --set scene.name=cornel --set output.dir=e15
+expect_error "unknown key names the nearest" "camera.widht.*did you mean 'camera.width'?" run --set camera.widht=3 --set output.dir=e16
+expect_error "unknown enum value names the nearest" "foveation.model.*did you mean 'acuity'?" run --set foveation.model=acuty --set output.dir=e17
+# An output folder that cannot be written (a file in its path) is one line naming the key and the
+# path; so is a reference cache that cannot be, and before any rendering.
+touch afile
+expect_error "unwritable output.dir" "config key 'output.dir': cannot write to 'afile/sub'" run "${small[@]}" --set output.dir=afile/sub
+expect_error "unwritable reference.cache_dir" "config key 'reference.cache_dir': cannot write to 'afile/c'" experiment exp2.toml --set reference.cache_dir=afile/c --set output.dir=e18
+expect_error "unwritable reference.cache_dir (reference)" "config key 'reference.cache_dir': cannot write to 'afile/c'" reference "${small[@]}" --set reference.cache_dir=afile/c
+# A run that fails leaves no output folder it created, and keeps one that was there before.
+mkdir -p pre
+expect_error "failing run in an existing dir" "no_such_scene.toml" run --set scene.name=no_such_scene.toml --set output.dir=pre/deeper/out
+[[ -d pre && ! -e pre/deeper ]] && ok "failed run: removed the folders it created, kept pre/" || bad "failed run: pre/ missing or pre/deeper left behind"
 expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --set output.dir=e9
 expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
 # The denoiser bench at a small size: every denoiser has a per-pass byte model and a bound.
@@ -111,9 +166,12 @@ expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 
 # config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14; do
+left=""
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
+  [[ -e $d ]] && left="$left $d"
 done
 ok "no manifest after any error"
+[[ -z $left ]] && ok "no output folder left behind by a failed run" || bad "failed runs left output folders:$left"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -8,6 +8,7 @@
 #include "app/config.h"
 #include "app/config_cli.h"
 #include "app/frame_pipeline.h"
+#include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
 #include "denoise/memory_plan.h"
@@ -21,6 +22,7 @@ void RenderReferences(const RunConfig& config) {
     EnforceMemoryBudget({{"reference.image.eye0", imageBytes, false},
                          {"reference.image.eye1", imageBytes, false}},
                         config.memoryBudget, "reference");
+    OutputDir cacheDir(config.reference.cacheDir, "reference.cache_dir");  // before any rendering
     FramePipeline pipeline(config);
     ReferenceCache cache(config.reference.cacheDir);
     uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
@@ -44,6 +46,7 @@ void RenderReferences(const RunConfig& config) {
         }
     }
     progress.Finish();
+    cacheDir.Keep();
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr, "fovrt reference: %d rendered, %d cached (%d spp) in %.1f s\n", rendered,

@@ -27,6 +27,7 @@
 #include "app/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
+#include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/replay.h"
 #include "core/atomic_file.h"
@@ -137,8 +138,8 @@ struct RunOptions {
 void Run(const RunConfig& config, Replay* replay, const std::string& recordPath) {
     namespace fs = std::filesystem;
     EnforceRunBudget(config);
-    const fs::path outDir = config.output.dir;
-    fs::create_directories(outDir);
+    OutputDir out(config.output.dir, "output.dir");
+    const fs::path outDir = out.Path();
     // A stale manifest from an earlier run would make this one look complete while it runs.
     fs::remove(outDir / "manifest.json");
 
@@ -163,6 +164,7 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
     uint64_t totalSamples = 0;
     uint64_t recordedSamples = 0;  // Σ FrameInputs::sampleCount: A-SVGF gradient pixels trace n_prev
     int framesRendered = 0;
+    int blinkFrames = 0;  // frames whose gaze sample was invalid (gaze.blink says how rendered)
     uint32_t firstIndex = 0, lastIndex = 0;
     while (sequence.Next(request)) {
         const uint32_t index = request.request.frame;
@@ -174,6 +176,10 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
         record["time_s"] = frame.timeSeconds;
         record["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y,
                                frame.gaze.direction.z};
+        if (!frame.gaze.valid) {
+            record["blink"] = config.gaze.blink;
+            ++blinkFrames;
+        }
         for (int eye = 0; eye < 2; ++eye) {
             EyeFrame& e = frame.eyes[size_t(eye)];
             nlohmann::json eyeRecord;
@@ -251,7 +257,8 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
                             {"shadow_tests", stats.shadowRays},
                             {"shadow_rays_reused", stats.shadowRaysReused},
                             {"bounce_rays", stats.bounceRays},
-                            {"dropped_nonfinite_samples", stats.droppedSamples}};
+                            {"dropped_nonfinite_samples", stats.droppedSamples},
+                            {"blink_frames", blinkFrames}};
     nlohmann::json replaced = nlohmann::json::object();
     for (size_t v = 0; v < denoisers.size(); ++v) {
         uint64_t nonFinite = 0, negative = 0;
@@ -271,6 +278,7 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
     manifest["timings_ms"] = timings.ToJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+    out.Keep();
     std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
                  framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
                  (outDir / "manifest.json").string().c_str());

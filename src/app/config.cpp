@@ -21,7 +21,9 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/nearest_name.h"
 #include "denoise/params.h"
+#include "denoise/variants.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
@@ -194,7 +196,7 @@ public:
                 ok = ok || v == a;
                 list += (list.empty() ? "" : ", ") + a;
             }
-            if (!ok) Bad(key, fmt::format("'{}' is not one of {}", v, list));
+            if (!ok) Bad(key, fmt::format("'{}' is not one of {} (did you mean '{}'?)", v, list, NearestName(v, allowed)));
         }
         out = v;
     }
@@ -254,17 +256,23 @@ public:
                 // An unknown table: report its first key (which has an origin).
                 CheckUnknownLeaf(*node.as_table(), path);
             }
-            Fail("unknown config key '{}'{}", path, it != origins_.end() ? " (" + it->second + ")" : "");
+            Fail("unknown config key '{}'{}{}", path, it != origins_.end() ? " (" + it->second + ")" : "", Suggest(path));
         }
     }
 
 private:
+    // " (did you mean 'camera.width'?)": the nearest key the schema knows.
+    std::string Suggest(const std::string& key) const {
+        const std::string nearest = NearestName(key, used_);
+        return nearest.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", nearest);
+    }
+
     void CheckUnknownLeaf(const toml::table& table, const std::string& prefix) const {
         for (const auto& [key, node] : table) {
             std::string path = prefix + "." + std::string(key.str());
             auto it = origins_.find(path);
             if (it != origins_.end())
-                Fail("unknown config key '{}' ({})", path, it->second);
+                Fail("unknown config key '{}' ({}){}", path, it->second, Suggest(path));
             if (node.is_table()) CheckUnknownLeaf(*node.as_table(), path);
         }
     }
@@ -356,6 +364,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Int("gaze.reference_height", g.referenceHeight, 1, 16384);
     r.String("gaze.trace_path", g.tracePath);
     r.Double("gaze.trace_start_ms", g.traceStartMs);
+    r.String("gaze.blink", g.blink, {"hold", "uniform"});
     r.Float("gaze.yaw_deg", g.yawDeg, -89.999, 89.999);
     r.Float("gaze.pitch_deg", g.pitchDeg, -89.999, 89.999);
     if (g.source == "trace" && g.tracePath.empty())
@@ -364,8 +373,10 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
 
     DenoiseConfig& d = c.denoise;
     r.Strings("denoise.denoisers", d.denoisers);
-    for (const std::string& name : d.denoisers)
+    for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
+        if (!LookupDenoiserVariant(name)) r.Bad("denoise.denoisers", UnknownDenoiserMessage(name));
+    }
     // A device index may be given as a number (device = 1) or a string ("1").
     if (const toml::node* n = r.Find("denoise.device"); n && n->is_integer()) {
         if (n->as_integer()->get() < 0) r.Bad("denoise.device", "a device index must be >= 0");
@@ -487,6 +498,7 @@ toml::table ToTable(const RunConfig& c) {
                              {"reference_height", g.referenceHeight},
                              {"trace_path", g.tracePath},
                              {"trace_start_ms", g.traceStartMs},
+                             {"blink", g.blink},
                              {"yaw_deg", CleanFloat(g.yawDeg)},
                              {"pitch_deg", CleanFloat(g.pitchDeg)}}},
         {"denoise", toml::table{{"denoisers", denoisers}, {"device", c.denoise.device}}},

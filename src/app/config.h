@@ -24,7 +24,9 @@
 //   [gaze]       source = "lissajous"|"trace"|"static"|"mouse" (preview only), units = "px"|"deg",
 //                amplitude = [640, 360], frequency_hz = [0.4, 0.5], phase_deg = [90, 0],
 //                offset = [0, 0], reference_width = 1280, reference_height = 720,
-//                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0
+//                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0,
+//                blink = "hold"|"uniform" (an invalid sample: hold = foveate on the last valid
+//                direction; uniform = a uniform spp map at the foveated map's mean, rounded)
 //   [denoise]    denoisers = ["svgf"], device = "auto"|"vulkan"|"cpu"|"<index>" (vk/device_choice.h)
 //   denoise.precision and [denoise.svgf], [denoise.asvgf], [denoise.two_history]: the parameter
 //                tables in denoise/params.cpp (key, default, range, doc; `fovrt config --keys`)

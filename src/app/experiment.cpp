@@ -1,5 +1,6 @@
 #include "app/experiment.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -12,6 +13,7 @@
 #include "app/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
+#include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
 #include "app/report_collect.h"
@@ -88,6 +90,24 @@ private:
     std::vector<std::string> order_;
 };
 
+// A scene's label in file names, reports and manifests: its `name` (not the path it was given
+// by), reduced to [A-Za-z0-9._-] so it is one path component under output.dir; a label already
+// used in this experiment gets "-2", "-3", ...
+std::string SceneLabel(const std::string& name, std::vector<std::string>& used) {
+    std::string label;
+    for (char c : name) {
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                          c == '.' || c == '_' || c == '-';
+        label += keep ? c : '_';
+    }
+    if (label.empty() || label.find_first_not_of('.') == std::string::npos) label = "scene";
+    std::string unique = label;
+    for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n)
+        unique = fmt::format("{}-{}", label, n);
+    used.push_back(unique);
+    return unique;
+}
+
 ReportTable MemoryTable(const RunConfig& config) {
     int w = config.camera.width, h = config.camera.height;
     double pixels = double(w) * double(h);
@@ -152,8 +172,9 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
 
 Results RunExperiment(const ExperimentSpec& spec) {
     const RunConfig& base = spec.config;
-    const fs::path outDir = base.output.dir;
-    fs::create_directories(outDir);
+    OutputDir out(base.output.dir, "output.dir");
+    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
+    const fs::path outDir = out.Path();
     fs::remove(outDir / "manifest.json");  // present only once this run is complete
 
     auto totalStart = std::chrono::steady_clock::now();
@@ -167,6 +188,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
     nlohmann::json replayRecord;  // the recording replayed, with what CheckReplayScene found
     std::string deviceDescription;
 
+    std::vector<std::string> labels;
     Progress progress("experiment", int(spec.scenes.size()) * base.run.frames);
     for (const std::string& sceneName : spec.scenes) {
         RunConfig config = base;
@@ -181,6 +203,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
             replayRecord = replay->ToJson();
         }
         FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
+        const std::string label = SceneLabel(pipeline.GetScene().name, labels);
         DenoiserSet denoisers(config.denoise);
         deviceDescription = denoisers.DeviceDescription();
         ReferenceCache cache(config.reference.cacheDir);
@@ -190,7 +213,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
         const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
 
         SceneVisuals visuals;
-        visuals.scene = sceneName;
+        visuals.scene = label;
         visuals.width = config.camera.width;
         visuals.height = config.camera.height;
         visuals.eye = 0;
@@ -199,6 +222,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                                         : fovea.value * pipeline.RigAt(0).Eye(0).PixelsPerDegree();
         double renderMs = 0.0, referenceMs = 0.0;
         int referenceHits = 0;
+        int blinkFrames = 0;
 
         RecordedFrame request;
         StereoFrame frame;
@@ -206,6 +230,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
         while (sequence.Next(request)) {
             const uint32_t index = request.request.frame;
             pipeline.Render(request.request, frame);
+            blinkFrames += frame.gaze.valid ? 0 : 1;
             for (int eye = 0; eye < 2; ++eye) {
                 EyeFrame& e = frame.eyes[size_t(eye)];
                 renderMs += e.renderMs;
@@ -222,7 +247,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                 referenceMs += MsSince(start);
 
                 EyeFrameImages images;
-                images.scene = sceneName;
+                images.scene = label;
                 images.frame = int(index);
                 images.eye = eye;
                 images.camera = camera;
@@ -237,7 +262,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                         timings.Add(denoisers.Name(v), t.pass, t.ms);
                     images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
                     if (config.output.writeExr)
-                        WriteRgbExr(outDir / sceneName / denoisers.Name(v) /
+                        WriteRgbExr(outDir / label / denoisers.Name(v) /
                                         fmt::format("f{:05d}_{}.exr", index, eye == 0 ? "left" : "right"),
                                     outputs[v]);
                 }
@@ -257,19 +282,21 @@ Results RunExperiment(const ExperimentSpec& spec) {
                     }
                 }
             }
-            progress.Step(fmt::format("{} frame {}", sceneName, index));
+            progress.Step(fmt::format("{} frame {}", label, index));
         }
-        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", sceneName), results, sceneName);
+        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", label), results, label);
         report.scenes.push_back(std::move(visuals));
         RenderStats stats = pipeline.GetRenderer().Stats();
-        sceneRecords.push_back({{"scene", sceneName},
+        sceneRecords.push_back({{"scene", label},
+                                {"requested", sceneName},
                                 {"source", pipeline.GetScene().sourcePath.string()},
                                 {"fingerprint", fmt::format("{:016x}", fingerprint)},
                                 {"render_ms_per_eye", renderMs / (2.0 * config.run.frames)},
                                 {"reference_ms_per_eye", referenceMs / (2.0 * config.run.frames)},
                                 {"reference_cache_hits", referenceHits},
                                 {"rays", stats.Rays()},
-                                {"dropped_nonfinite_samples", stats.droppedSamples}});
+                                {"dropped_nonfinite_samples", stats.droppedSamples},
+                                {"blink_frames", blinkFrames}});
     }
     progress.Finish();
 
@@ -300,11 +327,17 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["scenes"] = sceneRecords;
     manifest["variants"] = spec.variants;
     manifest["build"] = BuildInfoJson();
+    // The config as rendered: scene.name is the scene each pass used (experiment.scenes or
+    // --scene replace it), one string for one scene, else the list in order.
     manifest["config"] = ConfigToJson(base);
+    if (spec.scenes.size() == 1) manifest["config"]["scene"]["name"] = spec.scenes.front();
+    else manifest["config"]["scene"]["name"] = spec.scenes;
     manifest["denoise_device"] = deviceDescription;
     manifest["pass_ms"] = timings.ToJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+    out.Keep();
+    cacheDir.Keep();
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
     return results;

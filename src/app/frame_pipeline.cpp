@@ -1,5 +1,6 @@
 #include "app/frame_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -9,6 +10,16 @@
 
 namespace fovrt {
 namespace {
+
+// The map's mean, rounded (at least 1), everywhere: the foveated map's rays spread evenly.
+void MakeUniform(Plane<uint16_t>& sppMap) {
+    if (sppMap.size() == 0) return;
+    uint64_t total = 0;
+    for (size_t p = 0; p < sppMap.size(); ++p) total += sppMap[p];
+    const uint64_t mean = (total + sppMap.size() / 2) / sppMap.size();
+    const uint16_t spp = uint16_t(std::clamp<uint64_t>(mean, 1, 65535));
+    for (size_t p = 0; p < sppMap.size(); ++p) sppMap[p] = spp;
+}
 
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -100,6 +111,8 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.gazeEye = GazeInEye(camera, out.gaze.direction);
         eyeFrame.gazePixel = GazePixel(camera, out.gaze.direction);
         sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap);
+        eyeFrame.uniformForBlink = !out.gaze.valid && config_.gaze.blink == "uniform";
+        if (eyeFrame.uniformForBlink) MakeUniform(eyeFrame.sppMap);
         eyeFrame.sppMs = MillisecondsSince(start);
 
         start = std::chrono::steady_clock::now();

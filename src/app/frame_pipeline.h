@@ -26,12 +26,13 @@ struct EyeFrame {
     vec2 gazePixel = vec2(0.0f);    // where the gaze lands on this eye's image
     double sppMs = 0.0;             // building the spp map
     double renderMs = 0.0;          // path tracing this eye
+    bool uniformForBlink = false;   // gaze.blink = "uniform" replaced the map during a blink
 };
 
 struct StereoFrame {
     uint32_t frame = 0;
     double timeSeconds = 0.0;
-    GazeSample gaze;
+    GazeSample gaze;  // gaze.valid false: a blink (gaze.blink says what the spp maps did)
     std::array<EyeFrame, 2> eyes;
 };
 

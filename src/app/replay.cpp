@@ -38,6 +38,7 @@ constexpr ReplayKeyRule kReplayKeyRules[] = {
     {"run.max_depth", KeyRule::kChanges, "the path length"},
     {"run.threads", KeyRule::kFree, "images are identical for any thread count"},
     {"gaze.", KeyRule::kSupplied, "each recorded frame has its gaze sample"},
+    {"gaze.blink", KeyRule::kChanges, "builds the spp maps of the recorded blinks"},
     {"foveation.", KeyRule::kChanges, "builds the spp maps"},
     {"denoise.", KeyRule::kFree, "denoising follows rendering"},
     {"output.", KeyRule::kFree, "outputs only"},

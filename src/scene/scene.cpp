@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/nearest_name.h"
 
 namespace fovrt {
 namespace {
@@ -177,7 +178,8 @@ std::filesystem::path ResolveSceneName(const std::string& nameOrPath) {
     if (std::filesystem::exists(path)) return path;
     std::string names;
     for (const char* name : kBuiltins) names += std::string(names.empty() ? "" : ", ") + name;
-    Fail("scene '{}': no such file and not a built-in scene ({})", nameOrPath, names);
+    Fail("scene '{}': no such file and not a built-in scene (did you mean '{}'? built-in: {})", nameOrPath,
+         NearestName(nameOrPath, kBuiltins), names);
 }
 
 bool IsStaticScene(const Scene& scene) {
