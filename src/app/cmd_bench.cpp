@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "commands.h"
 #include "core/camera.h"
 #include "core/error.h"
+#include "core/frame_inputs.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "denoise/bench/denoise_bench.h"
@@ -66,7 +68,20 @@ struct Throughput {
     double seconds = 0.0;
     double cpuSeconds = 0.0;
     RenderStats stats;
+    uint64_t checksum = 0;  // FNV-1a over every FrameInputs plane of the last frame, both eyes
 };
+
+// FNV-1a 64 over the bytes of every plane, eye by eye: equal checksums = bit-identical images
+// (A/B checks of tracer optimisations).
+uint64_t Checksum(const std::vector<FrameInputs>& frames) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (const FrameInputs& f : frames)
+        f.ForEachPlane([&](const PlaneBytes& p) {
+            const auto* bytes = static_cast<const unsigned char*>(p.data);
+            for (size_t i = 0; i < p.bytes; ++i) h = (h ^ bytes[i]) * 0x100000001b3ull;
+        });
+    return h;
+}
 
 // Renders `frames` frames of the given eye cameras (after one untimed warm-up frame).
 Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames) {
@@ -80,19 +95,20 @@ Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int s
         renderer.SetFrame(uint32_t(f));
         for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
     }
-    return Throughput{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_SELF) - cpuStart, renderer.Stats()};
+    return Throughput{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_SELF) - cpuStart, renderer.Stats(),
+                      Checksum(out)};
 }
 
 void PrintThroughput(const char* label, const Throughput& t, int frames) {
     const RenderStats& s = t.stats;
     std::printf("  %s: %.1f ms/frame, %.2f Mrays/s traced (primary %.2fM, shadow %.2fM of which %.2fM "
                 "reused per pixel, bounce %.2fM per frame), %.2f Msamples/s (%.2f per CPU-second), "
-                "%llu dropped samples\n",
+                "%llu dropped samples, checksum %016llx\n",
                 label, 1e3 * t.seconds / frames, 1e-6 * double(s.Rays()) / t.seconds,
                 1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.shadowRays) / frames,
                 1e-6 * double(s.shadowRaysReused) / frames, 1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
                 1e-6 * double(s.samples) / t.cpuSeconds,
-                static_cast<unsigned long long>(s.droppedSamples));
+                static_cast<unsigned long long>(s.droppedSamples), static_cast<unsigned long long>(t.checksum));
 }
 
 void BenchScene(const std::string& name, const BenchOptions& o) {
@@ -202,8 +218,9 @@ void CompareWithEmbree(const BenchOptions& o) {
                 o.width, o.height, o.compareSpp, o.maxDepth, o.maxDepth - 1, lightPosition.x,
                 lightPosition.y, lightPosition.z);
     std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s traced; primary "
-                "rays and primary-vertex point-light shadow rays once per pixel, not per sample)\n",
-                1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds);
+                "rays and primary-vertex point-light shadow rays once per pixel, not per sample; checksum %016llx)\n",
+                1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds,
+                static_cast<unsigned long long>(ours.checksum));
     std::printf("  embree: %.2f Msamples/s wall, %.2f Msamples per CPU-second (%s: %.3f s / %.3f s CPU at "
                 "%d spp, %.3f s / %.3f s CPU at %d spp)\n",
                 1e-6 * embreeRate, 1e-6 * embreeCpuRate, o.embreeBinary.c_str(), tS.wall, tS.cpu,
