@@ -253,6 +253,19 @@ vec3 EmbreeScene::ObjectPosition(const SurfaceSample& s) const {
     return p0 + s.barycentrics.x * (p1 - p0) + s.barycentrics.y * (p2 - p0);
 }
 
+std::array<vec3, 3> EmbreeScene::WorldTriangle(uint32_t instance, uint32_t primitive,
+                                               const std::vector<InstanceXform>& xforms) const {
+    FOVRT_CHECK_OP(instance, <, scene_.instances.size());
+    const InstanceXform& x = xforms[instance];
+    const Mesh& mesh = scene_.meshes[scene_.instances[instance].mesh];
+    FOVRT_CHECK_OP(primitive, <, mesh.triangles.size());
+    const uvec3& tri = mesh.triangles[primitive];
+    std::array<vec3, 3> p = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
+    if (!x.identity)
+        for (vec3& corner : p) corner = vec3(x.worldFromObject * vec4(corner, 1.0f));
+    return p;
+}
+
 SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const {
     FOVRT_CHECK_OP(s.instance, <, scene_.instances.size());
     const InstanceXform& x = xforms[s.instance];

@@ -4,6 +4,7 @@
 // entry, so the renderer and the re-shading API see bit-identical surfaces.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -56,6 +57,10 @@ public:
     SurfaceHit SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const;
     // Object-space point of a surface sample.
     vec3 ObjectPosition(const SurfaceSample& s) const;
+    // World-space corners of triangle `primitive` of `instance` under `xforms`, exactly as
+    // SurfaceAt computes them (so a position rebuilt from them matches it bit for bit).
+    std::array<vec3, 3> WorldTriangle(uint32_t instance, uint32_t primitive,
+                                      const std::vector<InstanceXform>& xforms) const;
 
     const std::vector<InstanceXform>& xforms() const { return xforms_; }
     static std::vector<InstanceXform> MakeXforms(const Scene& scene, const SceneState& state);
