@@ -49,6 +49,7 @@ struct BenchOptions {
     int frames = 1;
     int threads = 0;
     bool compare = true;
+    bool bareProbe = true;  // trace the same rays with bare Embree calls (ProbeBareEmbree)
     int compareSpp = 4;
     std::string embreeBinary = "/usr/bin/pathtracer";
     bool denoisers = false;  // time the denoisers instead (denoise/bench/denoise_bench.h)
@@ -111,6 +112,31 @@ void PrintThroughput(const char* label, const Throughput& t, int frames) {
                 static_cast<unsigned long long>(s.droppedSamples), static_cast<unsigned long long>(t.checksum));
 }
 
+// The same rays again with nothing but rtcIntersect1 / rtcOccluded1 (issue #17): the rays of one
+// frame are recorded, then traced `frames` times on the renderer's threads. tracer / bare is what
+// shading, sampling and bookkeeping cost on top of Embree's traversal (primary rays, which the
+// tracer sends as 8-wide coherent packets, go one at a time here).
+void ProbeBareEmbree(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames,
+                     const Throughput& tracer) {
+    std::vector<TracedRay> rays;
+    std::vector<FrameInputs> out(eyes.size());
+    Plane<uint16_t> sppMap(eyes[0].width(), eyes[0].height(), uint16_t(spp));
+    renderer.RecordRays(&rays);
+    for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
+    renderer.RecordRays(nullptr);
+    uint64_t hits = renderer.TraceBare(rays);  // warm-up
+    auto start = Clock::now();
+    double cpuStart = CpuSeconds(RUSAGE_SELF);
+    for (int f = 0; f < frames; ++f) hits += renderer.TraceBare(rays);
+    double seconds = Seconds(start, Clock::now()), cpu = CpuSeconds(RUSAGE_SELF) - cpuStart;
+    double bare = double(rays.size()) * frames / seconds, bareCpu = double(rays.size()) * frames / cpu;
+    double ours = double(tracer.stats.Rays()) / tracer.seconds, oursCpu = double(tracer.stats.Rays()) / tracer.cpuSeconds;
+    std::printf("  bare Embree on the same %zu rays/frame (rtcIntersect1/rtcOccluded1 only, %.1f%% hit): %.2f Mrays/s "
+                "(%.2f per CPU-second); tracer / bare = %.2f wall-clock, %.2f per CPU-second\n",
+                rays.size(), 100.0 * double(hits) / (double(rays.size()) * (frames + 1)), 1e-6 * bare,
+                1e-6 * bareCpu, ours / bare, oursCpu / bareCpu);
+}
+
 void BenchScene(const std::string& name, const BenchOptions& o) {
     std::filesystem::path path;
     Scene scene;
@@ -141,6 +167,7 @@ void BenchScene(const std::string& name, const BenchOptions& o) {
                         std::to_string(o.spp) + " spp, max depth " + std::to_string(o.maxDepth) +
                         ", " + std::to_string(o.frames) + " frames";
     PrintThroughput(label.c_str(), t, o.frames);
+    if (o.bareProbe) ProbeBareEmbree(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames, t);
 }
 
 // Our tracer vs Embree's pathtracer tutorial on the shared Cornell box OBJ.
@@ -244,6 +271,7 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--frames", o->frames, "Timed frames per scene")->check(CLI::Range(1, 100000));
     cmd->add_option("--threads", o->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
     cmd->add_flag("!--no-compare", o->compare, "Skip the comparison with Embree's pathtracer");
+    cmd->add_flag("!--no-bare", o->bareProbe, "Skip tracing the same rays with bare rtcIntersect1/rtcOccluded1");
     cmd->add_option("--compare-spp", o->compareSpp, "spp of the Embree comparison")->check(CLI::Range(1, 4096));
     cmd->add_option("--embree-bin", o->embreeBinary, "Embree's tutorial path tracer");
     cmd->add_flag("--denoisers", o->denoisers, "Time the denoisers (Vulkan and C++ reference) at --width x --height instead");

@@ -269,6 +269,20 @@ public:
         return embree_->Surface(sample).position;
     }
 
+    void RecordRays(std::vector<TracedRay>* log) override { embree_->SetRayLog(log); }
+
+    uint64_t TraceBare(const std::vector<TracedRay>& rays) const override {
+        std::atomic<uint64_t> hits{0};
+        arena_.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+                uint64_t n = 0;
+                for (size_t i = r.begin(); i != r.end(); ++i) n += embree_->TraceBare(rays[i]) ? 1 : 0;
+                hits += n;
+            });
+        });
+        return hits.load();
+    }
+
     RenderStats Stats() const override {
         RenderStats s;
         s.primaryRays = primaryRays_.load();
