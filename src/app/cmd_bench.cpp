@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "commands.h"
 #include "core/camera.h"
 #include "core/error.h"
+#include "core/frame_inputs.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "denoise/bench/denoise_bench.h"
@@ -47,6 +49,7 @@ struct BenchOptions {
     int frames = 1;
     int threads = 0;
     bool compare = true;
+    bool bareProbe = true;  // trace the same rays with bare Embree calls (ProbeBareEmbree)
     int compareSpp = 4;
     std::string embreeBinary = "/usr/bin/pathtracer";
     bool denoisers = false;  // time the denoisers instead (denoise/bench/denoise_bench.h)
@@ -66,7 +69,20 @@ struct Throughput {
     double seconds = 0.0;
     double cpuSeconds = 0.0;
     RenderStats stats;
+    uint64_t checksum = 0;  // FNV-1a over every FrameInputs plane of the last frame, both eyes
 };
+
+// FNV-1a 64 over the bytes of every plane, eye by eye: equal checksums = bit-identical images
+// (A/B checks of tracer optimisations).
+uint64_t Checksum(const std::vector<FrameInputs>& frames) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (const FrameInputs& f : frames)
+        f.ForEachPlane([&](const PlaneBytes& p) {
+            const auto* bytes = static_cast<const unsigned char*>(p.data);
+            for (size_t i = 0; i < p.bytes; ++i) h = (h ^ bytes[i]) * 0x100000001b3ull;
+        });
+    return h;
+}
 
 // Renders `frames` frames of the given eye cameras (after one untimed warm-up frame).
 Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames) {
@@ -80,19 +96,45 @@ Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int s
         renderer.SetFrame(uint32_t(f));
         for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
     }
-    return Throughput{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_SELF) - cpuStart, renderer.Stats()};
+    return Throughput{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_SELF) - cpuStart, renderer.Stats(),
+                      Checksum(out)};
 }
 
 void PrintThroughput(const char* label, const Throughput& t, int frames) {
     const RenderStats& s = t.stats;
     std::printf("  %s: %.1f ms/frame, %.2f Mrays/s traced (primary %.2fM, shadow %.2fM of which %.2fM "
                 "reused per pixel, bounce %.2fM per frame), %.2f Msamples/s (%.2f per CPU-second), "
-                "%llu dropped samples\n",
+                "%llu dropped samples, checksum %016llx\n",
                 label, 1e3 * t.seconds / frames, 1e-6 * double(s.Rays()) / t.seconds,
                 1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.shadowRays) / frames,
                 1e-6 * double(s.shadowRaysReused) / frames, 1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
                 1e-6 * double(s.samples) / t.cpuSeconds,
-                static_cast<unsigned long long>(s.droppedSamples));
+                static_cast<unsigned long long>(s.droppedSamples), static_cast<unsigned long long>(t.checksum));
+}
+
+// The same rays again with nothing but rtcIntersect1 / rtcOccluded1 (issue #17): the rays of one
+// frame are recorded, then traced `frames` times on the renderer's threads. tracer / bare is what
+// shading, sampling and bookkeeping cost on top of Embree's traversal (primary rays, which the
+// tracer sends as 8-wide coherent packets, go one at a time here).
+void ProbeBareEmbree(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames,
+                     const Throughput& tracer) {
+    std::vector<TracedRay> rays;
+    std::vector<FrameInputs> out(eyes.size());
+    Plane<uint16_t> sppMap(eyes[0].width(), eyes[0].height(), uint16_t(spp));
+    renderer.RecordRays(&rays);
+    for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
+    renderer.RecordRays(nullptr);
+    uint64_t hits = renderer.TraceBare(rays);  // warm-up
+    auto start = Clock::now();
+    double cpuStart = CpuSeconds(RUSAGE_SELF);
+    for (int f = 0; f < frames; ++f) hits += renderer.TraceBare(rays);
+    double seconds = Seconds(start, Clock::now()), cpu = CpuSeconds(RUSAGE_SELF) - cpuStart;
+    double bare = double(rays.size()) * frames / seconds, bareCpu = double(rays.size()) * frames / cpu;
+    double ours = double(tracer.stats.Rays()) / tracer.seconds, oursCpu = double(tracer.stats.Rays()) / tracer.cpuSeconds;
+    std::printf("  bare Embree on the same %zu rays/frame (rtcIntersect1/rtcOccluded1 only, %.1f%% hit): %.2f Mrays/s "
+                "(%.2f per CPU-second); tracer / bare = %.2f wall-clock, %.2f per CPU-second\n",
+                rays.size(), 100.0 * double(hits) / (double(rays.size()) * (frames + 1)), 1e-6 * bare,
+                1e-6 * bareCpu, ours / bare, oursCpu / bareCpu);
 }
 
 void BenchScene(const std::string& name, const BenchOptions& o) {
@@ -125,6 +167,7 @@ void BenchScene(const std::string& name, const BenchOptions& o) {
                         std::to_string(o.spp) + " spp, max depth " + std::to_string(o.maxDepth) +
                         ", " + std::to_string(o.frames) + " frames";
     PrintThroughput(label.c_str(), t, o.frames);
+    if (o.bareProbe) ProbeBareEmbree(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames, t);
 }
 
 // Our tracer vs Embree's pathtracer tutorial on the shared Cornell box OBJ.
@@ -202,8 +245,9 @@ void CompareWithEmbree(const BenchOptions& o) {
                 o.width, o.height, o.compareSpp, o.maxDepth, o.maxDepth - 1, lightPosition.x,
                 lightPosition.y, lightPosition.z);
     std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s traced; primary "
-                "rays and primary-vertex point-light shadow rays once per pixel, not per sample)\n",
-                1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds);
+                "rays and primary-vertex point-light shadow rays once per pixel, not per sample; checksum %016llx)\n",
+                1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds,
+                static_cast<unsigned long long>(ours.checksum));
     std::printf("  embree: %.2f Msamples/s wall, %.2f Msamples per CPU-second (%s: %.3f s / %.3f s CPU at "
                 "%d spp, %.3f s / %.3f s CPU at %d spp)\n",
                 1e-6 * embreeRate, 1e-6 * embreeCpuRate, o.embreeBinary.c_str(), tS.wall, tS.cpu,
@@ -227,6 +271,7 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--frames", o->frames, "Timed frames per scene")->check(CLI::Range(1, 100000));
     cmd->add_option("--threads", o->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
     cmd->add_flag("!--no-compare", o->compare, "Skip the comparison with Embree's pathtracer");
+    cmd->add_flag("!--no-bare", o->bareProbe, "Skip tracing the same rays with bare rtcIntersect1/rtcOccluded1");
     cmd->add_option("--compare-spp", o->compareSpp, "spp of the Embree comparison")->check(CLI::Range(1, 4096));
     cmd->add_option("--embree-bin", o->embreeBinary, "Embree's tutorial path tracer");
     cmd->add_flag("--denoisers", o->denoisers, "Time the denoisers (Vulkan and C++ reference) at --width x --height instead");

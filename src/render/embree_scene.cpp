@@ -189,6 +189,7 @@ bool EmbreeScene::Intersect(const vec3& origin, const vec3& dir, float tFar, Sur
     InitRay(rh.ray, origin, dir, tFar);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    if (log_) [[unlikely]] Log(origin, dir, tFar, false);
     rtcIntersect1(top_, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit.instance = InstanceOf(rh.hit.instID[0], rh.hit.geomID);
@@ -222,6 +223,9 @@ void EmbreeScene::Intersect8(const vec3& origin, const vec3* dirs, const bool* v
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
+    if (log_) [[unlikely]]
+        for (int i = 0; i < 8; ++i)
+            if (valid[i]) Log(origin, dirs[i], std::numeric_limits<float>::infinity(), false);
     rtcIntersect8(mask, top_, &context, &rh);
     for (int i = 0; i < 8; ++i) {
         if (!valid[i] || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
@@ -242,8 +246,32 @@ bool EmbreeScene::Occluded(const vec3& origin, const vec3& dir, float tFar) cons
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     RTCRay ray;
     InitRay(ray, origin, dir, tFar);
+    if (log_) [[unlikely]] Log(origin, dir, tFar, true);
     rtcOccluded1(top_, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+void EmbreeScene::Log(const vec3& origin, const vec3& dir, float tFar, bool shadow) const {
+    std::lock_guard<std::mutex> lock(logMutex_);
+    log_->push_back(TracedRay{origin, dir, tFar, shadow});
+}
+
+bool EmbreeScene::TraceBare(const TracedRay& r) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    if (r.shadow) {
+        RTCRay ray;
+        InitRay(ray, r.origin, r.dir, r.tFar);
+        rtcOccluded1(top_, &context, &ray);
+        return ray.tfar == -std::numeric_limits<float>::infinity();
+    }
+    RTCRayHit rh;
+    InitRay(rh.ray, r.origin, r.dir, r.tFar);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(top_, &context, &rh);
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 vec3 EmbreeScene::ObjectPosition(const SurfaceSample& s) const {
@@ -251,6 +279,19 @@ vec3 EmbreeScene::ObjectPosition(const SurfaceSample& s) const {
     const uvec3& tri = mesh.triangles[s.primitive];
     vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
     return p0 + s.barycentrics.x * (p1 - p0) + s.barycentrics.y * (p2 - p0);
+}
+
+std::array<vec3, 3> EmbreeScene::WorldTriangle(uint32_t instance, uint32_t primitive,
+                                               const std::vector<InstanceXform>& xforms) const {
+    FOVRT_CHECK_OP(instance, <, scene_.instances.size());
+    const InstanceXform& x = xforms[instance];
+    const Mesh& mesh = scene_.meshes[scene_.instances[instance].mesh];
+    FOVRT_CHECK_OP(primitive, <, mesh.triangles.size());
+    const uvec3& tri = mesh.triangles[primitive];
+    std::array<vec3, 3> p = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
+    if (!x.identity)
+        for (vec3& corner : p) corner = vec3(x.worldFromObject * vec4(corner, 1.0f));
+    return p;
 }
 
 SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const {

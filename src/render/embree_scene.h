@@ -4,7 +4,9 @@
 // entry, so the renderer and the re-shading API see bit-identical surfaces.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -51,11 +53,20 @@ public:
     // True when something blocks o + t d for t in (0, tFar).
     bool Occluded(const vec3& origin, const vec3& dir, float tFar) const;
 
+    // Appends every ray traced from now on to `log` (nullptr: stop); see Renderer::RecordRays.
+    void SetRayLog(std::vector<TracedRay>* log) { log_ = log; }
+    // rtcIntersect1 / rtcOccluded1 on one recorded ray, nothing else; true on a hit.
+    bool TraceBare(const TracedRay& ray) const;
+
     SurfaceHit Surface(const SurfaceSample& s) const { return SurfaceAt(s, xforms_); }
     // Surface with another frame's transforms (motion vectors).
     SurfaceHit SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const;
     // Object-space point of a surface sample.
     vec3 ObjectPosition(const SurfaceSample& s) const;
+    // World-space corners of triangle `primitive` of `instance` under `xforms`, exactly as
+    // SurfaceAt computes them (so a position rebuilt from them matches it bit for bit).
+    std::array<vec3, 3> WorldTriangle(uint32_t instance, uint32_t primitive,
+                                      const std::vector<InstanceXform>& xforms) const;
 
     const std::vector<InstanceXform>& xforms() const { return xforms_; }
     static std::vector<InstanceXform> MakeXforms(const Scene& scene, const SceneState& state);
@@ -73,6 +84,10 @@ private:
     std::vector<RTCScene> blas_;
     std::vector<RTCGeometry> instances_;
     std::vector<InstanceXform> xforms_;
+    std::vector<TracedRay>* log_ = nullptr;
+    mutable std::mutex logMutex_;
+    // Out of line and cold, so the traced-ray paths keep their no-log code lean.
+    [[gnu::noinline, gnu::cold]] void Log(const vec3& origin, const vec3& dir, float tFar, bool shadow) const;
 };
 
 // Moves a ray origin off a surface along the geometric normal, by an amount that scales with the

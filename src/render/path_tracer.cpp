@@ -269,6 +269,20 @@ public:
         return embree_->Surface(sample).position;
     }
 
+    void RecordRays(std::vector<TracedRay>* log) override { embree_->SetRayLog(log); }
+
+    uint64_t TraceBare(const std::vector<TracedRay>& rays) const override {
+        std::atomic<uint64_t> hits{0};
+        arena_.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+                uint64_t n = 0;
+                for (size_t i = r.begin(); i != r.end(); ++i) n += embree_->TraceBare(rays[i]) ? 1 : 0;
+                hits += n;
+            });
+        });
+        return hits.load();
+    }
+
     RenderStats Stats() const override {
         RenderStats s;
         s.primaryRays = primaryRays_.load();
@@ -293,6 +307,14 @@ private:
 
     struct EmissiveTriangle {
         uint32_t instance, primitive;
+    };
+
+    // An emissive triangle as NEE samples it in the current frame: world corner p0 and edges
+    // (p1 - p0, p2 - p0), unit geometric normal (winding orientation; NEE uses only |cos|) and
+    // emitted radiance with the instance's emission scale. Built per frame, so a light sample
+    // costs no surface reconstruction.
+    struct Emitter {
+        vec3 p0, e1, e2, normal, emission;
     };
 
     // BSDF parameters of an untextured material, made once instead of at every hit.
@@ -327,6 +349,7 @@ private:
 
     void BuildLightDistribution() {
         lightCdf_.resize(emissive_.size());
+        emitters_.resize(emissive_.size());
         double total = 0.0;
         for (size_t i = 0; i < emissive_.size(); ++i) {
             SurfaceSample s{emissive_[i].instance, emissive_[i].primitive, vec2(1.0f / 3.0f)};
@@ -334,6 +357,16 @@ private:
             float power = hit.area * Luminance(EmissionOf(hit, s.instance));
             total += double(std::max(power, 0.0f));
             lightCdf_[i] = float(total);
+            // What NEE reads of the triangle, with SurfaceAt's arithmetic (bit-identical points).
+            auto p = embree_->WorldTriangle(s.instance, s.primitive, embree_->xforms());
+            Emitter& e = emitters_[i];
+            e.p0 = p[0];
+            e.e1 = p[1] - p[0];
+            e.e2 = p[2] - p[0];
+            vec3 c = glm::cross(e.e1, e.e2);
+            float len = glm::length(c);
+            e.normal = len > 0.0f ? c / len : vec3(0.0f, 0.0f, 1.0f);
+            e.emission = EmissionOf(hit, s.instance);
         }
         lightPower_ = float(total);
     }
@@ -440,16 +473,16 @@ private:
             index = std::min(index, emissive_.size() - 1);
             vec2 u = sampler.LightPoint(vertex);
             float su = std::sqrt(u.x);
-            SurfaceSample ls{emissive_[index].instance, emissive_[index].primitive,
-                             vec2(su * (1.0f - u.y), su * u.y)};
-            SurfaceHit light = embree_->Surface(ls);
-            vec3 emission = EmissionOf(light, ls.instance);
-            vec3 d = light.position - p.hit.position;
+            const Emitter& light = emitters_[index];
+            vec2 b(su * (1.0f - u.y), su * u.y);
+            vec3 lightPosition = light.p0 + b.x * light.e1 + b.y * light.e2;  // as SurfaceAt
+            const vec3& emission = light.emission;
+            vec3 d = lightPosition - p.hit.position;
             float dist2 = glm::dot(d, d);
             if (dist2 > 0.0f) {
                 float dist = std::sqrt(dist2);
                 vec3 wi = d / dist;
-                float pdf = LightPdf(emission, light.geomNormal, dist, wi);
+                float pdf = LightPdf(emission, light.normal, dist, wi);
                 if (pdf > 0.0f && glm::dot(wi, ng) > 0.0f) {
                     BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
                     if (e.fCos != vec3(0.0f)) {
@@ -585,6 +618,15 @@ private:
         }
     }
 
+    // Dimension pairs worth hashing once per pixel: those that n samples read more than once.
+    // One sample reads each pair at most once (hashing on use costs no more); otherwise every
+    // vertex but the last reads light point, selectors and BSDF direction, and the last one
+    // reads light point and selectors only with emissive triangles. (Same numbers either way.)
+    uint32_t CachedSamplerPairs(int n) const {
+        if (n <= 1) return 0;
+        return uint32_t(settings_.maxDepth - 1) * PathSampler::kPairsPerVertex + (lightPower_ > 0.0f ? 2u : 0u);
+    }
+
     // n samples at one primary surface sample seen from eyePos.
     PixelShade ShadePixel(const vec3& eyePos, const SurfaceSample& s, uint32_t seed, int n,
                           RayCounts& counts, SurfaceHit* hitOut = nullptr) const {
@@ -592,7 +634,7 @@ private:
         if (hitOut) *hitOut = p.hit;
         PathVertex primary = MakeVertex(p, glm::normalize(eyePos - p.hit.position));
         vec3 direct(0.0f), indirect(0.0f);
-        PixelSampler pixelSampler(seed, uint32_t(settings_.maxDepth) * PathSampler::kPairsPerVertex);
+        PixelSampler pixelSampler(seed, CachedSamplerPairs(n));
         DeterministicLights primaryLights;
         if (n > 0) primaryLights = SampleDeterministicLights(primary);
         // Samples in groups of 8: the first bounce rays all leave the primary vertex's origin,
@@ -856,6 +898,7 @@ private:
     SceneState state_, prevState_;
     std::vector<InstanceXform> prevXforms_;
     std::vector<EmissiveTriangle> emissive_;
+    std::vector<Emitter> emitters_;  // per emissive_ entry, current frame
     std::vector<ResolvedMaterial> materials_;
     std::vector<float> lightCdf_;
     float lightPower_ = 0.0f;

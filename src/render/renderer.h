@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/frame_inputs.h"
@@ -34,6 +35,15 @@ struct RenderStats {
     uint64_t droppedSamples = 0;
     // Rays actually traced.
     uint64_t Rays() const { return primaryRays + shadowRays - shadowRaysReused + bounceRays; }
+};
+
+// One ray as the tracer handed it to Embree (fovrt bench's bare-traversal probe): closest hit
+// along origin + t dir for t in (0, tFar), or, for a shadow ray, any hit.
+struct TracedRay {
+    vec3 origin;
+    vec3 dir;
+    float tFar;
+    bool shadow;
 };
 
 // The surface sample a visibility-buffer entry names.
@@ -83,6 +93,13 @@ public:
                        int sampleCount) const = 0;
     // World position of a surface sample in the current frame (rigid motion applied).
     virtual vec3 WorldPosition(const SurfaceSample& sample) const = 0;
+
+    // Bare-traversal probe (fovrt bench): while `log` is set, every ray traced is appended to it
+    // (slowly, under a lock: for one probe frame); nullptr stops. TraceBare traces `rays` again
+    // with nothing but rtcIntersect1 / rtcOccluded1, one ray at a time, on the renderer's
+    // threads, and returns how many hit (so the work cannot be skipped).
+    virtual void RecordRays(std::vector<TracedRay>* log) = 0;
+    virtual uint64_t TraceBare(const std::vector<TracedRay>& rays) const = 0;
 
     virtual RenderStats Stats() const = 0;
     virtual void ResetStats() = 0;
