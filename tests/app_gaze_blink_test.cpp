@@ -7,6 +7,7 @@
 #include "app/config.h"
 #include "app/frame_pipeline.h"
 #include "core/error.h"
+#include "app_test_configs.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -23,16 +24,10 @@ fs::path WriteBlinkTrace(const fs::path& dir) {
 }
 
 RunConfig SmallCornell(const fs::path& trace, const std::string& blink) {
-    RunConfig config = DefaultConfig();
-    config.scene.name = "cornell";
-    config.camera.width = 32;
-    config.camera.height = 18;
-    config.foveation.radiusPx = 80.0f;  // a 6 px foveal disc at 32 px: both spp levels present
-    config.foveation.radiusReferenceWidth = 320;
+    RunConfig config = test::SmallCornellConfig();
     config.gaze.source = "trace";
     config.gaze.tracePath = trace.string();
     config.gaze.blink = blink;
-    config.denoise.device = "cpu";
     return config;
 }
 

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "live/session_record.h"
+#include "app_test_configs.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -23,14 +24,8 @@ namespace {
 fs::path TempDir() { return test::ScratchDir("fovrt-replay-test"); }
 
 RunConfig SmallCornell() {
-    RunConfig config = DefaultConfig();
-    config.scene.name = "cornell";
-    config.camera.width = 32;
-    config.camera.height = 18;
-    config.foveation.radiusPx = 80.0f;  // a 6 px foveal disc at 32 px: both spp levels present
-    config.foveation.radiusReferenceWidth = 320;
+    RunConfig config = test::SmallCornellConfig();
     config.denoise.denoisers = {"asvgf"};  // the renderer also makes A-SVGF gradient samples
-    config.denoise.device = "cpu";
     return config;
 }
 
