@@ -49,17 +49,6 @@ std::vector<std::string> StringArray(const toml::table& table, const std::string
     return values;
 }
 
-// The fovea region the metrics use: the spp disc of the disc model, else the foveal angle.
-FoveaRadius FoveaOf(const RunConfig& config) {
-    const FoveationParams& f = config.foveation;
-    if (f.model == "disc") {
-        if (f.radiusDeg > 0.0f) return FoveaRadius::Degrees(f.radiusDeg);
-        return FoveaRadius::Pixels(f.radiusPx * float(config.camera.width) /
-                                   float(f.radiusReferenceWidth));
-    }
-    if (f.model == "linear") return FoveaRadius::Degrees(f.fovealDeg);
-    return FoveaRadius::Degrees(5.0f);  // the first eccentricity band
-}
 
 // Mean per-pass milliseconds per variant, over every frame and eye.
 class TimingTable {
@@ -124,6 +113,15 @@ ReportTable MemoryTable(const RunConfig& config) {
 }
 
 }  // namespace
+
+FoveaRadius MetricFovea(const FoveationParams& f, int imageWidth) {
+    if (f.model == "disc") {
+        if (f.radiusDeg > 0.0f) return FoveaRadius::Degrees(f.radiusDeg);
+        return FoveaRadius::Pixels(f.radiusPx * float(imageWidth) / float(f.radiusReferenceWidth));
+    }
+    if (f.model == "linear") return FoveaRadius::Degrees(f.fovealDeg);
+    return FoveaRadius::Degrees(5.0f);  // the first eccentricity band
+}
 
 ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
                               const std::vector<std::string>& scenes, const std::string& replayPath,
@@ -209,7 +207,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
         ReferenceCache cache(config.reference.cacheDir);
         const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
         MetricsCollector collector(results);
-        const FoveaRadius fovea = FoveaOf(config);
+        const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
         const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
 
         SceneVisuals visuals;
@@ -217,9 +215,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
         visuals.width = config.camera.width;
         visuals.height = config.camera.height;
         visuals.eye = 0;
-        visuals.foveaRadiusPixels = fovea.unit == FoveaRadius::Unit::kPixels
-                                        ? fovea.value
-                                        : fovea.value * pipeline.RigAt(0).Eye(0).PixelsPerDegree();
+        visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
         double renderMs = 0.0, referenceMs = 0.0;
         int referenceHits = 0;
         int blinkFrames = 0;

@@ -15,10 +15,15 @@
 #include "app/config.h"
 #include "app/replay.h"
 #include "app/report.h"
+#include "metrics/regions.h"
 
 namespace fovrt {
 
 struct ConfigOptions;  // app/config_cli.h
+
+// The fovea the metrics use (and the live preview outlines): the disc model's spp disc, the
+// linear model's full-rate angle, else the first eccentricity band (5°).
+FoveaRadius MetricFovea(const FoveationParams& foveation, int imageWidth);
 
 // An experiment file: a RunConfig plus an [experiment] table (scenes, variants, quick overrides).
 struct ExperimentSpec {

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/variants.h"
-#include "metrics/regions.h"
+#include "app/experiment.h"
 
 namespace fovrt {
 namespace {
@@ -24,18 +24,6 @@ void AddTimings(const std::vector<PassTiming>& eye, std::vector<PassTiming>& sum
 }
 
 }  // namespace
-
-float FoveaOutlineRadiusPixels(const FoveationParams& p, const EyeCamera& camera) {
-    const float ppd = camera.PixelsPerDegree();
-    if (p.model == "disc")
-        return p.radiusDeg > 0.0f ? p.radiusDeg * ppd
-                                  : p.radiusPx * float(camera.width()) / float(p.radiusReferenceWidth);
-    if (p.model == "linear") return p.fovealDeg * ppd;
-    const FoveaRadius metricFovea;
-    return metricFovea.unit == FoveaRadius::Unit::kPixels
-               ? metricFovea.value * float(camera.width()) / 1280.0f
-               : metricFovea.value * ppd;
-}
 
 namespace {
 // The pipeline's own gaze source is never asked in a live session (the FrameSource gives the
@@ -252,7 +240,7 @@ std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
         frame->timings.sppMs += e.sppMs;
         frame->timings.traceMs += e.renderMs;
         frame->gazePixel[size_t(eye)] = e.gazePixel;
-        frame->foveaRadiusPixels[size_t(eye)] = FoveaOutlineRadiusPixels(runningFoveation_, e.camera);
+        frame->foveaRadiusPixels[size_t(eye)] = MetricFovea(runningFoveation_, e.camera.width()).RadiusPixels(e.camera);
     }
     ++frameIndex_;
     sceneTime_ += double(controls.speed) / double(pipeline_.FramesPerSecond());

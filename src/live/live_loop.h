@@ -152,9 +152,5 @@ private:
     std::thread traceThread_, denoiseThread_;
 };
 
-// The radius of the fovea outline drawn around the gaze, in pixels of `camera`'s image: the disc
-// model's disc, the linear model's full-rate region, else the metrics' default fovea (200 px at
-// 1280 wide).
-float FoveaOutlineRadiusPixels(const FoveationParams& params, const EyeCamera& camera);
 
 }  // namespace fovrt

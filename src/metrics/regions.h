@@ -23,6 +23,10 @@ struct FoveaRadius {
 
     static FoveaRadius Pixels(float r) { return {r, Unit::kPixels}; }
     static FoveaRadius Degrees(float r) { return {r, Unit::kDegrees}; }
+    // The radius in pixels of `camera`'s image (degrees at its centre's pixels per degree).
+    float RadiusPixels(const EyeCamera& camera) const {
+        return unit == Unit::kPixels ? value : value * camera.PixelsPerDegree();
+    }
 };
 
 // One eccentricity band [minDegrees, maxDegrees).

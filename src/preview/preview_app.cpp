@@ -45,15 +45,12 @@ void OnKey(GLFWwindow* window, int key, int, int action, int) {
     if (action == GLFW_PRESS) PendingKeys(window).push_back(key);
 }
 
-// Writes the presented window pixels (RGBA as captured) as an 8-bit PNG, atomically.
-void WriteCapturePng(const fs::path& path, const Plane<uint32_t>& rgba) {
-    std::vector<uint8_t> rgb(rgba.size() * 3);
-    for (size_t i = 0; i < rgba.size(); ++i) {
-        rgb[3 * i + 0] = uint8_t(rgba[i] & 0xff);
-        rgb[3 * i + 1] = uint8_t((rgba[i] >> 8) & 0xff);
-        rgb[3 * i + 2] = uint8_t((rgba[i] >> 16) & 0xff);
-    }
-    WriteRgb8Png(path, rgba.width(), rgba.height(), rgb);
+// Writes the presented window pixels (0xRRGGBB as captured) as an 8-bit PNG, atomically.
+void WriteCapturePng(const fs::path& path, const Plane<uint32_t>& pixels) {
+    std::vector<uint8_t> rgb(pixels.size() * 3);
+    for (size_t i = 0; i < pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = uint8_t(pixels[i] >> (16 - 8 * c));
+    WriteRgb8Png(path, pixels.width(), pixels.height(), rgb);
 }
 
 // F12: the shown window image, and per eye the frame's FrameInputs, spp map and denoised output
@@ -111,10 +108,7 @@ public:
         panel_.display.layout = options.layout;
         panel_.display.overlay = options.overlay;
         panel_.display.exposure = config.output.exposure;
-        panel_.display.byteOrder = window_.Format() == VK_FORMAT_R8G8B8A8_UNORM ||
-                                           window_.Format() == VK_FORMAT_R8G8B8A8_SRGB
-                                       ? DisplayByteOrder::Rgba
-                                       : DisplayByteOrder::Bgra;
+        panel_.display.byteOrder = window_.ByteOrder();
         loop_.emplace(config, &context_, source_);
         source_.Bind(loop_->Pipeline());
         const std::vector<std::string> views = loop_->ViewNames();

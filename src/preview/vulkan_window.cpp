@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include "core/error.h"
+#include "live/display_compose.h"
 #include "vk/recorder.h"
 #include "vk/vk_check.h"
 
@@ -249,6 +250,11 @@ void PreviewWindow::DetachVulkan() {
 
 bool PreviewWindow::ShouldClose() const { return glfwWindowShouldClose(window_); }
 
+DisplayByteOrder PreviewWindow::ByteOrder() const {
+    return format_ == VK_FORMAT_R8G8B8A8_UNORM || format_ == VK_FORMAT_R8G8B8A8_SRGB ? DisplayByteOrder::Rgba
+                                                                                     : DisplayByteOrder::Bgra;
+}
+
 const char* PreviewWindow::PresentModeName() const {
     switch (presentMode_) {
         case VK_PRESENT_MODE_MAILBOX_KHR: return "mailbox";
@@ -354,11 +360,7 @@ std::optional<Plane<uint32_t>> PreviewWindow::TakeCapture() {
     submitted_ = false;
     Plane<uint32_t> pixels(int(captureExtent_.width), int(captureExtent_.height));
     std::memcpy(pixels.data(), captureBuffer_.mapped(), pixels.bytes());
-    if (format_ == VK_FORMAT_B8G8R8A8_UNORM || format_ == VK_FORMAT_B8G8R8A8_SRGB)
-        for (size_t i = 0; i < pixels.size(); ++i) {  // BGRA -> RGBA
-            const uint32_t p = pixels[i];
-            pixels[i] = (p & 0xff00ff00u) | ((p & 0xffu) << 16) | ((p >> 16) & 0xffu);
-        }
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = DisplayPixelRgb(pixels[i], ByteOrder());
     captured_ = false;
     return pixels;
 }

@@ -13,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "core/image.h"
+#include "live/display_compose.h"
 #include "vk/allocator.h"
 #include "vk/context.h"
 
@@ -66,7 +67,9 @@ public:
     // Records the overlay pass's end state, submits and presents. With capture = true the
     // presented image is also copied to host memory (read by TakeCapture).
     void EndFrame(const Frame& frame, bool capture = false);
-    // Waits for the last submitted frame and returns its captured pixels (RGBA, sRGB-encoded as
+    // The swapchain format's byte order (what the display pass must write).
+    DisplayByteOrder ByteOrder() const;
+    // Waits for the last submitted frame and returns its captured pixels (0xRRGGBB, sRGB-encoded as
     // presented), or nullopt when the last EndFrame did not capture.
     std::optional<Plane<uint32_t>> TakeCapture();
     void WaitIdle();
