@@ -99,6 +99,8 @@ win=$(timeout 60 xdotool search --sync --name "fovrt preview" | head -1)
 timeout 30 xdotool windowfocus --sync "$win" key 4
 for _ in $(seq 1 600); do grep -q "denoiser svgf -> two-history" err4.txt && break; sleep 0.1; done
 timeout 30 xdotool windowfocus --sync "$win" key F12
+timeout 30 xdotool windowfocus --sync "$win" keydown w sleep 1 keyup w  # fly forward: leaves the path
+sleep 0.5
 for _ in $(seq 1 300); do grep -q "saved frame" err4.txt && break; sleep 0.1; done
 sleep 1
 timeout 30 xdotool windowfocus --sync "$win" key Escape || kill $pid
@@ -108,6 +110,12 @@ grep -q "denoiser svgf -> two-history (histories reset)" err4.txt && ok "key 4: 
   || bad "denoiser switch not logged: $(tail -3 err4.txt)"
 grep -q '"reproject' stats.jsonl && tail -1 stats.jsonl | grep -q 'blend' && ok "stats stream shows the new denoiser's passes" \
   || bad "passes did not change: $(tail -1 stats.jsonl)"
+# cornell's camera path is static: the head stays put until W flies it forward (-Z).
+heads=$(grep -o '"head":{"position":\[[^]]*\]' closed.jsonl | sort -u | wc -l)
+first=$(head -2 closed.jsonl | tail -1 | grep -o '"head":{"position":\[[^]]*\]')
+last=$(tail -1 closed.jsonl | grep -o '"head":{"position":\[[^]]*\]')
+[[ $heads -ge 2 && "$first" != "$last" ]] && ok "W flies the camera: head $first -> $last" \
+  || bad "W did not move the head ($heads distinct positions; $first -> $last)"
 shots=$(ls captures/*_window.png captures/*_left.exr captures/*_right.exr 2>/dev/null | wc -l)
 [[ $shots -eq 3 ]] && ok "F12 saved the window PNG and both eyes' FrameInputs + output EXRs" \
   || bad "F12 saved $shots files: $(ls captures 2>&1)"
