@@ -62,13 +62,13 @@ bool FoveationControls(FoveationParams& f) {
 
 }  // namespace
 
-void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStats& stats,
+void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveStats& stats,
                       const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
                       PanelState& state) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.85f);
-    if (!ImGui::Begin("fovrt preview")) {
+    if (!ImGui::Begin(state.title.c_str())) {
         ImGui::End();
         return;
     }
@@ -99,7 +99,10 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStat
             }
         }
     }
-    if (ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (!sourcePtr && ImGui::CollapsingHeader("Headset", ImGuiTreeNodeFlags_DefaultOpen))
+        for (const std::string& line : state.sessionLines) Text(line);
+    if (sourcePtr && ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
+        PreviewFrameSource& source = *sourcePtr;
         std::string gaze = source.GazeSourceName();
         if (Combo("gaze (G: mouse)", source.GazeSourceNames(), gaze)) source.SetGazeSource(gaze);
         GazeParams params = source.SyntheticParams();

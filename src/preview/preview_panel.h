@@ -4,6 +4,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "live/display_compose.h"
 #include "live/live_loop.h"
@@ -16,9 +18,14 @@ struct PanelState {
     DisplaySettings display;
     bool requestCapture = false;  // "save" pressed (as F12)
     bool requestReturnToPath = false;
+    std::string title = "fovrt preview";
+    // A headset session's state (runtime, session state, gaze source, frame counts), shown in
+    // place of the gaze and head controls when there is no PreviewFrameSource.
+    std::vector<std::string> sessionLines;
 };
 
-void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStats& stats,
+// source: null in a headset session (the headset gives the head and the gaze).
+void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* source, const LiveStats& stats,
                       const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
                       PanelState& state);
 
