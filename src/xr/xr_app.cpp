@@ -282,10 +282,12 @@ private:
               {"end_frame", MsBetween(endStart, submitted)}}}};
         std::fprintf(frameLog_, "%s\n", line.dump().c_str());
         std::fflush(frameLog_);
-        if (options_.writeFrames && frame.shown[0].hdr)
+        // The display pass's transform: exposure and tone curve for radiance views; a display-referred
+        // view (spp, normal, ...) is clamp + sRGB, which is the same transform at exposure 0.
+        if (options_.writeFrames)
             for (int eye = 0; eye < 2; ++eye)
-                WritePng(outDir_ / "frames" / (FrameOutputStem(s.request.frame, eye) + ".png"), frame.shown[size_t(eye)].rgb,
-                         config_.output.exposure);
+                WritePng(outDir_ / "frames" / (FrameOutputStem(s.request.frame, eye) + ".png"),
+                         frame.shown[size_t(eye)].rgb, frame.shown[size_t(eye)].hdr ? config_.output.exposure : 0.0f);
     }
 
     std::vector<std::string> SessionLines() const {
