@@ -27,11 +27,13 @@ small=(--set scene.name=cornell --set run.seed=7 --set denoise.denoisers='["svgf
 export FOVRT_TEST_XR_SIZE=160x120
 
 # 1. A clean session: 4 frames rendered and submitted, exit through xrRequestExitSession.
-FOVRT_TEST_XR_DUMP=rt1 "$fovrt" xr "${small[@]}" --set output.dir=s1 --frames 4 --write-frames \
+FOVRT_VK_VALIDATION=1 FOVRT_TEST_XR_DUMP=rt1 "$fovrt" xr "${small[@]}" --set output.dir=s1 --frames 4 --write-frames \
   --write-inputs --record rec.jsonl 2>err1.txt
 rc=$?
 [[ $rc -eq 0 ]] && ok "4 frames, exit 0" || bad "exit $rc: $(tail -3 err1.txt)"
-expected="READY SYNCHRONIZED VISIBLE FOCUSED VISIBLE SYNCHRONIZED STOPPING IDLE EXITING"
+grep -q "fovrt xr: 0 Vulkan validation errors, 0 warnings" err1.txt && ok "zero Vulkan validation messages" \
+  || bad "Vulkan validation: $(grep -m3 -i 'vulkan validation' err1.txt)"
+expected="IDLE READY SYNCHRONIZED VISIBLE FOCUSED VISIBLE SYNCHRONIZED STOPPING IDLE EXITING"
 runtime_states=$(sed 's/^XR_SESSION_STATE_//' rt1/states.txt 2>/dev/null | tr '\n' ' ' | sed 's/ $//')
 app_states=$(json s1/xr/manifest.json "' '.join(d['session_states'])" 2>/dev/null)
 [[ "$runtime_states" == "$expected" ]] && ok "runtime's states: $runtime_states" \
@@ -75,15 +77,14 @@ for l in open('rt1/frames.jsonl'):
     if r['displayTime']==int(sys.argv[1]): print('%05d' % r['frame'])" "$disp")
   for eye in 0 1; do
     n=$((n + 1))
-    png=s1/xr/frames/$(printf 'frame%06d' "$frame")_$([[ $eye == 0 ]] && echo left || echo right).png
+    png=s1/xr/frames/$(printf 'f%05d' "$frame")_$([[ $eye == 0 ]] && echo left || echo right).png
     d=$("$probe" diff "rt1/frame_${ppmframe}_eye${eye}.ppm" "$png" 2>&1)
-    [[ $d == "max=0 "* || $d == "max=1 "* ]] && same=$((same + 1)) || worst="$worst [$frame/$eye: $d]"
+    [[ $d == "max=0 "* ]] && same=$((same + 1)) || worst="$worst [$frame/$eye: $d]"
   done
 done < <(python3 -c "import json
 for l in open('s1/xr/frames.jsonl'):
     r=json.loads(l); print(r['frame'], r['display_time_ns'])")
-ls s1/xr/frames | head -1 >/dev/null
-[[ $n -eq 8 && $same -eq 8 ]] && ok "the runtime's read-back of all 8 eye images equals fovrt's output (max 1 LSB)" \
+[[ $n -eq 8 && $same -eq 8 ]] && ok "the runtime's read-back of all 8 eye images equals fovrt's output, byte for byte" \
   || bad "read-back vs fovrt output: $same of $n equal;$worst"
 # Gaze off (the runtime supports the extension, no tracker delivers): the fallback, reported.
 g=$(json s1/xr/manifest.json "d['gaze_source_frames']")
@@ -106,7 +107,7 @@ else bad "replay failed: $(tail -2 err2.txt)"; fi
 for g in "0.25,-0.15" "-0.3,0.2"; do
   rm -rf rt3 s3
   FOVRT_TEST_XR_GAZE=on FOVRT_TEST_XR_GAZE_FIXED=$g FOVRT_TEST_XR_DUMP=rt3 "$fovrt" xr "${small[@]}" \
-    --set output.dir=s3 --frames 2 --view spp 2>err3.txt || { bad "gaze on ($g): $(tail -2 err3.txt)"; continue; }
+    --set output.dir=s3 --frames 3 --view spp 2>err3.txt || { bad "gaze on ($g): $(tail -2 err3.txt)"; continue; }
   src=$(json s3/xr/manifest.json "d['gaze_source_frames']")
   last=$(ls rt3/frame_*_eye0.ppm | tail -1)
   c=$("$probe" centroid "$last" 0 0 160 120)
@@ -121,7 +122,13 @@ l, rr, u, d = (math.tan(a) for a in r["views"][0]["fov"])
 ex, ey = (tx - l) / (rr - l) * 160, (u - ty) / (u - d) * 120
 sys.exit(0 if (cx - ex) ** 2 + (cy - ey) ** 2 < 5 ** 2 else 1)
 PY
-  [[ "$src" == "{'eye-tracker': 2}" ]] || bad "gaze on ($g): frames by source $src"
+  # Inputs flow only while FOCUSED: a first frame rendered while VISIBLE takes the fallback.
+  python3 - s3/xr/frames.jsonl <<'PY' || bad "gaze on ($g): frames by source $src"
+import json, sys
+sources = [json.loads(l)["gaze_source"] for l in open(sys.argv[1])]
+sys.exit(0 if sources[-2:] == ["eye-tracker"] * 2 else 1)
+PY
+  grep -q "not active" err3.txt && bad "gaze on ($g): warned that the action is not active"
 done
 
 # 4. Ctrl-C: xrRequestExitSession, the states walk down to EXITING, exit 0.
@@ -157,6 +164,8 @@ check_bad() {  # check_bad NAME EXPECTED_SUBSTRING ENV...
   rm -f badrec.jsonl
   env "$@" "$fovrt" xr "${small[@]}" --set output.dir=s7 --frames 1 --record badrec.jsonl >/dev/null 2>err7.txt
   local rc=$?
+  # (the core validation layer announces itself on stderr when an instance is created: not fovrt's)
+  sed -i '/^Core Validation output type/d' err7.txt
   if [[ $rc -ne 0 && $(grep -c . err7.txt) -eq 1 && $(cat err7.txt) == *"$want"* && ! -e badrec.jsonl ]]; then
     ok "$name: $(cat err7.txt)"
   else bad "$name: exit $rc, recording $([[ -e badrec.jsonl ]] && echo left || echo absent): $(head -c 600 err7.txt)"; fi

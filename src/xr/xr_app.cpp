@@ -85,7 +85,11 @@ public:
         VulkanContextOptions vkOptions;
         const std::string device = config_.denoise.device == "cpu" ? "auto" : config_.denoise.device;
         if (options.mirror) {
-            window_.emplace(options.window);
+            try {
+                window_.emplace(options.window);
+            } catch (const Error& e) {
+                Fail("--mirror: {}; or leave out --mirror", e.what());
+            }
             vkOptions = window_->ContextOptions(device);
         } else {
             vkOptions.device = device;
@@ -180,7 +184,9 @@ public:
 
 private:
     void RunFrame() {
+        const auto waitStart = LiveClock::now();
         const XrHeadsetSession::FrameTiming timing = session_->BeginFrame();
+        waitMs_ = MsBetween(waitStart, LiveClock::now());
         if (session_->Ended() != XrSessionEnd::None) return;
         const bool wanted = !(options_.frames && rendered_ >= options_.frames) && !session_->ExitRequested();
         std::vector<XrCompositionLayerProjectionView> layer;
@@ -197,7 +203,8 @@ private:
                     if (gaze_)
                         if (auto sample = gaze_->Locate(session_->viewSpace(), timing.displayTime))
                             tracked = sample->directionHead;
-                    if (gaze_ && !tracked && !warnedInactive_) {
+                    // Inputs flow only while FOCUSED: before that the fallback is expected, not news.
+                    if (gaze_ && !tracked && !warnedInactive_ && session_->State() == XR_SESSION_STATE_FOCUSED) {
                         std::fprintf(stderr,
                                      "fovrt xr: warning: the eye gaze action is not active (no eye tracker "
                                      "delivering): gaze from gaze.source = %s until it is\n",
@@ -275,7 +282,8 @@ private:
             {"eyes", eyes},
             {"gaze_to_submit_ms", latencyMs},
             {"ms",
-             {{"spp", frame.timings.sppMs},
+             {{"wait_begin_frame", waitMs_},
+              {"spp", frame.timings.sppMs},
               {"trace", frame.timings.traceMs},
               {"denoise", frame.timings.denoiseMs},
               {"write_eyes", writer_->lastMs()},
@@ -347,6 +355,9 @@ private:
                      (unsigned long long)session_->FramesWithLayers(), gazeLine.empty() ? "none" : gazeLine.c_str(),
                      connection_->validationErrors(), connection_->validationWarnings(),
                      (outDir_ / "manifest.json").string().c_str());
+        if (context_->validationEnabled())
+            std::fprintf(stderr, "fovrt xr: %u Vulkan validation errors, %u warnings\n", context_->validationErrors(),
+                         context_->validationWarnings());
         if (end == XrSessionEnd::SessionLost)
             Fail("the OpenXR runtime lost the session (LOSS_PENDING) after {} frames; the recording holds the "
                  "frames rendered so far",
@@ -380,6 +391,7 @@ private:
     std::optional<XrTime> firstDisplayTime_;
     uint64_t rendered_ = 0;
     bool warnedInactive_ = false;
+    double waitMs_ = 0.0;  // xrWaitFrame + xrBeginFrame of the current frame
     LiveClock::time_point start_;
 };
 
