@@ -13,6 +13,8 @@
 #include <vector>
 
 #define XR_USE_GRAPHICS_API_VULKAN
+#define XR_USE_TIMESPEC
+#include <time.h>
 #include <vulkan/vulkan.h>
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
@@ -168,6 +170,8 @@ struct Client {
     std::vector<XrSessionState> states;
     bool exitingSeen = false, profileChangedSeen = false, instanceLossSeen = false;
     std::vector<std::vector<XrView>> locatedViews;  // per rendered frame
+    std::vector<XrTime> predictedTimes;             // per xrWaitFrame
+    XrDuration period = 0;
 
     // Instance with enable2, eye gaze and timespec; system; the runtime-made Vulkan device.
     void Create() {
@@ -423,6 +427,8 @@ struct Client {
         auto frame = XrInit<XrFrameState>(XR_TYPE_FRAME_STATE);
         REQUIRE_XR(xrWaitFrame(session, nullptr, &frame));
         REQUIRE(frame.predictedDisplayPeriod > 0);
+        predictedTimes.push_back(frame.predictedDisplayTime);
+        period = frame.predictedDisplayPeriod;
         REQUIRE_XR(xrBeginFrame(session, nullptr));
         std::vector<XrCompositionLayerProjectionView> projectionViews;
         auto layer = XrInit<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
@@ -576,10 +582,22 @@ TEST_CASE("the runtime advertises a stereo HMD with enable2, eye gaze and the re
         };
         CHECK(has(XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME));
         CHECK(has(XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME));
+        CHECK(has(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME));
         XrInstance instance = XR_NULL_HANDLE;
         REQUIRE_XR(CreateInstance({XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME,
-                                   XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME},
+                                   XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME,
+                                   XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME},
                                   &instance));
+        // XrTime is CLOCK_MONOTONIC nanoseconds, both ways.
+        auto toTime = Proc<PFN_xrConvertTimespecTimeToTimeKHR>(instance, "xrConvertTimespecTimeToTimeKHR");
+        auto toTimespec = Proc<PFN_xrConvertTimeToTimespecTimeKHR>(instance, "xrConvertTimeToTimespecTimeKHR");
+        timespec ts{12, 345678901};
+        XrTime t = 0;
+        REQUIRE_XR(toTime(instance, &ts, &t));
+        CHECK(t == 12345678901);
+        timespec back{};
+        REQUIRE_XR(toTimespec(instance, t, &back));
+        CHECK((back.tv_sec == 12 && back.tv_nsec == 345678901));
         auto ip = XrInit<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
         REQUIRE_XR(xrGetInstanceProperties(instance, &ip));
         CHECK(std::string(ip.runtimeName) == "fovrt test runtime");
@@ -681,6 +699,15 @@ TEST_CASE("a session runs IDLE to EXITING and the runtime reads back each eye's 
     c.CreateGazeAction();
     c.CreateSwapchains(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM);
     REQUIRE(c.width == 96);
+    // Suggestions end with the attach.
+    XrActionSuggestedBinding late{c.gazeAction, c.Path("/user/eyes_ext/input/gaze_ext/pose")};
+    auto suggestion =
+        XrInit<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
+    suggestion.interactionProfile = c.Path("/interaction_profiles/ext/eye_gaze_interaction");
+    suggestion.countSuggestedBindings = 1;
+    suggestion.suggestedBindings = &late;
+    CHECK(xrSuggestInteractionProfileBindings(c.instance, &suggestion) ==
+          XR_ERROR_ACTIONSETS_ALREADY_ATTACHED);
     REQUIRE(c.height == 64);
     const Rgb left{51, 102, 153}, right{204, 26, 77};
     c.eyes[0].clear = Bytes(left);
@@ -850,7 +877,8 @@ TEST_CASE("gaze on: the gaze action is active and located where the script says"
 TEST_CASE("the runtime ends, loses and drops sessions when told to", "[xr][vulkan]") {
     FOVRT_REQUIRE_VULKAN();
     SECTION("FOVRT_TEST_XR_EXIT_AFTER: the user quits after N frames") {
-        XrEnvironment env(Vars{{"FOVRT_TEST_XR_EXIT_AFTER", "6"}, {"FOVRT_TEST_XR_SIZE", "32x32"}});
+        XrEnvironment env(Vars{{"FOVRT_TEST_XR_EXIT_AFTER", "6"}, {"FOVRT_TEST_XR_SIZE", "32x32"},
+                               {"FOVRT_TEST_XR_HZ", "120"}});
         Client c;
         c.Create();
         REQUIRE_XR(c.CreateSession());
@@ -858,6 +886,14 @@ TEST_CASE("the runtime ends, loses and drops sessions when told to", "[xr][vulka
         c.RunUntil([&] { return c.exitingSeen; });
         CHECK(c.states.back() == XR_SESSION_STATE_EXITING);
         CHECK(std::count(c.states.begin(), c.states.end(), XR_SESSION_STATE_STOPPING) == 1);
+        CHECK(c.predictedTimes.size() == 6);
+        // The display clock: 120 Hz, predicted times on one vsync grid, strictly increasing.
+        CHECK(c.period == 8333333);
+        for (size_t i = 1; i < c.predictedTimes.size(); ++i) {
+            XrDuration step = c.predictedTimes[i] - c.predictedTimes[i - 1];
+            CHECK(step > 0);
+            CHECK(step % c.period == 0);
+        }
         c.Destroy();
         RequireNoValidationErrors(env);
     }
@@ -921,6 +957,40 @@ TEST_CASE("the runtime refuses frame calls out of order and sessions without a b
     noBinding.systemId = c.system;
     XrSession session = XR_NULL_HANDLE;
     CHECK(xrCreateSession(c.instance, &noBinding, &session) == XR_ERROR_GRAPHICS_DEVICE_INVALID);
+    // Suggested bindings: the gaze profile takes only the gaze pose, khr/simple_controller only its
+    // own paths; other vendors' profiles are accepted (applications suggest many).
+    auto si = XrInit<XrActionSetCreateInfo>(XR_TYPE_ACTION_SET_CREATE_INFO);
+    std::snprintf(si.actionSetName, sizeof si.actionSetName, "bindings");
+    std::snprintf(si.localizedActionSetName, sizeof si.localizedActionSetName, "Bindings");
+    XrActionSet set = XR_NULL_HANDLE;
+    REQUIRE_XR(xrCreateActionSet(c.instance, &si, &set));
+    auto ai = XrInit<XrActionCreateInfo>(XR_TYPE_ACTION_CREATE_INFO);
+    ai.actionType = XR_ACTION_TYPE_POSE_INPUT;
+    std::snprintf(ai.actionName, sizeof ai.actionName, "pose");
+    std::snprintf(ai.localizedActionName, sizeof ai.localizedActionName, "Pose");
+    XrAction action = XR_NULL_HANDLE;
+    REQUIRE_XR(xrCreateAction(set, &ai, &action));
+    auto suggest = [&](const char* profile, const char* path) {
+        XrActionSuggestedBinding binding{action, c.Path(path)};
+        auto info = XrInit<XrInteractionProfileSuggestedBinding>(
+            XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
+        info.interactionProfile = c.Path(profile);
+        info.countSuggestedBindings = 1;
+        info.suggestedBindings = &binding;
+        return xrSuggestInteractionProfileBindings(c.instance, &info);
+    };
+    CHECK(suggest("/interaction_profiles/ext/eye_gaze_interaction",
+                  "/user/eyes_ext/input/gaze_ext/position") == XR_ERROR_PATH_UNSUPPORTED);
+    CHECK(suggest("/interaction_profiles/khr/simple_controller",
+                  "/user/hand/left/input/trigger/value") == XR_ERROR_PATH_UNSUPPORTED);
+    CHECK(suggest("/interaction_profiles/khr/simple_controller", "/user/hand/left/input/aim/pose") ==
+          XR_SUCCESS);
+    CHECK(suggest("/interaction_profiles/valve/index_controller",
+                  "/user/hand/right/input/grip/pose") == XR_SUCCESS);
+    CHECK(suggest("/interaction_profiles/ext/eye_gaze_interaction",
+                  "/user/eyes_ext/input/gaze_ext/pose") == XR_SUCCESS);
+    REQUIRE_XR(xrDestroyActionSet(set));
+
     REQUIRE_XR(c.CreateSession());
     c.CreateSwapchains(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM);
     auto frame = XrInit<XrFrameState>(XR_TYPE_FRAME_STATE);

@@ -1,6 +1,7 @@
-// Actions and XR_EXT_eye_gaze_interaction. The runtime knows two interaction profiles: eye gaze
-// (/user/eyes_ext/input/gaze_ext/pose) and khr/simple_controller (accepted so that ordinary apps
-// can suggest controller bindings, but no controller is ever connected). A pose action is active
+// Actions and XR_EXT_eye_gaze_interaction. The runtime checks two interaction profiles' paths: eye
+// gaze (/user/eyes_ext/input/gaze_ext/pose) and khr/simple_controller; other vendors' profiles are
+// accepted with any path below /user/hand/*, /user/head or /user/gamepad (ordinary apps suggest
+// many), but no controller is ever connected. A pose action is active
 // after xrSyncActions only when FOVRT_TEST_XR_GAZE=on, the session is FOCUSED, its set is attached
 // and active, and it was suggested for the gaze pose. Boolean/float/vector2f actions are accepted
 // and always inactive; haptics are accepted and ignored.
@@ -24,6 +25,23 @@ bool IsSimpleControllerPath(const std::string& p) {
 bool IsTopLevelUserPath(const std::string& p) {
     return p == "/user/hand/left" || p == "/user/hand/right" || p == "/user/head" ||
            p == "/user/gamepad" || p == kEyesUserPath;
+}
+
+// /interaction_profiles/<vendor>/<name>
+bool IsOtherProfile(const std::string& p) {
+    const std::string prefix = "/interaction_profiles/";
+    if (p.rfind(prefix, 0) != 0) return false;
+    std::string rest = p.substr(prefix.size());
+    size_t slash = rest.find('/');
+    return slash != std::string::npos && slash > 0 && slash + 1 < rest.size() &&
+           rest.find('/', slash + 1) == std::string::npos;
+}
+
+// An input or output below a top-level user path, e.g. /user/hand/left/input/trigger/value.
+bool IsUnderTopLevelUserPath(const std::string& p) {
+    for (const char* top : {"/user/hand/left/", "/user/hand/right/", "/user/head/", "/user/gamepad/"})
+        if (p.rfind(top, 0) == 0 && p.size() > std::strlen(top)) return true;
+    return false;
 }
 
 // Action and action-set names: non-empty, [a-z0-9-_.], shorter than the limit.
@@ -159,10 +177,13 @@ XrResult XRAPI_CALL SuggestInteractionProfileBindings(
         return XR_ERROR_VALIDATION_FAILURE;
     const std::string* profile = PathString(*instance, suggested->interactionProfile);
     if (!profile) return XR_ERROR_PATH_INVALID;
-    bool gaze = *profile == kEyeGazeProfile &&
-                instance->Enabled(XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME);
+    bool gaze = *profile == kEyeGazeProfile;
     bool simple = *profile == "/interaction_profiles/khr/simple_controller";
-    if (!gaze && !simple) return XR_ERROR_PATH_UNSUPPORTED;
+    if (gaze && !instance->Enabled(XR_EXT_EYE_GAZE_INTERACTION_EXTENSION_NAME))
+        return XR_ERROR_PATH_UNSUPPORTED;
+    // Other profiles of the right shape (other vendors' controllers) are accepted and never
+    // active, as on a real runtime with none of those devices connected: apps suggest many.
+    if (!gaze && !simple && !IsOtherProfile(*profile)) return XR_ERROR_PATH_UNSUPPORTED;
     std::vector<std::pair<Action*, XrPath>> bindings;
     for (uint32_t i = 0; i < suggested->countSuggestedBindings; ++i) {
         const XrActionSuggestedBinding& b = suggested->suggestedBindings[i];
@@ -171,8 +192,10 @@ XrResult XRAPI_CALL SuggestInteractionProfileBindings(
         if (action->set->attached) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
         const std::string* path = PathString(*instance, b.binding);
         if (!path) return XR_ERROR_PATH_INVALID;
-        if (gaze ? *path != kEyeGazePosePath : !IsSimpleControllerPath(*path))
-            return XR_ERROR_PATH_UNSUPPORTED;
+        bool known = gaze     ? *path == kEyeGazePosePath
+                     : simple ? IsSimpleControllerPath(*path)
+                              : IsUnderTopLevelUserPath(*path);
+        if (!known) return XR_ERROR_PATH_UNSUPPORTED;
         bindings.emplace_back(action, b.binding);
     }
     instance->suggested[suggested->interactionProfile] = bindings;  // replaces earlier suggestions
