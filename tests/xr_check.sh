@@ -28,7 +28,7 @@ export FOVRT_TEST_XR_SIZE=160x120
 
 # 1. A clean session: 4 frames rendered and submitted, exit through xrRequestExitSession.
 FOVRT_VK_VALIDATION=1 FOVRT_TEST_XR_DUMP=rt1 "$fovrt" xr "${small[@]}" --set output.dir=s1 --frames 4 --write-frames \
-  --write-inputs --record rec.jsonl 2>err1.txt
+  --write-inputs --record rec.jsonl >out1.txt 2>err1.txt
 rc=$?
 [[ $rc -eq 0 ]] && ok "4 frames, exit 0" || bad "exit $rc: $(tail -3 err1.txt)"
 grep -q "fovrt xr: 0 Vulkan validation errors, 0 warnings" err1.txt && ok "zero Vulkan validation messages" \
@@ -190,11 +190,10 @@ else echo "skip: --mirror (no xvfb-run)"; fi
 
 # Core validation saw every call above.
 errors=$(fovrt_xr_validation_errors)
-# The layer brings XR_EXT_debug_utils (the test runtime does not offer it): fovrt's messenger was
-# attached to it, so the layer was loaded; fovrt counted its messages too.
-v=$(json s1/xr/manifest.json "d['validation']")
-[[ $v == *"'openxr_debug_utils': True, 'openxr_errors': 0"* ]] && ok "core validation layer loaded, fovrt's messenger counted 0 errors" \
-  || bad "validation: $v"
+# The layer announces itself at xrCreateInstance (so it was loaded); its report file is the
+# authority (Debian's 1.0.20 layer sends nothing to a debug-utils messenger).
+grep -q "Core Validation output type" out1.txt err1.txt && ok "the core validation layer was loaded" \
+  || bad "the core validation layer did not load"
 [[ $errors -eq 0 ]] && ok "core validation: 0 errors" || bad "core validation: $errors errors: $(grep -m3 VALID_ERROR core-validation.txt)"
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]
