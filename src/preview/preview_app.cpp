@@ -243,33 +243,15 @@ private:
     }
 
     void HandleKey(int key) {
-        const LiveControls controls = loop_->Controls();
+        if (HandleLiveWindowKey(key, *loop_, window_.handle(), panel_, panelShown_)) return;
         switch (key) {
-            case GLFW_KEY_SPACE: loop_->SetPaused(!controls.paused); break;
             case GLFW_KEY_N: loop_->Step(); break;
             case GLFW_KEY_F12: captureRequested_ = true; break;
-            case GLFW_KEY_TAB: panelShown_ = !panelShown_; break;
-            case GLFW_KEY_O: panel_.display.overlay = !panel_.display.overlay; break;
             case GLFW_KEY_G:
                 source_.SetGazeSource(source_.MouseGaze() ? source_.SyntheticDefault() : "mouse");
                 break;
             case GLFW_KEY_C: source_.SetFreeHead(std::nullopt); break;
-            case GLFW_KEY_L:
-                panel_.display.layout = DisplayLayout((int(panel_.display.layout) + 1) % 3);
-                break;
-            case GLFW_KEY_V: {
-                const auto names = loop_->ViewNames();
-                auto it = std::find(names.begin(), names.end(), controls.view);
-                loop_->SetView(it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1));
-                break;
-            }
-            case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE); break;
-            default:
-                if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
-                    const auto& names = DenoiserNames();
-                    const size_t i = size_t(key - GLFW_KEY_1);
-                    if (i < names.size()) loop_->SetDenoiser(names[i]);
-                }
+            default: break;
         }
     }
 

@@ -12,6 +12,8 @@
 #include "live/live_stats.h"
 #include "preview/preview_source.h"
 
+struct GLFWwindow;
+
 namespace fovrt {
 
 struct PanelState {
@@ -28,5 +30,9 @@ struct PanelState {
 void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* source, const LiveStats& stats,
                       const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
                       PanelState& state);
+
+// The keys every live window shares: Space pause, Tab the panel, O the overlay, L the layout,
+// V the next view, 1–9 a denoiser, Esc closes the window. False for any other key.
+bool HandleLiveWindowKey(int key, LiveLoop& loop, GLFWwindow* window, PanelState& state, bool& panelShown);
 
 }  // namespace fovrt

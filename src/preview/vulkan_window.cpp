@@ -1,6 +1,7 @@
 #include "preview/vulkan_window.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 #define GLFW_INCLUDE_VULKAN
@@ -364,6 +365,12 @@ std::optional<Plane<uint32_t>> PreviewWindow::TakeCapture() {
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = DisplayPixelRgb(pixels[i], ByteOrder());
     captured_ = false;
     return pixels;
+}
+
+void ParseWindowSize(const std::string& text, WindowOptions& options) {
+    if (std::sscanf(text.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 64 ||
+        options.height < 64)
+        Fail("--window {}: expected WxH with both at least 64", text);
 }
 
 void WriteWindowCapturePng(const std::filesystem::path& path, const Plane<uint32_t>& pixels) {

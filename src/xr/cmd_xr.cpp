@@ -40,9 +40,7 @@ void RegisterXrCommand(CLI::App& app) {
                     "with --mirror and --frames: write the mirror window's last image (PNG)");
     cmd->callback([config, options, window] {
         XrOptions o = *options;
-        if (std::sscanf(window->c_str(), "%dx%d", &o.window.width, &o.window.height) != 2 ||
-            o.window.width < 64 || o.window.height < 64)
-            Fail("--window {}: expected WxH with both at least 64", *window);
+        ParseWindowSize(*window, o.window);
         o.window.title = "fovrt xr mirror";
         if (!o.screenshot.empty() && (!o.mirror || o.frames == 0)) Fail("--screenshot needs --mirror and --frames N");
         RunXr(ResolveConfig(*config), o);

@@ -2,7 +2,6 @@
 
 #include <GLFW/glfw3.h>
 
-#include "denoise/variants.h"
 #include "xr/xr_app.h"
 
 namespace fovrt {
@@ -39,29 +38,6 @@ XrMirror::~XrMirror() {
 
 bool XrMirror::Closed() const { return window_.ShouldClose(); }
 
-void XrMirror::HandleKey(LiveLoop& loop, int key) {
-    const LiveControls controls = loop.Controls();
-    switch (key) {
-        case GLFW_KEY_SPACE: loop.SetPaused(!controls.paused); break;
-        case GLFW_KEY_TAB: panelShown_ = !panelShown_; break;
-        case GLFW_KEY_O: panel_.display.overlay = !panel_.display.overlay; break;
-        case GLFW_KEY_L: panel_.display.layout = DisplayLayout((int(panel_.display.layout) + 1) % 3); break;
-        case GLFW_KEY_V: {
-            const auto names = loop.ViewNames();
-            auto it = std::find(names.begin(), names.end(), controls.view);
-            loop.SetView(it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1));
-            break;
-        }
-        case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE); break;
-        default:
-            if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
-                const auto& names = DenoiserNames();
-                const size_t i = size_t(key - GLFW_KEY_1);
-                if (i < names.size()) loop.SetDenoiser(names[i]);
-            }
-    }
-}
-
 void XrMirror::Present(LiveLoop& loop, LiveStats& stats, const std::shared_ptr<const LiveFrame>& frame,
                        std::vector<std::string> sessionLines) {
     glfwPollEvents();
@@ -69,7 +45,7 @@ void XrMirror::Present(LiveLoop& loop, LiveStats& stats, const std::shared_ptr<c
     while (!keys_.empty()) {
         const int key = keys_.front();
         keys_.pop_front();
-        if (keyboard) HandleKey(loop, key);
+        if (keyboard) HandleLiveWindowKey(key, loop, window_.handle(), panel_, panelShown_);
     }
     const auto now = LiveClock::now();
     const bool fresh = frame && frame->number != uploaded_;

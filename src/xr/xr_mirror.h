@@ -35,8 +35,6 @@ public:
                  std::vector<std::string> sessionLines);
 
 private:
-    void HandleKey(LiveLoop& loop, int key);
-
     PreviewWindow& window_;
     std::optional<DisplayPass> display_;
     std::optional<ImGuiLayer> imgui_;
