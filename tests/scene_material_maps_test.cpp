@@ -38,8 +38,7 @@ TEST_CASE("brdf-detail's panels carry procedural roughness maps at a few pixels'
                 lo = std::min(lo, v.r);
                 hi = std::max(hi, v.r);
             }
-            CHECK(lo < 0.1f);
-            CHECK(hi > 0.5f);
+            CHECK(hi - lo >= 0.5f);  // rough and smooth cells
         }
         CHECK(mapped == 2);
     }

@@ -36,8 +36,8 @@ using Origins = std::map<std::string, std::string>;
 // ([denoise.svgf], ...) come from their keys in denoise/params.cpp.
 const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
-        std::set<std::string> names = {"scene",   "camera", "run",    "foveation",
-                                       "gaze",    "denoise", "output", "reference"};
+        std::set<std::string> names = {"scene", "camera",  "run",    "render",   "foveation",
+                                       "gaze",  "denoise", "output", "reference"};
         const DenoiserParams defaults;
         ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
             const std::string key = info.key;
