@@ -130,3 +130,15 @@ TEST_CASE("bilinear lookups return texel centres exactly and extrapolate over th
     const BrdfChannels mid = t.Lookup(0.5f, t.TexelRoughness(0));  // halfway between texels 3 and 4
     CHECK(mid.a == Approx(0.5f * (t.Texel(3, 0).a + t.Texel(4, 0).a)).margin(1e-6));
 }
+
+TEST_CASE("the per-pixel F_beta of the tracer costs a table lookup (timing printed)", "[render]") {
+    const BrdfTable& t = Table();
+    const BsdfParams p = MakeBsdfParams(vec3(0.9f, 0.6f, 0.5f), 0.4f, 0.5f, 1.0f);
+    const int n = 1 << 22;
+    vec3 sum(0.0f);
+    auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < n; ++i) sum += PreintegratedReflectance(t, p, 0.05f + 0.9f * float(i & 1023) / 1024.0f);
+    const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / n;
+    WARN("PreintegratedReflectance: " << ns << " ns per call (one thread)");
+    CHECK(IsFinite(sum));
+}
