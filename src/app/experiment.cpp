@@ -27,6 +27,21 @@
 namespace fovrt {
 namespace {
 
+// Per instance: 1 when a material of its mesh has a roughness or metallic map (scene-file maps
+// or glTF metallic-roughness): the "detail" region of brdf-demodulation experiments (issue #13).
+std::vector<uint8_t> InstancesWithMaterialMaps(const Scene& scene) {
+    std::vector<uint8_t> out(scene.instances.size(), 0);
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+        for (uint32_t m : scene.meshes[scene.instances[i].mesh].materials) {
+            const Material& material = scene.materials[m];
+            if (material.roughnessTexture >= 0 || material.metallicTexture >= 0 ||
+                material.metallicRoughnessTexture >= 0)
+                out[i] = 1;
+        }
+    return out;
+}
+
+
 namespace fs = std::filesystem;
 
 double MsSince(std::chrono::steady_clock::time_point start) {
@@ -209,6 +224,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
         MetricsCollector collector(results);
         const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
         const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
+        const std::vector<uint8_t> detailInstances = InstancesWithMaterialMaps(pipeline.GetScene());
 
         SceneVisuals visuals;
         visuals.scene = label;
@@ -251,6 +267,13 @@ Results RunExperiment(const ExperimentSpec& spec) {
                 images.fovea = fovea;
                 images.cameraCut = e.inputs.cameraCut;
                 images.reference = &reference;
+                // "detail": pixels whose primary hit is an instance with roughness/metallic maps.
+                Plane<uint8_t> detail(camera.width(), camera.height(), uint8_t(0));
+                for (size_t p = 0; p < detail.size(); ++p) {
+                    const uint32_t id = e.inputs.objectId[p];
+                    detail[p] = id < detailInstances.size() ? detailInstances[id] : uint8_t(0);
+                }
+                images.detailMask = &detail;
                 for (size_t v = 0; v < denoisers.size(); ++v) {
                     Denoiser& denoiser = denoisers.At(v, eye);
                     denoiser.Denoise(e.inputs, outputs[v]);
