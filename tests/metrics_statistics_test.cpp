@@ -103,6 +103,14 @@ TEST_CASE("paired ratio: ties count one half, no change is not significant", "[m
     CHECK_FALSE(r.Significant());
     CHECK(r.winRate > 0.35);
     CHECK(r.winRate < 0.65);
+    // Float noise is no difference: a variant equal to the baseline up to 1e-9 is all ties.
+    std::vector<PairedSequence> same = seqs;
+    for (auto& s : same)
+        for (size_t t = 0; t < s.variant.size(); ++t) s.variant[t] = s.baseline[t] * (1.0 + (t % 2 ? 1e-9 : -1e-9));
+    PairedRatio noise = ComparePaired(same, Better::kLower);
+    CHECK(noise.ratio == 1.0);
+    CHECK(noise.winRate == 0.5);
+    CHECK_FALSE(noise.Significant());
     // Reproducible: the bootstrap's RNG seed is fixed.
     PairedRatio again = ComparePaired(seqs, Better::kLower);
     CHECK(again.lower == r.lower);

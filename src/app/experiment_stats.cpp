@@ -117,7 +117,8 @@ std::string StatisticsMethod(const BootstrapOptions& options) {
         "b chosen from the autocorrelation of the log ratios by the rule of Politis & White (2004, "
         "corrected by Patton et al. 2009) and clamped to [1, min(3 sqrt(n), n/3)]; b = 1 is iid resampling. "
         "A difference whose interval contains 1 (no change) is marked not significant (ns). Win rate: the "
-        "share of pairs in which the variant is better (lower error; higher SSIM), ties counted half.",
+        "share of pairs in which the variant is better (lower error; higher SSIM), ties (a relative difference "
+        "below 1e-6, float noise) counted half and as ratio 1.",
         100.0 * options.confidence, options.resamples, options.rngSeed);
 }
 

@@ -82,7 +82,10 @@ std::string SummaryHtml(const Results& results, const ExperimentStats& stats, co
             if (!e) continue;
             const bool isBase = variant == d.baseline;
             out += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>", HtmlEscape(variant),
-                               region, Sci(e->spread.mean), Sci(e->spread.median), Sci(e->spread.geometricMean));
+                               region, Sci(e->spread.mean), Sci(e->spread.median),
+                               e->spread.count > 0 && std::isnan(e->spread.geometricMean)
+                                   ? "<span title=\"a frame has an error of exactly 0: undefined\">n/a</span>"
+                                   : Sci(e->spread.geometricMean));
             out += RatioCell(e->vsBaseline, isBase);
             out += isBase || !e->vsBaseline || e->vsBaseline->pairs == 0
                        ? std::string("<td>–</td>")

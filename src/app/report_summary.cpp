@@ -123,13 +123,16 @@ std::string SummaryTable(const Results& results, const ExperimentStats& stats) {
             "circular block bootstrap, blocks of {} frames]\n  ns: the interval contains 1 (no significant "
             "change); win: share of pairs where the variant is better; temporal: mean |lum(t) - lum(t-1)|\n",
             d.baseline, 100.0 * stats.Options().confidence, blocks);
-        out += fmt::format("{:<18} {:<9} {:>9} {:>9} {:>9}  {:<25} {:>4}  {:>9}  {:<25} {:>6}\n", "variant", "region",
+        out += fmt::format("{:<18} {:<9} {:>9} {:>9} {:>9}  {:<28} {:>4}  {:>9}  {:<28} {:>6}\n", "variant", "region",
                            "relMSE", "median", "geomean", "relMSE ratio [95% CI]", "win", "temporal",
                            "temporal ratio [95% CI]", "SSIM");
+        bool anyZero = false;
         for (const std::string& variant : results.Variants(scene))
             for (const std::string& region : ComparedRegions()) {
                 const MetricStats* e = stats.Find(scene, variant, region, "relmse");
                 if (!e) continue;
+                const bool zero = e->spread.count > 0 && std::isnan(e->spread.geometricMean);
+                anyZero = anyZero || zero;
                 const MetricStats* t = stats.Find(scene, variant, region, "temporal");
                 const MetricStats* s = stats.Find(scene, variant, region, "ssim");
                 const bool isBase = variant == d.baseline;
@@ -139,11 +142,15 @@ std::string SummaryTable(const Results& results, const ExperimentStats& stats) {
                 const std::string win = !isBase && e->vsBaseline && e->vsBaseline->pairs > 0
                                             ? fmt::format("{:.0f}%", 100.0 * e->vsBaseline->winRate)
                                             : "-";
-                out += fmt::format("{:<18} {:<9} {:>9} {:>9} {:>9}  {:<25} {:>4}  {:>9}  {:<25} {:>6}\n", variant,
-                                   region, Sci(e->spread.mean), Sci(e->spread.median), Sci(e->spread.geometricMean),
+                out += fmt::format("{:<18} {:<9} {:>9} {:>9} {:>9}  {:<28} {:>4}  {:>9}  {:<28} {:>6}\n", variant,
+                                   region, Sci(e->spread.mean), Sci(e->spread.median),
+                                   zero ? "n/a" : Sci(e->spread.geometricMean),
                                    ratio(e), win, t ? Sci(t->spread.mean) : "-", ratio(t),
                                    s ? fmt::format("{:.4f}", s->spread.mean) : "-");
             }
+        if (anyZero)
+            out += "  geomean n/a: some frames have an error of exactly 0 (e.g. a fovea on the empty background), "
+                   "where a geometric mean is undefined\n";
         std::string dominant;
         for (const std::string& variant : results.Variants(scene))
             for (const std::string& region : ComparedRegions()) {

@@ -137,10 +137,12 @@ PairedRatio ComparePaired(const std::vector<PairedSequence>& sequences, Better b
                 ++result.dropped;
                 continue;
             }
-            d.push_back(std::log(v / b));
+            // Below the metrics' float precision the two are the same: a tie, log ratio 0.
+            const bool tie = std::abs(v - b) <= kTieTolerance * std::max(v, b);
+            d.push_back(tie ? 0.0 : std::log(v / b));
             logSum += d.back();
             const bool win = better == Better::kLower ? v < b : v > b;
-            wins += v == b ? 0.5 : win ? 1.0 : 0.0;
+            wins += tie ? 0.5 : win ? 1.0 : 0.0;
         }
         result.pairs += d.size();
         if (!d.empty()) logRatios.push_back(std::move(d));

@@ -22,7 +22,9 @@
 //   - The interval is the percentile interval of exp(replicate) (2,000 replicates, 95 %).
 //     A difference is significant when the interval excludes 1 (no change).
 //   - Win rate: the fraction of pairs in which the variant is better (lower error, or higher for a
-//     similarity such as SSIM); ties count one half.
+//     similarity such as SSIM); ties count one half. Values within kTieTolerance (relative) of
+//     each other are a tie with log ratio 0: the metrics are means of float maps, and a
+//     difference in their last bits is not a difference between denoisers.
 #pragma once
 
 #include <cstddef>
@@ -39,6 +41,8 @@ struct Spread {
     size_t count = 0;
 };
 Spread Summarize(const std::vector<double>& values);
+
+inline constexpr double kTieTolerance = 1e-6;
 
 // Which direction of a metric is better.
 enum class Better { kLower, kHigher };
