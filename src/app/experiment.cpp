@@ -299,6 +299,10 @@ Results RunExperiment(const ExperimentSpec& spec) {
         int blinkFrames = 0;
         uint64_t rays = 0, droppedSamples = 0;
         ReferenceCache cache(sceneConfig.reference.cacheDir);  // shared by every seed
+        // The denoisers' pipelines are built once per scene (on lavapipe each one is compiled);
+        // their histories are reset for every seed.
+        DenoiserSet denoisers(sceneConfig.denoise);
+        deviceDescription = denoisers.DeviceDescription();
         // One full pass per run seed: a fresh pipeline (the tracer samples with the seed) and fresh
         // denoiser histories, as a separate run with that seed would have.
         for (size_t seedIndex = 0; seedIndex < seeds.size(); ++seedIndex) {
@@ -317,8 +321,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                 fingerprint = SceneFingerprint(pipeline.GetScene());
                 sceneSource = pipeline.GetScene().sourcePath.string();
             }
-            DenoiserSet denoisers(config.denoise);
-            deviceDescription = denoisers.DeviceDescription();
+            denoisers.Reset();
             MetricsCollector collector(results);
             const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
             const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
