@@ -159,3 +159,31 @@ TEST_CASE("brdf-demodulation preset: albedo vs F_beta for svgf and two-history, 
     CHECK(c.foveation.radiusPx == 200.0f);
     CHECK(c.denoise.params.svgf.atrousIterations == 2);
 }
+
+TEST_CASE("every preset runs three seeds", "[app][presets]") {
+    for (const char* name : {"thesis-foveated.toml", "svgf-paper.toml", "asvgf-lag.toml", "quickstart.toml"}) {
+        INFO(name);
+        toml::table file = toml::parse_file((test::SourceDir() / "presets" / name).string());
+        const toml::array* seeds = file["experiment"]["seeds"].as_array();
+        REQUIRE(seeds);
+        CHECK(seeds->size() >= 3u);
+    }
+}
+
+TEST_CASE("quickstart preset: the first command compares two denoisers on built-in data", "[app][presets]") {
+    const auto path = test::SourceDir() / "presets" / "quickstart.toml";
+    toml::table file = toml::parse_file(path.string());
+    toml::table experiment = *file["experiment"].as_table();
+    file.erase("experiment");
+    std::ostringstream text;
+    text << file;
+    RunConfig c = ConfigFromTomlString(text.str(), "quickstart.toml");
+    for (const auto& s : *experiment["scenes"].as_array())
+        CHECK(std::filesystem::exists(test::SourceDir() / "scenes" / (*s.value<std::string>() + ".toml")));
+    CHECK(experiment["variants"].as_array()->size() >= 2u);  // a baseline and a variant: intervals
+    CHECK(c.foveation.model == "disc");
+    CHECK(c.output.report);
+    // Small enough to take about as long as the default `fovrt run` (README: Quick start).
+    CHECK(int64_t(c.camera.width) * c.camera.height * c.run.frames * 3 <=
+          int64_t(DefaultConfig().camera.width) * DefaultConfig().camera.height * DefaultConfig().run.frames);
+}

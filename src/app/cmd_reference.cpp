@@ -37,7 +37,7 @@ void RenderReferences(const RunConfig& config) {
             ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
                                                 pipeline.TimeOf(frame), eye, rig.Eye(eye),
                                                 config.reference.spp, config.run.maxDepth,
-                                                config.run.seed);
+                                                config.reference.seed);
             bool hit = false;
             cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
             (hit ? cached : rendered)++;

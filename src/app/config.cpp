@@ -406,6 +406,9 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Bool("output.report", c.output.report);
 
     r.Int("reference.spp", c.reference.spp, 1, 1 << 24);
+    int64_t referenceSeed = c.reference.seed;
+    r.Int64("reference.seed", referenceSeed, 0, std::numeric_limits<uint32_t>::max());
+    c.reference.seed = uint32_t(referenceSeed);
     r.String("reference.cache_dir", c.reference.cacheDir);
 
     toml::table checked = root;
@@ -510,7 +513,9 @@ toml::table ToTable(const RunConfig& c) {
                                {"write_inputs", c.output.writeInputs},
                                {"exposure", CleanFloat(c.output.exposure)},
                                {"report", c.output.report}}},
-        {"reference", toml::table{{"spp", c.reference.spp}, {"cache_dir", c.reference.cacheDir}}},
+        {"reference", toml::table{{"spp", c.reference.spp},
+                                  {"seed", int64_t(c.reference.seed)},
+                                  {"cache_dir", c.reference.cacheDir}}},
     };
     InsertDenoiserParams(root, c.denoise.params);
     return root;

@@ -36,7 +36,7 @@
 //                tables in denoise/params.cpp (key, default, range, doc; `fovrt config --keys`)
 //   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = true,
 //                exposure = 0 (stops, PNG only), report = true
-//   [reference]  spp = 1024, cache_dir = "cache/reference"
+//   [reference]  spp = 1024, seed = 1 (the reference's own; independent of run.seed), cache_dir = "cache/reference"
 #pragma once
 
 #include <array>
@@ -97,6 +97,9 @@ struct OutputConfig {
 
 struct ReferenceConfig {
     int spp = 1024;
+    // The reference's own sampling seed: fixed, so every run seed is scored against the same
+    // reference (its noise is then one bias shared by all seeds and variants, not seed noise).
+    uint32_t seed = 1;
     std::string cacheDir = "cache/reference";
 };
 

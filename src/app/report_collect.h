@@ -19,6 +19,7 @@ namespace fovrt {
 
 struct EyeFrameImages {
     std::string scene;
+    uint32_t seed = 1;  // the run seed of the frame
     int frame = 0;
     int eye = 0;
     EyeCamera camera;

@@ -242,11 +242,11 @@ public:
         history.luminance = std::move(luminance);
     }
 
-    void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) override {
+    void RenderReference(int eye, const EyeCamera& camera, int spp, uint32_t seed, Plane<vec3>& out) override {
         FOVRT_CHECK_OP(spp, >=, 1);
         int w = camera.width(), h = camera.height();
         out.Resize(w, h, vec3(0.0f));
-        uint32_t runSeed = HashCombine(settings_.seed, kReferenceStream);
+        const uint32_t referenceSeed = HashCombine(seed, kReferenceStream);
         ForEachTile(w, h, [&](int x0, int y0, int x1, int y1, RayCounts& counts) {
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
@@ -258,8 +258,8 @@ public:
                         out(x, y) = scene_.background;
                         continue;
                     }
-                    uint32_t seed = PixelSeed(runSeed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
-                    out(x, y) = ShadePixel(camera.Position(), s, seed, spp, counts).radiance;
+                    const uint32_t pixelSeed = PixelSeed(referenceSeed, uint32_t(eye), uint32_t(x), uint32_t(y), 0u);
+                    out(x, y) = ShadePixel(camera.Position(), s, pixelSeed, spp, counts).radiance;
                 }
         });
     }

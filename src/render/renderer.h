@@ -86,8 +86,11 @@ public:
     // sample and seed each pixel was shaded with. Overwritten by the next RenderEye of that eye.
     virtual const VisibilityBuffer& Visibility(int eye) const = 0;
 
-    // High-spp ground truth (remodulated colour) of the current frame for one eye.
-    virtual void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) = 0;
+    // High-spp ground truth (remodulated colour) of the current frame for one eye. `seed` is the
+    // reference's own sampling seed (ReferenceCache passes reference.seed mixed with the key's
+    // frame), not the run seed: runs with different seeds are scored against the same reference.
+    virtual void RenderReference(int eye, const EyeCamera& camera, int spp, uint32_t seed,
+                                 Plane<vec3>& out) = 0;
 
     // Re-shading API (A-SVGF): shades `sample` as seen from `camera` in the current frame with
     // n samples whose seeds derive from `seed`, exactly as RenderPixel would. Returns the
