@@ -124,7 +124,7 @@ TEST_CASE("on the detailed surfaces brdf demodulation lowers SVGF's relMSE", "[a
         brdf->Denoise(in, outBrdf);
     }
     Plane<vec3> reference;
-    renderer->RenderReference(0, camera, 256, reference);
+    renderer->RenderReference(0, camera, 256, 1, reference);
     double errAlbedo = 0.0, errBrdf = 0.0;
     size_t n = 0;
     for (int y = 0; y < h; ++y)
