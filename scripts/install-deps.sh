@@ -13,5 +13,5 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libglfw3-dev libopenxr-dev libopenxr-loader1 libglm-dev libopenexr-dev libimath-dev \
   catch2 libtinygltf-dev libtinyobjloader-dev libstb-dev libtomlplusplus-dev libcli11-dev \
   nlohmann-json3-dev libspdlog-dev libfmt-dev libimgui-dev xvfb xauth \
-  xdotool x11-apps netpbm openxr-layer-corevalidation chromium \
+  xdotool x11-apps netpbm openxr-layer-corevalidation chromium python3 \
   >/dev/null

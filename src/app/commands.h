@@ -14,5 +14,6 @@ void RegisterReferenceCommand(CLI::App& app);
 void RegisterBenchCommand(CLI::App& app);
 void RegisterMemoryCommand(CLI::App& app);
 void RegisterPreviewCommand(CLI::App& app);  // src/preview
+void RegisterXrCommand(CLI::App& app);       // src/xr
 
 }  // namespace fovrt

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     fovrt::RegisterBenchCommand(app);
     fovrt::RegisterMemoryCommand(app);
     fovrt::RegisterPreviewCommand(app);
+    fovrt::RegisterXrCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -53,6 +53,14 @@ void LiveLoop::Start(uint64_t maxFrames, bool pipelined) {
     if (pipelined_) denoiseThread_ = std::thread([this] { DenoiseThread(); });
 }
 
+std::shared_ptr<const LiveFrame> LiveLoop::RenderOne() {
+    if (traceThread_.joinable()) Fail("LiveLoop::RenderOne while the render thread runs");
+    const LiveControls controls = Controls();
+    auto frame = Trace(controls);
+    Finish(*frame, controls);
+    return Latest();
+}
+
 void LiveLoop::Stop() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -142,7 +150,7 @@ void LiveLoop::ApplyDenoiser(const std::string& name) {
     const DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
     for (auto& d : denoisers_) d = CreateDenoiser(name, config_.denoise.device, params, context_);
     if (!runningDenoiser_.empty())
-        std::fprintf(stderr, "fovrt preview: denoiser %s -> %s (histories reset)\n",
+        std::fprintf(stderr, "fovrt: denoiser %s -> %s (histories reset)\n",
                      runningDenoiser_.c_str(), name.c_str());
     runningDenoiser_ = name;
     std::vector<BufferPlan> memory;

@@ -77,6 +77,10 @@ public:
     // second on a CPU where neither stage fills every core); otherwise each frame is traced and
     // denoised in turn (the gaze is sampled closest to the photons: lower latency).
     void Start(uint64_t maxFrames = 0, bool pipelined = false);
+    // Renders one frame on the calling thread and returns it (published as Latest() too): for a
+    // caller that paces frames itself, as an OpenXR session does between xrWaitFrame and
+    // xrEndFrame. Not while Start()'s threads run. Throws what the render stages throw.
+    std::shared_ptr<const LiveFrame> RenderOne();
     void Stop();
     bool Finished() const;  // stopped after maxFrames, or failed
     // The render thread's error, if it failed (the window shows it and exits non-zero).

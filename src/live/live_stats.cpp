@@ -107,4 +107,15 @@ std::string LiveStats::Summary() const {
         sumPresent_ / n, sumTrace_ > 0 ? double(sumRays_) / (sumTrace_ * 1e-3) * 1e-6 : 0.0, displayFrames_);
 }
 
+nlohmann::json LiveStats::SummaryJson() const {
+    const double n = std::max(1.0, double(frames_));
+    const double seconds = SecondsBetween(start_, LiveClock::now());
+    return {{"frames", frames_},
+            {"seconds", seconds},
+            {"frames_per_s", frames_ ? double(frames_) / seconds : 0.0},
+            {"latency_ms", {{"median", Percentile(allLatencies_, 0.5)}, {"p95", Percentile(allLatencies_, 0.95)}}},
+            {"mean_ms", {{"trace", sumTrace_ / n}, {"denoise", sumDenoise_ / n}, {"present", sumPresent_ / n}}},
+            {"mrays_per_s", sumTrace_ > 0 ? double(sumRays_) / (sumTrace_ * 1e-3) * 1e-6 : 0.0}};
+}
+
 }  // namespace fovrt

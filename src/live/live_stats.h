@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "live/live_loop.h"
 
 namespace fovrt {
@@ -45,6 +47,9 @@ public:
     // "60 frames in 5.8 s: 10.3 frames/s; gaze-to-photon latency median 95 ms, p95 120 ms; ..."
     // (frames shown: a frame rendered faster than the window presents may never be shown)
     std::string Summary() const;
+    // The same figures for a manifest: frames, seconds, frames_per_s, latency_ms {median, p95},
+    // mean_ms {trace, denoise, present}, mrays_per_s.
+    nlohmann::json SummaryJson() const;
 
 private:
     std::FILE* stream_ = nullptr;

@@ -51,9 +51,7 @@ void RegisterPreviewCommand(CLI::App& app) {
         o.layout = *layout == "left"    ? DisplayLayout::LeftEye
                    : *layout == "right" ? DisplayLayout::RightEye
                                         : DisplayLayout::SideBySide;
-        if (std::sscanf(window->c_str(), "%dx%d", &o.window.width, &o.window.height) != 2 ||
-            o.window.width < 64 || o.window.height < 64)
-            Fail("--window {}: expected WxH with both at least 64", *window);
+        ParseWindowSize(*window, o.window);
         o.overlay = !*noOverlay;
         o.panel = !*noPanel;
         if (!o.screenshot.empty() && o.frames == 0) Fail("--screenshot needs --frames N");

@@ -45,20 +45,12 @@ void OnKey(GLFWwindow* window, int key, int, int action, int) {
     if (action == GLFW_PRESS) PendingKeys(window).push_back(key);
 }
 
-// Writes the presented window pixels (0xRRGGBB as captured) as an 8-bit PNG, atomically.
-void WriteCapturePng(const fs::path& path, const Plane<uint32_t>& pixels) {
-    std::vector<uint8_t> rgb(pixels.size() * 3);
-    for (size_t i = 0; i < pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = uint8_t(pixels[i] >> (16 - 8 * c));
-    WriteRgb8Png(path, pixels.width(), pixels.height(), rgb);
-}
-
 // F12: the shown window image, and per eye the frame's FrameInputs, spp map and denoised output
 // in one multi-layer EXR.
 void SaveFrame(const fs::path& dir, const LiveFrame& frame, const Plane<uint32_t>& window) {
     fs::create_directories(dir);
     const std::string stem = fmt::format("frame{:06d}", frame.number);
-    WriteCapturePng(dir / (stem + "_window.png"), window);
+    WriteWindowCapturePng(dir / (stem + "_window.png"), window);
     for (int eye = 0; eye < 2; ++eye) {
         const EyeFrame& e = frame.stereo.eyes[size_t(eye)];
         WriteFrameInputsExr(dir / fmt::format("{}_{}.exr", stem, eye == 0 ? "left" : "right"), e.inputs,
@@ -251,33 +243,15 @@ private:
     }
 
     void HandleKey(int key) {
-        const LiveControls controls = loop_->Controls();
+        if (HandleLiveWindowKey(key, *loop_, window_.handle(), panel_, panelShown_)) return;
         switch (key) {
-            case GLFW_KEY_SPACE: loop_->SetPaused(!controls.paused); break;
             case GLFW_KEY_N: loop_->Step(); break;
             case GLFW_KEY_F12: captureRequested_ = true; break;
-            case GLFW_KEY_TAB: panelShown_ = !panelShown_; break;
-            case GLFW_KEY_O: panel_.display.overlay = !panel_.display.overlay; break;
             case GLFW_KEY_G:
                 source_.SetGazeSource(source_.MouseGaze() ? source_.SyntheticDefault() : "mouse");
                 break;
             case GLFW_KEY_C: source_.SetFreeHead(std::nullopt); break;
-            case GLFW_KEY_L:
-                panel_.display.layout = DisplayLayout((int(panel_.display.layout) + 1) % 3);
-                break;
-            case GLFW_KEY_V: {
-                const auto names = loop_->ViewNames();
-                auto it = std::find(names.begin(), names.end(), controls.view);
-                loop_->SetView(it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1));
-                break;
-            }
-            case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE); break;
-            default:
-                if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
-                    const auto& names = DenoiserNames();
-                    const size_t i = size_t(key - GLFW_KEY_1);
-                    if (i < names.size()) loop_->SetDenoiser(names[i]);
-                }
+            default: break;
         }
     }
 
@@ -288,7 +262,7 @@ private:
         if (!frame) return false;
         imgui_->NewFrame();
         if (panelShown_)
-            DrawPreviewPanel(*loop_, source_, stats_, latest, window_.PresentModeName(), panel_);
+            DrawPreviewPanel(*loop_, &source_, stats_, latest, window_.PresentModeName(), panel_);
         if (panel_.requestCapture) {
             captureRequested_ = true;
             capture = true;
@@ -327,7 +301,7 @@ private:
             }
             if (pixels && !options_.screenshot.empty() && options_.frames && latest &&
                 latest->number >= options_.frames)
-                WriteCapturePng(options_.screenshot, *pixels);
+                WriteWindowCapturePng(options_.screenshot, *pixels);
             captureRequested_ = false;
         }
         return true;

@@ -1,5 +1,7 @@
 #include "preview/preview_panel.h"
 
+#include <GLFW/glfw3.h>
+
 #include <algorithm>
 #include <vector>
 
@@ -62,13 +64,13 @@ bool FoveationControls(FoveationParams& f) {
 
 }  // namespace
 
-void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStats& stats,
+void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveStats& stats,
                       const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
                       PanelState& state) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.85f);
-    if (!ImGui::Begin("fovrt preview")) {
+    if (!ImGui::Begin(state.title.c_str())) {
         ImGui::End();
         return;
     }
@@ -99,7 +101,10 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStat
             }
         }
     }
-    if (ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (!sourcePtr && ImGui::CollapsingHeader("Headset", ImGuiTreeNodeFlags_DefaultOpen))
+        for (const std::string& line : state.sessionLines) Text(line);
+    if (sourcePtr && ImGui::CollapsingHeader("Gaze and head", ImGuiTreeNodeFlags_DefaultOpen)) {
+        PreviewFrameSource& source = *sourcePtr;
         std::string gaze = source.GazeSourceName();
         if (Combo("gaze (G: mouse)", source.GazeSourceNames(), gaze)) source.SetGazeSource(gaze);
         GazeParams params = source.SyntheticParams();
@@ -196,6 +201,31 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStat
         }
     }
     ImGui::End();
+}
+
+bool HandleLiveWindowKey(int key, LiveLoop& loop, GLFWwindow* window, PanelState& state, bool& panelShown) {
+    const LiveControls controls = loop.Controls();
+    switch (key) {
+        case GLFW_KEY_SPACE: loop.SetPaused(!controls.paused); return true;
+        case GLFW_KEY_TAB: panelShown = !panelShown; return true;
+        case GLFW_KEY_O: state.display.overlay = !state.display.overlay; return true;
+        case GLFW_KEY_L: state.display.layout = DisplayLayout((int(state.display.layout) + 1) % 3); return true;
+        case GLFW_KEY_V: {
+            const auto names = loop.ViewNames();
+            auto it = std::find(names.begin(), names.end(), controls.view);
+            loop.SetView(it == names.end() || it + 1 == names.end() ? names.front() : *(it + 1));
+            return true;
+        }
+        case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); return true;
+        default:
+            if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
+                const auto& names = DenoiserNames();
+                const size_t i = size_t(key - GLFW_KEY_1);
+                if (i < names.size()) loop.SetDenoiser(names[i]);
+                return true;
+            }
+            return false;
+    }
 }
 
 }  // namespace fovrt

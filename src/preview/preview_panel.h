@@ -4,11 +4,15 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "live/display_compose.h"
 #include "live/live_loop.h"
 #include "live/live_stats.h"
 #include "preview/preview_source.h"
+
+struct GLFWwindow;
 
 namespace fovrt {
 
@@ -16,10 +20,19 @@ struct PanelState {
     DisplaySettings display;
     bool requestCapture = false;  // "save" pressed (as F12)
     bool requestReturnToPath = false;
+    std::string title = "fovrt preview";
+    // A headset session's state (runtime, session state, gaze source, frame counts), shown in
+    // place of the gaze and head controls when there is no PreviewFrameSource.
+    std::vector<std::string> sessionLines;
 };
 
-void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource& source, const LiveStats& stats,
+// source: null in a headset session (the headset gives the head and the gaze).
+void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* source, const LiveStats& stats,
                       const std::shared_ptr<const LiveFrame>& shown, const std::string& presentMode,
                       PanelState& state);
+
+// The keys every live window shares: Space pause, Tab the panel, O the overlay, L the layout,
+// V the next view, 1–9 a denoiser, Esc closes the window. False for any other key.
+bool HandleLiveWindowKey(int key, LiveLoop& loop, GLFWwindow* window, PanelState& state, bool& panelShown);
 
 }  // namespace fovrt

@@ -1,12 +1,14 @@
 #include "preview/vulkan_window.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
 #include "core/error.h"
+#include "io/png.h"
 #include "live/display_compose.h"
 #include "vk/recorder.h"
 #include "vk/vk_check.h"
@@ -363,6 +365,19 @@ std::optional<Plane<uint32_t>> PreviewWindow::TakeCapture() {
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = DisplayPixelRgb(pixels[i], ByteOrder());
     captured_ = false;
     return pixels;
+}
+
+void ParseWindowSize(const std::string& text, WindowOptions& options) {
+    if (std::sscanf(text.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 64 ||
+        options.height < 64)
+        Fail("--window {}: expected WxH with both at least 64", text);
+}
+
+void WriteWindowCapturePng(const std::filesystem::path& path, const Plane<uint32_t>& pixels) {
+    std::vector<uint8_t> rgb(pixels.size() * 3);
+    for (size_t i = 0; i < pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = uint8_t(pixels[i] >> (16 - 8 * c));
+    WriteRgb8Png(path, pixels.width(), pixels.height(), rgb);
 }
 
 }  // namespace fovrt

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -101,5 +102,11 @@ private:
     VkExtent2D captureExtent_{};
     bool captured_ = false;
 };
+
+// `--window WxH` into options (both at least 64); fovrt::Error naming the option otherwise.
+void ParseWindowSize(const std::string& text, WindowOptions& options);
+
+// Writes captured window pixels (0xRRGGBB, as TakeCapture gives them) as an 8-bit PNG, atomically.
+void WriteWindowCapturePng(const std::filesystem::path& path, const Plane<uint32_t>& pixels);
 
 }  // namespace fovrt

@@ -1,5 +1,6 @@
 #include "vk/context.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -216,8 +217,13 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
     info.ppEnabledLayerNames = layers.data();
     info.enabledExtensionCount = uint32_t(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
-    VkResult r = vkCreateInstance(&info, nullptr, &s->instance);
-    if (r != VK_SUCCESS) Fail("no Vulkan instance ({}): is a Vulkan driver installed?", VkResultName(r));
+    VkResult r = VK_SUCCESS;
+    if (options.createInstance) {
+        s->instance = options.createInstance(info);
+    } else {
+        r = vkCreateInstance(&info, nullptr, &s->instance);
+        if (r != VK_SUCCESS) Fail("no Vulkan instance ({}): is a Vulkan driver installed?", VkResultName(r));
+    }
     if (validation) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(s->instance, "vkCreateDebugUtilsMessengerEXT"));
@@ -243,7 +249,17 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
         Fail("denoise.device = \"{}\": {}", options.device,
              decision.notice.empty() ? "the C++ reference, which needs no Vulkan context"
                                      : "no Vulkan device with a compute queue");
-    const uint32_t pick = decision.index;
+    uint32_t pick = decision.index;
+    if (options.pickPhysicalDevice) {
+        const VkPhysicalDevice chosen = options.pickPhysicalDevice(s->instance);
+        const auto it = std::find(devices.begin(), devices.end(), chosen);
+        if (it == devices.end()) Fail("the physical device chosen for the context is not one of the instance's");
+        const uint32_t index = uint32_t(it - devices.begin());
+        if (options.device != "auto" && options.device != "vulkan" && index != pick)
+            std::fprintf(stderr, "fovrt: warning: denoise.device = \"%s\" ignored: the device that drives the "
+                                 "headset is %u (%s)\n", options.device.c_str(), index, infos[index].name.c_str());
+        pick = index;
+    }
     s->physicalDevice = devices[pick];
     auto family = ComputeQueueFamily(s->physicalDevice, accepts);
     if (!family)
@@ -273,8 +289,12 @@ VulkanContext VulkanContext::Create(const VulkanContextOptions& options) {
     for (const std::string& e : options.deviceExtensions) deviceExtensions.push_back(e.c_str());
     deviceInfo.enabledExtensionCount = uint32_t(deviceExtensions.size());
     deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
-    r = vkCreateDevice(s->physicalDevice, &deviceInfo, nullptr, &s->device);
-    if (r != VK_SUCCESS) Fail("cannot create Vulkan device {}: {}", pick, VkResultName(r));
+    if (options.createDevice) {
+        s->device = options.createDevice(s->physicalDevice, deviceInfo);
+    } else {
+        r = vkCreateDevice(s->physicalDevice, &deviceInfo, nullptr, &s->device);
+        if (r != VK_SUCCESS) Fail("cannot create Vulkan device {}: {}", pick, VkResultName(r));
+    }
     vkGetDeviceQueue(s->device, s->queueFamily, 0, &s->queue);
     DescribeDevice(*s);
     CreateCommandPool(*s);

@@ -32,6 +32,13 @@ struct VulkanContextOptions {
     std::vector<std::string> instanceExtensions;
     std::vector<std::string> deviceExtensions;
     std::function<bool(VkInstance, VkPhysicalDevice, uint32_t queueFamily)> queueFamilyAccepts;
+    // Who creates the instance and the device, and picks the physical device: vkCreateInstance,
+    // the `device` setting and vkCreateDevice unless set. An OpenXR session sets all three so that
+    // the runtime creates them (XR_KHR_vulkan_enable2: it adds what it needs and names the device
+    // that drives the headset); the context still owns and destroys them. Each throws on failure.
+    std::function<VkInstance(const VkInstanceCreateInfo&)> createInstance;
+    std::function<VkPhysicalDevice(VkInstance)> pickPhysicalDevice;
+    std::function<VkDevice(VkPhysicalDevice, const VkDeviceCreateInfo&)> createDevice;
 };
 
 // Handles owned by someone else (window or OpenXR). They must outlive the context.

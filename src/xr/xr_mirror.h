@@ -1,0 +1,50 @@
+// XrMirror: `fovrt xr --mirror`, the desktop preview window (src/preview) showing what the headset
+// gets — both eyes as submitted, the gaze marker and fovea outline, and the preview's panel with
+// the headset's state in place of the mouse and fly-camera controls. It presents on the Vulkan
+// device the runtime created, from the session's thread, after each xrEndFrame.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "live/display_pass.h"
+#include "live/live_loop.h"
+#include "live/live_stats.h"
+#include "preview/imgui_layer.h"
+#include "preview/preview_panel.h"
+#include "preview/vulkan_window.h"
+
+namespace fovrt {
+
+struct XrOptions;
+
+class XrMirror {
+public:
+    XrMirror(PreviewWindow& window, VulkanContext& context, const XrOptions& options);
+    ~XrMirror();
+    XrMirror(const XrMirror&) = delete;
+    XrMirror& operator=(const XrMirror&) = delete;
+
+    bool Closed() const;
+    // Polls the window's input and presents `frame` (null: background) with the panel; at most
+    // 60 times a second while the headset idles.
+    void Present(LiveLoop& loop, LiveStats& stats, const std::shared_ptr<const LiveFrame>& frame,
+                 std::vector<std::string> sessionLines);
+
+private:
+    PreviewWindow& window_;
+    std::optional<DisplayPass> display_;
+    std::optional<ImGuiLayer> imgui_;
+    PanelState panel_;
+    std::deque<int> keys_;
+    bool panelShown_ = true;
+    uint64_t uploaded_ = 0;
+    LiveClock::time_point lastPresent_{};
+    std::string screenshot_;  // --screenshot: the window as presented with the last of --frames
+    uint64_t frames_ = 0;
+};
+
+}  // namespace fovrt

@@ -1,0 +1,231 @@
+#!/usr/bin/env bash
+# `fovrt xr` against fovrt's test OpenXR runtime (tests/xr_runtime), loaded by Debian's real loader
+# through XR_RUNTIME_JSON, with Debian's core validation layer on (run by ctest as xr_session):
+# the exact session state sequence and N frames ended with a clean exit; swapchains at the
+# recommended size; the eyes IPD apart and moving; each eye's image as the runtime read it back
+# equals fovrt's own output for that eye; eye gaze on: the spp map's disc sits where the scripted
+# gaze looks; gaze off: the fallback is used and reported; Ctrl-C and a runtime-initiated exit end
+# cleanly; session and instance loss, and every bad input, give one line and a non-zero exit with
+# no recording left behind; a recorded session replays headless to identical spp maps and noisy
+# inputs; --mirror shows the headset's frames in a window under Xvfb. Zero core validation errors.
+# Usage: xr_check.sh FOVRT IMAGE_PROBE XR_TEST_ENV_SH WORK_DIR
+set -uo pipefail
+fovrt=$(realpath "$1"); probe=$(realpath "$2"); envsh=$(realpath "$3"); work=$(realpath -m "$4")
+for tool in python3; do
+  command -v $tool >/dev/null || { echo "SKIP: $tool is missing (scripts/install-deps.sh installs it)"; exit 77; }
+done
+if ! vulkaninfo --summary >/dev/null 2>&1; then echo "SKIP: no Vulkan device"; exit 77; fi
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+# shellcheck disable=SC1090
+. "$envsh" "$work/core-validation.txt"
+[[ -n "${XR_ENABLE_API_LAYERS:-}" ]] || { echo "FAIL: the core validation layer is not set up"; exit 1; }
+passed=0; failed=0
+ok() { echo "ok: $1"; passed=$((passed + 1)); }
+bad() { echo "FAIL: $1"; failed=$((failed + 1)); }
+json() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
+small=(--set scene.name=cornell --set run.seed=7 --set denoise.denoisers='["svgf"]')
+export FOVRT_TEST_XR_SIZE=160x120
+
+# 1. A clean session: 4 frames rendered and submitted, exit through xrRequestExitSession.
+FOVRT_VK_VALIDATION=1 FOVRT_TEST_XR_DUMP=rt1 "$fovrt" xr "${small[@]}" --set output.dir=s1 --frames 4 --write-frames \
+  --write-inputs --record rec.jsonl >out1.txt 2>err1.txt
+rc=$?
+[[ $rc -eq 0 ]] && ok "4 frames, exit 0" || bad "exit $rc: $(tail -3 err1.txt)"
+grep -q "fovrt xr: 0 Vulkan validation errors, 0 warnings" err1.txt && ok "zero Vulkan validation messages" \
+  || bad "Vulkan validation: $(grep -m3 -i 'vulkan validation' err1.txt)"
+expected="IDLE READY SYNCHRONIZED VISIBLE FOCUSED VISIBLE SYNCHRONIZED STOPPING IDLE EXITING"
+runtime_states=$(sed 's/^XR_SESSION_STATE_//' rt1/states.txt 2>/dev/null | tr '\n' ' ' | sed 's/ $//')
+app_states=$(json s1/xr/manifest.json "' '.join(d['session_states'])" 2>/dev/null)
+[[ "$runtime_states" == "$expected" ]] && ok "runtime's states: $runtime_states" \
+  || bad "runtime's states: '$runtime_states' (expected '$expected')"
+[[ "$app_states" == "$expected" ]] && ok "fovrt saw the same states" || bad "fovrt's states: '$app_states'"
+python3 - s1/xr/manifest.json rt1/frames.jsonl s1/xr/frames.jsonl <<'PY' && ok "frames, sizes, poses: $(cat summary1.txt)" || bad "frames, sizes, poses: $(cat summary1.txt)"
+import json, math, sys
+m = json.load(open(sys.argv[1]))
+rt = [json.loads(l) for l in open(sys.argv[2])]
+app = [json.loads(l) for l in open(sys.argv[3])]
+problems = []
+f = m["frames"]
+if f["rendered"] != 4 or f["with_layer"] != 4: problems.append(f"frames {f}")
+if f["ended"] != len(rt): problems.append(f"fovrt ended {f['ended']} frames, the runtime saw {len(rt)}")
+sc = m["runtime"]["swapchain"]
+if (sc["width"], sc["height"]) != (160, 120): problems.append(f"swapchain {sc}")
+layered = [r for r in rt if r["layerCount"] == 1]
+if len(layered) != 4: problems.append(f"{len(layered)} frames with a layer")
+for r in layered:
+    if any(v["swapchainSize"] != [160, 120] or v["imageRect"] != [0, 0, 160, 120] for v in r["views"]):
+        problems.append("a view is not the whole recommended-size swapchain")
+    a, b = (v["pose"]["position"] for v in r["views"])
+    ipd = math.dist(a, b)
+    if abs(ipd - 0.063) > 1e-4: problems.append(f"eyes {ipd:.5f} m apart")
+    fov = r["views"][0]["fov"]
+    if abs(fov[0] + fov[1]) < 1e-3: problems.append(f"left FOV symmetric {fov}")
+moved = math.dist(layered[0]["views"][0]["pose"]["position"], layered[-1]["views"][0]["pose"]["position"])
+if moved < 1e-4: problems.append("the head did not move")
+if [a["display_time_ns"] for a in app] != [r["displayTime"] for r in layered]:
+    problems.append("fovrt's frames are not the runtime's layered frames")
+open("summary1.txt", "w").write("; ".join(problems) if problems else
+    f"{len(rt)} frames ended, 4 with a layer, 160x120 per eye, eyes 0.0630 m apart, head moved {moved*1000:.1f} mm")
+sys.exit(1 if problems else 0)
+PY
+# Each eye's released image, read back by the runtime, equals fovrt's own output (its PNG).
+same=0; n=0; worst=""
+while read -r frame disp; do
+  ppmframe=$(python3 -c "import json,sys
+for l in open('rt1/frames.jsonl'):
+    r=json.loads(l)
+    if r['displayTime']==int(sys.argv[1]): print('%05d' % r['frame'])" "$disp")
+  for eye in 0 1; do
+    n=$((n + 1))
+    png=s1/xr/frames/$(printf 'f%05d' "$frame")_$([[ $eye == 0 ]] && echo left || echo right).png
+    d=$("$probe" diff "rt1/frame_${ppmframe}_eye${eye}.ppm" "$png" 2>&1)
+    [[ $d == "max=0 "* ]] && same=$((same + 1)) || worst="$worst [$frame/$eye: $d]"
+  done
+done < <(python3 -c "import json
+for l in open('s1/xr/frames.jsonl'):
+    r=json.loads(l); print(r['frame'], r['display_time_ns'])")
+[[ $n -eq 8 && $same -eq 8 ]] && ok "the runtime's read-back of all 8 eye images equals fovrt's output, byte for byte" \
+  || bad "read-back vs fovrt output: $same of $n equal;$worst"
+# Gaze off (the runtime supports the extension, no tracker delivers): the fallback, reported.
+g=$(json s1/xr/manifest.json "d['gaze_source_frames']")
+[[ "$g" == "{'lissajous': 4}" ]] && ok "gaze off: fallback frames $g" || bad "gaze off: $g"
+[[ $(grep -c "eye gaze action is not active" err1.txt) -eq 1 ]] && ok "gaze off: one warning line" \
+  || bad "gaze off warning: $(grep -c 'not active' err1.txt) lines"
+
+# 1b. --async: the live loop renders on its own thread; every display slot submits the newest
+#     finished frame with the poses it was traced from, and its read-back equals fovrt's output.
+FOVRT_TEST_XR_DUMP=rta "$fovrt" xr "${small[@]}" --set output.dir=sa --frames 3 --async --write-frames 2>erra.txt
+rc=$?
+if [[ $rc -eq 0 ]] && python3 - rta/frames.jsonl sa/xr/frames.jsonl sa/xr/frames "$probe" <<'PY' > summarya.txt; then
+import json, math, subprocess, sys
+rt = [json.loads(l) for l in open(sys.argv[1])]
+app = [json.loads(l) for l in open(sys.argv[2])]
+problems = []
+by_time = {a["display_time_ns"]: a for a in app}
+current = None
+layered = 0
+for r in rt:
+    if r["displayTime"] in by_time:
+        current = by_time[r["displayTime"]]
+        for eye, name in ((0, "left"), (1, "right")):
+            d = subprocess.run([sys.argv[4], "diff", f"rta/{r['views'][eye]['ppm']}",
+                                f"{sys.argv[3]}/f{current['frame']:05d}_{name}.png"], capture_output=True, text=True).stdout
+            if not d.startswith("max=0 "): problems.append(f"frame {current['frame']} eye {eye}: {d.strip()}")
+    if r["layerCount"] == 0: continue
+    layered += 1
+    if current is None: problems.append(f"runtime frame {r['frame']} has a layer before any fovrt frame"); continue
+    for eye in (0, 1):
+        if math.dist(r["views"][eye]["pose"]["position"], current["eyes"][eye]["local"]["position"]) > 1e-6:
+            problems.append(f"runtime frame {r['frame']} eye {eye}: pose is not fovrt frame {current['frame']}'s")
+if len(app) != 3: problems.append(f"{len(app)} frames submitted")
+print("; ".join(problems[:4]) if problems else f"{len(rt)} frames ended, {layered} with a layer, 3 fovrt frames, each layer with its frame's poses, read-backs equal")
+sys.exit(1 if problems else 0)
+PY
+  ok "--async: $(cat summarya.txt)"
+else bad "--async: exit $rc: $(cat summarya.txt 2>/dev/null) $(tail -2 erra.txt)"; fi
+
+# 2. Record -> replay headless: identical spp maps and noisy inputs.
+if "$fovrt" run --replay rec.jsonl --set output.dir=replay --set output.write_png=false 2>err2.txt; then
+  n=0; same=0
+  for f in s1/inputs/*.exr; do
+    n=$((n + 1))
+    "$probe" exr-equal "$f" "replay/inputs/$(basename "$f")" >/dev/null && same=$((same + 1))
+  done
+  [[ $n -eq 8 && $same -eq 8 ]] && ok "replay: $same of $n FrameInputs + spp EXRs bit-identical" \
+    || bad "replay: $same of $n identical"
+else bad "replay failed: $(tail -2 err2.txt)"; fi
+
+# 3. Eye gaze on: the spp map's disc follows the scripted gaze (two fixed directions).
+for g in "0.25,-0.15" "-0.3,0.2"; do
+  rm -rf rt3 s3
+  FOVRT_TEST_XR_GAZE=on FOVRT_TEST_XR_GAZE_FIXED=$g FOVRT_TEST_XR_DUMP=rt3 "$fovrt" xr "${small[@]}" \
+    --set output.dir=s3 --frames 3 --view spp 2>err3.txt || { bad "gaze on ($g): $(tail -2 err3.txt)"; continue; }
+  src=$(json s3/xr/manifest.json "d['gaze_source_frames']")
+  last=$(ls rt3/frame_*_eye0.ppm | tail -1)
+  c=$("$probe" centroid "$last" 0 0 160 120)
+  python3 - "$g" "$c" rt3/frames.jsonl <<'PY' && ok "gaze on at tangent ($g): frames $src, spp disc at ($c)" \
+    || bad "gaze on at tangent ($g): frames $src, spp disc at ($c)"
+import json, sys
+tx, ty = map(float, sys.argv[1].split(","))
+cx, cy = map(float, sys.argv[2].split())
+r = [json.loads(l) for l in open(sys.argv[3]) if json.loads(l)["layerCount"]][-1]
+import math
+l, rr, u, d = (math.tan(a) for a in r["views"][0]["fov"])
+ex, ey = (tx - l) / (rr - l) * 160, (u - ty) / (u - d) * 120
+sys.exit(0 if (cx - ex) ** 2 + (cy - ey) ** 2 < 5 ** 2 else 1)
+PY
+  # Inputs flow only while FOCUSED: a first frame rendered while VISIBLE takes the fallback.
+  python3 - s3/xr/frames.jsonl <<'PY' || bad "gaze on ($g): frames by source $src"
+import json, sys
+sources = [json.loads(l)["gaze_source"] for l in open(sys.argv[1])]
+sys.exit(0 if sources[-2:] == ["eye-tracker"] * 2 else 1)
+PY
+  grep -q "not active" err3.txt && bad "gaze on ($g): warned that the action is not active"
+done
+
+# 4. Ctrl-C: xrRequestExitSession, the states walk down to EXITING, exit 0.
+FOVRT_TEST_XR_DUMP=rt4 "$fovrt" xr "${small[@]}" --set output.dir=s4 2>err4.txt &
+pid=$!
+for _ in $(seq 1 600); do [[ $(grep -c . s4/xr/frames.jsonl 2>/dev/null) -ge 2 ]] && break; sleep 0.1; done
+kill -INT $pid; wait $pid; rc=$?
+[[ $rc -eq 0 && $(tail -1 rt4/states.txt) == *EXITING ]] && ok "Ctrl-C: exit 0 after $(json s4/xr/manifest.json "d['frames']['rendered']") frames, ended in EXITING" \
+  || bad "Ctrl-C: exit $rc, last state $(tail -1 rt4/states.txt 2>/dev/null): $(tail -2 err4.txt)"
+
+# 5. The runtime ends the session itself (the user quit): STOPPING -> clean exit.
+FOVRT_TEST_XR_EXIT_AFTER=5 FOVRT_TEST_XR_DUMP=rt5 "$fovrt" xr "${small[@]}" --set output.dir=s5 2>err5.txt
+rc=$?
+[[ $rc -eq 0 && $(tail -1 rt5/states.txt) == *EXITING ]] && ok "runtime-initiated exit: exit 0" \
+  || bad "runtime-initiated exit: exit $rc: $(tail -2 err5.txt)"
+
+# 6. Session loss and instance loss: one line, non-zero exit, the recording holds whole frames.
+for kind in LOSS INSTANCE_LOSS; do
+  rm -f lost.jsonl
+  env FOVRT_TEST_XR_${kind}_AFTER=3 "$fovrt" xr "${small[@]}" --set output.dir=s6 --record lost.jsonl \
+    >/dev/null 2>err6.txt
+  rc=$?
+  line=$(grep "^fovrt: error" err6.txt)
+  if [[ $rc -ne 0 && $(grep -c "^fovrt: error" err6.txt) -eq 1 && $line == *lost* || $rc -ne 0 && $line == *"went away"* ]] &&
+     "$fovrt" run --replay lost.jsonl --set output.dir=s6r --set output.write_png=false --set output.write_inputs=false 2>/dev/null; then
+    ok "$kind: exit $rc, '$line', recording replays ($(($(grep -c . lost.jsonl) - 1)) frames)"
+  else bad "$kind: exit $rc: $(tail -2 err6.txt)"; fi
+done
+
+# 7. Bad input: one line, non-zero exit, no recording.
+check_bad() {  # check_bad NAME EXPECTED_SUBSTRING ENV...
+  local name=$1 want=$2; shift 2
+  rm -f badrec.jsonl
+  env "$@" "$fovrt" xr "${small[@]}" --set output.dir=s7 --frames 1 --record badrec.jsonl >/dev/null 2>err7.txt
+  local rc=$?
+  # (the core validation layer announces itself on stderr when an instance is created: not fovrt's)
+  sed -i '/^Core Validation output type/d' err7.txt
+  if [[ $rc -ne 0 && $(grep -c . err7.txt) -eq 1 && $(cat err7.txt) == *"$want"* && ! -e badrec.jsonl ]]; then
+    ok "$name: $(cat err7.txt)"
+  else bad "$name: exit $rc, recording $([[ -e badrec.jsonl ]] && echo left || echo absent): $(head -c 600 err7.txt)"; fi
+}
+echo '{"file_format_version": "1.0.0", "runtime": ' > broken.json
+check_bad "no runtime" "no OpenXR runtime" -u XR_RUNTIME_JSON XDG_CONFIG_DIRS=/nonexistent XDG_CONFIG_HOME=/nonexistent
+check_bad "missing XR_RUNTIME_JSON" "no such file" XR_RUNTIME_JSON=$work/absent.json
+check_bad "corrupt XR_RUNTIME_JSON" "not valid JSON" XR_RUNTIME_JSON=$work/broken.json
+check_bad "no enable2" "XR_KHR_vulkan_enable2" FOVRT_TEST_XR_NO_ENABLE2=1
+check_bad "no HMD" "no head-mounted display" FOVRT_TEST_XR_NO_HMD=1
+check_bad "form factor" "does not support the head-mounted display" FOVRT_TEST_XR_FORM_FACTOR_UNSUPPORTED=1
+
+# 8. --mirror: the window shows the headset's frames (Xvfb).
+if command -v xvfb-run >/dev/null; then
+  if xvfb-run -a -s "-screen 0 1280x720x24" "$fovrt" xr "${small[@]}" --set output.dir=s8 --frames 3 --mirror \
+       --window 640x360 --screenshot mirror.png 2>err8.txt; then
+    std=$("$probe" stats mirror.png 400 90 640 270 | sed 's/.*std=//')
+    awk -v s="$std" 'BEGIN { exit !(s > 10) }' && ok "--mirror: the window shows the right eye's frame (luma std $std)" \
+      || bad "--mirror: the right eye's half looks empty (luma std $std)"
+  else bad "--mirror: $(tail -2 err8.txt)"; fi
+else echo "skip: --mirror (no xvfb-run)"; fi
+
+# Core validation saw every call above.
+errors=$(fovrt_xr_validation_errors)
+# The layer announces itself at xrCreateInstance (so it was loaded); its report file is the
+# authority (Debian's 1.0.20 layer sends nothing to a debug-utils messenger).
+grep -q "Core Validation output type" out1.txt err1.txt && ok "the core validation layer was loaded" \
+  || bad "the core validation layer did not load"
+[[ $errors -eq 0 ]] && ok "core validation: 0 errors" || bad "core validation: $errors errors: $(grep -m3 VALID_ERROR core-validation.txt)"
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]
