@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "denoise/demodulation.h"
 #include "denoise/memory_plan.h"
 #include "denoise/reference/svgf_cpu.h"
 #include "denoise/vulkan/svgf_vk.h"
@@ -41,6 +42,9 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
                                          const DenoiserParams& params, VulkanContext* context) {
     const DenoiserVariant& v = FindDenoiserVariant(name);
     const DenoiserParams p = ParamsForVariant(v, params);
+    // A demodulation suffix wraps the variant's host in the shared re-demodulation step.
+    if (std::optional<Demodulation> want = DenoiserDemodulation(name))
+        return WithDemodulation(CreateDenoiser(std::string(v.name), device, params, context), *want, name);
     // The family picks the host; the row's flags pick the passes inside it.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
     if (v.family == DenoiserFamily::Svgf) {

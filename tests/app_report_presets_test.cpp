@@ -55,8 +55,7 @@ Preset LoadPreset(const std::string& name) {
 }
 
 void CheckCommon(const Preset& p) {
-    const auto& known = DenoiserNames();
-    for (const std::string& v : p.variants) CHECK(std::find(known.begin(), known.end(), v) != known.end());
+    for (const std::string& v : p.variants) CHECK(LookupDenoiserVariant(v) != nullptr);  // suffixes too
     for (const std::string& s : p.scenes)
         CHECK(std::filesystem::exists(test::SourceDir() / "scenes" / (s + ".toml")));
     CHECK(p.quick.camera.width < p.config.camera.width);
@@ -144,6 +143,21 @@ TEST_CASE("asvgf-lag preset: the quick run covers a light switch in room, with f
     CHECK(quick.front() - p.quick.run.firstFrame >= 4);
     CHECK(p.quick.run.firstFrame + p.quick.run.frames - quick.front() >= 4);
     CHECK(p.quick.run.frames <= 16);  // still quick
+}
+
+TEST_CASE("brdf-demodulation preset: albedo vs F_beta for svgf and two-history, thesis foveation", "[app][presets]") {
+    Preset p = LoadPreset("brdf-demodulation.toml");
+    CheckCommon(p);
+    CHECK(p.scenes == std::vector<std::string>{"brdf-detail", "brdf-detail-moving", "cornell", "veach-ajar"});
+    CHECK(p.variants == std::vector<std::string>{"svgf", "svgf+brdf", "two-history", "two-history+brdf"});
+    const RunConfig& c = p.config;
+    CHECK(c.render.demodulation == "albedo");  // one render feeds both kinds of variant
+    CHECK(c.camera.width == 1280);
+    CHECK(c.foveation.model == "disc");
+    CHECK(c.foveation.sppInside == 8);
+    CHECK(c.foveation.sppOutside == 1);
+    CHECK(c.foveation.radiusPx == 200.0f);
+    CHECK(c.denoise.params.svgf.atrousIterations == 2);
 }
 
 TEST_CASE("every preset runs three seeds", "[app][presets]") {

@@ -120,6 +120,7 @@ expect_error "unknown denoiser" "denoise.denoisers.*unknown denoiser 'svgf-typo'
 expect_error "unknown scene names the nearest" "scene 'cornel'.*did you mean 'cornell'?" run --set scene.name=cornel --set output.dir=e15
 expect_error "unknown key names the nearest" "camera.widht.*did you mean 'camera.width'?" run --set camera.widht=3 --set output.dir=e16
 expect_error "unknown enum value names the nearest" "foveation.model.*did you mean 'acuity'?" run --set foveation.model=acuty --set output.dir=e17
+expect_error "bad render.demodulation names the key" "render.demodulation.*'brfd' is not one of albedo, brdf" run --set render.demodulation=brfd --set output.dir=e31
 # An output folder that cannot be written (a file in its path) is one line naming the key and the
 # path; so is a reference cache that cannot be, and before any rendering.
 touch afile

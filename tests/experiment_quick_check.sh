@@ -19,7 +19,7 @@ run out > table.txt
 cat table.txt
 for variant in svgf svgf-weighted two-history asvgf two-history-asvgf; do
   for scene in cornell veach-ajar; do
-    awk -v s="$scene" -v v="$variant" '$1=="Scene"{cur=$2} cur==s && $1==v{found=1} END{exit !found}' \
+    awk -v s="$scene" -v v="$variant" '$1=="Scene"{cur=$2; sub(/:$/, "", cur)} cur==s && $1==v{found=1} END{exit !found}' \
       table.txt || { echo "FAIL: variant $variant missing from the $scene table"; exit 1; }
   done
 done

@@ -36,8 +36,8 @@ using Origins = std::map<std::string, std::string>;
 // ([denoise.svgf], ...) come from their keys in denoise/params.cpp.
 const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
-        std::set<std::string> names = {"scene",   "camera", "run",    "foveation",
-                                       "gaze",    "denoise", "output", "reference"};
+        std::set<std::string> names = {"scene", "camera",  "run",    "render",   "foveation",
+                                       "gaze",  "denoise", "output", "reference"};
         const DenoiserParams defaults;
         ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
             const std::string key = info.key;
@@ -328,6 +328,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     c.run.seed = uint32_t(seed);
     r.Int("run.threads", c.run.threads, 0, 4096);
     r.Int("run.max_depth", c.run.maxDepth, 0, 1024);
+    r.String("render.demodulation", c.render.demodulation, {"albedo", "brdf"});
 
     FoveationConfig& f = c.foveation;
     r.String("foveation.model", f.model, {"disc", "linear", "acuity", "uniform"});
@@ -477,6 +478,7 @@ toml::table ToTable(const RunConfig& c) {
                             {"seed", int64_t(c.run.seed)},
                             {"threads", c.run.threads},
                             {"max_depth", c.run.maxDepth}}},
+        {"render", toml::table{{"demodulation", c.render.demodulation}}},
         {"foveation", toml::table{{"model", f.model},
                                   {"spp_inside", f.sppInside},
                                   {"spp_outside", f.sppOutside},

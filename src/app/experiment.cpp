@@ -32,6 +32,21 @@
 namespace fovrt {
 namespace {
 
+// Per instance: 1 when a material of its mesh has a roughness or metallic map (scene-file maps
+// or glTF metallic-roughness): the "detail" region of brdf-demodulation experiments (issue #13).
+std::vector<uint8_t> InstancesWithMaterialMaps(const Scene& scene) {
+    std::vector<uint8_t> out(scene.instances.size(), 0);
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+        for (uint32_t m : scene.meshes[scene.instances[i].mesh].materials) {
+            const Material& material = scene.materials[m];
+            if (material.roughnessTexture >= 0 || material.metallicTexture >= 0 ||
+                material.metallicRoughnessTexture >= 0)
+                out[i] = 1;
+        }
+    return out;
+}
+
+
 namespace fs = std::filesystem;
 
 constexpr int64_t kMaxSeed = std::numeric_limits<uint32_t>::max();
@@ -275,6 +290,19 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
         SceneVisuals& visuals = record.visuals;
         bool touched = false;
         ReferenceCache cache(sceneConfig.reference.cacheDir);  // shared by every seed
+        // The denoisers' pipelines are built once per scene (on lavapipe each one is compiled);
+        // their histories are reset for every seed. Only the variants of this part's runs.
+        std::vector<std::string> sceneVariants;
+        for (size_t v = 0; v < spec.variants.size(); ++v)
+            for (const RunUnit& u : units)
+                if (u.scene == sceneIndex && u.variant == v) {
+                    sceneVariants.push_back(spec.variants[v]);
+                    break;
+                }
+        if (sceneVariants.empty()) continue;
+        sceneConfig.denoise.denoisers = sceneVariants;
+        DenoiserSet denoisers(sceneConfig.denoise);
+        part.deviceDescription = denoisers.DeviceDescription();
         // One full pass per run seed: a fresh pipeline (the tracer samples with the seed) and fresh
         // denoiser histories, as a separate run with that seed would have.
         for (size_t seedIndex = 0; seedIndex < seeds.size(); ++seedIndex) {
@@ -291,7 +319,6 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
             if (variants.empty()) continue;
             RunConfig config = sceneConfig;
             config.run.seed = seeds[seedIndex];
-            config.denoise.denoisers = variants;
             const bool firstSeed = seedIndex == 0;
             FramePipeline pipeline(spec.replay ? ReplayPipelineConfig(config) : config);
             std::optional<Replay> replay = spec.replay;
@@ -307,9 +334,9 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 touched = true;
             }
             const std::string& label = record.label;
-            DenoiserSet denoisers(config.denoise);
-            part.deviceDescription = denoisers.DeviceDescription();
+            denoisers.Reset();
             MetricsCollector collector(part.results);
+            const std::vector<uint8_t> detailInstances = InstancesWithMaterialMaps(pipeline.GetScene());
             const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
             const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
             const bool visualsHere = firstSeed && eyes[0];  // the report shows eye 0 of the first seed
@@ -363,6 +390,13 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     images.fovea = fovea;
                     images.cameraCut = e.inputs.cameraCut;
                     images.reference = &reference;
+                    // "detail": pixels whose primary hit is an instance with roughness/metallic maps.
+                    Plane<uint8_t> detail(camera.width(), camera.height(), uint8_t(0));
+                    for (size_t p = 0; p < detail.size(); ++p) {
+                        const uint32_t id = e.inputs.objectId[p];
+                        detail[p] = id < detailInstances.size() ? detailInstances[id] : uint8_t(0);
+                    }
+                    images.detailMask = &detail;
                     for (size_t v = 0; v < denoisers.size(); ++v) {
                         const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(),
                                                                 denoisers.Name(v)) - spec.variants.begin());

@@ -7,6 +7,7 @@ namespace fovrt {
 RegionSet MetricsCollector::Add(const EyeFrameImages& images) {
     FOVRT_CHECK(images.reference != nullptr);
     RegionSet regions = RegionSet::Build(images.camera, images.gazeEye, images.fovea);
+    if (images.detailMask) regions.AddMask("detail", *images.detailMask);
     MetricOptions options;
     options.pixelsPerDegree = images.camera.PixelsPerDegree();
     options.relMseEpsilon = float(results_.relMseEpsilon);

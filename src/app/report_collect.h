@@ -27,6 +27,7 @@ struct EyeFrameImages {
     FoveaRadius fovea;                 // default: the thesis's 200 px spp disc
     bool cameraCut = false;            // no temporal error across a cut
     const Plane<vec3>* reference = nullptr;
+    const Plane<uint8_t>* detailMask = nullptr;  // region "detail" when set and not empty
     std::vector<std::pair<std::string, const Plane<vec3>*>> outputs;  // variant -> HDR output
 };
 

@@ -19,6 +19,9 @@ struct RenderSettings {
     uint32_t seed = 1;         // run seed; per-pixel seeds = PixelSeed(seed, eye, x, y, frame)
     int threads = 0;           // 0: all hardware threads (result is identical for any count)
     bool gradientSamples = false;  // A-SVGF: fill FrameInputs::gradientSamples
+    // render.demodulation: what FrameInputs' direct / indirect are divided by (the albedo and F_β
+    // planes are both written either way; FrameInputs::demodulation records the choice).
+    Demodulation demodulation = Demodulation::Albedo;
 };
 
 // Work counters since the last ResetStats(): rays (primary, shadow, bounce) and every path sample
