@@ -26,9 +26,11 @@ std::string Join(const std::vector<std::string>& words) {
 
 // The options every task of the experiment shares: the file, --quick, --seeds, the shared cache
 // and output, the thread count the scheduler gives, and the user's --set overrides.
-std::vector<std::string> CommonOptions(const ClusterOptions& o, bool outputToo) {
+std::vector<std::string> CommonOptions(const ClusterOptions& o, bool outputToo, bool scenesToo = true) {
     std::vector<std::string> words;
     if (o.quick) words.push_back("--quick");
+    if (scenesToo)
+        for (const std::string& scene : o.scenes) words.insert(words.end(), {"--scene", scene});
     if (!o.seeds.empty()) words.insert(words.end(), {"--seeds", o.seeds});
     for (const std::string& s : o.sets) words.insert(words.end(), {"--set", s});
     words.insert(words.end(), {"--set", fmt::format("reference.cache_dir=\"{}\"", o.cacheDir.string())});
@@ -100,7 +102,7 @@ ClusterJobs MakeClusterJobs(const ClusterOptions& o, const ClusterExperiment& e)
                 std::vector<std::string> words{o.fovrt, "reference", "--experiment", o.experimentFile,
                                                "--scene", scene, "--eye", std::to_string(eye),
                                                "--frames", fmt::format("{}-{}", begin, end)};
-                const auto common = CommonOptions(o, false);
+                const auto common = CommonOptions(o, false, false);  // one scene: its own --scene
                 words.insert(words.end(), common.begin(), common.end());
                 jobs.referenceTasks.push_back(Join(words));
             }

@@ -21,6 +21,7 @@ struct ClusterOptions {
     std::string experimentFile;          // absolute
     bool quick = false;
     std::string seeds;                   // --seeds as given ("" = the file's)
+    std::vector<std::string> scenes;     // --scene as given (empty = the file's)
     std::vector<std::string> sets;       // --set overrides, passed to every task
     int shards = 4;                      // experiment shards
     int referenceTasks = 0;              // 0: one per (scene, eye)

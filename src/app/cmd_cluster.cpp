@@ -39,6 +39,7 @@ void RegisterClusterCommand(CLI::App& app) {
     cmd->add_option("file", config->configPath, "Experiment file (presets/*.toml)")->required();
     cmd->add_flag("--quick", args->quick, "The file's [experiment.quick] overrides");
     cmd->add_option("--seeds", args->seeds, "Run seeds, as `experiment --seeds`");
+    cmd->add_option("--scene", args->scenes, "Only these scenes, as `experiment --scene` (repeatable)");
     cmd->add_option("--set", config->sets, "Override a config key in every task: section.key=value");
     cmd->add_option("--shards", o->shards, "Experiment shards (the second job array's size)")->check(CLI::PositiveNumber);
     cmd->add_option("--reference-tasks", o->referenceTasks,
@@ -60,6 +61,7 @@ void RegisterClusterCommand(CLI::App& app) {
         options.experimentFile = fs::absolute(config->configPath).string();
         options.quick = args->quick;
         options.seeds = args->seeds;
+        options.scenes = args->scenes;
         options.sets.clear();
         for (const std::string& s : config->sets)
             if (s.rfind("output.dir=", 0) != 0 && s.rfind("reference.cache_dir=", 0) != 0) options.sets.push_back(s);

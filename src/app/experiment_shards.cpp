@@ -23,12 +23,6 @@ namespace fs = std::filesystem;
 
 constexpr int kPartVersion = 1;
 
-std::string SeedsString(const std::vector<uint32_t>& seeds) {
-    std::string out;
-    for (uint32_t s : seeds) out += (out.empty() ? "" : ",") + std::to_string(s);
-    return out;
-}
-
 // FNV-1a, as a hex string: enough to tell experiments apart, stable across machines.
 std::string Hash(const std::string& text) {
     uint64_t h = 1469598103934665603ull;
@@ -261,8 +255,11 @@ std::string ExperimentFingerprint(const ExperimentSpec& spec) {
                         {"variants", spec.variants},           {"seeds", spec.seeds},
                         {"baseline", spec.baseline},           {"visual_frame", spec.visualFrame},
                         {"quick", spec.quick},                 {"replay", spec.replay ? spec.replay->ToJson() : nullptr}};
-    // Where outputs go and how often a run reports do not change what a shard computes.
+    // Where outputs and the cache live and how many threads trace do not change what a shard
+    // computes (the tracer is deterministic for any thread count).
     j["config"].erase("output");
+    j["config"]["reference"].erase("cache_dir");
+    j["config"]["run"].erase("threads");
     return Hash(j.dump());
 }
 
