@@ -21,6 +21,11 @@ void RegisterExperimentCommand(CLI::App& app) {
     cmd->add_option("--memory-budget", options->memoryBudget, "Refuse to start above BYTES (e.g. 2GiB)");
     cmd->add_option("--replay", args->replayPath,
                     "Render a session recording's frames (its scene, cameras and gaze) instead of the scene's path");
+    cmd->add_option("--shard", args->shard,
+                    "Compute shard I of N (I/N, 0-based) of the (scene, seed, eye, variant) runs into "
+                    "<output.dir>/shards; --merge combines them");
+    cmd->add_flag("--merge", args->merge,
+                  "Combine <output.dir>/shards into the CSV, summary, table and report a single run writes");
     cmd->add_flag("--allow-changes", args->allowChanges,
                   "With --replay: accept config changes that make the frames differ from the recording");
     cmd->callback([options, args] { RunExperiment(LoadExperiment(*options, *args)); });

@@ -13,6 +13,7 @@
 #include "app/config_cli.h"
 #include "app/config_io.h"
 #include "app/denoiser_set.h"
+#include "app/experiment_shards.h"
 #include "app/experiment_stats.h"
 #include "app/frame_pipeline.h"
 #include "app/output_dir.h"
@@ -70,35 +71,6 @@ std::vector<std::string> StringArray(const toml::table& table, const std::string
     return values;
 }
 
-
-// Mean per-pass milliseconds per variant, over every frame and eye.
-class TimingTable {
-public:
-    void Add(const std::string& variant, const std::string& pass, double ms) {
-        auto& [sum, count] = sums_[variant][pass];
-        sum += ms;
-        ++count;
-        if (std::find(order_.begin(), order_.end(), variant) == order_.end()) order_.push_back(variant);
-    }
-    ReportTable ToReport(const std::string& title) const {
-        ReportTable table{title, {"variant", "pass", "mean ms", "samples"}, {}};
-        for (const std::string& variant : order_)
-            for (const auto& [pass, sc] : sums_.at(variant))
-                table.rows.push_back({variant, pass, fmt::format("{:.3f}", sc.first / double(sc.second)),
-                                      std::to_string(sc.second)});
-        return table;
-    }
-    nlohmann::json ToJson() const {
-        nlohmann::json j = nlohmann::json::object();
-        for (const auto& [variant, passes] : sums_)
-            for (const auto& [pass, sc] : passes) j[variant][pass] = sc.first / double(sc.second);
-        return j;
-    }
-
-private:
-    std::map<std::string, std::map<std::string, std::pair<double, int>>> sums_;
-    std::vector<std::string> order_;
-};
 
 // A scene's label in file names, reports and manifests: its `name` (not the path it was given
 // by), reduced to [A-Za-z0-9._-] so it is one path component under output.dir; a label already
@@ -210,6 +182,9 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
     ExperimentSpec spec;
     spec.file = options.configPath;
     spec.quick = quick;
+    if (!args.shard.empty()) spec.shard = ParseShard(args.shard);
+    spec.merge = args.merge;
+    if (spec.merge && spec.shard.Sharded()) Fail("--merge and --shard exclude each other");
     const std::string file = spec.file.string();
     toml::table experiment;
     // The config with the variants as its denoisers (a replay checks the list it renders with).
@@ -277,50 +252,71 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
     return spec;
 }
 
-Results RunExperiment(const ExperimentSpec& spec) {
+namespace {
+
+bool Owns(const std::vector<RunUnit>& units, size_t scene, size_t seed, int eye, size_t variant) {
+    for (const RunUnit& u : units)
+        if (u.scene == scene && u.seed == seed && u.eye == eye && u.variant == variant) return true;
+    return false;
+}
+
+// Computes the runs in `units` (all of them for a single machine): per scene and run seed that has
+// a run, the frames are rendered once (stereo) and fed to the runs' denoisers; the references of the
+// runs' eyes come from the shared cache.
+ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit>& units, const fs::path& outDir) {
     const RunConfig& base = spec.config;
-    OutputDir out(base.output.dir, "output.dir");
-    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
-    const fs::path outDir = out.Path();
-    fs::remove(outDir / "manifest.json");  // present only once this run is complete
-
-    auto totalStart = std::chrono::steady_clock::now();
-    Results results;
-    TimingTable timings;
-    HtmlReport report;
-    report.title = fmt::format("fovrt experiment: {}{}", spec.file.filename().string(),
-                               spec.quick ? " (--quick)" : "");
-    report.results = &results;
-    report.baseline = spec.baseline;
-    nlohmann::json sceneRecords = nlohmann::json::array();
-    nlohmann::json replayRecord;  // the recording replayed, with what CheckReplayScene found
-    std::string deviceDescription;
-
-    std::vector<std::string> labels;
     const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
-    Progress progress("experiment", int(spec.scenes.size() * seeds.size()) * base.run.frames);
-    for (const std::string& sceneName : spec.scenes) {
+    ExperimentPart part;
+    std::vector<std::string> labels;
+    size_t seedRuns = 0;
+    for (size_t sc = 0; sc < spec.scenes.size(); ++sc)
+        for (size_t sd = 0; sd < seeds.size(); ++sd)
+            for (const RunUnit& u : units)
+                if (u.scene == sc && u.seed == sd) {
+                    ++seedRuns;
+                    break;
+                }
+    Progress progress("experiment", int(seedRuns) * base.run.frames);
+    for (size_t sceneIndex = 0; sceneIndex < spec.scenes.size(); ++sceneIndex) {
+        const std::string& sceneName = spec.scenes[sceneIndex];
         RunConfig sceneConfig = base;
         sceneConfig.scene.name = sceneName;
         std::vector<BufferPlan> plan = PlanRunMemory(sceneConfig);
         EnforceMemoryBudget(plan, sceneConfig.memoryBudget, "experiment");
 
-        SceneVisuals visuals;
-        std::string label;
-        std::string sceneSource;
-        uint64_t fingerprint = 0;
-        double renderMs = 0.0, referenceMs = 0.0;
-        int referenceHits = 0, referenceLookups = 0, eyeFrames = 0;
-        int blinkFrames = 0;
-        uint64_t rays = 0, droppedSamples = 0;
+        SceneRecord record;
+        record.index = sceneIndex;
+        record.requested = sceneName;
+        SceneVisuals& visuals = record.visuals;
+        bool touched = false;
         ReferenceCache cache(sceneConfig.reference.cacheDir);  // shared by every seed
         // The denoisers' pipelines are built once per scene (on lavapipe each one is compiled);
-        // their histories are reset for every seed.
+        // their histories are reset for every seed. Only the variants of this part's runs.
+        std::vector<std::string> sceneVariants;
+        for (size_t v = 0; v < spec.variants.size(); ++v)
+            for (const RunUnit& u : units)
+                if (u.scene == sceneIndex && u.variant == v) {
+                    sceneVariants.push_back(spec.variants[v]);
+                    break;
+                }
+        if (sceneVariants.empty()) continue;
+        sceneConfig.denoise.denoisers = sceneVariants;
         DenoiserSet denoisers(sceneConfig.denoise);
-        deviceDescription = denoisers.DeviceDescription();
+        part.deviceDescription = denoisers.DeviceDescription();
         // One full pass per run seed: a fresh pipeline (the tracer samples with the seed) and fresh
         // denoiser histories, as a separate run with that seed would have.
         for (size_t seedIndex = 0; seedIndex < seeds.size(); ++seedIndex) {
+            // The runs of this scene and seed: which eyes, which variants.
+            std::vector<std::string> variants;
+            std::array<bool, 2> eyes{false, false};
+            for (size_t v = 0; v < spec.variants.size(); ++v)
+                for (int eye = 0; eye < 2; ++eye)
+                    if (Owns(units, sceneIndex, seedIndex, eye, v)) {
+                        eyes[size_t(eye)] = true;
+                        if (std::find(variants.begin(), variants.end(), spec.variants[v]) == variants.end())
+                            variants.push_back(spec.variants[v]);
+                    }
+            if (variants.empty()) continue;
             RunConfig config = sceneConfig;
             config.run.seed = seeds[seedIndex];
             const bool firstSeed = seedIndex == 0;
@@ -328,21 +324,24 @@ Results RunExperiment(const ExperimentSpec& spec) {
             std::optional<Replay> replay = spec.replay;
             if (replay) {
                 CheckReplayScene(*replay, pipeline);
-                replayRecord = replay->ToJson();
+                part.replayRecord = replay->ToJson();
             }
             FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
-            if (firstSeed) {
-                label = SceneLabel(pipeline.GetScene().name, labels);
-                fingerprint = SceneFingerprint(pipeline.GetScene());
-                sceneSource = pipeline.GetScene().sourcePath.string();
+            if (!touched) {
+                record.label = SceneLabel(pipeline.GetScene().name, labels);
+                record.fingerprint = SceneFingerprint(pipeline.GetScene());
+                record.source = pipeline.GetScene().sourcePath.string();
+                touched = true;
             }
+            const std::string& label = record.label;
             denoisers.Reset();
-            MetricsCollector collector(results);
+            MetricsCollector collector(part.results);
             const std::vector<uint8_t> detailInstances = InstancesWithMaterialMaps(pipeline.GetScene());
             const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
             const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
-
-            if (firstSeed) {
+            const bool visualsHere = firstSeed && eyes[0];  // the report shows eye 0 of the first seed
+            if (visualsHere) {
+                record.hasVisuals = true;
                 visuals.scene = label;
                 visuals.width = config.camera.width;
                 visuals.height = config.camera.height;
@@ -359,26 +358,27 @@ Results RunExperiment(const ExperimentSpec& spec) {
                 const uint32_t index = request.request.frame;
                 pipeline.Render(request.request, frame);
                 if (firstSeed) {
-                    blinkFrames += frame.gaze.valid ? 0 : 1;
-                    visuals.gazeMarks.push_back(GazeMarkOf(int(index), frame.gaze, previousGaze));
+                    record.blinkFrames += frame.gaze.valid ? 0 : 1;
+                    if (visualsHere) visuals.gazeMarks.push_back(GazeMarkOf(int(index), frame.gaze, previousGaze));
                     previousGaze = frame.gaze;
                 }
                 for (int eye = 0; eye < 2; ++eye) {
+                    if (!eyes[size_t(eye)]) continue;
                     EyeFrame& e = frame.eyes[size_t(eye)];
-                    renderMs += e.renderMs;
+                    record.renderMs += e.renderMs;
                     const EyeCamera& camera = e.camera;
 
                     auto start = std::chrono::steady_clock::now();
-                    ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, index,
+                    ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), record.fingerprint, index,
                                                         frame.timeSeconds, eye, camera,
                                                         config.reference.spp, config.run.maxDepth,
                                                         config.reference.seed);
                     bool hit = false;
                     Plane<vec3> reference = cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
-                    referenceHits += hit ? 1 : 0;
-                    ++referenceLookups;
-                    ++eyeFrames;
-                    referenceMs += MsSince(start);
+                    record.referenceHits += hit ? 1 : 0;
+                    ++record.referenceLookups;
+                    ++record.eyeFrames;
+                    record.referenceMs += MsSince(start);
 
                     EyeFrameImages images;
                     images.scene = label;
@@ -398,10 +398,13 @@ Results RunExperiment(const ExperimentSpec& spec) {
                     }
                     images.detailMask = &detail;
                     for (size_t v = 0; v < denoisers.size(); ++v) {
+                        const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(),
+                                                                denoisers.Name(v)) - spec.variants.begin());
+                        if (!Owns(units, sceneIndex, seedIndex, eye, variant)) continue;
                         Denoiser& denoiser = denoisers.At(v, eye);
                         denoiser.Denoise(e.inputs, outputs[v]);
                         for (const PassTiming& t : denoiser.LastTimings())
-                            timings.Add(denoisers.Name(v), t.pass, t.ms);
+                            part.timings.Add(denoisers.Name(v), t.pass, t.ms);
                         images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
                         if (config.output.writeExr)
                             WriteRgbExr(outDir / label / denoisers.Name(v) /
@@ -412,7 +415,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                     }
                     collector.Add(images);
 
-                    if (firstSeed && eye == visuals.eye) {
+                    if (visualsHere && eye == visuals.eye) {
                         visuals.gazePath.push_back(e.gazePixel);
                         if (int(index) == visualFrame) {
                             visuals.frame = int(index);
@@ -421,8 +424,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
                             visuals.reference = reference;
                             visuals.noisy = e.inputs.NoisyImage();
                             visuals.variants.clear();
-                            for (size_t v = 0; v < denoisers.size(); ++v)
-                                visuals.variants.emplace_back(denoisers.Name(v), outputs[v]);
+                            for (const auto& [name, image] : images.outputs) visuals.variants.emplace_back(name, *image);
                         }
                     }
                 }
@@ -430,26 +432,54 @@ Results RunExperiment(const ExperimentSpec& spec) {
                                                : fmt::format("{} frame {}", label, index));
             }
             RenderStats stats = pipeline.GetRenderer().Stats();
-            rays += stats.Rays();
-            droppedSamples += stats.droppedSamples;
+            record.rays += stats.Rays();
+            record.droppedSamples += stats.droppedSamples;
         }
-        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", label), results, label);
-        report.scenes.push_back(std::move(visuals));
-        const double eyeFramesDenominator = std::max(1, eyeFrames);
-        sceneRecords.push_back({{"scene", label},
-                                {"requested", sceneName},
-                                {"source", sceneSource},
-                                {"fingerprint", fmt::format("{:016x}", fingerprint)},
-                                {"seeds", seeds},
-                                {"render_ms_per_eye", renderMs / eyeFramesDenominator},
-                                {"reference_ms_per_eye", referenceMs / eyeFramesDenominator},
-                                {"reference_cache_hits", referenceHits},
-                                {"reference_lookups", referenceLookups},
-                                {"rays", rays},
-                                {"dropped_nonfinite_samples", droppedSamples},
-                                {"blink_frames", blinkFrames}});
+        if (touched) part.scenes.push_back(std::move(record));
     }
     progress.Finish();
+    return part;
+}
+
+// The outputs of a whole experiment, from one machine's part or the merged parts of its shards.
+Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part, const fs::path& outDir,
+                               std::chrono::steady_clock::time_point totalStart) {
+    const RunConfig& base = spec.config;
+    const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
+    std::map<std::string, size_t> sceneIndex;
+    for (const SceneRecord& r : part.scenes) sceneIndex[r.label] = r.index;
+    SortRowsCanonically(part.results, sceneIndex, seeds, spec.variants);
+    Results& results = part.results;
+
+    HtmlReport report;
+    report.title = fmt::format("fovrt experiment: {}{}", spec.file.filename().string(),
+                               spec.quick ? " (--quick)" : "");
+    report.results = &results;
+    report.baseline = spec.baseline;
+    nlohmann::json sceneRecords = nlohmann::json::array();
+    for (SceneRecord& r : part.scenes) {
+        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", r.label), results, r.label);
+        // The report's images in the experiment's variant order.
+        std::vector<std::pair<std::string, Plane<vec3>>> ordered;
+        for (const std::string& v : spec.variants)
+            for (auto& entry : r.visuals.variants)
+                if (entry.first == v) ordered.push_back(std::move(entry));
+        r.visuals.variants = std::move(ordered);
+        report.scenes.push_back(std::move(r.visuals));
+        const double eyeFramesDenominator = std::max(1, r.eyeFrames);
+        sceneRecords.push_back({{"scene", r.label},
+                                {"requested", r.requested},
+                                {"source", r.source},
+                                {"fingerprint", fmt::format("{:016x}", r.fingerprint)},
+                                {"seeds", seeds},
+                                {"render_ms_per_eye", r.renderMs / eyeFramesDenominator},
+                                {"reference_ms_per_eye", r.referenceMs / eyeFramesDenominator},
+                                {"reference_cache_hits", r.referenceHits},
+                                {"reference_lookups", r.referenceLookups},
+                                {"rays", r.rays},
+                                {"dropped_nonfinite_samples", r.droppedSamples},
+                                {"blink_frames", r.blinkFrames}});
+    }
 
     const ExperimentStats stats(results, spec.baseline);
     WriteSummaryJson(outDir / "summary.json", results, stats);
@@ -465,11 +495,11 @@ Results RunExperiment(const ExperimentSpec& spec) {
                        {"foveation", base.foveation.model},
                        {"gaze", base.gaze.source},
                        {"reference spp", std::to_string(base.reference.spp)},
-                       {"denoise device", deviceDescription},
+                       {"denoise device", part.deviceDescription},
                        {"relMSE ε", "0.01"},
                        {"fovrt", FOVRT_VERSION}};
     report.tables.push_back(MemoryTable(base));
-    report.tables.push_back(timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
+    report.tables.push_back(part.timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
     report.stats = &stats;
     if (base.output.report) WriteHtmlReport(outDir / "report.html", report);
 
@@ -478,7 +508,7 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["complete"] = true;
     manifest["experiment_file"] = spec.file.string();
     manifest["quick"] = spec.quick;
-    if (spec.replay) manifest["replay"] = replayRecord;
+    if (spec.replay) manifest["replay"] = part.replayRecord;
     manifest["scenes"] = sceneRecords;
     manifest["variants"] = spec.variants;
     manifest["baseline"] = spec.baseline;
@@ -489,15 +519,58 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["config"] = ConfigToJson(base);
     if (spec.scenes.size() == 1) manifest["config"]["scene"]["name"] = spec.scenes.front();
     else manifest["config"]["scene"]["name"] = spec.scenes;
-    manifest["denoise_device"] = deviceDescription;
-    manifest["pass_ms"] = timings.ToJson();
+    if (spec.merge) manifest["merged_shards"] = true;
+    manifest["denoise_device"] = part.deviceDescription;
+    manifest["pass_ms"] = part.timings.MeansJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
-    out.Keep();
-    cacheDir.Keep();
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
     if (base.output.report) std::printf("HTML report: %s\n", (outDir / "report.html").string().c_str());
+    return results;
+}
+
+std::string RerunCommand(const ExperimentSpec& spec) {
+    return fmt::format("fovrt experiment {}{} --shard I/N (the same options as the others)", spec.file.string(),
+                       spec.quick ? " --quick" : "");
+}
+
+}  // namespace
+
+Results RunExperiment(const ExperimentSpec& spec) {
+    const RunConfig& base = spec.config;
+    OutputDir out(base.output.dir, "output.dir");
+    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
+    const fs::path outDir = out.Path();
+    const fs::path shardsDir = outDir / "shards";
+    auto totalStart = std::chrono::steady_clock::now();
+    const std::string fingerprint = ExperimentFingerprint(spec);
+    if (spec.merge) {
+        ExperimentPart part = MergeShardParts(shardsDir, fingerprint, RerunCommand(spec));
+        fs::remove(outDir / "manifest.json");  // present only once the merged outputs are complete
+        Results results = WriteExperimentOutputs(spec, part, outDir, totalStart);
+        out.Keep();
+        cacheDir.Keep();
+        return results;
+    }
+    const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
+    const std::vector<RunUnit> all = ExperimentUnits(spec.scenes.size(), seeds.size(), spec.variants.size());
+    if (spec.shard.Sharded()) {
+        const std::vector<RunUnit> units = ShardUnits(all, spec.shard);
+        ExperimentPart part = ComputeRuns(spec, units, outDir);
+        WriteShardPart(shardsDir, spec.shard, fingerprint, part);
+        out.Keep();
+        cacheDir.Keep();
+        std::fprintf(stderr, "fovrt experiment: %s (%zu of %zu runs) done in %.1f s -> %s\n", spec.shard.Name().c_str(),
+                     units.size(), all.size(), MsSince(totalStart) / 1000.0,
+                     (shardsDir / spec.shard.Name()).string().c_str());
+        return part.results;
+    }
+    fs::remove(outDir / "manifest.json");  // present only once this run is complete
+    ExperimentPart part = ComputeRuns(spec, all, outDir);
+    Results results = WriteExperimentOutputs(spec, part, outDir, totalStart);
+    out.Keep();
+    cacheDir.Keep();
     return results;
 }
 

@@ -16,6 +16,7 @@
 
 #include "app/config.h"
 #include "app/replay.h"
+#include "app/experiment_shards.h"
 #include "app/report.h"
 #include "metrics/regions.h"
 
@@ -37,6 +38,8 @@ struct ExperimentSpec {
     std::vector<uint32_t> seeds;        // run seeds, each a full pass (--seeds / experiment.seeds; else run.seed)
     int visualFrame = -1;               // frame shown in the report's images; -1 = the last
     bool quick = false;
+    ShardSelection shard;               // --shard I/N: compute one block of the runs (experiment_shards.h)
+    bool merge = false;                 // --merge: combine the shards' parts into the outputs
     // --replay: every frame comes from this recording, whose scene is the only one; the config is
     // the recording's with the file and --set on top (app/replay.h says which keys may differ).
     std::optional<Replay> replay;
@@ -49,6 +52,8 @@ struct ExperimentArgs {
     std::string replayPath;           // non-empty: the recording to replay
     bool allowChanges = false;        // --allow-changes (with --replay)
     std::string seeds;                // --seeds: "N" (run.seed, run.seed+1, ...) or "1,5,9"; "" = file
+    std::string shard;                // --shard I/N
+    bool merge = false;               // --merge
 };
 
 // The seeds of `--seeds TEXT`: a count N ≥ 1 (first, first+1, ..., first+N−1) or a

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     fovrt::RegisterRunCommand(app);
     fovrt::RegisterReferenceCommand(app);
     fovrt::RegisterExperimentCommand(app);
+    fovrt::RegisterClusterCommand(app);
     fovrt::RegisterInfoCommand(app);
     fovrt::RegisterConfigCommand(app);
     fovrt::RegisterBenchCommand(app);
