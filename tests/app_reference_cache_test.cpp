@@ -81,6 +81,7 @@ TEST_CASE("reference keys: identical scenes give identical keys, any content cha
         {"a base colour", [](Scene& s) { s.materials[0].baseColor.g += 1e-3f; }},
         {"a roughness", [](Scene& s) { s.materials.back().roughness *= 0.5f; }},
         {"an emission", [](Scene& s) { s.materials[0].emission.r += 1.0f; }},
+        {"an emission's sides", [](Scene& s) { s.materials[0].emissionTwoSided = !s.materials[0].emissionTwoSided; }},
         {"a texture binding", [](Scene& s) { s.materials[0].baseColorTexture = s.materials[0].baseColorTexture == 0 ? -1 : 0; }},
         {"a texel", [](Scene& s) { s.textures[0].texels.back().b += 1e-3f; }},
         {"a texture's shape", [](Scene& s) { std::swap(s.textures[0].width, s.textures[0].height);

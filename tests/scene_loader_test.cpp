@@ -192,6 +192,39 @@ TEST_CASE("binary glTF (.glb) loads like its .gltf", "[scene]") {
     CheckMessage(ErrorOf(bad), bad, {"cannot load glTF"});
 }
 
+TEST_CASE("emission sides: glTF doubleSided, mirrored nodes, the scene-file key", "[scene]") {
+    std::ifstream in(test::SourceDir() / "tests/data/scene/quad.gltf");
+    std::string quad((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    TempDir dir;
+    // The winding's normal (the side a one-sided emitter lights) agrees with the authored normal,
+    // also under a mirroring node matrix, where glTF makes clockwise the front.
+    auto windingAgreesWithNormal = [](const Scene& scene) {
+        const Mesh& mesh = scene.meshes[scene.instances[0].mesh];
+        const uvec3& t = mesh.triangles[0];
+        vec3 winding = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+        return glm::dot(winding, mesh.normals[t.x]) > 0.0f;
+    };
+    Scene plain = LoadScene(test::SourceDir() / "tests/data/scene/quad.gltf");
+    CHECK_FALSE(plain.materials[0].emissionTwoSided);  // glTF's default doubleSided = false
+    CHECK(windingAgreesWithNormal(plain));
+    std::string mirrored = quad;
+    REQUIRE(mirrored.find("\"scale\": [\n    2,") != std::string::npos);
+    mirrored.replace(mirrored.find("\"scale\": [\n    2,"), 17, "\"scale\": [\n    -2,");
+    CHECK(windingAgreesWithNormal(LoadScene(dir.Write("mirrored.gltf", mirrored))));
+    std::string doubleSided = quad;
+    doubleSided.replace(doubleSided.find("\"name\": \"glow\","), 15, "\"name\": \"glow\", \"doubleSided\": true,");
+    CHECK(LoadScene(dir.Write("double.gltf", doubleSided)).materials[0].emissionTwoSided);
+    // OBJ has no such flag: the scene file's material override sets it.
+    auto one = dir.Write("one.toml", "[[mesh]]\nfile = \"" + (BuiltinScenesDir() / "cornell_room.obj").string() + "\"\n");
+    auto two = dir.Write("two.toml", "[[mesh]]\nfile = \"" + (BuiltinScenesDir() / "cornell_room.obj").string() +
+                                         "\"\n[[material]]\nname = \"light\"\nemission_two_sided = true\n");
+    CHECK_FALSE(FindMaterial(LoadScene(one), "light")->emissionTwoSided);
+    CHECK(FindMaterial(LoadScene(two), "light")->emissionTwoSided);
+    auto bad = dir.Write("bad.toml", "[[mesh]]\nfile = \"" + (BuiltinScenesDir() / "cornell_room.obj").string() +
+                                         "\"\n[[material]]\nname = \"light\"\nemission_two_sided = 1\n");
+    CheckMessage(ErrorOf(bad), bad, {"emission_two_sided"});
+}
+
 TEST_CASE("bare mesh gets a camera framing its bounding box", "[scene]") {
     Scene scene = LoadScene(BuiltinScenesDir() / "cube.obj");
     REQUIRE(scene.instances.size() == 1);

@@ -171,6 +171,7 @@ Material ConvertMaterial(const tinygltf::Model& model, int index, const std::str
         const tinygltf::Value& strength = it->second.Get("emissiveStrength");
         if (strength.IsNumber()) out.emission *= float(strength.GetNumberAsDouble());
     }
+    out.emissionTwoSided = m.doubleSided;  // glTF's back-face flag; the BSDF is two-sided anyway
     if (!IsFinite(out.baseColor) || !IsFinite(out.emission) || !std::isfinite(out.metallic) || !std::isfinite(out.roughness))
         Fail("{}: {} has non-finite factors", file, what);
     out.metallic = std::clamp(out.metallic, 0.0f, 1.0f);
@@ -252,6 +253,9 @@ std::vector<MeshPart> LoadGltf(const std::filesystem::path& path, LoadContext& c
             Mesh mesh;
             mesh.name = gltfMesh.name.empty() ? fmt::format("mesh{}", node.mesh) : gltfMesh.name;
             mat3 normalMatrix = glm::transpose(glm::inverse(mat3(world)));
+            // glTF: a mirroring world matrix makes clockwise the front; the baked triangles keep
+            // counter-clockwise = front (the side one-sided emitters light).
+            const bool mirrored = glm::determinant(mat3(world)) < 0.0f;
             bool anyNormals = false, anyUvs = false;
             for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
                 const tinygltf::Primitive& prim = gltfMesh.primitives[p];
@@ -293,7 +297,8 @@ std::vector<MeshPart> LoadGltf(const std::filesystem::path& path, LoadContext& c
                     for (size_t k = 0; k < 3; ++k)
                         if (indices[i + k] >= count)
                             Fail("{}: {} index {} = {} out of range ({} vertices)", file, what, i + k, indices[i + k], count);
-                    mesh.triangles.push_back(uvec3(base + indices[i], base + indices[i + 1], base + indices[i + 2]));
+                    uint32_t b = indices[i + (mirrored ? 2 : 1)], c = indices[i + (mirrored ? 1 : 2)];
+                    mesh.triangles.push_back(uvec3(base + indices[i], base + b, base + c));
                     mesh.materials.push_back(material);
                 }
             }

@@ -39,6 +39,9 @@ struct Material {
     int metallicTexture = -1;           // scene-file metallic map: R (linear) scales metallic
     float specular = 1.0f;              // dielectric specular weight: F0 = 0.04·specular (0 = pure Lambert)
     vec3 emission = vec3(0.0f);         // emitted radiance (W/(m²·sr)), area light if non-zero
+    // Emission leaves only the front side (SurfaceHit::geomNormal's) unless this is set, as in
+    // pbrt and Mitsuba: a light panel does not light the ceiling it hangs under.
+    bool emissionTwoSided = false;
 };
 
 // Triangle mesh in object space.

@@ -367,6 +367,7 @@ struct SceneFileLoader {
         float metallic = t.Float("metallic", -1.0f, 0.0f, 1.0f);
         float specular = t.Float("specular", -1.0f, 0.0f, 1.0f);
         auto emission = t.Vec3("emission", true);
+        auto twoSided = t.Bool("emission_two_sided");
         int texture = -1;
         if (auto tex = t.String("base_color_texture"))
             texture = detail::LoadTextureFile(path.parent_path() / *tex, true,
@@ -382,6 +383,7 @@ struct SceneFileLoader {
             if (t.Has("metallic")) m->metallic = metallic;
             if (t.Has("specular")) m->specular = specular;
             if (emission) m->emission = *emission;
+            if (twoSided) m->emissionTwoSided = *twoSided;
             if (texture >= 0) m->baseColorTexture = texture;
             if (roughnessMap >= 0) m->roughnessTexture = roughnessMap;
             if (metallicMap >= 0) m->metallicTexture = metallicMap;
