@@ -502,7 +502,11 @@ private:
                     BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
                     if (e.fCos != vec3(0.0f)) {
                         ++counts.shadow;
-                        if (!embree_->Occluded(origin, wi, dist * (1.0f - 1e-3f))) {
+                        // The ray leaves the offset origin, so it meets the light's plane short
+                        // of dist by offset / cos: near a light at grazing angles that exceeds the
+                        // 1e-3 margin and the light shadowed itself (a ceiling 2 cm above one).
+                        float tPlane = glm::dot(light.normal, lightPosition - origin) / glm::dot(light.normal, wi);
+                        if (!embree_->Occluded(origin, wi, std::min(dist, tPlane) * (1.0f - 1e-3f))) {
                             float weight = mis ? pdf * pdf / (pdf * pdf + e.pdf * e.pdf) : 1.0f;
                             result += e.fCos * emission * (weight / pdf);
                         }
