@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "core/camera.h"
 #include "core/frame_inputs.h"
@@ -63,6 +64,8 @@ inline Scene FurnaceScene(const vec3& albedo, const vec3& le, float roughness, f
     mat.specular = specular;
     s.materials.push_back(mat);
     s.meshes.push_back(SphereMesh(vec3(0.0f), 1.0f, 24, 48, 0));
+    // SphereMesh faces out; the furnace is seen from inside, and area lights are one-sided.
+    for (uvec3& t : s.meshes.back().triangles) std::swap(t.y, t.z);
     s.instances.push_back(Instance{"sphere", 0, {}, false});
     s.cameraPath.push_back(CameraKey{});
     return s;

@@ -54,7 +54,8 @@ ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t
 
 std::string ReferenceKey::Hex() const {
     Fnv1a h;
-    h.String("fovrt-reference-v3");  // v3: sampled with the key's seed and frame, not the run's
+    // v3: sampled with the key's seed and frame, not the run's; v4: area lights one-sided by default.
+    h.String("fovrt-reference-v4");
     h.Value(sceneFingerprint);
     h.Value(frame);
     h.Value(timeSeconds);

@@ -13,10 +13,15 @@
 //   MIS-weighted. The last vertex only does NEE, with full weight (no continuation ray). So a
 //   white furnace with emission Le and albedo a gives Le * sum_{k=0..maxDepth} a^k: k = 0 is the
 //   emission seen at the primary hit, k = j the light arriving after j reflections.
+// - Area lights are one-sided, as in pbrt and Mitsuba: an emissive triangle emits only to the side
+//   of its geometric normal (SurfaceHit::geomNormal: the winding's, or the authored normals' where
+//   a mesh has them), both sides when its material is Material::emissionTwoSided. Seen from behind
+//   it is black for every estimator alike: camera rays, BSDF-sampled hits and NEE (pdf 0).
 // - Emissive triangles are sampled in proportion to their power (world area * luminance of the
-//   emitted radiance, times the instance's emission scale), then uniformly in area. Emission is
-//   two-sided (OBJ light winding is unreliable). Point/spot/directional lights are all sampled
-//   at every vertex (one shadow ray each).
+//   emitted radiance * sides, times the instance's emission scale), then uniformly in area: a
+//   two-sided triangle emits twice the flux of a one-sided one (pbrt's DiffuseAreaLight::Phi), and
+//   scenes with one-sided lights only are sampled exactly as when every light was two-sided.
+//   Point/spot/directional lights are all sampled at every vertex (one shadow ray each).
 // - "direct" = paths with one reflection (NEE at the primary hit, emitters hit by the first
 //   bounce); "indirect" = the rest. Both are divided by the same primary-hit factor
 //   (RenderSettings::demodulation): the albedo, or F_β (Zhuang et al. Fig. 3); emission is not.
@@ -86,7 +91,8 @@ struct ShadingPoint {
     SurfaceHit hit;
     BsdfParams bsdf;
     vec3 albedo;    // demodulation albedo
-    vec3 emission;  // emitted radiance (scaled by the instance's switch)
+    vec3 emission;  // emitted radiance (scaled by the instance's switch), towards the front side
+    bool emissionTwoSided = false;
 };
 
 // A path vertex with everything that depends only on the incoming direction, computed once
@@ -322,11 +328,12 @@ private:
     };
 
     // An emissive triangle as NEE samples it in the current frame: world corner p0 and edges
-    // (p1 - p0, p2 - p0), unit geometric normal (winding orientation; NEE uses only |cos|) and
-    // emitted radiance with the instance's emission scale. Built per frame, so a light sample
-    // costs no surface reconstruction.
+    // (p1 - p0, p2 - p0), unit geometric normal (SurfaceHit's at the centroid: the front side)
+    // and emitted radiance with the instance's emission scale. Built per frame, so a light
+    // sample costs no surface reconstruction.
     struct Emitter {
         vec3 p0, e1, e2, normal, emission;
+        bool twoSided;
     };
 
     // BSDF parameters of an untextured material, made once instead of at every hit.
@@ -366,7 +373,8 @@ private:
         for (size_t i = 0; i < emissive_.size(); ++i) {
             SurfaceSample s{emissive_[i].instance, emissive_[i].primitive, vec2(1.0f / 3.0f)};
             SurfaceHit hit = embree_->Surface(s);
-            float power = hit.area * Luminance(EmissionOf(hit, s.instance));
+            const bool twoSided = scene_.materials[hit.material].emissionTwoSided;
+            float power = hit.area * Luminance(EmissionOf(hit, s.instance)) * (twoSided ? 2.0f : 1.0f);
             total += double(std::max(power, 0.0f));
             lightCdf_[i] = float(total);
             // What NEE reads of the triangle, with SurfaceAt's arithmetic (bit-identical points).
@@ -375,10 +383,9 @@ private:
             e.p0 = p[0];
             e.e1 = p[1] - p[0];
             e.e2 = p[2] - p[0];
-            vec3 c = glm::cross(e.e1, e.e2);
-            float len = glm::length(c);
-            e.normal = len > 0.0f ? c / len : vec3(0.0f, 0.0f, 1.0f);
+            e.normal = hit.geomNormal;
             e.emission = EmissionOf(hit, s.instance);
+            e.twoSided = twoSided;
         }
         lightPower_ = float(total);
     }
@@ -393,6 +400,7 @@ private:
         const Material& m = scene_.materials[p.hit.material];
         const ResolvedMaterial& r = materials_[p.hit.material];
         p.emission = m.emission * embree_->xforms()[s.instance].emissionScale;
+        p.emissionTwoSided = m.emissionTwoSided;
         if (!r.textured) {
             p.bsdf = r.bsdf;
             p.albedo = r.albedo;
@@ -414,12 +422,20 @@ private:
         return p;
     }
 
-    // Solid-angle pdf with which NEE picks a point on an emitter seen at distance t along wi.
-    float LightPdf(const vec3& emission, const vec3& geomNormal, float t, const vec3& wi) const {
+    // The radiance p emits towards w (any length): none from the back of a one-sided emitter.
+    static vec3 EmissionToward(const ShadingPoint& p, const vec3& w) {
+        return p.emissionTwoSided || glm::dot(p.hit.geomNormal, w) > 0.0f ? p.emission : vec3(0.0f);
+    }
+
+    // Solid-angle pdf with which NEE picks a point on an emitter seen at distance t along wi
+    // (from the receiver): 0 when the receiver is behind a one-sided emitter, which NEE then
+    // skips and a BSDF-sampled hit sees black, so MIS weights stay consistent.
+    float LightPdf(const vec3& emission, const vec3& geomNormal, bool twoSided, float t, const vec3& wi) const {
         float lum = Luminance(emission);
-        float cosL = std::abs(glm::dot(geomNormal, wi));
+        float cosL = -glm::dot(geomNormal, wi);
+        if (twoSided) cosL = std::abs(cosL);
         if (lightPower_ <= 0.0f || lum <= 0.0f || cosL <= 0.0f) return 0.0f;
-        return lum / lightPower_ * t * t / cosL;
+        return lum * (twoSided ? 2.0f : 1.0f) / lightPower_ * t * t / cosL;
     }
 
     // Point/spot/directional lights at one vertex (one shadow ray each): the sample-independent
@@ -497,7 +513,7 @@ private:
             if (dist2 > 0.0f) {
                 float dist = std::sqrt(dist2);
                 vec3 wi = d / dist;
-                float pdf = LightPdf(emission, light.normal, dist, wi);
+                float pdf = LightPdf(emission, light.normal, light.twoSided, dist, wi);
                 if (pdf > 0.0f && glm::dot(wi, ng) > 0.0f) {
                     BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
                     if (e.fCos != vec3(0.0f)) {
@@ -560,10 +576,10 @@ private:
             }
             throughput *= bs.weight;
             ShadingPoint p = Resolve(next);
-            if (p.emission != vec3(0.0f)) {
-                float pdfLight = LightPdf(p.emission, p.hit.geomNormal, t, wi);
+            if (vec3 le = EmissionToward(p, -wi); le != vec3(0.0f)) {
+                float pdfLight = LightPdf(le, p.hit.geomNormal, p.emissionTwoSided, t, wi);
                 float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
-                target += throughput * p.emission * weight;
+                target += throughput * le * weight;
             }
             storage.emplace(MakeVertex(p, -wi));
             v = &*storage;
@@ -615,10 +631,10 @@ private:
         }
         st.throughput *= bs.weight;
         ShadingPoint p = Resolve(next);
-        if (p.emission != vec3(0.0f)) {
-            float pdfLight = LightPdf(p.emission, p.hit.geomNormal, t, wi);
+        if (vec3 le = EmissionToward(p, -wi); le != vec3(0.0f)) {
+            float pdfLight = LightPdf(le, p.hit.geomNormal, p.emissionTwoSided, t, wi);
             float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
-            target += st.throughput * p.emission * weight;
+            target += st.throughput * le * weight;
         }
         st.storage.emplace(MakeVertex(p, -wi));
         st.v = &*st.storage;
@@ -651,7 +667,9 @@ private:
                           RayCounts& counts, SurfaceHit* hitOut = nullptr) const {
         ShadingPoint p = Resolve(s);
         if (hitOut) *hitOut = p.hit;
-        PathVertex primary = MakeVertex(p, glm::normalize(eyePos - p.hit.position));
+        const vec3 wo = glm::normalize(eyePos - p.hit.position);
+        p.emission = EmissionToward(p, wo);  // what the eye sees of it; read below as out.emission
+        PathVertex primary = MakeVertex(p, wo);
         vec3 direct(0.0f), indirect(0.0f);
         PixelSampler pixelSampler(seed, CachedSamplerPairs(n));
         DeterministicLights primaryLights;
