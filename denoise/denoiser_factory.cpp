@@ -6,7 +6,9 @@
 
 #include "core/error.h"
 #include "denoise/memory_plan.h"
+#include "denoise/reference/rae_cpu.h"
 #include "denoise/reference/svgf_cpu.h"
+#include "denoise/vulkan/rae_vk.h"
 #include "denoise/vulkan/svgf_vk.h"
 #include "denoise/reference/two_history_ref.h"
 #include "denoise/vulkan/two_history_vk.h"
@@ -43,6 +45,10 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
     const DenoiserParams p = ParamsForVariant(v, params);
     // The family picks the host; the row's flags pick the passes inside it.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
+    if (v.family == DenoiserFamily::Rae) {
+        if (!ctx) return std::make_unique<RaeReferenceDenoiser>(name, p);
+        return std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);
+    }
     if (v.family == DenoiserFamily::Svgf) {
         if (!ctx) return std::make_unique<SvgfReferenceDenoiser>(name, p);
         return std::make_unique<SvgfVulkanDenoiser>(name, std::move(ctx), p);

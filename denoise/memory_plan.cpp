@@ -1,3 +1,4 @@
+#include "denoise/rae_weights.h"
 #include "denoise/memory_plan.h"
 
 #include <algorithm>
@@ -37,7 +38,7 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
     auto upload = [&](std::string_view plane, size_t elementBytes) {
         const std::string name = UploadBufferOf(plane);
         if (!UploadedWithInputs(plane)) {  // the sample counts: svgf-weighted's own upload
-            if (!weighted) return;
+            if (!weighted || plane != "sampleCount") return;
             add(name, SampleCountBytes(n), false);
             uploadStaging += StagingAlign(SampleCountBytes(n));
             return;
@@ -140,6 +141,7 @@ std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, i
     const DenoiserVariant& v = FindDenoiserVariant(name);
     const DenoiserParams p = ParamsForVariant(v, params);
     if (v.family == DenoiserFamily::Svgf) return PlanSvgfMemory(width, height, p);
+    if (v.family == DenoiserFamily::Rae) return PlanRaeMemory(width, height, p);
     return PlanTwoHistoryMemory(name, width, height, p);
 }
 

@@ -26,7 +26,9 @@ size_t SampleCountBytes(size_t pixels);
 
 // Whether a frame uploads this FrameInputs plane with the others: all but the sample counts,
 // which only the variants that read them (DenoiserVariant::needsSampleCount) upload.
-inline bool UploadedWithInputs(std::string_view plane) { return plane != "sampleCount"; }
+inline bool UploadedWithInputs(std::string_view plane) {
+    return plane != "sampleCount" && plane != "roughness";  // roughness: the RAE's alone (SPEC §12)
+}
 
 // Bytes per element of a history plane scalar.
 inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }

@@ -36,6 +36,13 @@ const std::vector<DenoiserVariant>& DenoiserVariants() {
          .asvgfGradient = true,
          .needsGradientSamples = true,
          .needsSampleCount = true},
+        {.name = "rae",
+         .summary = "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights",
+         .family = F::Rae},
+        {.name = "rae-spp",
+         .summary = "rae with the per-pixel sample count as an 8th input, denoise.rae.weights_spp",
+         .family = F::Rae,
+         .raeSampleCount = true},
     };
     return rows;
 }
@@ -68,6 +75,7 @@ const std::vector<std::string>& DenoiserNames() {
 
 DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams params) {
     params.svgf.weightBySampleCount = variant.weightBySampleCount;
+    if (variant.raeSampleCount) params.rae.weights = params.rae.weightsSpp;
     return params;
 }
 

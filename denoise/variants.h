@@ -14,7 +14,9 @@ namespace fovrt {
 // The pass family a variant runs. Svgf: reproject → moments → à-trous → modulate (SPEC §3).
 // TwoHistory: the same stages composed with A-SVGF's temporal gradient and/or two-history's
 // second history (SPEC §4–§5).
-enum class DenoiserFamily { Svgf, TwoHistory };
+// Rae: the recurrent denoising autoencoder (SPEC §12): features → U-Net with recurrent blocks →
+// remodulation; its weights come from denoise.rae.weights (denoise/rae_weights.h).
+enum class DenoiserFamily { Svgf, TwoHistory, Rae };
 
 struct DenoiserVariant {
     std::string_view name;     // the factory name, e.g. "two-history-asvgf"
@@ -27,6 +29,7 @@ struct DenoiserVariant {
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device
+    bool raeSampleCount = false;  // rae: the network with the sample-count input (weights_spp)
 };
 
 // Every variant, in the order tables list them.

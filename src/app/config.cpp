@@ -392,6 +392,10 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     for (const PrecisionRow& row : PrecisionTable()) precisionNames.push_back(row.name);
     r.String(kPrecisionKey, precision, precisionNames);
     PrecisionFromName(precision, d.params.precision);
+    r.String(kRaeWeightsKey, d.params.rae.weights);
+    if (d.params.rae.weights.empty()) r.Bad(kRaeWeightsKey, "must not be empty");
+    r.String(kRaeWeightsSppKey, d.params.rae.weightsSpp);
+    if (d.params.rae.weightsSpp.empty()) r.Bad(kRaeWeightsSppKey, "must not be empty");
     ForEachDenoiserParam(d.params, [&](const ParamInfo& info, auto& value) { r.Param(info, value); });
     if (std::optional<ParamProblem> problem = DenoiserParamConflict(d.params))
         r.Bad(problem->key, problem->message);
@@ -448,6 +452,8 @@ void InsertAt(toml::table& root, const std::string& key, Value value) {
 // The denoiser parameters from their tables: floats as their shortest decimal, like every float.
 void InsertDenoiserParams(toml::table& root, const DenoiserParams& p) {
     InsertAt(root, kPrecisionKey, std::string(PrecisionName(p.precision)));
+    InsertAt(root, kRaeWeightsKey, p.rae.weights);
+    InsertAt(root, kRaeWeightsSppKey, p.rae.weightsSpp);
     ForEachDenoiserParam(p, [&](const ParamInfo& info, const auto& value) {
         if constexpr (std::is_same_v<std::decay_t<decltype(value)>, float>) InsertAt(root, info.key, CleanFloat(value));
         else InsertAt(root, info.key, value);

@@ -61,7 +61,10 @@ inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indir
       "previous eye")                                                                             \
     X(sampleCount, uint16_t, uint16_t(1), "",                                                     \
       "n >= 1: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the "     \
-      "previous frame's n, reused)")
+      "previous frame's n, reused)")                                                             \
+    X(roughness, float, 0.0f, "",                                                                 \
+      "primary hit's GGX roughness in [0,1] (sqrt of alpha); 0 for background. Only the RAE "    \
+      "(SPEC §12) reads it")
 
 struct FrameInputs {
     int eye = 0;                 // 0 left, 1 right

@@ -100,6 +100,7 @@ struct PixelShade {
     vec3 albedo = vec3(0.0f);
     vec3 emission = vec3(0.0f);
     vec3 radiance = vec3(0.0f);  // emission + direct + indirect, not demodulated
+    float roughness = 0.0f;      // primary hit's GGX roughness (sqrt alpha): the RAE's input
 };
 
 // core's Remodulate, as FrameInputs::NoisyColor uses: re-shaded and stored luminances match bit for bit.
@@ -698,6 +699,7 @@ private:
         out.radiance = p.emission + direct + indirect;
         out.direct = direct / p.albedo;  // albedo >= kMinAlbedo
         out.indirect = indirect / p.albedo;
+        out.roughness = std::sqrt(p.bsdf.alpha);
         return out;
     }
 
@@ -827,6 +829,7 @@ private:
         out.normal(x, y) = ns;
         out.linearDepth(x, y) = depth;
         out.depthGradient(x, y) = DepthGradient(view.rays, eyeRay, ng, depth);
+        out.roughness(x, y) = shade.roughness;
         vis.worldPosition(x, y) = hit.position;
         vec3 prevWorld = vec3(prevXforms_[s.instance].worldFromObject * vec4(embree_->ObjectPosition(s), 1.0f));
         auto prev = view.prevCamera.Project(prevWorld);
