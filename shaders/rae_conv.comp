@@ -8,8 +8,9 @@
 // U-Net's concatenations and upsampling never copy a tensor.
 // Reads:  act (input tensors a, b at a_offset, b_offset; planar C×H×W), weights.
 // Writes: act (out_channels planes at dst_offset).
-// One invocation: one pixel × RAE_OUT_PER_INVOCATION output channels (each input tap is loaded
-// once for all four); workgroups along x cover tiles_x × (output-channel groups).
+// One invocation: RAE_PIXELS_PER_INVOCATION pixels of a row × RAE_OUT_PER_INVOCATION output
+// channels (each input tap loaded once for all outputs, each weight once for all pixels);
+// workgroups along x cover tiles_x × (output-channel groups).
 #include "shared_constants.h"
 #include "push_constants.h"
 #include "common/packing.glsl"
@@ -23,8 +24,12 @@ FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_RAE_CONV);  // shaders/push_constants.h
 void main() {
     const int tile = int(gl_WorkGroupID.x) % pc.tiles_x;
     const int group = int(gl_WorkGroupID.x) / pc.tiles_x;
-    const ivec2 p = ivec2(tile * RAE_WORKGROUP + int(gl_LocalInvocationID.x), int(gl_GlobalInvocationID.y));
-    if (any(greaterThanEqual(p, pc.size))) return;
+    // RAE_PIXELS_PER_INVOCATION consecutive pixels of a row: each weight is loaded once for all of
+    // them (on lavapipe a weight load is a gather across the SIMD lanes: measured 5.0 s → see README
+    // for the run at 640×360 with one pixel per invocation).
+    const int x0 = (tile * RAE_WORKGROUP + int(gl_LocalInvocationID.x)) * RAE_PIXELS_PER_INVOCATION;
+    const int py = int(gl_GlobalInvocationID.y);
+    if (x0 >= pc.size.x || py >= pc.size.y) return;
     const int o0 = group * RAE_OUT_PER_INVOCATION;
     const int inTotal = pc.in_a + pc.in_b;
     const bool up = (pc.flags & RAE_FLAG_UPSAMPLE_A) != 0u;
@@ -32,38 +37,53 @@ void main() {
     const uint planeA = uint(sizeA.x * sizeA.y), plane = uint(pc.size.x * pc.size.y);
     // Output channels past out_channels read the last one's weights and are not stored.
     uint wBase[RAE_OUT_PER_INVOCATION];
-    float acc[RAE_OUT_PER_INVOCATION];
+    float acc[RAE_OUT_PER_INVOCATION][RAE_PIXELS_PER_INVOCATION];
     [[unroll]] for (int k = 0; k < RAE_OUT_PER_INVOCATION; ++k) {
         const int o = min(o0 + k, pc.out_channels - 1);
         wBase[k] = pc.w_offset + uint(o * inTotal) * 9u;
-        acc[k] = weights[pc.bias_offset + uint(o)];
+        const float b = weights[pc.bias_offset + uint(o)];
+        [[unroll]] for (int j = 0; j < RAE_PIXELS_PER_INVOCATION; ++j) acc[k][j] = b;
     }
+    const int span = RAE_PIXELS_PER_INVOCATION + 2;
     for (int i = 0; i < inTotal; ++i) {
         const bool fromA = i < pc.in_a;
+        // The 3 × (pixels + 2) input window, zero outside the image (zero padding).
+        float v[3][RAE_PIXELS_PER_INVOCATION + 2];
         [[unroll]] for (int ky = 0; ky < 3; ++ky) {
-            const int y = p.y + ky - 1;
-            if (y < 0 || y >= pc.size.y) continue;
-            [[unroll]] for (int kx = 0; kx < 3; ++kx) {
-                const int x = p.x + kx - 1;
-                if (x < 0 || x >= pc.size.x) continue;
-                float v;
+            const int y = py + ky - 1;
+            const bool rowIn = y >= 0 && y < pc.size.y;
+            const int yc = clamp(y, 0, pc.size.y - 1);
+            [[unroll]] for (int c = 0; c < span; ++c) {
+                const int x = x0 + c - 1;
+                const bool inside = rowIn && x >= 0 && x < pc.size.x;
+                const int xc = clamp(x, 0, pc.size.x - 1);
+                uint index;
                 if (fromA) {
-                    const ivec2 q = up ? ivec2(x, y) / 2 : ivec2(x, y);
-                    v = float(act[pc.a_offset + uint(i) * planeA + uint(q.y * sizeA.x + q.x)]);
+                    const ivec2 q = up ? ivec2(xc, yc) / 2 : ivec2(xc, yc);
+                    index = pc.a_offset + uint(i) * planeA + uint(q.y * sizeA.x + q.x);
                 } else {
-                    v = float(act[pc.b_offset + uint(i - pc.in_a) * plane + uint(y * pc.size.x + x)]);
+                    index = pc.b_offset + uint(i - pc.in_a) * plane + uint(yc * pc.size.x + xc);
                 }
-                const uint tap = uint(i) * 9u + uint(ky * 3 + kx);
-                [[unroll]] for (int k = 0; k < RAE_OUT_PER_INVOCATION; ++k) acc[k] += weights[wBase[k] + tap] * v;
+                const float value = float(act[index]);
+                v[ky][c] = inside ? value : 0.0;
+            }
+        }
+        [[unroll]] for (int k = 0; k < RAE_OUT_PER_INVOCATION; ++k) {
+            const uint w = wBase[k] + uint(i) * 9u;
+            [[unroll]] for (int t = 0; t < 9; ++t) {
+                const float wt = weights[w + uint(t)];
+                [[unroll]] for (int j = 0; j < RAE_PIXELS_PER_INVOCATION; ++j) acc[k][j] += wt * v[t / 3][j + t % 3];
             }
         }
     }
-    const uint pixel = uint(p.y * pc.size.x + p.x);
     [[unroll]] for (int k = 0; k < RAE_OUT_PER_INVOCATION; ++k) {
         const int o = o0 + k;
         if (o >= pc.out_channels) break;
-        float v = acc[k];
-        if ((pc.flags & RAE_FLAG_LEAKY) != 0u) v = v > 0.0 ? v : 0.1 * v;
-        act[pc.dst_offset + uint(o) * plane + pixel] = hfloat(v);
+        [[unroll]] for (int j = 0; j < RAE_PIXELS_PER_INVOCATION; ++j) {
+            if (x0 + j >= pc.size.x) break;
+            float r = acc[k][j];
+            if ((pc.flags & RAE_FLAG_LEAKY) != 0u) r = r > 0.0 ? r : 0.1 * r;
+            act[pc.dst_offset + uint(o) * plane + uint(py * pc.size.x + x0 + j)] = hfloat(r);
+        }
     }
 }

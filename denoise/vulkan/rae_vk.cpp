@@ -79,7 +79,7 @@ std::string RaeVulkanDenoiser::Hidden(int level, bool written) const {
 void RaeVulkanDenoiser::Conv(CommandRecorder& rec, int conv, const RaeTensorSlot& a, const RaeTensorSlot* b,
                              bool upsampleA, const RaeTensorSlot& dst, bool leaky) {
     const RaeConv& c = weights_->convs[size_t(conv)];
-    const int tilesX = int(Groups(dst.width, RAE_WORKGROUP));
+    const int tilesX = int(Groups(dst.width, RAE_WORKGROUP * RAE_PIXELS_PER_INVOCATION));
     const int outGroups = int(Groups(c.out, RAE_OUT_PER_INVOCATION));
     const RaeConvPush push{ivec2(dst.width, dst.height),
                            a.channels,

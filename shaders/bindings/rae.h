@@ -12,4 +12,5 @@
 #define RAE_FLAG_LEAKY 1u       // leaky ReLU 0.1 after the conv (all but the output layer)
 #define RAE_FLAG_UPSAMPLE_A 2u  // input a is at half resolution: 2×2 nearest upsample by addressing
 #define RAE_OUT_PER_INVOCATION 4  // output channels one invocation accumulates (input loads shared)
-#define RAE_WORKGROUP 8           // 8×8 pixels per workgroup
+#define RAE_PIXELS_PER_INVOCATION 8  // rae_conv: consecutive pixels of a row per invocation
+#define RAE_WORKGROUP 8           // 8×8 invocations per workgroup
