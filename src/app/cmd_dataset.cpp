@@ -59,8 +59,10 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
     manifest["foveation"] = base.foveation.model;
     manifest["sequences"] = nlohmann::json::array();
     std::vector<std::pair<std::string, bool>> scenes;
-    for (const std::string& s : o.scenes) scenes.push_back({s, false});
-    for (const std::string& s : o.eval) scenes.push_back({s, true});
+    for (const std::string& s : o.scenes)
+        if (!s.empty()) scenes.push_back({s, false});
+    for (const std::string& s : o.eval)
+        if (!s.empty()) scenes.push_back({s, true});  // --eval "": no held-out scene
     std::vector<std::string> modes = {base.foveation.model};
     if (o.uniform && base.foveation.model != "uniform") modes.push_back("uniform");
     Progress progress("dataset", int(scenes.size() * modes.size()) * base.run.frames);

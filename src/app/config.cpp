@@ -38,6 +38,7 @@ const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
         std::set<std::string> names = {"scene",   "camera", "run",    "foveation",
                                        "gaze",    "denoise", "output", "reference"};
+        names.insert("denoise.rae");  // RaeParams: string keys, outside the numeric tables
         const DenoiserParams defaults;
         ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
             const std::string key = info.key;
