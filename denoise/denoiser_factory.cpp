@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "denoise/demodulation.h"
 #include "denoise/memory_plan.h"
 #include "denoise/reference/rae_cpu.h"
 #include "denoise/reference/svgf_cpu.h"
@@ -43,11 +44,18 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
                                          const DenoiserParams& params, VulkanContext* context) {
     const DenoiserVariant& v = FindDenoiserVariant(name);
     const DenoiserParams p = ParamsForVariant(v, params);
+    // A demodulation suffix wraps the variant's host in the shared re-demodulation step.
+    if (std::optional<Demodulation> want = DenoiserDemodulation(name))
+        return WithDemodulation(CreateDenoiser(std::string(v.name), device, params, context), *want, name);
     // The family picks the host; the row's flags pick the passes inside it.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
     if (v.family == DenoiserFamily::Rae) {
-        if (!ctx) return std::make_unique<RaeReferenceDenoiser>(name, p);
-        return std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);
+        std::unique_ptr<Denoiser> rae;
+        if (ctx) rae = std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);
+        else rae = std::make_unique<RaeReferenceDenoiser>(name, p);
+        // Its features and remodulation are the albedo's (SPEC §12) whatever render.demodulation the
+        // frame was traced with (a no-op on albedo-demodulated frames).
+        return WithDemodulation(std::move(rae), Demodulation::Albedo, name);
     }
     if (v.family == DenoiserFamily::Svgf) {
         if (!ctx) return std::make_unique<SvgfReferenceDenoiser>(name, p);

@@ -1,5 +1,5 @@
 // Creating denoisers by name (DenoiserNames(): svgf, svgf-weighted, asvgf, two-history,
-// two-history-asvgf) on a device: "cpu" (C++ reference), "auto" (Vulkan when a device exists,
+// two-history-asvgf, each also with a demodulation suffix: "svgf+brdf", denoise/variants.h) on a device: "cpu" (C++ reference), "auto" (Vulkan when a device exists,
 // else the reference with a one-line notice), "vulkan" or a Vulkan device index.
 #pragma once
 

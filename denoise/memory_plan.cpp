@@ -16,8 +16,11 @@ namespace fovrt {
 size_t SampleCountBytes(size_t pixels) { return ((sizeof(uint16_t) * pixels + 3) / 4) * 4; }
 
 std::string UploadBufferOf(std::string_view plane, std::string_view side) {
+    // The albedo plane's upload holds the frame's modulation factor (FrameInputs::Modulation():
+    // albedo, or F_β under brdf demodulation), which the shaders remodulate by.
     std::string name = plane == "linearDepth"                        ? "geometry.depth"
                        : plane == "normal" || plane == "objectId" ? "geometry." + std::string(plane)
+                       : plane == "albedo"                        ? "input.modulation"
                                                                   : "input." + std::string(plane);
     if (!side.empty() && name.rfind("geometry.", 0) == 0) name.append(".").append(side);
     return name;
@@ -38,7 +41,7 @@ std::vector<BufferPlan> PlanSvgfMemory(int width, int height, const DenoiserPara
     auto upload = [&](std::string_view plane, size_t elementBytes) {
         const std::string name = UploadBufferOf(plane);
         if (!UploadedWithInputs(plane)) {  // the sample counts: svgf-weighted's own upload
-            if (!weighted || plane != "sampleCount") return;
+            if (plane != "sampleCount" || !weighted) return;
             add(name, SampleCountBytes(n), false);
             uploadStaging += StagingAlign(SampleCountBytes(n));
             return;

@@ -19,15 +19,18 @@ inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
 
 // The buffer a FrameInputs plane is uploaded to: this frame's geometry into
 // geometry.depth/normal/objectId.<side> (A/B pairs: next frame reads it as the previous one),
-// every other plane into input.<plane>. side "" gives the name without the side.
+// the albedo plane's slot into input.modulation (it carries FrameInputs::Modulation(): the
+// albedo or F_β), every other plane into input.<plane>. side "" gives the name without the side.
 std::string UploadBufferOf(std::string_view plane, std::string_view side = "");
 // Bytes of the input.sampleCount buffer for `pixels` pixels.
 size_t SampleCountBytes(size_t pixels);
 
 // Whether a frame uploads this FrameInputs plane with the others: all but the sample counts,
-// which only the variants that read them (DenoiserVariant::needsSampleCount) upload.
+// which only the variants that read them (DenoiserVariant::needsSampleCount) upload; F_β, which no
+// shader reads (a +brdf variant's host puts it in the modulation plane's place before the upload:
+// denoise/demodulation.h); and the roughness, which only the RAE reads (SPEC §12).
 inline bool UploadedWithInputs(std::string_view plane) {
-    return plane != "sampleCount" && plane != "roughness";  // roughness: the RAE's alone (SPEC §12)
+    return plane != "sampleCount" && plane != "fbeta" && plane != "roughness";
 }
 
 // Bytes per element of a history plane scalar.

@@ -105,10 +105,10 @@ void AtrousShared(PlanWriter& w, int histories) {
     w.Read("geometry.guide", dispatches).Read("input.depthGradient", dispatches);
 }
 
-// svgf_modulate: every channel's filtered illumination, albedo, emission → output; then the
+// svgf_modulate: every channel's filtered illumination, the modulation factor, emission → output; then the
 // output downloaded (device read + staging write).
 void ModulateAndDownload(PlanWriter& w, const std::vector<std::string>& channels, int iterations) {
-    w.Pass("modulate").Read("input.albedo").Read("input.emission");
+    w.Pass("modulate").Read("input.modulation").Read("input.emission");
     for (const std::string& ch : channels)
         w.Read(ch + ".illum" + std::to_string(FilteredIlluminationPlane(iterations)));
     w.Write("output");
@@ -162,7 +162,7 @@ void PlanAsvgfGradient(PlanWriter& w, const DenoiserParams& params) {
     w.Read("asvgf.claim").Read("asvgf.samples", 0.5, Coverage::ClaimedStrata).Write("asvgf.grad0");
     for (const char* plane :
          {"geometry.objectId", "geometry.depth", "geometry.normal", "input.depthGradient",
-          "input.direct", "input.indirect", "input.albedo", "input.emission"})
+          "input.direct", "input.indirect", "input.modulation", "input.emission"})
         w.Read(plane, 1.0, Coverage::StratumGuidePixels);
     w.Write("asvgf.guideGeometry").Write("asvgf.guideLuminance");
     // asvgf_stratum_sigma

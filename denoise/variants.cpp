@@ -47,21 +47,55 @@ const std::vector<DenoiserVariant>& DenoiserVariants() {
     return rows;
 }
 
+namespace {
+
+// Splits "<base>+<demodulation>"; false when `name` has no (known) suffix.
+bool SplitSuffix(std::string_view name, std::string_view& base, Demodulation& d) {
+    const size_t plus = name.rfind('+');
+    if (plus == std::string_view::npos || !ParseDemodulation(name.substr(plus + 1), d)) return false;
+    base = name.substr(0, plus);
+    return true;
+}
+
+}  // namespace
+
+std::optional<Demodulation> DenoiserDemodulation(std::string_view name) {
+    std::string_view base;
+    Demodulation d;
+    if (!SplitSuffix(name, base, d)) return std::nullopt;
+    return d;
+}
+
+std::string_view DenoiserBaseName(std::string_view name) {
+    std::string_view base;
+    Demodulation d;
+    return SplitSuffix(name, base, d) ? base : name;
+}
+
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
+    const std::string_view base = DenoiserBaseName(name);
     for (const DenoiserVariant& v : DenoiserVariants())
-        if (v.name == name) return &v;
+        if (v.name == base) return &v;
     return nullptr;
 }
 
 
 std::string UnknownDenoiserMessage(std::string_view name) {
-    return fmt::format("unknown denoiser '{}' (did you mean '{}'? known: {})", name, NearestName(name, DenoiserNames()),
-                       fmt::join(DenoiserNames(), ", "));
+    return fmt::format("unknown denoiser '{}' (did you mean '{}'? known: {}; each also as <name>+brdf or "
+                       "<name>+albedo)",
+                       name, NearestName(DenoiserBaseName(name), DenoiserNames()), fmt::join(DenoiserNames(), ", "));
 }
 
 const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
-    if (const DenoiserVariant* v = LookupDenoiserVariant(name)) return *v;
-    Fail("{}: {}", what, UnknownDenoiserMessage(name));
+    const DenoiserVariant* v = LookupDenoiserVariant(name);
+    if (!v) Fail("{}: {}", what, UnknownDenoiserMessage(name));
+    // The network's weights were trained on albedo-demodulated illumination (SPEC §12); F_β input
+    // would need weights trained on it.
+    if (v->family == DenoiserFamily::Rae && DenoiserDemodulation(name) == Demodulation::Brdf)
+        Fail("{}: '{}': the RAE's weights were trained on albedo-demodulated illumination; use '{}' "
+             "(it re-divides an F_β-demodulated frame by the albedo itself)",
+             what, name, v->name);
+    return *v;
 }
 
 const std::vector<std::string>& DenoiserNames() {

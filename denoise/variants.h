@@ -1,12 +1,20 @@
 // The one table of denoiser variants: every name `run`, `experiment`, `bench` and `memory` accept,
 // with the family whose passes it runs, the options it implies, and what it needs from the
 // renderer. Adding a variant is one row here (plus a pass file if it brings a new pass).
+//
+// Every name also comes with a demodulation suffix: "<variant>+brdf" filters illumination
+// demodulated by the BRDF pre-integration F_β, "<variant>+albedo" by the albedo (Zhuang et al.
+// §4.3: the filter is a black box, only the demodulation factor changes; denoise/demodulation.h).
+// A name without a suffix filters what the tracer wrote (render.demodulation, default albedo).
+// The suffixed names are not rows: they resolve to the row of their base name.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/frame_inputs.h"
 #include "denoise/params.h"
 
 namespace fovrt {
@@ -40,8 +48,13 @@ const DenoiserVariant& FindDenoiserVariant(std::string_view name,
                                            std::string_view what = "denoiser");
 // "unknown denoiser 'x' (did you mean 'y'? known: ...)", for callers that name the key themselves.
 std::string UnknownDenoiserMessage(std::string_view name);
-// Null when `name` is not a variant.
+// Null when `name` is not a variant (with or without a demodulation suffix).
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
+
+// The demodulation a name's suffix asks for ("+brdf", "+albedo"); nullopt without a suffix.
+std::optional<Demodulation> DenoiserDemodulation(std::string_view name);
+// `name` without its demodulation suffix ("svgf+brdf" → "svgf").
+std::string_view DenoiserBaseName(std::string_view name);
 
 // Names accepted by CreateDenoiser, in table order.
 const std::vector<std::string>& DenoiserNames();

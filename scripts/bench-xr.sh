@@ -16,19 +16,25 @@ trap 'rm -rf "$out"' EXIT
 # shellcheck disable=SC1090
 . "$envsh" "$out/core-validation.txt"
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); runtime: fovrt test runtime, ${FOVRT_TEST_XR_SIZE:-320x240} per eye, ${FOVRT_TEST_XR_HZ:-90} Hz"
-for scene in cornell veach-ajar; do
+for mode in sync async; do
+ for scene in cornell veach-ajar; do
   for denoiser in svgf two-history; do
+    [[ $mode == async && $scene != cornell ]] && continue
     rm -rf "$out/run"
     line=$("$fovrt" xr --frames "$frames" --set scene.name="$scene" --set "denoise.denoisers=[\"$denoiser\"]" \
-      --set output.dir="$out/run" 2>&1 | grep 'frames in' || true)
+      --set output.dir="$out/run" $([[ $mode == async ]] && echo --async) 2>&1 | grep 'frames in' || true)
     split=$(python3 - "$out/run/xr/frames.jsonl" <<'PY'
 import json, sys
 rows = [json.loads(l)["ms"] for l in open(sys.argv[1])][10:]  # after the first 10 frames (pipelines, caches)
 keys = ["wait_begin_frame", "spp", "trace", "denoise", "write_eyes", "end_frame"]
-print("mean ms over frames 11+: " + ", ".join(f"{k} {sum(r[k] for r in rows) / len(rows):.1f}" for k in keys))
+m = json.load(open(sys.argv[1].replace("frames.jsonl", "manifest.json")))
+rate = m["frames"]["ended"] / m["timing"]["seconds"]
+print("mean ms over frames 11+: " + ", ".join(f"{k} {sum(r[k] for r in rows) / len(rows):.1f}" for k in keys)
+      + f"; {rate:.1f} xrEndFrame/s, {m['frames']['with_layer']} of {m['frames']['ended']} with a layer")
 PY
 )
-    printf '%-10s %-12s %s\n%-23s %s\n' "$scene" "$denoiser" "${line#fovrt xr: }" "" "$split"
+    printf '%-6s %-10s %-12s %s\n%-30s %s\n' "$mode" "$scene" "$denoiser" "${line#fovrt xr: }" "" "$split"
   done
+ done
 done
 echo "core validation errors: $(fovrt_xr_validation_errors)"

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# README command 1: install dependencies, build, run the default headless job on a built-in scene.
+# README command 1: install dependencies, build, and run the quickstart experiment on the built-in
+# Cornell box (presets/quickstart.toml): SVGF vs two-history SVGF over 3 seeds, ending in the
+# foveal/peripheral error table with 95 % intervals and the path of its HTML report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-./build/src/app/fovrt run
+./build/src/app/fovrt experiment presets/quickstart.toml

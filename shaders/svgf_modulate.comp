@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // svgf_modulate — remodulation (paper §4, SPEC §2): out = albedo · (direct + indirect) + emission.
 // Reads:  filtered illumination of each channel (vec4; one when combined: specialization constant
-//         FOVRT_SPEC_MODULATE_COMBINED), albedo, emission — uniform texel buffers (common/access.glsl).
+//         FOVRT_SPEC_MODULATE_COMBINED), albedo (the frame's modulation factor, input.modulation:
+//         the albedo, or F_β under brdf demodulation), emission — uniform texel buffers (common/access.glsl).
 // Writes: HDR colour (float[3N]).
 #include "shared_constants.h"
 #include "push_constants.h"

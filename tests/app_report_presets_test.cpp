@@ -55,8 +55,7 @@ Preset LoadPreset(const std::string& name) {
 }
 
 void CheckCommon(const Preset& p) {
-    const auto& known = DenoiserNames();
-    for (const std::string& v : p.variants) CHECK(std::find(known.begin(), known.end(), v) != known.end());
+    for (const std::string& v : p.variants) CHECK(LookupDenoiserVariant(v) != nullptr);  // suffixes too
     for (const std::string& s : p.scenes)
         CHECK(std::filesystem::exists(test::SourceDir() / "scenes" / (s + ".toml")));
     CHECK(p.quick.camera.width < p.config.camera.width);
@@ -144,4 +143,47 @@ TEST_CASE("asvgf-lag preset: the quick run covers a light switch in room, with f
     CHECK(quick.front() - p.quick.run.firstFrame >= 4);
     CHECK(p.quick.run.firstFrame + p.quick.run.frames - quick.front() >= 4);
     CHECK(p.quick.run.frames <= 16);  // still quick
+}
+
+TEST_CASE("brdf-demodulation preset: albedo vs F_beta for svgf and two-history, thesis foveation", "[app][presets]") {
+    Preset p = LoadPreset("brdf-demodulation.toml");
+    CheckCommon(p);
+    CHECK(p.scenes == std::vector<std::string>{"brdf-detail", "brdf-detail-moving", "cornell", "veach-ajar"});
+    CHECK(p.variants == std::vector<std::string>{"svgf", "svgf+brdf", "two-history", "two-history+brdf"});
+    const RunConfig& c = p.config;
+    CHECK(c.render.demodulation == "albedo");  // one render feeds both kinds of variant
+    CHECK(c.camera.width == 1280);
+    CHECK(c.foveation.model == "disc");
+    CHECK(c.foveation.sppInside == 8);
+    CHECK(c.foveation.sppOutside == 1);
+    CHECK(c.foveation.radiusPx == 200.0f);
+    CHECK(c.denoise.params.svgf.atrousIterations == 2);
+}
+
+TEST_CASE("every preset runs three seeds", "[app][presets]") {
+    for (const char* name : {"thesis-foveated.toml", "svgf-paper.toml", "asvgf-lag.toml", "quickstart.toml"}) {
+        INFO(name);
+        toml::table file = toml::parse_file((test::SourceDir() / "presets" / name).string());
+        const toml::array* seeds = file["experiment"]["seeds"].as_array();
+        REQUIRE(seeds);
+        CHECK(seeds->size() >= 3u);
+    }
+}
+
+TEST_CASE("quickstart preset: the first command compares two denoisers on built-in data", "[app][presets]") {
+    const auto path = test::SourceDir() / "presets" / "quickstart.toml";
+    toml::table file = toml::parse_file(path.string());
+    toml::table experiment = *file["experiment"].as_table();
+    file.erase("experiment");
+    std::ostringstream text;
+    text << file;
+    RunConfig c = ConfigFromTomlString(text.str(), "quickstart.toml");
+    for (const auto& s : *experiment["scenes"].as_array())
+        CHECK(std::filesystem::exists(test::SourceDir() / "scenes" / (*s.value<std::string>() + ".toml")));
+    CHECK(experiment["variants"].as_array()->size() >= 2u);  // a baseline and a variant: intervals
+    CHECK(c.foveation.model == "disc");
+    CHECK(c.output.report);
+    // Small enough to take about as long as the default `fovrt run` (README: Quick start).
+    CHECK(int64_t(c.camera.width) * c.camera.height * c.run.frames * 3 <=
+          int64_t(DefaultConfig().camera.width) * DefaultConfig().camera.height * DefaultConfig().run.frames);
 }

@@ -6,6 +6,7 @@
 #include "app/report.h"
 #include "app/report_collect.h"
 #include "app/report_html.h"
+#include "app/report_summary.h"
 #include "foveation/spp_model.h"
 #include "test_support.h"
 
@@ -62,33 +63,95 @@ TEST_CASE("results: means over frames and eyes, percent vs baseline", "[app][rep
 TEST_CASE("per-frame CSV has the documented header and one row per value", "[app][report]") {
     Results r = MakeResults();
     r.Add({"other-scene", 0, 0, "svgf", "whole", "relmse", 1.0});
+    r.Add({"cornell", 0, 1, "svgf", "whole", "relmse", 0.5, 7});
     std::string csv = FrameCsv(r, "cornell");
-    CHECK(csv.rfind("frame,eye,variant,region,metric,value\n", 0) == 0);
-    CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 32);
-    CHECK(csv.find("\n0,1,svgf,whole,relmse,0.042\n") != std::string::npos);
+    CHECK(csv.rfind("seed,frame,eye,variant,region,metric,value\n", 0) == 0);
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 33);
+    CHECK(csv.find("\n1,0,1,svgf,whole,relmse,0.042\n") != std::string::npos);
+    CHECK(csv.find("\n7,0,1,svgf,whole,relmse,0.5\n") != std::string::npos);  // every seed's value kept
     CHECK(csv.find("other-scene") == std::string::npos);
     CHECK(FrameCsv(r, "cornell") == csv);  // deterministic
 }
 
-TEST_CASE("summary JSON and the thesis table", "[app][report]") {
+TEST_CASE("summary JSON and the table: robust summaries and paired ratios with intervals", "[app][report]") {
     Results r = MakeResults();
-    nlohmann::json j = SummaryJson(r);
+    ExperimentStats stats(r);
+    nlohmann::json j = SummaryJson(r, stats);
     CHECK(j["relmse_epsilon"].get<double>() == Approx(0.01));
-    CHECK(j["baseline"] == "svgf");
-    auto& th = j["scenes"]["cornell"]["variants"]["two-history"];
+    CHECK(j["method"].get<std::string>().find("circular moving-block bootstrap") != std::string::npos);
+    auto& scene = j["scenes"]["cornell"];
+    CHECK(scene["baseline"] == "svgf");  // the first variant
+    CHECK(scene["seeds"] == nlohmann::json::array({1}));
+    auto& th = scene["variants"]["two-history"];
     CHECK(th["fovea"]["relmse"]["percent_vs_baseline"].get<double>() == Approx(-10.0));
     CHECK(th["whole"]["ssim"]["mean"].get<double>() == Approx(0.91));
-    CHECK(j["scenes"]["cornell"]["variants"]["svgf"]["whole"]["ssim"]["percent_vs_baseline"].get<double>() ==
-          Approx(0.0));
+    CHECK(th["whole"]["relmse"]["median"].get<double>() == Approx(0.9 * 0.046));
+    auto& vs = th["fovea"]["relmse"]["vs_baseline"];
+    CHECK(vs["ratio"].get<double>() == Approx(0.9));  // 0.45 base / 0.5 base on every frame
+    CHECK(vs["ci_low"].get<double>() == Approx(0.9));
+    CHECK(vs["ci_high"].get<double>() == Approx(0.9));
+    CHECK(vs["significant"] == true);
+    CHECK(vs["win_rate"].get<double>() == Approx(1.0));
+    CHECK(vs["pairs"] == 4);
+    CHECK(scene["variants"]["svgf"]["whole"]["relmse"].count("vs_baseline") == 0);  // the baseline itself
+    CHECK(th["whole"]["ssim"]["vs_baseline"]["win_rate"].get<double>() == Approx(1.0));  // higher SSIM wins
 
-    std::string table = SummaryTable(r);
+    std::string table = SummaryTable(r, stats);
     INFO(table);
-    CHECK(table.find("Scene cornell") != std::string::npos);
+    CHECK(table.find("Scene cornell: 1 seed (1) x 2 frames x 2 eyes; baseline svgf") != std::string::npos);
     CHECK(table.find("eps = 0.01") != std::string::npos);
-    CHECK(table.find("-10.000%") != std::string::npos);      // relMSE vs svgf
-    CHECK(table.find("+1.1111%") != std::string::npos);      // SSIM 0.91 vs 0.90
-    CHECK(table.find("+2.5000%") != std::string::npos);      // SSIM fovea 0.82 vs 0.80
-    CHECK(table.find("4.600e-02") != std::string::npos);     // svgf whole relMSE mean
+    CHECK(table.find("0.900 [0.900, 0.900]") != std::string::npos);  // relMSE ratio vs svgf
+    CHECK(table.find("100%") != std::string::npos);                   // win rate
+    CHECK(table.find("4.600e-02") != std::string::npos);              // svgf whole relMSE mean
+
+    // experiment.baseline: any variant.
+    ExperimentStats other(r, "two-history");
+    CHECK(SummaryJson(r, other)["scenes"]["cornell"]["variants"]["svgf"]["fovea"]["relmse"]["vs_baseline"]["ratio"]
+              .get<double>() == Approx(1.0 / 0.9));
+}
+
+TEST_CASE("the table marks an interval that contains 1 as not significant", "[app][report]") {
+    Results r;
+    Pcg32 rng(3);
+    for (uint32_t seed = 1; seed <= 3; ++seed)
+        for (int frame = 0; frame < 20; ++frame)
+            for (int eye = 0; eye < 2; ++eye) {
+                const double base = 0.01 + 0.01 * rng.NextFloat();
+                r.Add({"s", frame, eye, "svgf", "whole", "relmse", base, seed});
+                r.Add({"s", frame, eye, "other", "whole", "relmse", base * (0.9 + 0.2 * rng.NextFloat()), seed});
+            }
+    ExperimentStats stats(r);
+    const MetricStats* m = stats.Find("s", "other", "whole", "relmse");
+    REQUIRE(m);
+    REQUIRE(m->vsBaseline);
+    CHECK_FALSE(m->vsBaseline->Significant());
+    CHECK(m->vsBaseline->pairs == 120u);
+    CHECK(stats.Design("s").seeds == std::vector<uint32_t>{1, 2, 3});
+    std::string table = SummaryTable(r, stats);
+    INFO(table);
+    CHECK(table.find("] ns") != std::string::npos);
+    CHECK(SummaryJson(r, stats)["scenes"]["s"]["variants"]["other"]["whole"]["relmse"]["vs_baseline"]["significant"] ==
+          false);
+}
+
+TEST_CASE("outlier frames that dominate a mean are named", "[app][report]") {
+    Results r;
+    for (int frame = 0; frame < 20; ++frame)
+        for (const char* variant : {"svgf", "two-history"}) {
+            const double value = frame == 7 ? 1.0 : 0.001;  // the light in the fovea
+            r.Add({"s", frame, 0, variant, "fovea", "relmse", value * (variant[0] == 't' ? 0.8 : 1.0)});
+        }
+    ExperimentStats stats(r);
+    const MetricStats* m = stats.Find("s", "svgf", "fovea", "relmse");
+    REQUIRE(m);
+    CHECK(m->dominant.Dominates());
+    CHECK(m->dominant.frames == std::vector<int>{7});
+    CHECK(m->dominant.share > 0.9);
+    const std::string table = SummaryTable(r, stats);
+    INFO(table);
+    CHECK(table.find("svgf fovea: 1 of 20 frames (7) hold 98% of the mean relMSE") != std::string::npos);
+    CHECK(SummaryJson(r, stats)["scenes"]["s"]["variants"]["svgf"]["fovea"]["relmse"]["dominant_frames"]["frames"] ==
+          nlohmann::json::array({7}));
 }
 
 TEST_CASE("base64, escaping and viridis building blocks", "[app][report]") {
@@ -140,13 +203,19 @@ TEST_CASE("HTML report is a single offline file with plots, images and tables", 
     CHECK(html.find("data:image/png;base64,iVBORw0KGgo") != std::string::npos);  // PNG signature
     CHECK(html.find("relmse — fovea") != std::string::npos);
     CHECK(html.find("ssim by region") != std::string::npos);
+    CHECK(html.find("0.900 [0.900, 0.900]") != std::string::npos);     // the paired ratio with its interval
+    CHECK(html.find("circular moving-block bootstrap") != std::string::npos);  // the method stated
+    CHECK(html.find("class=\"colorbar\"") != std::string::npos);       // colour bars
+    CHECK(html.find("relMSE per pixel (log scale)") != std::string::npos);
     CHECK(html.find("Memory") != std::string::npos);
     CHECK(html.find("atrous") != std::string::npos);
     CHECK(html.find("ε = 0.01") != std::string::npos);
-    // Offline: no external fetches, no scripts.
+    // Offline: no external fetches; one inline script (the drawing check), no script file.
     CHECK(html.find("http://") == html.find("http://www.w3.org/2000/svg"));
     CHECK(html.find("https://") == std::string::npos);
-    CHECK(html.find("<script") == std::string::npos);
+    CHECK(html.find("<script src") == std::string::npos);
+    CHECK(html.find("<script") == html.rfind("<script"));
+    CHECK(html.find("data-report-check") != std::string::npos);
     CHECK(html.find("<link") == std::string::npos);
     std::filesystem::remove_all(dir);
 }
@@ -198,4 +267,44 @@ TEST_CASE("the pixel fovea region is exactly the disc spp model's sppInside area
     REQUIRE(fovea);
     CHECK(fovea->pixelCount > 1000u);
     for (size_t i = 0; i < spp.size(); ++i) REQUIRE((spp[i] == 8) == (fovea->mask[i] == 1));
+}
+
+TEST_CASE("plots: ticks on both axes, the legend under the plot, gaze events and outliers marked", "[app][report]") {
+    CHECK(AxisTicks(0.0, 10.0, false, 5) == std::vector<double>{0.0, 2.0, 4.0, 6.0, 8.0, 10.0});
+    const std::vector<double> tenths = AxisTicks(0.3, 0.72, false, 5);
+    REQUIRE(tenths.size() == 5u);
+    CHECK(tenths.front() == Approx(0.3));
+    CHECK(tenths.back() == Approx(0.7));
+    const std::vector<double> decades = AxisTicks(-4.0, 0.0, true, 5);
+    CHECK(decades == std::vector<double>{-4.0, -3.0, -2.0, -1.0, 0.0});
+    CHECK(AxisTicks(-2.0, -1.0, true, 5).size() == 4u);  // 0.01, 0.02, 0.05, 0.1
+
+    LinePlot plot;
+    plot.title = "relmse — fovea";
+    plot.yLabel = "relMSE";
+    plot.logY = true;
+    plot.series = {{"svgf", {{0, 0.01}, {1, 0.02}, {2, 0.5}}},
+                   {"a-long-variant-name-1", {{0, 0.01}}},
+                   {"a-long-variant-name-2", {{0, 0.01}}},
+                   {"a-long-variant-name-3", {{0, 0.01}}}};
+    plot.blinkX = {1};
+    plot.saccadeX = {2};
+    plot.markedX = {2};
+    const std::string svg = SvgLinePlot(plot);
+    CHECK(svg.find(">0.01<") != std::string::npos);  // y ticks
+    CHECK(svg.find(">0.1<") != std::string::npos);
+    CHECK(svg.find(">frame<") != std::string::npos);
+    CHECK(svg.find(">blink<") != std::string::npos);
+    CHECK(svg.find(">saccade<") != std::string::npos);
+    CHECK(svg.find(">outlier frame<") != std::string::npos);
+    CHECK(svg.find("<title>frame 2</title>") != std::string::npos);
+    // Long names wrap onto more legend rows: the plot grows instead of clipping them.
+    LinePlot shortNames = plot;
+    shortNames.series.resize(1);
+    auto height = [](const std::string& s) {
+        const size_t at = s.find("height=\"") + 8;
+        return std::stod(s.substr(at, s.find('"', at) - at));
+    };
+    CHECK(height(svg) > height(SvgLinePlot(shortNames)));
+    CHECK(SvgColorBar(320, {{0.0, "1e-4"}, {1.0, "1"}}, "relMSE").find(">1e-4<") != std::string::npos);
 }

@@ -120,11 +120,21 @@ expect_error "unknown denoiser" "denoise.denoisers.*unknown denoiser 'svgf-typo'
 expect_error "unknown scene names the nearest" "scene 'cornel'.*did you mean 'cornell'?" run --set scene.name=cornel --set output.dir=e15
 expect_error "unknown key names the nearest" "camera.widht.*did you mean 'camera.width'?" run --set camera.widht=3 --set output.dir=e16
 expect_error "unknown enum value names the nearest" "foveation.model.*did you mean 'acuity'?" run --set foveation.model=acuty --set output.dir=e17
+expect_error "bad render.demodulation names the key" "render.demodulation.*'brfd' is not one of albedo, brdf" run --set render.demodulation=brfd --set output.dir=e31
 # An output folder that cannot be written (a file in its path) is one line naming the key and the
 # path; so is a reference cache that cannot be, and before any rendering.
 touch afile
 expect_error "unwritable output.dir" "config key 'output.dir': cannot write to 'afile/sub'" run "${small[@]}" --set output.dir=afile/sub
 expect_error "unwritable reference.cache_dir" "config key 'reference.cache_dir': cannot write to 'afile/c'" experiment exp2.toml --set reference.cache_dir=afile/c --set output.dir=e18
+# Seeds: bad --seeds / experiment.seeds / experiment.baseline are one line naming the option or key.
+expect_error "bad --seeds" "^fovrt: error: --seeds abc: 'abc' is not a non-negative integer" experiment exp2.toml --seeds abc --set output.dir=e19
+expect_error "zero --seeds" "^fovrt: error: --seeds 0: the count must be in \[1, 1000\]" experiment exp2.toml --seeds 0 --set output.dir=e20
+expect_error "repeated --seeds" "--seeds 1,1: seed 1 is listed twice" experiment exp2.toml --seeds 1,1 --set output.dir=e21
+sed 's/^variants = .*/&\nseeds = [1, "two"]/' exp2.toml > exp3.toml
+expect_error "bad experiment.seeds" "exp3.toml: experiment.seeds must hold only integers" experiment exp3.toml --set output.dir=e22
+sed 's/^variants = .*/&\nbaseline = "svgff"/' exp2.toml > exp4.toml
+expect_error "unknown experiment.baseline" "experiment.baseline 'svgff' is not in experiment.variants (did you mean 'svgf'?)" experiment exp4.toml --set output.dir=e23
+expect_error "--seeds with --replay" "--seeds and --replay exclude each other" experiment exp.toml --replay rec.jsonl --seeds 2 --set output.dir=e24
 expect_error "unwritable reference.cache_dir (reference)" "config key 'reference.cache_dir': cannot write to 'afile/c'" reference "${small[@]}" --set reference.cache_dir=afile/c
 # A run that fails leaves no output folder it created, and keeps one that was there before.
 mkdir -p pre

@@ -42,8 +42,9 @@ TEST_CASE("ForEachPlane, PlaneNames and Bytes describe the same planes", "[core]
     CHECK(names == FrameInputs::PlaneNames());
     CHECK(names.front() == "direct");
     CHECK(f.Bytes() == bytes);
-    // 5 RGB planes, depth, depth gradient, object id, motion, sample count, roughness.
-    CHECK(bytes == size_t(7 * 4) * (5 * 12 + 4 + 8 + 4 + 8 + 2 + 4));
+    // 6 RGB planes (direct, indirect, albedo, fbeta, emission, normal), depth, depth gradient,
+    // object id, motion, sample count, roughness.
+    CHECK(bytes == size_t(7 * 4) * (6 * 12 + 4 + 8 + 4 + 8 + 2 + 4));
     f.gradientSamples.resize(3);
     CHECK(f.Bytes() == bytes + 3 * sizeof(GradientSample));
     // The data pointers are the planes' own, with their element sizes.

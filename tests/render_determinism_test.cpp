@@ -142,7 +142,7 @@ TEST_CASE("more samples per pixel reduce the noise", "[render]") {
     auto renderer = CreateRenderer(scene, settings);
     EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
     Plane<vec3> reference;
-    renderer->RenderReference(0, camera, 256, reference);
+    renderer->RenderReference(0, camera, 256, 1u, reference);
     auto error = [&](int n) {
         FrameInputs out;
         renderer->RenderEye(0, camera, camera, Plane<uint16_t>(kW, kH, uint16_t(n)), out);

@@ -3,6 +3,7 @@
 // with maxDepth d must return Le * sum_{k=0..d} a^k (SPEC §2; renderer.h depth convention).
 #include <cmath>
 
+#include "ggx_quadrature.h"
 #include "render/bsdf.h"
 #include "render_test_scenes.h"
 #include "test_support.h"
@@ -35,24 +36,6 @@ vec3 FurnaceMean(const Scene& scene, int maxDepth, int spp, vec3* minOut = nullp
     if (maxOut) *maxOut = hi;
     CHECK(renderer->Stats().droppedSamples == 0);
     return sum / 256.0f;
-}
-
-// Directional albedo of a GGX conductor with F = 1 at normal incidence, by quadrature of
-// D(h) G2 / (4 cos_o) over the hemisphere (independent of bsdf.cpp).
-double GgxAlbedoNormalIncidence(double alpha) {
-    const int n = 200000;
-    double a2 = alpha * alpha, sum = 0.0;
-    for (int i = 0; i < n; ++i) {
-        double theta = (i + 0.5) / n * (kPi / 2.0);
-        double cosI = std::cos(theta), sinI = std::sin(theta);
-        double cosH = std::cos(theta / 2.0);  // wo = n: the half vector bisects
-        double d = a2 / (kPi * std::pow(cosH * cosH * (a2 - 1.0) + 1.0, 2.0));
-        double tan2 = sinI * sinI / (cosI * cosI);
-        double lambdaI = 0.5 * (std::sqrt(1.0 + a2 * tan2) - 1.0);
-        double g2 = 1.0 / (1.0 + lambdaI);
-        sum += 2.0 * kPi * sinI * d * g2 / 4.0 * (kPi / 2.0 / n);
-    }
-    return sum;
 }
 
 }  // namespace

@@ -92,6 +92,38 @@ g=$(json s1/xr/manifest.json "d['gaze_source_frames']")
 [[ $(grep -c "eye gaze action is not active" err1.txt) -eq 1 ]] && ok "gaze off: one warning line" \
   || bad "gaze off warning: $(grep -c 'not active' err1.txt) lines"
 
+# 1b. --async: the live loop renders on its own thread; every display slot submits the newest
+#     finished frame with the poses it was traced from, and its read-back equals fovrt's output.
+FOVRT_TEST_XR_DUMP=rta "$fovrt" xr "${small[@]}" --set output.dir=sa --frames 3 --async --write-frames 2>erra.txt
+rc=$?
+if [[ $rc -eq 0 ]] && python3 - rta/frames.jsonl sa/xr/frames.jsonl sa/xr/frames "$probe" <<'PY' > summarya.txt; then
+import json, math, subprocess, sys
+rt = [json.loads(l) for l in open(sys.argv[1])]
+app = [json.loads(l) for l in open(sys.argv[2])]
+problems = []
+by_time = {a["display_time_ns"]: a for a in app}
+current = None
+layered = 0
+for r in rt:
+    if r["displayTime"] in by_time:
+        current = by_time[r["displayTime"]]
+        for eye, name in ((0, "left"), (1, "right")):
+            d = subprocess.run([sys.argv[4], "diff", f"rta/{r['views'][eye]['ppm']}",
+                                f"{sys.argv[3]}/f{current['frame']:05d}_{name}.png"], capture_output=True, text=True).stdout
+            if not d.startswith("max=0 "): problems.append(f"frame {current['frame']} eye {eye}: {d.strip()}")
+    if r["layerCount"] == 0: continue
+    layered += 1
+    if current is None: problems.append(f"runtime frame {r['frame']} has a layer before any fovrt frame"); continue
+    for eye in (0, 1):
+        if math.dist(r["views"][eye]["pose"]["position"], current["eyes"][eye]["local"]["position"]) > 1e-6:
+            problems.append(f"runtime frame {r['frame']} eye {eye}: pose is not fovrt frame {current['frame']}'s")
+if len(app) != 3: problems.append(f"{len(app)} frames submitted")
+print("; ".join(problems[:4]) if problems else f"{len(rt)} frames ended, {layered} with a layer, 3 fovrt frames, each layer with its frame's poses, read-backs equal")
+sys.exit(1 if problems else 0)
+PY
+  ok "--async: $(cat summarya.txt)"
+else bad "--async: exit $rc: $(cat summarya.txt 2>/dev/null) $(tail -2 erra.txt)"; fi
+
 # 2. Record -> replay headless: identical spp maps and noisy inputs.
 if "$fovrt" run --replay rec.jsonl --set output.dir=replay --set output.write_png=false 2>err2.txt; then
   n=0; same=0

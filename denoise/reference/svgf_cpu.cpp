@@ -88,7 +88,7 @@ void SvgfReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& output) 
     }
     const int last = FilteredIlluminationPlane(iterations);
     for (Channel& ch : channels_) ch.filtered = ch.illum[last];
-    SvgfModulateRef(channels_[0].filtered, channels_.size() > 1 ? &channels_[1].filtered : nullptr, in.albedo,
+    SvgfModulateRef(channels_[0].filtered, channels_.size() > 1 ? &channels_[1].filtered : nullptr, in.Modulation(),
                     in.emission, output);
     clock.Lap("modulate");
     prevGeometry_.CopyFrom(in);

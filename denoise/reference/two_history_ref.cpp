@@ -288,7 +288,7 @@ void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>&
     }
     lap("atrous_blend");
 
-    SvgfModulateRef(u_[0], channels == 2 ? &u_[1] : nullptr, frame.albedo, frame.emission, output);
+    SvgfModulateRef(u_[0], channels == 2 ? &u_[1] : nullptr, frame.Modulation(), frame.emission, output);
     lap("modulate");
 
     prevGeometry_.CopyFrom(frame);

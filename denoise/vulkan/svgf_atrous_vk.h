@@ -270,7 +270,7 @@ struct SvgfStagePipelines {
         std::array<const Buffer*, SVGF_MODULATE_BINDINGS> mod{};
         mod[SVGF_MODULATE_B_ILLUM0] = &buf[illum0];
         mod[SVGF_MODULATE_B_ILLUM1] = &buf[illum1];
-        mod[SVGF_MODULATE_B_ALBEDO] = &buf["input.albedo"];
+        mod[SVGF_MODULATE_B_ALBEDO] = &buf["input.modulation"];
         mod[SVGF_MODULATE_B_EMISSION] = &buf["input.emission"];
         mod[SVGF_MODULATE_B_OUT] = &buf["output"];
         return modulate.MakeSet(mod);

@@ -230,7 +230,7 @@ void TwoHistoryVulkanDenoiser::BuildSets() {
             g[ASVGF_GATHER_B_DEPTH_GRAD] = &Buf("input.depthGradient");
             g[ASVGF_GATHER_B_DIRECT] = &Buf("input.direct");
             g[ASVGF_GATHER_B_INDIRECT] = &Buf("input.indirect");
-            g[ASVGF_GATHER_B_ALBEDO] = &Buf("input.albedo");
+            g[ASVGF_GATHER_B_ALBEDO] = &Buf("input.modulation");
             g[ASVGF_GATHER_B_EMISSION] = &Buf("input.emission");
             gatherSets_[pi] = gather_.MakeSet(g);
         }

@@ -45,7 +45,9 @@ size_t DenoiserBuffers::RecordUploadInputs(CommandRecorder& rec, const FrameInpu
     in.ForEachPlane([&](const PlaneBytes& plane) {
         // Sample counts: each host uploads them where its staging reserves them.
         if (!UploadedWithInputs(plane.name)) return;
-        off = rec.Upload(plane.data, plane.bytes, staging, off, (*this)[UploadBufferOf(plane.name, side)]);
+        // input.modulation: the frame's (de)modulation factor, albedo or F_β (memory_plan.h).
+        const void* data = std::string_view(plane.name) == "albedo" ? in.Modulation().data() : plane.data;
+        off = rec.Upload(data, plane.bytes, staging, off, (*this)[UploadBufferOf(plane.name, side)]);
     });
     rec.Fill((*this)["stats"], 0u);
     return off;

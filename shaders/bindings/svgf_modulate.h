@@ -1,4 +1,5 @@
-// svgf_modulate: albedo · (filtered direct + filtered indirect) + emission → output (combined:
+// svgf_modulate: albedo · (filtered direct + filtered indirect) + emission → output, `albedo`
+// being the frame's modulation factor (albedo or F_β, buffer input.modulation) (combined:
 // ILLUM0 holds both and ILLUM1 is not read; specialization constant FOVRT_SPEC_MODULATE_COMBINED).
 #define SVGF_MODULATE_BINDING_LIST(B)                        \
     B(SVGF_MODULATE, ILLUM0, 0, TEXEL, RGBA32F, illum0)      \

@@ -2,11 +2,15 @@
 // a key of scene content, frame, eye camera and settings (reference_cache.h), so repeated
 // experiments do not re-render. Prints one line per frame and eye: cached or rendered, and the path.
 #include <chrono>
+#include <algorithm>
 #include <cstdio>
 
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/config_cli.h"
+#include "app/experiment.h"
+#include "core/error.h"
+#include "core/nearest_name.h"
 #include "app/frame_pipeline.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
@@ -16,7 +20,12 @@
 namespace fovrt {
 namespace {
 
-void RenderReferences(const RunConfig& config) {
+// What one `fovrt reference` renders: frames × eyes of one config's scene.
+struct ReferenceSlice {
+    int eye = -1;  // 0, 1, or -1 for both
+};
+
+void RenderReferences(const RunConfig& config, const ReferenceSlice& slice = {}) {
     // The reference path holds one HDR image per eye in flight.
     const size_t imageBytes = size_t(config.camera.width) * size_t(config.camera.height) * sizeof(vec3);
     EnforceMemoryBudget({{"reference.image.eye0", imageBytes, false},
@@ -26,7 +35,7 @@ void RenderReferences(const RunConfig& config) {
     FramePipeline pipeline(config);
     ReferenceCache cache(config.reference.cacheDir);
     uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
-    Progress progress("reference", config.run.frames * 2);
+    Progress progress("reference", config.run.frames * (slice.eye < 0 ? 2 : 1));
     int rendered = 0, cached = 0;
     auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < config.run.frames; ++i) {
@@ -34,10 +43,11 @@ void RenderReferences(const RunConfig& config) {
         pipeline.SetFrame(frame);
         StereoRig rig = pipeline.RigAt(frame);
         for (int eye = 0; eye < 2; ++eye) {
+            if (slice.eye >= 0 && eye != slice.eye) continue;
             ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
                                                 pipeline.TimeOf(frame), eye, rig.Eye(eye),
                                                 config.reference.spp, config.run.maxDepth,
-                                                config.run.seed);
+                                                config.reference.seed);
             bool hit = false;
             cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
             (hit ? cached : rendered)++;
@@ -60,7 +70,57 @@ void RegisterReferenceCommand(CLI::App& app) {
         "reference", "Render (or find in the cache) high-spp reference frames for both eyes");
     auto options = std::make_shared<ConfigOptions>();
     AddConfigOptions(cmd, *options);
-    cmd->callback([options] { RenderReferences(ResolveConfig(*options)); });
+    // A slice of an experiment's references (a cluster task: fovrt cluster writes these).
+    auto experimentFile = std::make_shared<std::string>();
+    auto args = std::make_shared<ExperimentArgs>();
+    auto scene = std::make_shared<std::string>();
+    auto eye = std::make_shared<std::string>("both");
+    auto frames = std::make_shared<std::string>();
+    cmd->add_option("--experiment", *experimentFile,
+                    "The references of this experiment file (its resolved config; with --quick, --seeds)");
+    cmd->add_flag("--quick", args->quick, "With --experiment: its [experiment.quick] overrides");
+    cmd->add_option("--seeds", args->seeds, "With --experiment: as `experiment --seeds` (references share one seed)");
+    cmd->add_option("--scene", *scene, "With --experiment: one of its scenes (default: each in turn)");
+    cmd->add_option("--eye", *eye, "0, 1 or both")->check(CLI::IsMember({"0", "1", "both"}));
+    cmd->add_option("--frames", *frames, "A-B: frames A to B inclusive (sets run.first_frame and run.frames)");
+    cmd->callback([options, experimentFile, args, scene, eye, frames] {
+        ReferenceSlice slice;
+        slice.eye = *eye == "both" ? -1 : std::stoi(*eye);
+        auto applyFrames = [&](RunConfig& config) {
+            if (frames->empty()) return;
+            int a = 0, b = 0;
+            char tail = 0;
+            if (std::sscanf(frames->c_str(), "%d-%d%c", &a, &b, &tail) != 2 || a < 0 || b < a)
+                Fail("--frames {}: expected A-B with 0 ≤ A ≤ B", *frames);
+            config.run.firstFrame = a;
+            config.run.frames = b - a + 1;
+        };
+        if (experimentFile->empty()) {
+            if (args->quick || !args->seeds.empty() || !scene->empty())
+                Fail("--quick, --seeds and --scene need --experiment FILE");
+            RunConfig config = ResolveConfig(*options);
+            applyFrames(config);
+            RenderReferences(config, slice);
+            return;
+        }
+        ConfigOptions experimentOptions = *options;
+        experimentOptions.configPath = *experimentFile;
+        const ExperimentSpec spec = LoadExperiment(experimentOptions, *args);
+        if (spec.replay) Fail("fovrt reference --experiment: replays render their references in the experiment");
+        std::vector<std::string> scenes = spec.scenes;
+        if (!scene->empty()) {
+            if (std::find(scenes.begin(), scenes.end(), *scene) == scenes.end())
+                Fail("--scene {}: not one of {}'s scenes (did you mean {}?)", *scene, *experimentFile,
+                     NearestName(*scene, scenes));
+            scenes = {*scene};
+        }
+        for (const std::string& name : scenes) {
+            RunConfig config = spec.config;
+            config.scene.name = name;
+            applyFrames(config);
+            RenderReferences(config, slice);
+        }
+    });
 }
 
 }  // namespace fovrt

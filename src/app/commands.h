@@ -16,5 +16,6 @@ void RegisterBenchCommand(CLI::App& app);
 void RegisterMemoryCommand(CLI::App& app);
 void RegisterPreviewCommand(CLI::App& app);  // src/preview
 void RegisterXrCommand(CLI::App& app);       // src/xr
+void RegisterClusterCommand(CLI::App& app);
 
 }  // namespace fovrt

@@ -36,8 +36,8 @@ using Origins = std::map<std::string, std::string>;
 // ([denoise.svgf], ...) come from their keys in denoise/params.cpp.
 const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
-        std::set<std::string> names = {"scene",   "camera", "run",    "foveation",
-                                       "gaze",    "denoise", "output", "reference"};
+        std::set<std::string> names = {"scene", "camera",  "run",    "render",   "foveation",
+                                       "gaze",  "denoise", "output", "reference"};
         names.insert("denoise.rae");  // RaeParams: string keys, outside the numeric tables
         const DenoiserParams defaults;
         ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
@@ -329,6 +329,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     c.run.seed = uint32_t(seed);
     r.Int("run.threads", c.run.threads, 0, 4096);
     r.Int("run.max_depth", c.run.maxDepth, 0, 1024);
+    r.String("render.demodulation", c.render.demodulation, {"albedo", "brdf"});
 
     FoveationConfig& f = c.foveation;
     r.String("foveation.model", f.model, {"disc", "linear", "acuity", "uniform"});
@@ -410,6 +411,9 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Bool("output.report", c.output.report);
 
     r.Int("reference.spp", c.reference.spp, 1, 1 << 24);
+    int64_t referenceSeed = c.reference.seed;
+    r.Int64("reference.seed", referenceSeed, 0, std::numeric_limits<uint32_t>::max());
+    c.reference.seed = uint32_t(referenceSeed);
     r.String("reference.cache_dir", c.reference.cacheDir);
 
     toml::table checked = root;
@@ -481,6 +485,7 @@ toml::table ToTable(const RunConfig& c) {
                             {"seed", int64_t(c.run.seed)},
                             {"threads", c.run.threads},
                             {"max_depth", c.run.maxDepth}}},
+        {"render", toml::table{{"demodulation", c.render.demodulation}}},
         {"foveation", toml::table{{"model", f.model},
                                   {"spp_inside", f.sppInside},
                                   {"spp_outside", f.sppOutside},
@@ -515,7 +520,9 @@ toml::table ToTable(const RunConfig& c) {
                                {"write_inputs", c.output.writeInputs},
                                {"exposure", CleanFloat(c.output.exposure)},
                                {"report", c.output.report}}},
-        {"reference", toml::table{{"spp", c.reference.spp}, {"cache_dir", c.reference.cacheDir}}},
+        {"reference", toml::table{{"spp", c.reference.spp},
+                                  {"seed", int64_t(c.reference.seed)},
+                                  {"cache_dir", c.reference.cacheDir}}},
     };
     InsertDenoiserParams(root, c.denoise.params);
     return root;

@@ -17,6 +17,10 @@
 //   [run]        frames = 16, first_frame = 0, fps = 0 (frame i at i/fps s; 0 = the scene's
 //                frame_rate), seed = 1,
 //                threads = 0 (0 = all cores), max_depth = 2 (1 = direct only, 2 = one bounce)
+//   [render]     demodulation = "albedo"|"brdf": what the tracer divides direct / indirect by
+//                (the primary albedo, or the BRDF pre-integration F_β, SPEC §6); both factor
+//                planes are written either way, and a denoiser named "<name>+brdf"/"+albedo"
+//                re-demodulates to its own (denoise/variants.h)
 //   [foveation]  model = "disc"|"linear"|"acuity"|"uniform", spp_inside = 8, spp_outside = 1,
 //                radius_px = 200, radius_reference_width = 1280, radius_deg = 0, spp_max = 8,
 //                spp_min = 1, foveal_deg = 5, peripheral_deg = 30, omega0_deg = 1/48,
@@ -32,7 +36,7 @@
 //                tables in denoise/params.cpp (key, default, range, doc; `fovrt config --keys`)
 //   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = true,
 //                exposure = 0 (stops, PNG only), report = true
-//   [reference]  spp = 1024, cache_dir = "cache/reference"
+//   [reference]  spp = 1024, seed = 1 (the reference's own; independent of run.seed), cache_dir = "cache/reference"
 #pragma once
 
 #include <array>
@@ -69,6 +73,10 @@ struct RunSettings {
     int maxDepth = 2;    // path vertices after the camera: 1 = direct only, 2 = one indirect bounce
 };
 
+struct RenderConfig {
+    std::string demodulation = "albedo";  // "albedo" | "brdf" (core/frame_inputs.h Demodulation)
+};
+
 using FoveationConfig = FoveationParams;
 using GazeConfig = GazeParams;
 
@@ -89,6 +97,9 @@ struct OutputConfig {
 
 struct ReferenceConfig {
     int spp = 1024;
+    // The reference's own sampling seed: fixed, so every run seed is scored against the same
+    // reference (its noise is then one bias shared by all seeds and variants, not seed noise).
+    uint32_t seed = 1;
     std::string cacheDir = "cache/reference";
 };
 
@@ -96,6 +107,7 @@ struct RunConfig {
     SceneConfig scene;
     CameraConfig camera;
     RunSettings run;
+    RenderConfig render;
     FoveationConfig foveation;
     GazeConfig gaze;
     DenoiseConfig denoise;

@@ -25,6 +25,11 @@ DenoiserSet::DenoiserSet(const DenoiseConfig& config) {
     }
 }
 
+void DenoiserSet::Reset() {
+    for (Variant& variant : variants_)
+        for (auto& eye : variant.eyes) eye->Reset();
+}
+
 std::string DenoiserSet::DeviceDescription() const {
     if (context_) return "vulkan (" + context_->deviceName() + ")";
     return "cpu (C++ reference)";

@@ -21,6 +21,9 @@ public:
     size_t size() const { return variants_.size(); }
     const std::string& Name(size_t variant) const { return variants_[variant].name; }
     Denoiser& At(size_t variant, int eye) { return *variants_[variant].eyes[size_t(eye)]; }
+    // Drops every history of every variant and eye: the next frame is denoised as by a fresh set
+    // (an experiment's next run seed), without re-creating the pipelines.
+    void Reset();
     // "vulkan (<device name>)" or "cpu (C++ reference)".
     std::string DeviceDescription() const;
     const VulkanContext* Context() const { return context_ ? &*context_ : nullptr; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include <fmt/format.h>
@@ -12,14 +13,18 @@
 #include "app/config_cli.h"
 #include "app/config_io.h"
 #include "app/denoiser_set.h"
+#include "app/experiment_shards.h"
+#include "app/experiment_stats.h"
 #include "app/frame_pipeline.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
 #include "app/report_collect.h"
 #include "app/report_html.h"
+#include "app/report_summary.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/nearest_name.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
 #include "io/exr.h"
@@ -27,7 +32,24 @@
 namespace fovrt {
 namespace {
 
+// Per instance: 1 when a material of its mesh has a roughness or metallic map (scene-file maps
+// or glTF metallic-roughness): the "detail" region of brdf-demodulation experiments (issue #13).
+std::vector<uint8_t> InstancesWithMaterialMaps(const Scene& scene) {
+    std::vector<uint8_t> out(scene.instances.size(), 0);
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+        for (uint32_t m : scene.meshes[scene.instances[i].mesh].materials) {
+            const Material& material = scene.materials[m];
+            if (material.roughnessTexture >= 0 || material.metallicTexture >= 0 ||
+                material.metallicRoughnessTexture >= 0)
+                out[i] = 1;
+        }
+    return out;
+}
+
+
 namespace fs = std::filesystem;
+
+constexpr int64_t kMaxSeed = std::numeric_limits<uint32_t>::max();
 
 double MsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -50,35 +72,6 @@ std::vector<std::string> StringArray(const toml::table& table, const std::string
 }
 
 
-// Mean per-pass milliseconds per variant, over every frame and eye.
-class TimingTable {
-public:
-    void Add(const std::string& variant, const std::string& pass, double ms) {
-        auto& [sum, count] = sums_[variant][pass];
-        sum += ms;
-        ++count;
-        if (std::find(order_.begin(), order_.end(), variant) == order_.end()) order_.push_back(variant);
-    }
-    ReportTable ToReport(const std::string& title) const {
-        ReportTable table{title, {"variant", "pass", "mean ms", "samples"}, {}};
-        for (const std::string& variant : order_)
-            for (const auto& [pass, sc] : sums_.at(variant))
-                table.rows.push_back({variant, pass, fmt::format("{:.3f}", sc.first / double(sc.second)),
-                                      std::to_string(sc.second)});
-        return table;
-    }
-    nlohmann::json ToJson() const {
-        nlohmann::json j = nlohmann::json::object();
-        for (const auto& [variant, passes] : sums_)
-            for (const auto& [pass, sc] : passes) j[variant][pass] = sc.first / double(sc.second);
-        return j;
-    }
-
-private:
-    std::map<std::string, std::map<std::string, std::pair<double, int>>> sums_;
-    std::vector<std::string> order_;
-};
-
 // A scene's label in file names, reports and manifests: its `name` (not the path it was given
 // by), reduced to [A-Za-z0-9._-] so it is one path component under output.dir; a label already
 // used in this experiment gets "-2", "-3", ...
@@ -95,6 +88,27 @@ std::string SceneLabel(const std::string& name, std::vector<std::string>& used) 
         unique = fmt::format("{}-{}", label, n);
     used.push_back(unique);
     return unique;
+}
+
+std::string SeedsText(const std::vector<uint32_t>& seeds) {
+    std::string out;
+    for (uint32_t s : seeds) out += (out.empty() ? "" : ", ") + std::to_string(s);
+    return out;
+}
+
+// Blink, and the gaze's angular speed since the previous valid sample (head space), for the
+// report's per-frame plots.
+GazeMark GazeMarkOf(int frame, const GazeSample& gaze, const std::optional<GazeSample>& previous) {
+    GazeMark mark;
+    mark.frame = frame;
+    mark.blink = !gaze.valid;
+    if (gaze.valid && previous && previous->valid && gaze.timeSeconds > previous->timeSeconds) {
+        const double cosine = std::clamp(double(glm::dot(glm::normalize(gaze.direction),
+                                                         glm::normalize(previous->direction))), -1.0, 1.0);
+        mark.speedDegPerSecond = std::acos(cosine) * 180.0 / 3.14159265358979 /
+                                 (gaze.timeSeconds - previous->timeSeconds);
+    }
+    return mark;
 }
 
 ReportTable MemoryTable(const RunConfig& config) {
@@ -123,16 +137,54 @@ FoveaRadius MetricFovea(const FoveationParams& f, int imageWidth) {
     return FoveaRadius::Degrees(5.0f);  // the first eccentricity band
 }
 
-ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
-                              const std::vector<std::string>& scenes, const std::string& replayPath,
-                              bool allowChanges) {
+std::vector<uint32_t> ParseSeedsOption(const std::string& text, uint32_t first) {
+    auto bad = [&](const std::string& why) -> std::vector<uint32_t> {
+        Fail("--seeds {}: {} (a count N >= 1, or a list such as 1,2,3)", text.empty() ? "''" : text, why);
+    };
+    std::vector<int64_t> numbers;
+    size_t pos = 0;
+    while (true) {
+        const size_t comma = text.find(',', pos);
+        const std::string part = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+        if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos || part.size() > 10)
+            return bad(fmt::format("'{}' is not a non-negative integer", part));
+        numbers.push_back(std::stoll(part));
+        if (numbers.back() > kMaxSeed) return bad(fmt::format("{} is above 2^32 - 1", part));
+        if (comma == std::string::npos) break;
+        pos = comma + 1;
+    }
+    std::vector<uint32_t> seeds;
+    if (numbers.size() == 1 && text.find(',') == std::string::npos) {
+        if (numbers[0] < 1 || numbers[0] > 1000) return bad("the count must be in [1, 1000]");
+        if (int64_t(first) + numbers[0] - 1 > kMaxSeed) return bad("run.seed + N - 1 is above 2^32 - 1");
+        for (int64_t i = 0; i < numbers[0]; ++i) seeds.push_back(uint32_t(first + uint32_t(i)));
+        return seeds;
+    }
+    for (int64_t n : numbers) {
+        if (std::find(seeds.begin(), seeds.end(), uint32_t(n)) != seeds.end())
+            return bad(fmt::format("seed {} is listed twice", n));
+        seeds.push_back(uint32_t(n));
+    }
+    return seeds;
+}
+
+ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs& args) {
+    const bool quick = args.quick;
+    const std::vector<std::string>& scenes = args.scenes;
+    const std::string& replayPath = args.replayPath;
+    const bool allowChanges = args.allowChanges;
     if (options.configPath.empty()) Fail("fovrt experiment needs an experiment file (e.g. presets/thesis-foveated.toml)");
     if (allowChanges && replayPath.empty()) Fail("--allow-changes needs --replay FILE");
     if (!replayPath.empty() && !scenes.empty())
         Fail("--scene and --replay exclude each other (a recording has its own scene)");
+    if (!replayPath.empty() && !args.seeds.empty())
+        Fail("--seeds and --replay exclude each other (a recording is rendered with its own run.seed)");
     ExperimentSpec spec;
     spec.file = options.configPath;
     spec.quick = quick;
+    if (!args.shard.empty()) spec.shard = ParseShard(args.shard);
+    spec.merge = args.merge;
+    if (spec.merge && spec.shard.Sharded()) Fail("--merge and --shard exclude each other");
     const std::string file = spec.file.string();
     toml::table experiment;
     // The config with the variants as its denoisers (a replay checks the list it renders with).
@@ -140,8 +192,10 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
         RunConfig config = ResolveExperimentConfig(resolved, quick, experiment);
         for (const auto& [key, node] : experiment) {
             std::string k(key.str());
-            if (k != "scenes" && k != "variants" && k != "visual_frame" && k != "quick")
-                Fail("{}: unknown key experiment.{}", file, k);
+            static const std::vector<std::string> known = {"scenes", "variants", "visual_frame", "quick",
+                                                           "seeds", "baseline"};
+            if (std::find(known.begin(), known.end(), k) == known.end())
+                Fail("{}: unknown key experiment.{} (did you mean experiment.{}?)", file, k, NearestName(k, known));
         }
         spec.variants = StringArray(experiment, "variants", file);
         for (const std::string& variant : spec.variants)
@@ -160,6 +214,36 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
             std::fprintf(stderr, "fovrt experiment: replay: experiment.scenes is ignored (the recording's scene '%s' "
                                  "is rendered)\n", spec.config.scene.name.c_str());
     }
+    if (const toml::node* baseline = experiment.get("baseline")) {
+        auto value = baseline->value<std::string>();
+        if (!value) Fail("{}: experiment.baseline must be a string (one of experiment.variants)", file);
+        if (std::find(spec.variants.begin(), spec.variants.end(), *value) == spec.variants.end())
+            Fail("{}: experiment.baseline '{}' is not in experiment.variants (did you mean '{}'?)", file, *value,
+                 NearestName(*value, spec.variants));
+        spec.baseline = *value;
+    } else {
+        spec.baseline = spec.variants.front();
+    }
+    if (!args.seeds.empty()) {
+        spec.seeds = ParseSeedsOption(args.seeds, spec.config.run.seed);
+    } else if (const toml::node* seeds = experiment.get("seeds"); seeds && !spec.replay) {
+        const toml::array* array = seeds->as_array();
+        if (!array || array->empty())
+            Fail("{}: experiment.seeds must be a non-empty array of integers in [0, 2^32), e.g. [1, 2, 3]", file);
+        for (const toml::node& element : *array) {
+            auto value = element.value<int64_t>();
+            if (!element.is_integer() || !value || *value < 0 || *value > kMaxSeed)
+                Fail("{}: experiment.seeds must hold only integers in [0, 2^32), e.g. [1, 2, 3]", file);
+            if (std::find(spec.seeds.begin(), spec.seeds.end(), uint32_t(*value)) != spec.seeds.end())
+                Fail("{}: experiment.seeds lists seed {} twice", file, *value);
+            spec.seeds.push_back(uint32_t(*value));
+        }
+    } else {
+        if (spec.replay && experiment.contains("seeds"))
+            std::fprintf(stderr, "fovrt experiment: replay: experiment.seeds is ignored (the recording's run.seed %u "
+                                 "is rendered)\n", spec.config.run.seed);
+        spec.seeds = {spec.config.run.seed};
+    }
     if (const toml::node* frame = experiment.get("visual_frame")) {
         auto value = frame->value<int64_t>();
         if (!value || *value < -1) Fail("{}: experiment.visual_frame must be an integer ≥ -1", file);
@@ -168,150 +252,255 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, bool quick,
     return spec;
 }
 
-Results RunExperiment(const ExperimentSpec& spec) {
-    const RunConfig& base = spec.config;
-    OutputDir out(base.output.dir, "output.dir");
-    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
-    const fs::path outDir = out.Path();
-    fs::remove(outDir / "manifest.json");  // present only once this run is complete
+namespace {
 
-    auto totalStart = std::chrono::steady_clock::now();
-    Results results;
-    TimingTable timings;
+bool Owns(const std::vector<RunUnit>& units, size_t scene, size_t seed, int eye, size_t variant) {
+    for (const RunUnit& u : units)
+        if (u.scene == scene && u.seed == seed && u.eye == eye && u.variant == variant) return true;
+    return false;
+}
+
+// Computes the runs in `units` (all of them for a single machine): per scene and run seed that has
+// a run, the frames are rendered once (stereo) and fed to the runs' denoisers; the references of the
+// runs' eyes come from the shared cache.
+ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit>& units, const fs::path& outDir) {
+    const RunConfig& base = spec.config;
+    const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
+    ExperimentPart part;
+    std::vector<std::string> labels;
+    size_t seedRuns = 0;
+    for (size_t sc = 0; sc < spec.scenes.size(); ++sc)
+        for (size_t sd = 0; sd < seeds.size(); ++sd)
+            for (const RunUnit& u : units)
+                if (u.scene == sc && u.seed == sd) {
+                    ++seedRuns;
+                    break;
+                }
+    Progress progress("experiment", int(seedRuns) * base.run.frames);
+    for (size_t sceneIndex = 0; sceneIndex < spec.scenes.size(); ++sceneIndex) {
+        const std::string& sceneName = spec.scenes[sceneIndex];
+        RunConfig sceneConfig = base;
+        sceneConfig.scene.name = sceneName;
+        std::vector<BufferPlan> plan = PlanRunMemory(sceneConfig);
+        EnforceMemoryBudget(plan, sceneConfig.memoryBudget, "experiment");
+
+        SceneRecord record;
+        record.index = sceneIndex;
+        record.requested = sceneName;
+        SceneVisuals& visuals = record.visuals;
+        bool touched = false;
+        ReferenceCache cache(sceneConfig.reference.cacheDir);  // shared by every seed
+        // The denoisers' pipelines are built once per scene (on lavapipe each one is compiled);
+        // their histories are reset for every seed. Only the variants of this part's runs.
+        std::vector<std::string> sceneVariants;
+        for (size_t v = 0; v < spec.variants.size(); ++v)
+            for (const RunUnit& u : units)
+                if (u.scene == sceneIndex && u.variant == v) {
+                    sceneVariants.push_back(spec.variants[v]);
+                    break;
+                }
+        if (sceneVariants.empty()) continue;
+        sceneConfig.denoise.denoisers = sceneVariants;
+        DenoiserSet denoisers(sceneConfig.denoise);
+        part.deviceDescription = denoisers.DeviceDescription();
+        // One full pass per run seed: a fresh pipeline (the tracer samples with the seed) and fresh
+        // denoiser histories, as a separate run with that seed would have.
+        for (size_t seedIndex = 0; seedIndex < seeds.size(); ++seedIndex) {
+            // The runs of this scene and seed: which eyes, which variants.
+            std::vector<std::string> variants;
+            std::array<bool, 2> eyes{false, false};
+            for (size_t v = 0; v < spec.variants.size(); ++v)
+                for (int eye = 0; eye < 2; ++eye)
+                    if (Owns(units, sceneIndex, seedIndex, eye, v)) {
+                        eyes[size_t(eye)] = true;
+                        if (std::find(variants.begin(), variants.end(), spec.variants[v]) == variants.end())
+                            variants.push_back(spec.variants[v]);
+                    }
+            if (variants.empty()) continue;
+            RunConfig config = sceneConfig;
+            config.run.seed = seeds[seedIndex];
+            const bool firstSeed = seedIndex == 0;
+            FramePipeline pipeline(spec.replay ? ReplayPipelineConfig(config) : config);
+            std::optional<Replay> replay = spec.replay;
+            if (replay) {
+                CheckReplayScene(*replay, pipeline);
+                part.replayRecord = replay->ToJson();
+            }
+            FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
+            if (!touched) {
+                record.label = SceneLabel(pipeline.GetScene().name, labels);
+                record.fingerprint = SceneFingerprint(pipeline.GetScene());
+                record.source = pipeline.GetScene().sourcePath.string();
+                touched = true;
+            }
+            const std::string& label = record.label;
+            denoisers.Reset();
+            MetricsCollector collector(part.results);
+            const std::vector<uint8_t> detailInstances = InstancesWithMaterialMaps(pipeline.GetScene());
+            const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
+            const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
+            const bool visualsHere = firstSeed && eyes[0];  // the report shows eye 0 of the first seed
+            if (visualsHere) {
+                record.hasVisuals = true;
+                visuals.scene = label;
+                visuals.width = config.camera.width;
+                visuals.height = config.camera.height;
+                visuals.eye = 0;
+                visuals.seed = config.run.seed;
+                visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
+            }
+
+            RecordedFrame request;
+            StereoFrame frame;
+            std::optional<GazeSample> previousGaze;
+            std::vector<Plane<vec3>> outputs(denoisers.size());
+            while (sequence.Next(request)) {
+                const uint32_t index = request.request.frame;
+                pipeline.Render(request.request, frame);
+                if (firstSeed) {
+                    record.blinkFrames += frame.gaze.valid ? 0 : 1;
+                    if (visualsHere) visuals.gazeMarks.push_back(GazeMarkOf(int(index), frame.gaze, previousGaze));
+                    previousGaze = frame.gaze;
+                }
+                for (int eye = 0; eye < 2; ++eye) {
+                    if (!eyes[size_t(eye)]) continue;
+                    EyeFrame& e = frame.eyes[size_t(eye)];
+                    record.renderMs += e.renderMs;
+                    const EyeCamera& camera = e.camera;
+
+                    auto start = std::chrono::steady_clock::now();
+                    ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), record.fingerprint, index,
+                                                        frame.timeSeconds, eye, camera,
+                                                        config.reference.spp, config.run.maxDepth,
+                                                        config.reference.seed);
+                    bool hit = false;
+                    Plane<vec3> reference = cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
+                    record.referenceHits += hit ? 1 : 0;
+                    ++record.referenceLookups;
+                    ++record.eyeFrames;
+                    record.referenceMs += MsSince(start);
+
+                    EyeFrameImages images;
+                    images.scene = label;
+                    images.seed = config.run.seed;
+                    images.frame = int(index);
+                    images.eye = eye;
+                    images.camera = camera;
+                    images.gazeEye = e.gazeEye;
+                    images.fovea = fovea;
+                    images.cameraCut = e.inputs.cameraCut;
+                    images.reference = &reference;
+                    // "detail": pixels whose primary hit is an instance with roughness/metallic maps.
+                    Plane<uint8_t> detail(camera.width(), camera.height(), uint8_t(0));
+                    for (size_t p = 0; p < detail.size(); ++p) {
+                        const uint32_t id = e.inputs.objectId[p];
+                        detail[p] = id < detailInstances.size() ? detailInstances[id] : uint8_t(0);
+                    }
+                    images.detailMask = &detail;
+                    for (size_t v = 0; v < denoisers.size(); ++v) {
+                        const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(),
+                                                                denoisers.Name(v)) - spec.variants.begin());
+                        if (!Owns(units, sceneIndex, seedIndex, eye, variant)) continue;
+                        Denoiser& denoiser = denoisers.At(v, eye);
+                        denoiser.Denoise(e.inputs, outputs[v]);
+                        for (const PassTiming& t : denoiser.LastTimings())
+                            part.timings.Add(denoisers.Name(v), t.pass, t.ms);
+                        images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
+                        if (config.output.writeExr)
+                            WriteRgbExr(outDir / label / denoisers.Name(v) /
+                                            fmt::format("{}f{:05d}_{}.exr",
+                                                        seeds.size() > 1 ? fmt::format("s{}_", config.run.seed) : "",
+                                                        index, eye == 0 ? "left" : "right"),
+                                        outputs[v]);
+                    }
+                    collector.Add(images);
+
+                    if (visualsHere && eye == visuals.eye) {
+                        visuals.gazePath.push_back(e.gazePixel);
+                        if (int(index) == visualFrame) {
+                            visuals.frame = int(index);
+                            visuals.gazePixel = e.gazePixel;
+                            visuals.sppMap = e.sppMap;
+                            visuals.reference = reference;
+                            visuals.noisy = e.inputs.NoisyImage();
+                            visuals.variants.clear();
+                            for (const auto& [name, image] : images.outputs) visuals.variants.emplace_back(name, *image);
+                        }
+                    }
+                }
+                progress.Step(seeds.size() > 1 ? fmt::format("{} seed {} frame {}", label, config.run.seed, index)
+                                               : fmt::format("{} frame {}", label, index));
+            }
+            RenderStats stats = pipeline.GetRenderer().Stats();
+            record.rays += stats.Rays();
+            record.droppedSamples += stats.droppedSamples;
+        }
+        if (touched) part.scenes.push_back(std::move(record));
+    }
+    progress.Finish();
+    return part;
+}
+
+// The outputs of a whole experiment, from one machine's part or the merged parts of its shards.
+Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part, const fs::path& outDir,
+                               std::chrono::steady_clock::time_point totalStart) {
+    const RunConfig& base = spec.config;
+    const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
+    std::map<std::string, size_t> sceneIndex;
+    for (const SceneRecord& r : part.scenes) sceneIndex[r.label] = r.index;
+    SortRowsCanonically(part.results, sceneIndex, seeds, spec.variants);
+    Results& results = part.results;
+
     HtmlReport report;
     report.title = fmt::format("fovrt experiment: {}{}", spec.file.filename().string(),
                                spec.quick ? " (--quick)" : "");
     report.results = &results;
+    report.baseline = spec.baseline;
     nlohmann::json sceneRecords = nlohmann::json::array();
-    nlohmann::json replayRecord;  // the recording replayed, with what CheckReplayScene found
-    std::string deviceDescription;
-
-    std::vector<std::string> labels;
-    Progress progress("experiment", int(spec.scenes.size()) * base.run.frames);
-    for (const std::string& sceneName : spec.scenes) {
-        RunConfig config = base;
-        config.scene.name = sceneName;
-        std::vector<BufferPlan> plan = PlanRunMemory(config);
-        EnforceMemoryBudget(plan, config.memoryBudget, "experiment");
-
-        FramePipeline pipeline(spec.replay ? ReplayPipelineConfig(config) : config);
-        std::optional<Replay> replay = spec.replay;
-        if (replay) {
-            CheckReplayScene(*replay, pipeline);
-            replayRecord = replay->ToJson();
-        }
-        FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
-        const std::string label = SceneLabel(pipeline.GetScene().name, labels);
-        DenoiserSet denoisers(config.denoise);
-        deviceDescription = denoisers.DeviceDescription();
-        ReferenceCache cache(config.reference.cacheDir);
-        const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
-        MetricsCollector collector(results);
-        const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
-        const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
-
-        SceneVisuals visuals;
-        visuals.scene = label;
-        visuals.width = config.camera.width;
-        visuals.height = config.camera.height;
-        visuals.eye = 0;
-        visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
-        double renderMs = 0.0, referenceMs = 0.0;
-        int referenceHits = 0;
-        int blinkFrames = 0;
-
-        RecordedFrame request;
-        StereoFrame frame;
-        std::vector<Plane<vec3>> outputs(denoisers.size());
-        while (sequence.Next(request)) {
-            const uint32_t index = request.request.frame;
-            pipeline.Render(request.request, frame);
-            blinkFrames += frame.gaze.valid ? 0 : 1;
-            for (int eye = 0; eye < 2; ++eye) {
-                EyeFrame& e = frame.eyes[size_t(eye)];
-                renderMs += e.renderMs;
-                const EyeCamera& camera = e.camera;
-
-                auto start = std::chrono::steady_clock::now();
-                ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, index,
-                                                    frame.timeSeconds, eye, camera,
-                                                    config.reference.spp, config.run.maxDepth,
-                                                    config.run.seed);
-                bool hit = false;
-                Plane<vec3> reference = cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
-                referenceHits += hit ? 1 : 0;
-                referenceMs += MsSince(start);
-
-                EyeFrameImages images;
-                images.scene = label;
-                images.frame = int(index);
-                images.eye = eye;
-                images.camera = camera;
-                images.gazeEye = e.gazeEye;
-                images.fovea = fovea;
-                images.cameraCut = e.inputs.cameraCut;
-                images.reference = &reference;
-                for (size_t v = 0; v < denoisers.size(); ++v) {
-                    Denoiser& denoiser = denoisers.At(v, eye);
-                    denoiser.Denoise(e.inputs, outputs[v]);
-                    for (const PassTiming& t : denoiser.LastTimings())
-                        timings.Add(denoisers.Name(v), t.pass, t.ms);
-                    images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
-                    if (config.output.writeExr)
-                        WriteRgbExr(outDir / label / denoisers.Name(v) /
-                                        fmt::format("f{:05d}_{}.exr", index, eye == 0 ? "left" : "right"),
-                                    outputs[v]);
-                }
-                collector.Add(images);
-
-                if (eye == visuals.eye) {
-                    visuals.gazePath.push_back(e.gazePixel);
-                    if (int(index) == visualFrame) {
-                        visuals.frame = int(index);
-                        visuals.gazePixel = e.gazePixel;
-                        visuals.sppMap = e.sppMap;
-                        visuals.reference = reference;
-                        visuals.noisy = e.inputs.NoisyImage();
-                        visuals.variants.clear();
-                        for (size_t v = 0; v < denoisers.size(); ++v)
-                            visuals.variants.emplace_back(denoisers.Name(v), outputs[v]);
-                    }
-                }
-            }
-            progress.Step(fmt::format("{} frame {}", label, index));
-        }
-        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", label), results, label);
-        report.scenes.push_back(std::move(visuals));
-        RenderStats stats = pipeline.GetRenderer().Stats();
-        sceneRecords.push_back({{"scene", label},
-                                {"requested", sceneName},
-                                {"source", pipeline.GetScene().sourcePath.string()},
-                                {"fingerprint", fmt::format("{:016x}", fingerprint)},
-                                {"render_ms_per_eye", renderMs / (2.0 * config.run.frames)},
-                                {"reference_ms_per_eye", referenceMs / (2.0 * config.run.frames)},
-                                {"reference_cache_hits", referenceHits},
-                                {"rays", stats.Rays()},
-                                {"dropped_nonfinite_samples", stats.droppedSamples},
-                                {"blink_frames", blinkFrames}});
+    for (SceneRecord& r : part.scenes) {
+        WriteFrameCsv(outDir / fmt::format("frames-{}.csv", r.label), results, r.label);
+        // The report's images in the experiment's variant order.
+        std::vector<std::pair<std::string, Plane<vec3>>> ordered;
+        for (const std::string& v : spec.variants)
+            for (auto& entry : r.visuals.variants)
+                if (entry.first == v) ordered.push_back(std::move(entry));
+        r.visuals.variants = std::move(ordered);
+        report.scenes.push_back(std::move(r.visuals));
+        const double eyeFramesDenominator = std::max(1, r.eyeFrames);
+        sceneRecords.push_back({{"scene", r.label},
+                                {"requested", r.requested},
+                                {"source", r.source},
+                                {"fingerprint", fmt::format("{:016x}", r.fingerprint)},
+                                {"seeds", seeds},
+                                {"render_ms_per_eye", r.renderMs / eyeFramesDenominator},
+                                {"reference_ms_per_eye", r.referenceMs / eyeFramesDenominator},
+                                {"reference_cache_hits", r.referenceHits},
+                                {"reference_lookups", r.referenceLookups},
+                                {"rays", r.rays},
+                                {"dropped_nonfinite_samples", r.droppedSamples},
+                                {"blink_frames", r.blinkFrames}});
     }
-    progress.Finish();
 
-    WriteSummaryJson(outDir / "summary.json", results);
-    std::printf("%s", SummaryTable(results).c_str());
+    const ExperimentStats stats(results, spec.baseline);
+    WriteSummaryJson(outDir / "summary.json", results, stats);
+    std::printf("%s", SummaryTable(results, stats).c_str());
 
     report.manifest = {{"experiment", spec.file.string()},
                        {"quick", spec.quick ? "yes" : "no"},
                        {"resolution per eye", fmt::format("{}×{}", base.camera.width, base.camera.height)},
                        {"frames", std::to_string(base.run.frames)},
-                       {"seed", std::to_string(base.run.seed)},
+                       {"seeds", SeedsText(seeds)},
+                       {"baseline", spec.baseline},
+                       {"reference seed", std::to_string(base.reference.seed)},
                        {"foveation", base.foveation.model},
                        {"gaze", base.gaze.source},
                        {"reference spp", std::to_string(base.reference.spp)},
-                       {"denoise device", deviceDescription},
+                       {"denoise device", part.deviceDescription},
                        {"relMSE ε", "0.01"},
                        {"fovrt", FOVRT_VERSION}};
     report.tables.push_back(MemoryTable(base));
-    report.tables.push_back(timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
+    report.tables.push_back(part.timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
+    report.stats = &stats;
     if (base.output.report) WriteHtmlReport(outDir / "report.html", report);
 
     nlohmann::json manifest;
@@ -319,23 +508,69 @@ Results RunExperiment(const ExperimentSpec& spec) {
     manifest["complete"] = true;
     manifest["experiment_file"] = spec.file.string();
     manifest["quick"] = spec.quick;
-    if (spec.replay) manifest["replay"] = replayRecord;
+    if (spec.replay) manifest["replay"] = part.replayRecord;
     manifest["scenes"] = sceneRecords;
     manifest["variants"] = spec.variants;
+    manifest["baseline"] = spec.baseline;
+    manifest["seeds"] = seeds;
     manifest["build"] = BuildInfoJson();
     // The config as rendered: scene.name is the scene each pass used (experiment.scenes or
     // --scene replace it), one string for one scene, else the list in order.
     manifest["config"] = ConfigToJson(base);
     if (spec.scenes.size() == 1) manifest["config"]["scene"]["name"] = spec.scenes.front();
     else manifest["config"]["scene"]["name"] = spec.scenes;
-    manifest["denoise_device"] = deviceDescription;
-    manifest["pass_ms"] = timings.ToJson();
+    if (spec.merge) manifest["merged_shards"] = true;
+    manifest["denoise_device"] = part.deviceDescription;
+    manifest["pass_ms"] = part.timings.MeansJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
-    out.Keep();
-    cacheDir.Keep();
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
+    if (base.output.report) std::printf("HTML report: %s\n", (outDir / "report.html").string().c_str());
+    return results;
+}
+
+std::string RerunCommand(const ExperimentSpec& spec) {
+    return fmt::format("fovrt experiment {}{} --shard I/N (the same options as the others)", spec.file.string(),
+                       spec.quick ? " --quick" : "");
+}
+
+}  // namespace
+
+Results RunExperiment(const ExperimentSpec& spec) {
+    const RunConfig& base = spec.config;
+    OutputDir out(base.output.dir, "output.dir");
+    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
+    const fs::path outDir = out.Path();
+    const fs::path shardsDir = outDir / "shards";
+    auto totalStart = std::chrono::steady_clock::now();
+    const std::string fingerprint = ExperimentFingerprint(spec);
+    if (spec.merge) {
+        ExperimentPart part = MergeShardParts(shardsDir, fingerprint, RerunCommand(spec));
+        fs::remove(outDir / "manifest.json");  // present only once the merged outputs are complete
+        Results results = WriteExperimentOutputs(spec, part, outDir, totalStart);
+        out.Keep();
+        cacheDir.Keep();
+        return results;
+    }
+    const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
+    const std::vector<RunUnit> all = ExperimentUnits(spec.scenes.size(), seeds.size(), spec.variants.size());
+    if (spec.shard.Sharded()) {
+        const std::vector<RunUnit> units = ShardUnits(all, spec.shard);
+        ExperimentPart part = ComputeRuns(spec, units, outDir);
+        WriteShardPart(shardsDir, spec.shard, fingerprint, part);
+        out.Keep();
+        cacheDir.Keep();
+        std::fprintf(stderr, "fovrt experiment: %s (%zu of %zu runs) done in %.1f s -> %s\n", spec.shard.Name().c_str(),
+                     units.size(), all.size(), MsSince(totalStart) / 1000.0,
+                     (shardsDir / spec.shard.Name()).string().c_str());
+        return part.results;
+    }
+    fs::remove(outDir / "manifest.json");  // present only once this run is complete
+    ExperimentPart part = ComputeRuns(spec, all, outDir);
+    Results results = WriteExperimentOutputs(spec, part, outDir, totalStart);
+    out.Keep();
+    cacheDir.Keep();
     return results;
 }
 

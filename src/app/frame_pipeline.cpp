@@ -58,6 +58,7 @@ FramePipeline::FramePipeline(const RunConfig& config)
     settings.seed = config.run.seed;
     settings.threads = config.run.threads;
     settings.gradientSamples = AnyDenoiserNeedsGradients(config.denoise);
+    ParseDemodulation(config.render.demodulation, settings.demodulation);  // validated by the config
     renderer_ = CreateRenderer(scene_, settings);
     sppModel_ = CreateSppModel(config.foveation);
     gaze_ = CreateGazeSource(config.gaze, ResolveFov(config, scene_));

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     fovrt::RegisterReferenceCommand(app);
     fovrt::RegisterDatasetCommand(app);
     fovrt::RegisterExperimentCommand(app);
+    fovrt::RegisterClusterCommand(app);
     fovrt::RegisterInfoCommand(app);
     fovrt::RegisterConfigCommand(app);
     fovrt::RegisterBenchCommand(app);

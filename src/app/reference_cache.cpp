@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/rng.h"
 #include "io/exr.h"
 #include "scene/scene_serialize.h"
 
@@ -53,7 +54,7 @@ ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t
 
 std::string ReferenceKey::Hex() const {
     Fnv1a h;
-    h.String("fovrt-reference-v2");  // v2: the scene part is SerializeScene's stream
+    h.String("fovrt-reference-v3");  // v3: sampled with the key's seed and frame, not the run's
     h.Value(sceneFingerprint);
     h.Value(frame);
     h.Value(timeSeconds);
@@ -90,7 +91,7 @@ Plane<vec3> ReferenceCache::GetOrRender(const ReferenceKey& key, Renderer& rende
     }
     if (hit) *hit = false;
     Plane<vec3> image;
-    renderer.RenderReference(key.eye, key.camera, key.spp, image);
+    renderer.RenderReference(key.eye, key.camera, key.spp, HashCombine(key.seed, key.frame), image);
     WriteRgbExr(PathOf(key), image);
     Remember(key.Hex(), image);
     return image;

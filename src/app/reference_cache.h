@@ -1,6 +1,8 @@
 // ReferenceCache: high-spp ground-truth frames on disk, keyed by everything that changes them
-// (scene content, frame time, eye camera, resolution, spp, path length, seed), so repeated
-// experiments never re-render a reference. Entries are RGB EXRs written atomically.
+// (scene content, frame time, eye camera, resolution, spp, path length, reference seed), so
+// repeated experiments never re-render a reference. Entries are RGB EXRs written atomically. The
+// image is sampled with HashCombine(seed, frame) of the key (frame 0 for a static scene), so it
+// is a function of the key alone: which frame rendered it first, and the run seed, do not matter.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +31,7 @@ struct ReferenceKey {
     EyeCamera camera;
     int spp = 0;
     int maxDepth = 0;
-    uint32_t seed = 0;
+    uint32_t seed = 0;  // reference.seed (never the run seed: every run seed shares the reference)
 
     std::string Hex() const;  // the file stem of the cache entry
 };

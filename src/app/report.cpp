@@ -78,6 +78,19 @@ std::optional<SummaryValue> Results::Mean(const std::string& scene, const std::s
     return SummaryValue{sum / double(count), count};
 }
 
+std::vector<uint32_t> Results::Seeds(const std::string& scene) const {
+    std::vector<uint32_t> out;
+    for (const ResultRow& r : rows_)
+        if (r.scene == scene && std::find(out.begin(), out.end(), r.seed) == out.end()) out.push_back(r.seed);
+    return out;
+}
+
+std::string BaselineOf(const Results& results, const std::string& scene, const std::string& requested) {
+    const std::vector<std::string> variants = results.Variants(scene);
+    if (std::find(variants.begin(), variants.end(), requested) != variants.end()) return requested;
+    return variants.empty() ? std::string() : variants.front();
+}
+
 std::vector<std::pair<int, double>> Results::PerFrame(const std::string& scene, const std::string& variant,
                                                       const std::string& region,
                                                       const std::string& metric) const {
@@ -105,102 +118,16 @@ std::string FormatPercent(double percent, int decimals) {
 }
 
 std::string FrameCsv(const Results& results, const std::string& scene) {
-    std::string out = "frame,eye,variant,region,metric,value\n";
+    std::string out = "seed,frame,eye,variant,region,metric,value\n";
     for (const ResultRow& r : results.rows())
         if (r.scene == scene)
-            out += fmt::format("{},{},{},{},{},{}\n", r.frame, r.eye, CsvField(r.variant), CsvField(r.region),
-                               CsvField(r.metric), FormatValue(r.value));
+            out += fmt::format("{},{},{},{},{},{},{}\n", r.seed, r.frame, r.eye, CsvField(r.variant),
+                               CsvField(r.region), CsvField(r.metric), FormatValue(r.value));
     return out;
 }
 
 void WriteFrameCsv(const std::filesystem::path& path, const Results& results, const std::string& scene) {
     WriteTextAtomically(path, FrameCsv(results, scene));
-}
-
-nlohmann::json SummaryJson(const Results& results, const std::string& baseline) {
-    nlohmann::json j;
-    j["relmse_epsilon"] = results.relMseEpsilon;
-    j["baseline"] = baseline;
-    j["aggregation"] = "mean over frames and eyes";
-    j["definitions"] = {
-        {"relmse", "mean over pixels and RGB of (y-r)^2/(r^2+eps), HDR"},
-        {"ssim", "Wang 2004, 11x11 Gaussian sigma 1.5, K1 0.01, K2 0.03, L 1, on the Rec.709 luma of "
-                 "tonemapped values (clamp to [0,1], sRGB encode); window renormalised at borders"},
-        {"flip", "LDR-FLIP (Andersson 2020) on the same tonemap at the eye's pixels per degree"},
-        {"temporal", "mean |lum(out_t) - lum(out_t-1)| of the same variant, HDR Rec.709 luminance"},
-        {"regions", "fovea: gaze-centred disc; periphery: complement; eccN-M: view-ray angle to gaze in [N,M) deg"}};
-    nlohmann::json scenes = nlohmann::json::object();
-    for (const std::string& scene : results.Scenes()) {
-        nlohmann::json variants = nlohmann::json::object();
-        for (const std::string& variant : results.Variants(scene)) {
-            nlohmann::json regions = nlohmann::json::object();
-            for (const std::string& region : results.Regions(scene)) {
-                nlohmann::json metrics = nlohmann::json::object();
-                for (const std::string& metric : results.Metrics(scene)) {
-                    auto m = results.Mean(scene, variant, region, metric);
-                    if (!m) continue;
-                    nlohmann::json entry = {{"mean", m->mean}, {"count", m->count}};
-                    auto base = results.Mean(scene, baseline, region, metric);
-                    auto pct = PercentRelative(m->mean, base ? std::optional<double>(base->mean) : std::nullopt);
-                    entry["percent_vs_baseline"] = pct ? nlohmann::json(*pct) : nlohmann::json(nullptr);
-                    metrics[metric] = entry;
-                }
-                if (!metrics.empty()) regions[region] = metrics;
-            }
-            variants[variant] = regions;
-        }
-        scenes[scene] = {{"variants", variants}};
-    }
-    j["scenes"] = scenes;
-    return j;
-}
-
-void WriteSummaryJson(const std::filesystem::path& path, const Results& results, const std::string& baseline) {
-    WriteTextAtomically(path, SummaryJson(results, baseline).dump(2) + "\n");
-}
-
-std::string SummaryTable(const Results& results, const std::string& baseline) {
-    std::string out;
-    struct Column {
-        const char* metric;
-        const char* region;
-        const char* label;
-    };
-    const Column columns[] = {{"relmse", "whole", "relMSE"},
-                              {"relmse", "fovea", "relMSE fovea"},
-                              {"ssim", "whole", "SSIM"},
-                              {"ssim", "fovea", "SSIM fovea"}};
-    for (const std::string& scene : results.Scenes()) {
-        const bool hasBaseline = !results.Variants(scene).empty() &&
-                                 std::ranges::count(results.Variants(scene), baseline) > 0;
-        out += fmt::format("Scene {}  (mean over frames and eyes; relMSE eps = {:g}; % vs {})\n", scene,
-                           results.relMseEpsilon, hasBaseline ? baseline : std::string("n/a"));
-        out += fmt::format("{:<20}", "variant");
-        for (const Column& c : columns) out += fmt::format(" {:>13}", c.label);
-        for (const Column& c : columns) out += fmt::format(" {:>14}", fmt::format("%{}", c.label));
-        out += "\n";
-        for (const std::string& variant : results.Variants(scene)) {
-            out += fmt::format("{:<20}", variant);
-            for (const Column& c : columns) {
-                auto m = results.Mean(scene, variant, c.region, c.metric);
-                std::string cell = !m ? "-"
-                                      : std::string(c.metric) == "relmse" ? fmt::format("{:.3e}", m->mean)
-                                                                          : fmt::format("{:.4f}", m->mean);
-                out += fmt::format(" {:>13}", cell);
-            }
-            for (const Column& c : columns) {
-                auto m = results.Mean(scene, variant, c.region, c.metric);
-                auto b = results.Mean(scene, baseline, c.region, c.metric);
-                std::optional<double> pct;
-                if (m && variant != baseline) pct = PercentRelative(m->mean, b ? std::optional<double>(b->mean) : std::nullopt);
-                std::string cell = !pct ? "-" : FormatPercent(*pct, std::string(c.metric) == "relmse" ? 3 : 4);
-                out += fmt::format(" {:>14}", cell);
-            }
-            out += "\n";
-        }
-        out += "\n";
-    }
-    return out;
 }
 
 }  // namespace fovrt

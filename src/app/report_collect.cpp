@@ -7,6 +7,7 @@ namespace fovrt {
 RegionSet MetricsCollector::Add(const EyeFrameImages& images) {
     FOVRT_CHECK(images.reference != nullptr);
     RegionSet regions = RegionSet::Build(images.camera, images.gazeEye, images.fovea);
+    if (images.detailMask) regions.AddMask("detail", *images.detailMask);
     MetricOptions options;
     options.pixelsPerDegree = images.camera.PixelsPerDegree();
     options.relMseEpsilon = float(results_.relMseEpsilon);
@@ -18,7 +19,7 @@ RegionSet MetricsCollector::Add(const EyeFrameImages& images) {
                                  prev->second.width() == output->width() && prev->second.height() == output->height();
         ErrorMaps maps = ComputeErrorMaps(*output, *images.reference, options, hasPrevious ? &prev->second : nullptr);
         for (const RegionValue& v : MeanOverRegions(maps, regions))
-            results_.Add({images.scene, images.frame, images.eye, variant, v.region, v.metric, v.value});
+            results_.Add({images.scene, images.frame, images.eye, variant, v.region, v.metric, v.value, images.seed});
         previous_[key] = *output;
     }
     return regions;

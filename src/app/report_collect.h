@@ -19,6 +19,7 @@ namespace fovrt {
 
 struct EyeFrameImages {
     std::string scene;
+    uint32_t seed = 1;  // the run seed of the frame
     int frame = 0;
     int eye = 0;
     EyeCamera camera;
@@ -26,6 +27,7 @@ struct EyeFrameImages {
     FoveaRadius fovea;                 // default: the thesis's 200 px spp disc
     bool cameraCut = false;            // no temporal error across a cut
     const Plane<vec3>* reference = nullptr;
+    const Plane<uint8_t>* detailMask = nullptr;  // region "detail" when set and not empty
     std::vector<std::pair<std::string, const Plane<vec3>*>> outputs;  // variant -> HDR output
 };
 

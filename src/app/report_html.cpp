@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "app/report_summary.h"
 #include "io/png.h"
 #include "metrics/image_metrics.h"
 
@@ -41,37 +42,83 @@ std::string TableHtml(const ReportTable& t) {
     return out + "</table>";
 }
 
-// Summary table (thesis layout) as HTML.
-std::string SummaryHtml(const Results& results, const std::string& baseline, const std::string& scene) {
-    ReportTable t;
-    t.title = fmt::format("Summary: {} (mean over frames and eyes; relMSE ε = {:g}; % vs {})", scene,
-                          results.relMseEpsilon, baseline);
-    t.header = {"variant", "relMSE", "relMSE fovea", "SSIM", "SSIM fovea", "FLIP", "FLIP fovea",
-                "ΔrelMSE", "ΔrelMSE fovea", "ΔSSIM", "ΔSSIM fovea"};
-    struct Col {
-        const char* metric;
-        const char* region;
-    };
-    const Col cols[] = {{"relmse", "whole"}, {"relmse", "fovea"}, {"ssim", "whole"},
-                        {"ssim", "fovea"},   {"flip", "whole"},   {"flip", "fovea"}};
-    for (const std::string& variant : results.Variants(scene)) {
-        std::vector<std::string> row = {variant};
-        for (const Col& c : cols) {
-            auto m = results.Mean(scene, variant, c.region, c.metric);
-            row.push_back(!m ? "–"
-                             : std::string(c.metric) == "relmse" ? fmt::format("{:.3e}", m->mean)
-                                                                 : fmt::format("{:.4f}", m->mean));
+std::string Sci(double v) { return std::isfinite(v) ? fmt::format("{:.3e}", v) : "–"; }
+std::string Fixed(double v) { return std::isfinite(v) ? fmt::format("{:.4f}", v) : "–"; }
+std::string MetricValue(const std::string& metric, double v) { return metric == "relmse" || metric == "temporal" ? Sci(v) : Fixed(v); }
+
+std::string MetricLabel(const std::string& metric) {
+    if (metric == "relmse") return "relMSE";
+    if (metric == "ssim") return "SSIM";
+    if (metric == "flip") return "FLIP";
+    if (metric == "temporal") return "temporal";
+    return metric;
+}
+
+// "0.823 [0.791, 0.861]" in a cell; an interval that contains 1 is greyed and marked ns.
+std::string RatioCell(const std::optional<PairedRatio>& r, bool isBaseline) {
+    if (isBaseline) return "<td class=\"base\">baseline</td>";
+    if (!r || r->pairs == 0) return "<td>–</td>";
+    return fmt::format("<td class=\"{}\" title=\"{} pairs, blocks of {} frames\">{}</td>",
+                       r->Significant() ? "sig" : "ns", r->pairs, r->blockLength, FormatRatio(*r));
+}
+
+// The summary of one scene: variant × region rows; relMSE (mean, median, geometric mean, ratio,
+// win rate), temporal error (mean, ratio) beside it, then SSIM and FLIP (mean, ratio).
+std::string SummaryHtml(const Results& results, const ExperimentStats& stats, const std::string& scene) {
+    const SceneDesign& d = stats.Design(scene);
+    std::string seeds;
+    for (uint32_t s : d.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
+    std::string out = fmt::format(
+        "<h3>Summary: {} — {} seed{} ({}) × {} frames × {} eyes, baseline {}</h3>", HtmlEscape(scene), d.seeds.size(),
+        d.seeds.size() == 1 ? "" : "s", seeds, d.frames, d.eyes, HtmlEscape(d.baseline));
+    out += "<table class=\"summary\"><tr><th rowspan=\"2\">variant</th><th rowspan=\"2\">region</th>"
+           "<th colspan=\"5\">relMSE</th><th colspan=\"2\">temporal error</th><th colspan=\"2\">SSIM</th>"
+           "<th colspan=\"2\">FLIP</th></tr><tr><th>mean</th><th>median</th><th>geo. mean</th>"
+           "<th>ratio [95% CI]</th><th>win</th><th>mean</th><th>ratio [95% CI]</th><th>mean</th>"
+           "<th>ratio [95% CI]</th><th>mean</th><th>ratio [95% CI]</th></tr>";
+    for (const std::string& variant : results.Variants(scene))
+        for (const std::string& region : ComparedRegions()) {
+            const MetricStats* e = stats.Find(scene, variant, region, "relmse");
+            if (!e) continue;
+            const bool isBase = variant == d.baseline;
+            out += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>", HtmlEscape(variant),
+                               region, Sci(e->spread.mean), Sci(e->spread.median),
+                               e->spread.count > 0 && std::isnan(e->spread.geometricMean)
+                                   ? "<span title=\"a frame has an error of exactly 0: undefined\">n/a</span>"
+                                   : Sci(e->spread.geometricMean));
+            out += RatioCell(e->vsBaseline, isBase);
+            out += isBase || !e->vsBaseline || e->vsBaseline->pairs == 0
+                       ? std::string("<td>–</td>")
+                       : fmt::format("<td>{:.0f}%</td>", 100.0 * e->vsBaseline->winRate);
+            for (const char* metric : {"temporal", "ssim", "flip"}) {
+                const MetricStats* m = stats.Find(scene, variant, region, metric);
+                out += fmt::format("<td>{}</td>", m ? MetricValue(metric, m->spread.mean) : "–");
+                out += m ? RatioCell(m->vsBaseline, isBase) : "<td>–</td>";
+            }
+            out += "</tr>";
         }
-        for (int k = 0; k < 4; ++k) {
-            auto m = results.Mean(scene, variant, cols[k].region, cols[k].metric);
-            auto b = results.Mean(scene, baseline, cols[k].region, cols[k].metric);
-            std::optional<double> pct;
-            if (m && variant != baseline) pct = PercentRelative(m->mean, b ? std::optional<double>(b->mean) : std::nullopt);
-            row.push_back(!pct ? "–" : FormatPercent(*pct, k < 2 ? 3 : 4));
-        }
-        t.rows.push_back(std::move(row));
-    }
-    return TableHtml(t);
+    out += "</table>";
+    // The frames that dominate a mean.
+    std::string outliers;
+    for (const std::string& variant : results.Variants(scene))
+        for (const std::string& region : ComparedRegions())
+            for (const std::string& metric : results.Metrics(scene)) {
+                const MetricStats* m = stats.Find(scene, variant, region, metric);
+                if (!m || BetterOf(metric) != Better::kLower || !m->dominant.Dominates()) continue;
+                std::string frames;
+                for (size_t i = 0; i < m->dominant.frames.size() && i < 12; ++i)
+                    frames += (i ? ", " : "") + std::to_string(m->dominant.frames[i]);
+                if (m->dominant.frames.size() > 12) frames += ", …";
+                outliers += fmt::format("<li>{} {} {}: {} of {} frames ({}) hold {:.0f}% of the mean</li>",
+                                        HtmlEscape(variant), region, MetricLabel(metric), m->dominant.frames.size(),
+                                        m->dominant.totalFrames, frames, 100.0 * m->dominant.share);
+            }
+    out += outliers.empty()
+               ? "<p class=\"note\">No mean is dominated by outlier frames (no fifth of the frames holds half of "
+                 "any mean error).</p>"
+               : "<p class=\"note\">Outlier frames (value per frame = mean over eyes and seeds; marked ▼ on the "
+                 "plots):</p><ul class=\"note\">" + outliers + "</ul>";
+    return out;
 }
 
 // Box-average by an integer factor so that the width is at most maxWidth (keeps the file small;
@@ -94,18 +141,24 @@ Plane<T> Shrink(const Plane<T>& in, int maxWidth) {
 
 constexpr int kMapWidth = 480;
 
-// One table per metric: variant × every region (periphery and eccentricity bands included).
-std::string RegionTablesHtml(const Results& results, const std::string& scene) {
+// One table per metric: variant × every region (periphery and eccentricity bands included):
+// mean, median and geometric mean.
+std::string RegionTablesHtml(const Results& results, const ExperimentStats& stats, const std::string& scene) {
     std::string out;
     const std::vector<std::string> regions = results.Regions(scene);
     for (const std::string& metric : results.Metrics(scene)) {
-        ReportTable t{fmt::format("{} by region (mean over frames and eyes)", metric), {"variant"}, {}};
+        ReportTable t{fmt::format("{} by region (mean / median / geometric mean over frames, eyes and seeds)", metric),
+                      {"variant"}, {}};
         for (const std::string& r : regions) t.header.push_back(r);
         for (const std::string& variant : results.Variants(scene)) {
             std::vector<std::string> row = {variant};
             for (const std::string& r : regions) {
-                auto m = results.Mean(scene, variant, r, metric);
-                row.push_back(!m ? "–" : metric == "relmse" ? fmt::format("{:.3e}", m->mean) : fmt::format("{:.4f}", m->mean));
+                const MetricStats* m = stats.Find(scene, variant, r, metric);
+                row.push_back(!m || m->spread.count == 0
+                                  ? "–"
+                                  : fmt::format("{} / {} / {}", MetricValue(metric, m->spread.mean),
+                                                MetricValue(metric, m->spread.median),
+                                                MetricValue(metric, m->spread.geometricMean)));
             }
             t.rows.push_back(std::move(row));
         }
@@ -130,46 +183,100 @@ std::vector<uint8_t> DisplayColorPng(const Plane<vec3>& displayRgb) {
     return EncodeRgb8Png(displayRgb.width(), displayRgb.height(), rgb);
 }
 
-std::string SceneSection(const HtmlReport& report, const SceneVisuals* visuals, const std::string& scene) {
+// The colour bar of the relMSE maps: viridis over log10 relMSE in [−4, 0].
+std::string RelMseColorBar() {
+    std::vector<std::pair<double, std::string>> ticks;
+    for (int e = -4; e <= 0; ++e) ticks.emplace_back(double(e + 4) / 4.0, e == 0 ? "1" : fmt::format("1e{}", e));
+    return SvgColorBar(320, ticks, "relMSE per pixel (log scale)");
+}
+
+std::string SppColorBar(int maxSpp) {
+    std::vector<std::pair<double, std::string>> ticks;
+    const int step = std::max(1, (maxSpp - 1 + 3) / 4);
+    for (int spp = 1; spp <= maxSpp; spp += step) ticks.emplace_back(double(spp - 1) / double(maxSpp - 1), std::to_string(spp));
+    if ((maxSpp - 1) % step != 0) ticks.emplace_back(1.0, std::to_string(maxSpp));
+    return SvgColorBar(320, ticks, "samples per pixel");
+}
+
+std::string SceneSection(const HtmlReport& report, const ExperimentStats* stats, const SceneVisuals* visuals,
+                         const std::string& scene) {
     std::string out = fmt::format("<section><h2>Scene: {}</h2>", HtmlEscape(scene));
-    if (report.results) {
+    if (report.results && stats) {
         const Results& r = *report.results;
-        out += SummaryHtml(r, report.baseline, scene);
-        out += "<div class=\"plots\">";
+        out += SummaryHtml(r, *stats, scene);
+        // Gaze events and outlier frames shared by every plot of the scene.
+        std::vector<double> blinks, saccades, outlierFrames;
+        if (visuals)
+            for (const GazeMark& m : visuals->gazeMarks) {
+                if (m.blink) blinks.push_back(m.frame);
+                if (m.Saccade()) saccades.push_back(m.frame);
+            }
+        out += fmt::format("<h3>Per frame (mean over eyes and seeds)</h3><p class=\"note\">Shaded: blinks (grey) "
+                           "and saccades (orange: gaze faster than {:g}°/s between frames{}); ▼ frames that hold half "
+                           "of a variant's mean (listed above).</p><div class=\"plots\">",
+                           kSaccadeDegPerSecond, visuals ? fmt::format(", seed {}", visuals->seed) : "");
         for (const std::string& metric : r.Metrics(scene))
             for (const char* region : {"whole", "fovea"}) {
-                std::vector<PlotSeries> series;
+                LinePlot plot;
+                plot.title = fmt::format("{} — {}", metric, region);
+                plot.yLabel = MetricLabel(metric);
+                plot.logY = metric == "relmse";
+                plot.blinkX = blinks;
+                plot.saccadeX = saccades;
                 for (const std::string& variant : r.Variants(scene)) {
                     PlotSeries s{variant, {}};
                     for (const auto& [frame, value] : r.PerFrame(scene, variant, region, metric))
                         s.points.emplace_back(double(frame), value);
-                    if (!s.points.empty()) series.push_back(std::move(s));
+                    if (!s.points.empty()) plot.series.push_back(std::move(s));
+                    const MetricStats* m = stats->Find(scene, variant, region, metric);
+                    if (m && BetterOf(metric) == Better::kLower && m->dominant.Dominates())
+                        for (int f : m->dominant.frames)
+                            if (std::find(plot.markedX.begin(), plot.markedX.end(), double(f)) == plot.markedX.end())
+                                plot.markedX.push_back(f);
                 }
-                if (series.empty()) continue;
-                out += SvgLinePlot(fmt::format("{} — {}", metric, region), metric, series, metric == "relmse");
+                if (plot.series.empty()) continue;
+                out += SvgLinePlot(plot);
             }
+        if (visuals && !visuals->gazeMarks.empty()) {
+            LinePlot speed;
+            speed.title = "gaze speed (head space)";
+            speed.yLabel = "°/s";
+            speed.blinkX = blinks;
+            speed.saccadeX = saccades;
+            speed.thresholdY = kSaccadeDegPerSecond;
+            PlotSeries s{"gaze", {}};
+            for (const GazeMark& m : visuals->gazeMarks)
+                if (!m.blink) s.points.emplace_back(double(m.frame), m.speedDegPerSecond);
+            speed.series.push_back(std::move(s));
+            out += SvgLinePlot(speed);
+        }
         out += "</div>";
-        out += "<details><summary>All regions</summary>" + RegionTablesHtml(r, scene) + "</details>";
+        out += "<details><summary>All regions</summary>" + RegionTablesHtml(r, *stats, scene) + "</details>";
     }
     if (visuals) {
         const SceneVisuals& v = *visuals;
-        out += fmt::format("<h3>Frame {}, eye {}</h3><div class=\"row\">", v.frame, v.eye);
+        out += fmt::format("<h3>Frame {}, eye {}, seed {}</h3><div class=\"row\">", v.frame, v.eye, v.seed);
         if (!v.gazePath.empty())
             out += Figure(SvgGazePath(v.width, v.height, v.gazePath, v.foveaRadiusPixels), "gaze path (pixels)");
-        if (!v.sppMap.empty())
-            out += Figure(PngImg(DisplayColorPng(FalseColorSpp(v.sppMap)), "spp map", 320),
-                          "spp map (viridis, 1 … max spp)");
+        if (!v.sppMap.empty()) {
+            uint16_t maxSpp = 2;
+            for (size_t i = 0; i < v.sppMap.size(); ++i) maxSpp = std::max(maxSpp, v.sppMap[i]);
+            out += Figure(PngImg(DisplayColorPng(FalseColorSpp(v.sppMap)), "spp map", 320) + SppColorBar(maxSpp),
+                          "spp map");
+        }
         out += "</div>";
         if (!v.reference.empty()) {
-            // Error maps: log10 relMSE per pixel over [−4, 0].
+            // Error maps: log10 relMSE per pixel over [−4, 0], each with its colour bar.
             out += "<h3>relMSE per pixel (viridis of log10, 1e-4 … 1)</h3><div class=\"row\">";
             auto errorMap = [&](const Plane<vec3>& img) {
                 Plane<float> m = Shrink(RelMseMap(img, v.reference), kMapWidth);
                 for (size_t i = 0; i < m.size(); ++i) m[i] = std::log10(std::max(m[i], 1e-6f));
                 return FalseColorPng(m, -4.0f, 0.0f);
             };
-            if (!v.noisy.empty()) out += Figure(PngImg(errorMap(v.noisy), "noisy error", 320), "noisy");
-            for (const auto& [name, img] : v.variants) out += Figure(PngImg(errorMap(img), name + " error", 320), name);
+            if (!v.noisy.empty())
+                out += Figure(PngImg(errorMap(v.noisy), "noisy error", 320) + RelMseColorBar(), "noisy");
+            for (const auto& [name, img] : v.variants)
+                out += Figure(PngImg(errorMap(img), name + " error", 320) + RelMseColorBar(), name);
             out += "</div>";
             // Fovea crops.
             const int radius = std::max(8, int(std::lround(v.foveaRadiusPixels)));
@@ -185,13 +292,38 @@ std::string SceneSection(const HtmlReport& report, const SceneVisuals* visuals, 
     return out + "</section>";
 }
 
+// The report's only script. It draws nothing: it records script errors (window "error" events,
+// console.error) in <html data-errors>, and after the page has loaded marks every image and SVG
+// figure data-drawn="1" when it drew (an image decoded to a non-zero size; an SVG with a
+// non-empty bounding box and, for a plot, every series a polyline with points), else "0", and sets
+// <body data-report-check="ok"> when every figure drew and no error was seen ("failed" otherwise).
+constexpr const char* kCheckScript = R"(<script>
+(function(){
+var errors=[];function note(m){errors.push(String(m));document.documentElement.setAttribute('data-errors',errors.join(' | '));}
+window.addEventListener('error',function(e){note(e.message||('failed to load '+((e.target&&(e.target.src||e.target.href))||'a resource').slice(0,80)));},true);
+var ce=console.error;console.error=function(){note(Array.prototype.join.call(arguments,' '));ce.apply(console,arguments);};
+window.addEventListener('load',function(){
+var figures=document.querySelectorAll('img, svg'),drawn=0,failed=0;
+figures.forEach(function(f){var ok;
+if(f.tagName.toLowerCase()==='img'){ok=f.complete&&f.naturalWidth>0&&f.naturalHeight>0;}
+else{var b=f.getBBox();ok=b.width>0&&b.height>0;
+if(f.classList.contains('plot')){var lines=f.querySelectorAll('polyline.series');ok=ok&&lines.length>0;
+lines.forEach(function(l){if(!l.points||l.points.numberOfItems<1)ok=false;});}}
+f.setAttribute('data-drawn',ok?'1':'0');if(ok)drawn++;else failed++;});
+document.body.setAttribute('data-figures-drawn',String(drawn));
+document.body.setAttribute('data-report-check',failed===0&&errors.length===0&&drawn===figures.length?'ok':'failed');
+});
+})();
+</script>)";
+
 constexpr const char* kCss = R"(body{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}
 h1{font-size:22px}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:4px}h3{font-size:15px}
 table{border-collapse:collapse;margin:8px 0;font-size:13px}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}
 th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
 .row,.plots{display:flex;flex-wrap:wrap;gap:12px}figure{margin:0}figcaption{font-size:12px;text-align:center}
-img{image-rendering:pixelated;border:1px solid #ddd}svg{background:#fff;border:1px solid #ddd}
-.note{font-size:12px;color:#555})";
+img{image-rendering:pixelated;border:1px solid #ddd;display:block}svg{background:#fff;border:1px solid #ddd}
+.note{font-size:12px;color:#555}td.ns{color:#888}td.sig{font-weight:600}td.base{color:#555;font-style:italic}
+table.summary td{white-space:nowrap}svg.colorbar{border:none;display:block;margin:2px auto 0})";
 
 }  // namespace
 
@@ -262,54 +394,186 @@ Plane<vec3> Crop(const Plane<vec3>& image, const vec2& centre, int radius) {
     return out;
 }
 
-std::string SvgLinePlot(const std::string& title, const std::string& yLabel, const std::vector<PlotSeries>& series,
-                        bool logY) {
-    constexpr double kW = 420, kH = 240, kLeft = 62, kRight = 110, kTop = 24, kBottom = 30;
+std::vector<double> AxisTicks(double lo, double hi, bool log, int target) {
+    std::vector<double> ticks;
+    if (!(std::isfinite(lo) && std::isfinite(hi))) return ticks;
+    if (hi < lo) std::swap(lo, hi);
+    if (log && hi - lo >= 0.3) {
+        // 1, 2, 5 × 10^k, or only the powers of ten when that would be too many.
+        const int k0 = int(std::floor(lo)), k1 = int(std::ceil(hi));
+        const bool decadesOnly = (k1 - k0) * 3 > 2 * target;
+        for (int k = k0; k <= k1; ++k)
+            for (double m : {1.0, 2.0, 5.0}) {
+                if (decadesOnly && m != 1.0) continue;
+                const double t = double(k) + std::log10(m);
+                if (t >= lo - 1e-9 && t <= hi + 1e-9) ticks.push_back(t);
+            }
+        if (ticks.size() >= 2) return ticks;
+        ticks.clear();
+    }
+    if (log) {
+        // Less than half a decade: linear ticks in value, placed at their log10.
+        for (double v : AxisTicks(std::pow(10.0, lo), std::pow(10.0, hi), false, target)) ticks.push_back(std::log10(v));
+        return ticks;
+    }
+    const double span = hi > lo ? hi - lo : std::max(std::abs(lo), 1.0);
+    const double raw = span / std::max(1, target);
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    double step = magnitude;
+    for (double m : {1.0, 2.0, 5.0, 10.0})
+        if (m * magnitude >= raw) {
+            step = m * magnitude;
+            break;
+        }
+    for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step)
+        ticks.push_back(std::abs(t) < step * 1e-9 ? 0.0 : t);
+    return ticks;
+}
+
+std::string SvgColorBar(int width, const std::vector<std::pair<double, std::string>>& ticks, const std::string& label) {
+    // 64 solid steps (no gradient: no element ids to keep unique in the document).
+    constexpr double kPad = 14, kBarH = 10;
+    constexpr int kSteps = 64;
+    const double barW = width - 2 * kPad;
+    std::string out = fmt::format(
+        "<svg class=\"colorbar\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"44\" viewBox=\"0 0 {0} "
+        "44\" font-family=\"sans-serif\">",
+        width);
+    for (int i = 0; i < kSteps; ++i) {
+        const vec3 c = Viridis((float(i) + 0.5f) / float(kSteps));
+        out += fmt::format("<rect x=\"{:.2f}\" y=\"2\" width=\"{:.2f}\" height=\"{}\" fill=\"#{:02x}{:02x}{:02x}\"/>",
+                           kPad + barW * i / kSteps, barW / kSteps + 0.3, kBarH, int(std::lround(c.r * 255)),
+                           int(std::lround(c.g * 255)), int(std::lround(c.b * 255)));
+    }
+    out += fmt::format("<rect x=\"{}\" y=\"2\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#666\" "
+                       "stroke-width=\"0.5\"/>",
+                       kPad, barW, kBarH);
+    for (const auto& [t, text] : ticks) {
+        const double x = kPad + std::clamp(t, 0.0, 1.0) * barW;
+        out += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#333\"/>"
+                           "<text x=\"{0:.1f}\" y=\"{3}\" font-size=\"10\" text-anchor=\"middle\">{4}</text>",
+                           x, 2 + kBarH, 5 + kBarH, 15 + kBarH + 1, HtmlEscape(text));
+    }
+    out += fmt::format("<text x=\"{}\" y=\"42\" font-size=\"10\" text-anchor=\"middle\" fill=\"#555\">{}</text></svg>",
+                       width / 2, HtmlEscape(label));
+    return out;
+}
+
+std::string SvgLinePlot(const LinePlot& plot) {
+    constexpr double kW = 440, kLeft = 64, kRight = 16, kTop = 34, kPlotH = 170, kAxisH = 34;
+    constexpr double kLegendRow = 16, kCharW = 6.4;
+    const bool logY = plot.logY;
     double xMin = std::numeric_limits<double>::infinity(), xMax = -xMin, yMin = xMin, yMax = -xMin;
     auto mapY = [&](double y) { return logY ? std::log10(y) : y; };
-    for (const PlotSeries& s : series)
+    for (const PlotSeries& s : plot.series)
         for (const auto& [x, y] : s.points) {
             if (!std::isfinite(y) || (logY && y <= 0)) continue;
             xMin = std::min(xMin, x), xMax = std::max(xMax, x);
             yMin = std::min(yMin, mapY(y)), yMax = std::max(yMax, mapY(y));
         }
+    if (plot.thresholdY && (!logY || *plot.thresholdY > 0) && std::isfinite(yMin)) {
+        yMin = std::min(yMin, mapY(*plot.thresholdY));
+        yMax = std::max(yMax, mapY(*plot.thresholdY));
+    }
+    // Legend under the plot: series, then the marks that appear, wrapped to the width.
+    struct Entry {
+        std::string name;
+        std::string swatch;  // SVG of the symbol at (0, 0)
+    };
+    std::vector<Entry> entries;
+    for (size_t k = 0; k < plot.series.size(); ++k)
+        entries.push_back({plot.series[k].name, fmt::format("<rect x=\"0\" y=\"-4\" width=\"14\" height=\"3\" fill=\"{}\"/>",
+                                                            SeriesColor(k))});
+    if (!plot.blinkX.empty())
+        entries.push_back({"blink", "<rect x=\"0\" y=\"-9\" width=\"14\" height=\"10\" fill=\"#999\" fill-opacity=\"0.35\"/>"});
+    if (!plot.saccadeX.empty())
+        entries.push_back({"saccade", "<rect x=\"0\" y=\"-9\" width=\"14\" height=\"10\" fill=\"#E69F00\" fill-opacity=\"0.3\"/>"});
+    if (!plot.markedX.empty())
+        entries.push_back({"outlier frame", "<path d=\"M2,-9 L12,-9 L7,-1 Z\" fill=\"#B00\"/>"});
+    if (plot.thresholdY)
+        entries.push_back({fmt::format("threshold {:g}", *plot.thresholdY),
+                           "<line x1=\"0\" x2=\"14\" y1=\"-3\" y2=\"-3\" stroke=\"#B00\" stroke-dasharray=\"3,2\"/>"});
+    std::string legend;
+    double lx = kLeft, ly = 0;
+    int rows = entries.empty() ? 0 : 1;
+    for (const Entry& e : entries) {
+        const double w = 22 + kCharW * double(e.name.size()) + 12;
+        if (lx + w > kW - 4 && lx > kLeft) lx = kLeft, ly += kLegendRow, ++rows;
+        legend += fmt::format("<g transform=\"translate({:.1f},{:.1f})\">{}<text x=\"20\" y=\"0\" font-size=\"11\">{}</text></g>",
+                              lx, ly, e.swatch, HtmlEscape(e.name));
+        lx += w;
+    }
+    const double kH = kTop + kPlotH + kAxisH + kLegendRow * rows + 6;
     std::string out = fmt::format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\">"
-        "<text x=\"{2}\" y=\"16\" font-size=\"13\" font-family=\"sans-serif\">{3}</text>",
-        kW, kH, kLeft, HtmlEscape(title));
-    if (!std::isfinite(xMin)) return out + "<text x=\"60\" y=\"120\" font-size=\"12\">no data</text></svg>";
-    if (xMax == xMin) xMax = xMin + 1;
-    if (yMax == yMin) yMax = yMin + (yMin == 0 ? 1 : std::abs(yMin) * 0.1);
+        "<svg class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
+        "font-family=\"sans-serif\"><text x=\"{2}\" y=\"16\" font-size=\"13\">{3}</text>",
+        kW, kH, kLeft, HtmlEscape(plot.title));
+    if (!std::isfinite(xMin))
+        return out + fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\">no data</text></svg>", kLeft, kTop + kPlotH / 2);
+    if (xMax == xMin) xMin -= 0.5, xMax += 0.5;
+    if (yMax == yMin) yMin -= (yMin == 0 ? 1 : std::abs(yMin) * 0.1), yMax += (yMax == 0 ? 1 : std::abs(yMax) * 0.1);
     const double pad = 0.05 * (yMax - yMin);  // keep lines off the frame
     yMin -= pad, yMax += pad;
-    const double pw = kW - kLeft - kRight, ph = kH - kTop - kBottom;
+    const double pw = kW - kLeft - kRight, ph = kPlotH;
     auto px = [&](double x) { return kLeft + (x - xMin) / (xMax - xMin) * pw; };
-    auto py = [&](double y) { return kTop + (1 - (mapY(y) - yMin) / (yMax - yMin)) * ph; };
-    out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/>", kLeft,
-                       kTop, pw, ph);
-    auto label = [&](double v) { return fmt::format("{:.3g}", logY ? std::pow(10.0, v) : v); };
-    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"end\">{}</text>", kLeft - 4, kTop + 8,
-                       label(yMax));
-    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"end\">{}</text>", kLeft - 4,
-                       kTop + ph, label(yMin));
-    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\">frame {:g}</text>", kLeft, kH - 8, xMin);
-    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"end\">{:g}</text>", kLeft + pw,
-                       kH - 8, xMax);
-    out += fmt::format("<text x=\"12\" y=\"{}\" font-size=\"10\" transform=\"rotate(-90 12 {})\">{}{}</text>",
-                       kTop + ph / 2, kTop + ph / 2, HtmlEscape(yLabel), logY ? " (log)" : "");
-    for (size_t k = 0; k < series.size(); ++k) {
+    auto pyMapped = [&](double m) { return kTop + (1 - (m - yMin) / (yMax - yMin)) * ph; };
+    auto py = [&](double y) { return pyMapped(mapY(y)); };
+    // Frame bands (one frame wide, centred on the frame) for blinks and saccades.
+    const double frameW = std::max(1.5, pw / std::max(1.0, xMax - xMin + 1));
+    auto bands = [&](const std::vector<double>& xs, const char* color, double opacity) {
+        for (double x : xs)
+            if (x >= xMin - 0.5 && x <= xMax + 0.5)
+                out += fmt::format("<rect x=\"{:.1f}\" y=\"{}\" width=\"{:.1f}\" height=\"{}\" fill=\"{}\" "
+                                   "fill-opacity=\"{}\"/>",
+                                   std::max(kLeft, px(x) - frameW / 2), kTop, frameW, ph, color, opacity);
+    };
+    bands(plot.blinkX, "#999", 0.35);
+    bands(plot.saccadeX, "#E69F00", 0.3);
+    out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/>", kLeft, kTop,
+                       pw, ph);
+    // Y ticks, with light grid lines.
+    auto yLabel = [&](double m) {
+        const double v = logY ? std::pow(10.0, m) : m;
+        return fmt::format("{:.3g}", v);
+    };
+    for (double t : AxisTicks(yMin, yMax, logY, 5)) {
+        const double y = pyMapped(t);
+        out += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2:.1f}\" y2=\"{2:.1f}\" stroke=\"#eee\"/>"
+                           "<line x1=\"{3}\" x2=\"{0}\" y1=\"{2:.1f}\" y2=\"{2:.1f}\" stroke=\"#666\"/>"
+                           "<text x=\"{4}\" y=\"{5:.1f}\" font-size=\"10\" text-anchor=\"end\">{6}</text>",
+                           kLeft, kLeft + pw, y, kLeft - 4, kLeft - 6, y + 3.5, yLabel(t));
+    }
+    // X ticks (integers: frames).
+    for (double t : AxisTicks(xMin, xMax, false, 6)) {
+        if (std::abs(t - std::round(t)) > 1e-9) continue;
+        const double x = px(t);
+        out += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#666\"/>"
+                           "<text x=\"{0:.1f}\" y=\"{3}\" font-size=\"10\" text-anchor=\"middle\">{4:g}</text>",
+                           x, kTop + ph, kTop + ph + 4, kTop + ph + 15, t);
+    }
+    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"middle\">{}</text>", kLeft + pw / 2,
+                       kTop + ph + 28, HtmlEscape(plot.xLabel));
+    out += fmt::format("<text x=\"12\" y=\"{0}\" font-size=\"10\" text-anchor=\"middle\" transform=\"rotate(-90 12 {0})\">"
+                       "{1}{2}</text>",
+                       kTop + ph / 2, HtmlEscape(plot.yLabel), logY ? " (log)" : "");
+    if (plot.thresholdY && (!logY || *plot.thresholdY > 0))
+        out += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2:.1f}\" y2=\"{2:.1f}\" stroke=\"#B00\" "
+                           "stroke-dasharray=\"3,2\"/>",
+                           kLeft, kLeft + pw, py(*plot.thresholdY));
+    for (double x : plot.markedX)
+        if (x >= xMin && x <= xMax)
+            out += fmt::format("<path d=\"M{0:.1f},{1} l-4,-7 l8,0 Z\" fill=\"#B00\"><title>frame {2:g}</title></path>",
+                               px(x), kTop - 1, x);
+    for (size_t k = 0; k < plot.series.size(); ++k) {
         std::string pts;
-        for (const auto& [x, y] : series[k].points) {
+        for (const auto& [x, y] : plot.series[k].points) {
             if (!std::isfinite(y) || (logY && y <= 0)) continue;
             pts += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
         }
-        out += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>",
+        out += fmt::format("<polyline class=\"series\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>",
                            SeriesColor(k), pts);
-        out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"10\" height=\"3\" fill=\"{}\"/>"
-                           "<text x=\"{}\" y=\"{}\" font-size=\"11\">{}</text>",
-                           kLeft + pw + 8, kTop + 8 + 16 * double(k), SeriesColor(k), kLeft + pw + 22,
-                           kTop + 13 + 16 * double(k), HtmlEscape(series[k].name));
     }
+    out += fmt::format("<g transform=\"translate(0,{:.1f})\">{}</g>", kTop + ph + kAxisH + 12, legend);
     return out + "</svg>";
 }
 
@@ -333,15 +597,23 @@ std::string SvgGazePath(int width, int height, const std::vector<vec2>& path, fl
 }
 
 std::string RenderHtmlReport(const HtmlReport& report) {
+    std::optional<ExperimentStats> localStats;
+    const ExperimentStats* stats = report.stats;
+    if (!stats && report.results) stats = &localStats.emplace(*report.results, report.baseline);
     std::string out = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" +
-                      HtmlEscape(report.title) + "</title><style>" + kCss + "</style></head><body>";
+                      HtmlEscape(report.title) + "</title><style>" + kCss + "</style>" + kCheckScript +
+                      "</head><body>";
     out += "<h1>" + HtmlEscape(report.title) + "</h1>";
     out += fmt::format(
         "<p class=\"note\">relMSE = mean((y−r)²/(r²+ε)) per channel on HDR, ε = {:g}. SSIM (Wang 2004, 11×11 "
         "Gaussian σ = 1.5, K1 = 0.01, K2 = 0.03) on the luma of the tonemapped image (clamp to [0,1], sRGB "
-        "encode). FLIP: LDR-FLIP on the same tonemap at the eye's pixels per degree. Regions: fovea = gaze-centred "
-        "disc, periphery = its complement, eccentricity bands by view-ray angle to the gaze ray.</p>",
+        "encode). FLIP: LDR-FLIP on the same tonemap at the eye's pixels per degree. Temporal error (SVGF §5.4): "
+        "mean |lum(t) − lum(t−1)| of a variant's output, HDR, from each sequence's second frame (flicker; the "
+        "reference of these static scenes has none). Regions: fovea = gaze-centred disc, periphery = its "
+        "complement, eccentricity bands by view-ray angle to the gaze ray.</p>",
         report.results ? report.results->relMseEpsilon : 0.01);
+    if (stats)
+        out += "<p class=\"note\"><b>Statistics.</b> " + HtmlEscape(StatisticsMethod(stats->Options())) + "</p>";
     if (!report.manifest.empty()) {
         ReportTable t{"Run", {"key", "value"}, {}};
         for (const auto& [k, v] : report.manifest) t.rows.push_back({k, v});
@@ -354,7 +626,8 @@ std::string RenderHtmlReport(const HtmlReport& report) {
         const SceneVisuals* visuals = nullptr;
         for (const SceneVisuals& v : report.scenes)
             if (v.scene == scene) visuals = &v;
-        out += SceneSection(report, visuals, scene);
+        const bool hasStats = stats && std::ranges::count(stats->Scenes(), scene) > 0;
+        out += SceneSection(report, hasStats ? stats : nullptr, visuals, scene);
     }
     for (const ReportTable& t : report.tables) out += TableHtml(t);
     return out + "</body></html>\n";

@@ -1,18 +1,27 @@
 // The self-contained HTML report: one file that opens offline (inline CSS, inline SVG plots,
-// base64 PNG images, no scripts, no external references).
+// base64 PNG images, no external references). Its one inline script draws nothing: it records
+// script errors and marks every figure once the browser has drawn it (data-drawn="1", or "0"
+// for an image that failed to decode or a plot with nothing in it) and sets
+// data-report-check="ok" on <body> when all of them drew — the browser check
+// (tests/report_browser_check.sh) reads that from headless Chromium's DOM.
 //
-// Per scene: per-frame line plots of every metric (whole and fovea) per variant, the gaze path as
-// an SVG polyline over the image extent, the spp map, false-colour relMSE maps (viridis of
-// log10 relMSE per pixel) and fovea crops of reference / noisy / each variant side by side.
-// Then the summary table and whatever tables the caller passes (memory, per-pass timings).
+// Per scene: the summary table (ExperimentStats: mean, median, geometric mean; paired ratio to
+// the baseline with its bootstrap interval, ns when it contains 1; win rate; temporal error next
+// to relMSE) with the method stated, the outlier frames that dominate a mean, per-frame plots of
+// every metric (whole and fovea) per variant with axis ticks, a legend under the plot, blinks and
+// saccades shaded and the outlier frames marked, the gaze speed, the gaze path, the spp map and
+// false-colour relMSE maps (viridis of log10 relMSE per pixel), each with its colour bar, and
+// fovea crops of reference / noisy / each variant. Then whatever tables the caller passes.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "app/experiment_stats.h"
 #include "app/report.h"
 #include "core/image.h"
 #include "core/math.h"
@@ -26,6 +35,17 @@ struct ReportTable {
     std::vector<std::vector<std::string>> rows;
 };
 
+// What the gaze did on one frame: a blink (invalid sample), and its angular speed since the
+// previous valid sample (0 when unknown). A frame faster than kSaccadeDegPerSecond is a saccade
+// (velocity threshold, I-VT; smooth pursuit stays below it).
+inline constexpr double kSaccadeDegPerSecond = 100.0;
+struct GazeMark {
+    int frame = 0;
+    bool blink = false;
+    double speedDegPerSecond = 0.0;
+    bool Saccade() const { return !blink && speedDegPerSecond > kSaccadeDegPerSecond; }
+};
+
 // Images of one scene at one (frame, eye), all width × height HDR, for the visual section.
 struct SceneVisuals {
     std::string scene;
@@ -33,6 +53,8 @@ struct SceneVisuals {
     int height = 0;
     int frame = 0;
     int eye = 0;
+    uint32_t seed = 1;               // the run seed the images and gaze marks come from
+    std::vector<GazeMark> gazeMarks; // one per frame, in order
     std::vector<vec2> gazePath;      // gaze pixel per frame (this eye), may leave the image
     float foveaRadiusPixels = 200.0f;
     vec2 gazePixel{0.0f};            // at `frame`: centre of the fovea crops
@@ -46,7 +68,8 @@ struct HtmlReport {
     std::string title = "fovrt report";
     std::vector<std::pair<std::string, std::string>> manifest;  // key, value (config, seed, ...)
     const Results* results = nullptr;
-    std::string baseline = kBaselineVariant;
+    const ExperimentStats* stats = nullptr;  // nullptr: computed from results with `baseline`
+    std::string baseline;                    // "" = each scene's first variant
     std::vector<SceneVisuals> scenes;
     std::vector<ReportTable> tables;  // memory table, per-pass timings, ...
 };
@@ -67,9 +90,26 @@ struct PlotSeries {
     std::string name;
     std::vector<std::pair<double, double>> points;  // (x, y)
 };
-// An inline SVG line plot; logY plots log10(y) (non-positive values are skipped).
-std::string SvgLinePlot(const std::string& title, const std::string& yLabel,
-                        const std::vector<PlotSeries>& series, bool logY);
+struct LinePlot {
+    std::string title;
+    std::string xLabel = "frame";
+    std::string yLabel;
+    std::vector<PlotSeries> series;
+    bool logY = false;                    // plots log10(y); non-positive values are skipped
+    std::vector<double> blinkX, saccadeX; // x of blink / saccade frames: shaded bands
+    std::vector<double> markedX;          // x of outlier frames: a marker above the plot
+    std::optional<double> thresholdY;     // a dashed horizontal line (e.g. the saccade speed)
+};
+// An inline SVG line plot with ticks on both axes and the legend under the plot area.
+std::string SvgLinePlot(const LinePlot& plot);
+// Nice tick values covering [lo, hi]: linear steps of 1, 2 or 5 × 10^k (about `target` of them);
+// with `log`, lo and hi are log10 values and the ticks are log10 of 1, 2, 5 × 10^k (or only the
+// powers of ten when there are many decades).
+std::vector<double> AxisTicks(double lo, double hi, bool log, int target = 5);
+// A horizontal colour bar (SVG) for a viridis map over [lo, hi] with the given tick labels at
+// their positions t in [0, 1].
+std::string SvgColorBar(int width, const std::vector<std::pair<double, std::string>>& ticks,
+                        const std::string& label);
 // The gaze path as an SVG polyline over a width × height frame, with the fovea disc at the end.
 std::string SvgGazePath(int width, int height, const std::vector<vec2>& path, float foveaRadius);
 

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <fstream>
+#include <string>
 
 #include "error.h"
 
@@ -12,8 +14,14 @@ void WriteAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path&)>& write) {
     namespace fs = std::filesystem;
     if (path.has_parent_path()) fs::create_directories(path.parent_path());
+    // Unique per writer, also across the hosts of a cluster sharing the filesystem (pids repeat
+    // there) and the threads of one process: concurrent writers of one path each write their own
+    // temp file, and the last rename wins with a complete file.
+    static std::atomic<uint64_t> counter{0};
+    char host[256] = "host";
+    ::gethostname(host, sizeof host - 1);
     fs::path temp = path;
-    temp += ".tmp-" + std::to_string(::getpid());
+    temp += ".tmp-" + std::string(host) + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     try {
         write(temp);
         fs::rename(temp, path);

@@ -7,8 +7,17 @@ void FrameInputs::Allocate(int width, int height) {
     gradientSamples.clear();
 }
 
+const char* DemodulationName(Demodulation d) { return d == Demodulation::Brdf ? "brdf" : "albedo"; }
+
+bool ParseDemodulation(std::string_view name, Demodulation& d) {
+    if (name == "albedo") d = Demodulation::Albedo;
+    else if (name == "brdf") d = Demodulation::Brdf;
+    else return false;
+    return true;
+}
+
 vec3 FrameInputs::NoisyColor(int x, int y) const {
-    return Remodulate(albedo(x, y), direct(x, y), indirect(x, y), emission(x, y));
+    return Remodulate(Modulation()(x, y), direct(x, y), indirect(x, y), emission(x, y));
 }
 
 Plane<vec3> FrameInputs::NoisyImage() const {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -33,10 +34,18 @@ inline constexpr int kGradientStratumSize = 3;
 
 // Remodulation (SVGF §3): the displayed colour from demodulated illumination. The one definition
 // the renderer, FrameInputs and the A-SVGF re-shading use, so their luminances match bit for bit.
+// `albedo` is the demodulation factor: the albedo, or F_β under brdf demodulation.
 inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indirect,
                        const vec3& emission) {
     return albedo * (direct + indirect) + emission;
 }
+
+// What direct and indirect are divided by (render.demodulation): the primary albedo (SVGF §3)
+// or the primary hit's BRDF pre-integration F_β (Zhuang et al., SPEC §6).
+enum class Demodulation : uint8_t { Albedo, Brdf };
+const char* DemodulationName(Demodulation d);  // "albedo" | "brdf"
+// False (d untouched) for any other name.
+bool ParseDemodulation(std::string_view name, Demodulation& d);
 
 // The per-pixel planes, declared once (core/plane_list.h): X(member, element type, neutral value,
 // EXR channels, doc). The fields, Allocate (neutral = background everywhere), Bytes, PlaneNames,
@@ -45,10 +54,15 @@ inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indir
 // VisibilityBuffer (render/visibility_buffer.h), which no denoiser reads.
 #define FOVRT_FRAME_INPUT_PLANES(X)                                                               \
     X(direct, vec3, vec3(0.0f), "RGB",                                                            \
-      "paths with one reflection, demodulated by the primary albedo (SVGF §3); HDR linear RGB, "  \
-      "W/(m²·sr)")                                                                                \
+      "paths with one reflection, divided by the demodulation factor (Modulation()); HDR "       \
+      "linear RGB, W/(m²·sr)")                                                                    \
     X(indirect, vec3, vec3(0.0f), "RGB", "the other paths, demodulated like direct")              \
-    X(albedo, vec3, vec3(0.0f), "RGB", "primary-hit albedo used for (de)modulation, in [0,1]")    \
+    X(albedo, vec3, vec3(0.0f), "RGB",                                                            \
+      "primary-hit albedo (diffuse + F0, in [1e-3, 1]): the (de)modulation factor under albedo "  \
+      "demodulation")                                                                             \
+    X(fbeta, vec3, vec3(0.0f), "RGB",                                                             \
+      "primary-hit BRDF pre-integration F_beta (SPEC §6), >= 1e-3 (may exceed 1): the "           \
+      "(de)modulation factor under brdf demodulation")                                            \
     X(emission, vec3, vec3(0.0f), "RGB",                                                          \
       "emitted radiance at the primary hit (added after remodulation)")                           \
     X(normal, vec3, vec3(0.0f), "XYZ", "world-space unit shading normal; 0 for background")       \
@@ -71,6 +85,7 @@ struct FrameInputs {
     uint32_t frameIndex = 0;
     double timeSeconds = 0.0;
     bool cameraCut = false;      // histories must be reset before this frame
+    Demodulation demodulation = Demodulation::Albedo;  // what direct / indirect are divided by
     EyeCamera camera;            // this frame
     EyeCamera prevCamera;        // previous frame (equal to camera on frame 0 / cuts)
 
@@ -83,7 +98,9 @@ struct FrameInputs {
 
     // Allocates every plane at W×H with neutral values (background everywhere).
     void Allocate(int width, int height);
-    // The noisy colour the renderer would display: albedo * (direct + indirect) + emission.
+    // The (de)modulation factor of direct and indirect: albedo, or fbeta under brdf demodulation.
+    const Plane<vec3>& Modulation() const { return demodulation == Demodulation::Brdf ? fbeta : albedo; }
+    // The noisy colour the renderer would display: Modulation() * (direct + indirect) + emission.
     vec3 NoisyColor(int x, int y) const;
     // NoisyColor of every pixel.
     Plane<vec3> NoisyImage() const;

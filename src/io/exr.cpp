@@ -315,6 +315,7 @@ void WriteFrameInputsExr(const std::filesystem::path& path, const FrameInputs& i
     attributes.ints["fovrt.eye"] = inputs.eye;
     attributes.ints["fovrt.frameIndex"] = int(inputs.frameIndex);  // bit pattern round-trips
     attributes.ints["fovrt.cameraCut"] = inputs.cameraCut ? 1 : 0;
+    attributes.strings["fovrt.demodulation"] = DemodulationName(inputs.demodulation);
     attributes.doubles["fovrt.timeSeconds"] = inputs.timeSeconds;
     attributes.floats["fovrt.camera"] = CameraToFloats(inputs.camera);
     attributes.floats["fovrt.prevCamera"] = CameraToFloats(inputs.prevCamera);
@@ -351,6 +352,10 @@ FrameInputs ReadFrameInputsExr(const std::filesystem::path& path, Plane<uint16_t
     inputs.eye = intAttr("fovrt.eye");
     inputs.frameIndex = uint32_t(intAttr("fovrt.frameIndex"));
     inputs.cameraCut = intAttr("fovrt.cameraCut") != 0;
+    // Dumps from before brdf demodulation have no attribute: they are albedo-demodulated.
+    if (auto d = image.attributes.strings.find("fovrt.demodulation"); d != image.attributes.strings.end())
+        if (!ParseDemodulation(d->second, inputs.demodulation))
+            Fail("EXR '{}': attribute 'fovrt.demodulation' is '{}', not albedo or brdf", path.string(), d->second);
     auto time = image.attributes.doubles.find("fovrt.timeSeconds");
     if (time == image.attributes.doubles.end())
         Fail("EXR '{}': missing attribute 'fovrt.timeSeconds'", path.string());

@@ -277,7 +277,7 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
             const EyeFrame& e = frame->stereo.eyes[size_t(eye)];
             references[size_t(eye)] = referenceCache_->Find(MakeReferenceKey(
                 pipeline_.GetScene(), fingerprint_, frame->stereo.frame, frame->stereo.timeSeconds, eye,
-                e.camera, config_.reference.spp, config_.run.maxDepth, config_.run.seed));
+                e.camera, config_.reference.spp, config_.run.maxDepth, config_.reference.seed));
         }
     }
     frame->view = controls.view;

@@ -86,4 +86,10 @@ const Region* RegionSet::Find(const std::string& name) const {
     return nullptr;
 }
 
+void RegionSet::AddMask(const std::string& name, const Plane<uint8_t>& mask) {
+    Region r{name, mask, 0};
+    for (size_t i = 0; i < mask.size(); ++i) r.pixelCount += mask[i] ? 1 : 0;
+    if (r.pixelCount > 0) regions_.push_back(std::move(r));
+}
+
 }  // namespace fovrt

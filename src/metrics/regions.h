@@ -52,6 +52,9 @@ public:
                            const std::vector<EccentricityBand>& bands = DefaultEccentricityBands());
 
     const std::vector<Region>& regions() const { return regions_; }
+    // Appends a region given by its own mask (e.g. "detail": the surfaces with roughness or
+    // metallic maps, issue #13); an all-zero mask adds nothing.
+    void AddMask(const std::string& name, const Plane<uint8_t>& mask);
     // nullptr when absent.
     const Region* Find(const std::string& name) const;
     // Per-pixel eccentricity in degrees.

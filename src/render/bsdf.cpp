@@ -6,12 +6,8 @@
 namespace fovrt {
 namespace {
 
-constexpr float kMinAlpha = 1e-3f;  // keeps the GGX lobe a function (no delta mirror)
-
 vec3 SchlickFresnel(const vec3& f0, float cosTheta) {
-    float m = std::clamp(1.0f - cosTheta, 0.0f, 1.0f);
-    float m2 = m * m;
-    return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
+    return f0 + (vec3(1.0f) - f0) * SchlickWeight(cosTheta);
 }
 
 // Probability of choosing the specular lobe for outgoing direction wo.
@@ -25,13 +21,23 @@ float SpecularProbability(const BsdfParams& p, float cosThetaO) {
 
 }  // namespace
 
+float SchlickWeight(float cosTheta) {
+    float m = std::clamp(1.0f - cosTheta, 0.0f, 1.0f);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+float GgxAlphaFromRoughness(float roughness) {
+    return std::max(roughness * roughness, kMinGgxAlpha);
+}
+
 BsdfParams MakeBsdfParams(const vec3& baseColor, float roughness, float metallic, float specular) {
     metallic = std::clamp(metallic, 0.0f, 1.0f);
     roughness = std::clamp(roughness, 0.0f, 1.0f);
     BsdfParams p;
     p.diffuse = (1.0f - metallic) * baseColor;
     p.f0 = glm::mix(vec3(0.04f * std::max(specular, 0.0f)), baseColor, metallic);
-    p.alpha = std::max(roughness * roughness, kMinAlpha);
+    p.alpha = GgxAlphaFromRoughness(roughness);
     return p;
 }
 
@@ -48,16 +54,24 @@ float GgxLambda(float alpha, float cosTheta) {
     return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
 }
 
+vec2 VndfDiskPoint(const vec2& u) {
+    float r = std::sqrt(u.x);
+    float phi = 2.0f * kPi * u.y;
+    return vec2(r * std::cos(phi), r * std::sin(phi));
+}
+
 vec3 SampleGgxVndf(float alpha, const vec3& wo, const vec2& u) {
+    return SampleGgxVndfDisk(alpha, wo, VndfDiskPoint(u));
+}
+
+vec3 SampleGgxVndfDisk(float alpha, const vec3& wo, const vec2& disk) {
     // Heitz 2018, "Sampling the GGX Distribution of Visible Normals".
     vec3 vh = glm::normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
     float lensq = vh.x * vh.x + vh.y * vh.y;
     vec3 t1 = lensq > 0.0f ? vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : vec3(1.0f, 0.0f, 0.0f);
     vec3 t2 = glm::cross(vh, t1);
-    float r = std::sqrt(u.x);
-    float phi = 2.0f * kPi * u.y;
-    float p1 = r * std::cos(phi);
-    float p2 = r * std::sin(phi);
+    float p1 = disk.x;
+    float p2 = disk.y;
     float s = 0.5f * (1.0f + vh.z);
     p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
     vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;

@@ -16,6 +16,15 @@ struct BsdfParams {
     float alpha = 1.0f;         // GGX alpha = roughness²
 };
 
+// Smallest GGX alpha: keeps the lobe a function (no delta mirror). roughness r → alpha =
+// max(r², kMinGgxAlpha); the F_β table (render/brdf_table.h) indexes by sqrt(alpha) for that reason.
+inline constexpr float kMinGgxAlpha = 1e-3f;
+float GgxAlphaFromRoughness(float roughness);
+
+// Schlick's Fresnel weight S = (1 − cosθ)⁵ (cosθ clamped to [0, 1]): F = F0 + (1 − F0) S, linear
+// in F0, which is why F_β needs only three pre-integrated channels (SPEC §6).
+float SchlickWeight(float cosTheta);
+
 // Parameters of a material at a texture-resolved base colour / roughness / metallic.
 BsdfParams MakeBsdfParams(const vec3& baseColor, float roughness, float metallic, float specular);
 
@@ -49,6 +58,10 @@ bool SampleBsdf(const BsdfParams& params, const vec3& wo, const vec2& u, float u
 float GgxD(float alpha, float cosThetaH);
 float GgxLambda(float alpha, float cosTheta);
 vec3 SampleGgxVndf(float alpha, const vec3& wo, const vec2& u);
+// The same in two steps: u → uniform point on the unit disk (polar map), then the visible normal
+// of that disk point (the F_β table maps its point set to the disk once, not per entry).
+vec2 VndfDiskPoint(const vec2& u);
+vec3 SampleGgxVndfDisk(float alpha, const vec3& wo, const vec2& disk);
 
 // Orthonormal basis around a unit normal (Duff et al. 2017).
 struct Frame {

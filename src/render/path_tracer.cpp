@@ -18,10 +18,15 @@
 //   two-sided (OBJ light winding is unreliable). Point/spot/directional lights are all sampled
 //   at every vertex (one shadow ray each).
 // - "direct" = paths with one reflection (NEE at the primary hit, emitters hit by the first
-//   bounce); "indirect" = the rest. Both are demodulated by the primary albedo.
+//   bounce); "indirect" = the rest. Both are divided by the same primary-hit factor
+//   (RenderSettings::demodulation): the albedo, or F_β (Zhuang et al. Fig. 3); emission is not.
 // - Demodulation albedo = diffuse reflectance + normal-incidence specular reflectance F0,
 //   clamped to [1e-3, 1] (per channel), so albedo * (L / albedo) reproduces L also for black
 //   dielectrics and metals (whose albedo is then their base colour).
+// - F_β = the BSDF's directional albedo at the primary hit's outgoing cosine (the BSDF's own
+//   local wo, after the shading-normal bend), from the shared pre-integrated table
+//   (render/brdf_table.h), clamped below at 1e-3 only (it may exceed 1 at grazing angles). Both
+//   planes are written whichever demodulation is on, so one render feeds both kinds of variant.
 // - Samples with a non-finite value are dropped (contribute 0, counted in RenderStats).
 // - spp-map entries of 0 are taken as 1 (sampleCount records what was traced).
 // - Gradient samples replace the pixel's own sample, as in the paper (§3): the merged pixel holds
@@ -49,6 +54,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "render/brdf_table.h"
 #include "render/bsdf.h"
 #include "render/embree_scene.h"
 #include "render/renderer.h"
@@ -95,16 +101,18 @@ struct PathVertex {
 
 // Demodulated result of n samples at one primary surface sample.
 struct PixelShade {
-    vec3 direct = vec3(0.0f);
-    vec3 indirect = vec3(0.0f);
+    vec3 direct = vec3(0.0f);      // divided by `modulation`
+    vec3 indirect = vec3(0.0f);    // divided by `modulation`
     vec3 albedo = vec3(0.0f);
+    vec3 fbeta = vec3(0.0f);
+    vec3 modulation = vec3(0.0f);  // albedo or fbeta (RenderSettings::demodulation)
     vec3 emission = vec3(0.0f);
     vec3 radiance = vec3(0.0f);  // emission + direct + indirect, not demodulated
     float roughness = 0.0f;      // primary hit's GGX roughness (sqrt alpha): the RAE's input
 };
 
 // core's Remodulate, as FrameInputs::NoisyColor uses: re-shaded and stored luminances match bit for bit.
-vec3 Remodulate(const PixelShade& s) { return fovrt::Remodulate(s.albedo, s.direct, s.indirect, s.emission); }
+vec3 Remodulate(const PixelShade& s) { return fovrt::Remodulate(s.modulation, s.direct, s.indirect, s.emission); }
 
 // What A-SVGF's forward projection reads of one eye's previous frame besides its visibility buffer.
 struct EyeHistory {
@@ -129,7 +137,8 @@ class PathTracer final : public Renderer {
 public:
     PathTracer(const Scene& scene, const RenderSettings& settings)
         : scene_(scene), settings_(settings),
-          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic),
+          fbetaTable_(SharedBrdfTable()) {
         if (settings_.maxDepth < 1) Fail("render: maxDepth must be >= 1 (got {})", settings_.maxDepth);
         if (scene_.materials.empty()) scene_.materials.push_back(Material{});
         for (const Mesh& mesh : scene_.meshes)
@@ -139,12 +148,14 @@ public:
                          mesh.name, m, scene_.materials.size());
         for (const Material& m : scene_.materials) {
             if (m.baseColorTexture >= int(scene_.textures.size()) ||
-                m.metallicRoughnessTexture >= int(scene_.textures.size()))
+                m.metallicRoughnessTexture >= int(scene_.textures.size()) ||
+                m.roughnessTexture >= int(scene_.textures.size()) || m.metallicTexture >= int(scene_.textures.size()))
                 Fail("scene {}: material '{}' names a texture that does not exist", scene_.name, m.name);
         }
         for (const Material& m : scene_.materials) {
             ResolvedMaterial r;
-            r.textured = m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0;
+            r.textured = m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.roughnessTexture >= 0 ||
+                         m.metallicTexture >= 0;
             r.bsdf = MakeBsdfParams(m.baseColor, m.roughness, m.metallic, m.specular);
             r.albedo = glm::clamp(r.bsdf.diffuse + r.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
             materials_.push_back(r);
@@ -197,6 +208,7 @@ public:
         out.timeSeconds = state_.time;
         out.camera = camera;
         out.prevCamera = prevCamera;
+        out.demodulation = settings_.demodulation;
         Plane<float> luminance(w, h, 0.0f);
 
         EyeHistory& history = history_[eye];
@@ -231,11 +243,11 @@ public:
         history.luminance = std::move(luminance);
     }
 
-    void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) override {
+    void RenderReference(int eye, const EyeCamera& camera, int spp, uint32_t seed, Plane<vec3>& out) override {
         FOVRT_CHECK_OP(spp, >=, 1);
         int w = camera.width(), h = camera.height();
         out.Resize(w, h, vec3(0.0f));
-        uint32_t runSeed = HashCombine(settings_.seed, kReferenceStream);
+        const uint32_t referenceSeed = HashCombine(seed, kReferenceStream);
         ForEachTile(w, h, [&](int x0, int y0, int x1, int y1, RayCounts& counts) {
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
@@ -247,8 +259,8 @@ public:
                         out(x, y) = scene_.background;
                         continue;
                     }
-                    uint32_t seed = PixelSeed(runSeed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
-                    out(x, y) = ShadePixel(camera.Position(), s, seed, spp, counts).radiance;
+                    const uint32_t pixelSeed = PixelSeed(referenceSeed, uint32_t(eye), uint32_t(x), uint32_t(y), 0u);
+                    out(x, y) = ShadePixel(camera.Position(), s, pixelSeed, spp, counts).radiance;
                 }
         });
     }
@@ -395,6 +407,9 @@ private:
             roughness *= mr.g;
             metallic *= mr.b;
         }
+        // Scene-file maps (scene/scene.h): their R channel scales the factor, like glTF's.
+        if (m.roughnessTexture >= 0) roughness *= scene_.textures[m.roughnessTexture].Sample(p.hit.uv).r;
+        if (m.metallicTexture >= 0) metallic *= scene_.textures[m.metallicTexture].Sample(p.hit.uv).r;
         p.bsdf = MakeBsdfParams(base, roughness, metallic, m.specular);
         p.albedo = glm::clamp(p.bsdf.diffuse + p.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
         return p;
@@ -695,10 +710,12 @@ private:
         direct *= inv;
         indirect *= inv;
         out.albedo = p.albedo;
+        out.fbeta = glm::max(PreintegratedReflectance(fbetaTable_, p.bsdf, primary.wo.wo.z), vec3(kMinAlbedo));
+        out.modulation = settings_.demodulation == Demodulation::Brdf ? out.fbeta : out.albedo;
         out.emission = p.emission;
         out.radiance = p.emission + direct + indirect;
-        out.direct = direct / p.albedo;  // albedo >= kMinAlbedo
-        out.indirect = indirect / p.albedo;
+        out.direct = direct / out.modulation;  // both factors >= kMinAlbedo
+        out.indirect = indirect / out.modulation;
         out.roughness = std::sqrt(p.bsdf.alpha);
         return out;
     }
@@ -825,6 +842,7 @@ private:
         out.direct(x, y) = shade.direct;
         out.indirect(x, y) = shade.indirect;
         out.albedo(x, y) = shade.albedo;
+        out.fbeta(x, y) = shade.fbeta;
         out.emission(x, y) = shade.emission;
         out.normal(x, y) = ns;
         out.linearDepth(x, y) = depth;
@@ -895,6 +913,7 @@ private:
     Scene scene_;
     RenderSettings settings_;
     mutable tbb::task_arena arena_;
+    const BrdfTable& fbetaTable_;  // the process's F_β table (built by the first renderer)
     std::unique_ptr<EmbreeScene> embree_;
     bool hasFrame_ = false;
     uint32_t frame_ = 0;

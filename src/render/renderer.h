@@ -19,6 +19,9 @@ struct RenderSettings {
     uint32_t seed = 1;         // run seed; per-pixel seeds = PixelSeed(seed, eye, x, y, frame)
     int threads = 0;           // 0: all hardware threads (result is identical for any count)
     bool gradientSamples = false;  // A-SVGF: fill FrameInputs::gradientSamples
+    // render.demodulation: what FrameInputs' direct / indirect are divided by (the albedo and F_β
+    // planes are both written either way; FrameInputs::demodulation records the choice).
+    Demodulation demodulation = Demodulation::Albedo;
 };
 
 // Work counters since the last ResetStats(): rays (primary, shadow, bounce) and every path sample
@@ -83,8 +86,11 @@ public:
     // sample and seed each pixel was shaded with. Overwritten by the next RenderEye of that eye.
     virtual const VisibilityBuffer& Visibility(int eye) const = 0;
 
-    // High-spp ground truth (remodulated colour) of the current frame for one eye.
-    virtual void RenderReference(int eye, const EyeCamera& camera, int spp, Plane<vec3>& out) = 0;
+    // High-spp ground truth (remodulated colour) of the current frame for one eye. `seed` is the
+    // reference's own sampling seed (ReferenceCache passes reference.seed mixed with the key's
+    // frame), not the run seed: runs with different seeds are scored against the same reference.
+    virtual void RenderReference(int eye, const EyeCamera& camera, int spp, uint32_t seed,
+                                 Plane<vec3>& out) = 0;
 
     // Re-shading API (A-SVGF): shades `sample` as seen from `camera` in the current frame with
     // n samples whose seeds derive from `seed`, exactly as RenderPixel would. Returns the

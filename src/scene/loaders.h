@@ -35,6 +35,11 @@ std::vector<MeshPart> LoadGltf(const std::filesystem::path& file, LoadContext& c
 int LoadTextureFile(const std::filesystem::path& file, bool srgb, const std::string& referrer,
                     LoadContext& context);
 
+// A procedural two-valued scalar texture (value in R, G, B; alpha 1): cellsX × cellsY cells of
+// texelsPerCell² texels each, alternating a / b (checker) or a / b by a hash of the cell (cells).
+Texture PatternTexture(const std::string& name, bool hashed, int cellsX, int cellsY, float a, float b,
+                       int texelsPerCell);
+
 // Converts 8-bit texel data (1-4 channels) into a Texture; 16-bit when bits == 16.
 Texture TextureFromPixels(const std::string& path, int width, int height, int channels, int bits,
                           const unsigned char* data, bool srgb);

@@ -164,8 +164,9 @@ std::filesystem::path SharedScenesDir() {
 }
 
 std::filesystem::path ResolveSceneName(const std::string& nameOrPath) {
-    static const char* const kBuiltins[] = {"cornell",    "pillars",        "room", "veach-ajar",
-                                            "box",        "cornell-shared", "suzanne"};
+    static const char* const kBuiltins[] = {"cornell",        "pillars",     "room",
+                                            "veach-ajar",     "box",         "cornell-shared",
+                                            "suzanne",        "brdf-detail", "brdf-detail-moving"};
     for (const char* name : kBuiltins) {
         if (nameOrPath != name) continue;
         std::filesystem::path dir = BuiltinScenesDir();

@@ -35,6 +35,8 @@ struct Material {
     float roughness = 1.0f;             // perceptual roughness, alpha = roughness²
     float metallic = 0.0f;
     int metallicRoughnessTexture = -1;  // glTF: G = roughness, B = metallic
+    int roughnessTexture = -1;          // scene-file roughness map: R (linear) scales roughness
+    int metallicTexture = -1;           // scene-file metallic map: R (linear) scales metallic
     float specular = 1.0f;              // dielectric specular weight: F0 = 0.04·specular (0 = pure Lambert)
     vec3 emission = vec3(0.0f);         // emitted radiance (W/(m²·sr)), area light if non-zero
 };

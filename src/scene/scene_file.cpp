@@ -371,6 +371,8 @@ struct SceneFileLoader {
         if (auto tex = t.String("base_color_texture"))
             texture = detail::LoadTextureFile(path.parent_path() / *tex, true,
                                               fmt::format("{}: {}", file, t.Key("base_color_texture")), context);
+        const int roughnessMap = ReadScalarMap(t, "roughness_texture");
+        const int metallicMap = ReadScalarMap(t, "metallic_texture");
         if (baseColor && std::min({baseColor->x, baseColor->y, baseColor->z}) < 0.0f) t.FailAt("base_color", "must be >= 0");
         if (emission && std::min({emission->x, emission->y, emission->z}) < 0.0f) t.FailAt("emission", "must be >= 0");
         t.Finish();
@@ -381,7 +383,40 @@ struct SceneFileLoader {
             if (t.Has("specular")) m->specular = specular;
             if (emission) m->emission = *emission;
             if (texture >= 0) m->baseColorTexture = texture;
+            if (roughnessMap >= 0) m->roughnessTexture = roughnessMap;
+            if (metallicMap >= 0) m->metallicTexture = metallicMap;
         }
+    }
+
+    // A roughness / metallic map: an image file (linear, R channel) or a procedural pattern
+    // { pattern = "checker" | "cells", cells = [x, y], values = [a, b], texels_per_cell = 4 }
+    // ("cells": each cell a or b by a hash of its coordinates, a binary texture like text).
+    // Returns the texture index, or -1 when the key is absent.
+    int ReadScalarMap(TableReader& t, const std::string& key) {
+        if (!t.Has(key)) return -1;
+        if (t.table().get(key)->is_string())
+            return detail::LoadTextureFile(path.parent_path() / *t.String(key), false,
+                                           fmt::format("{}: {}", file, t.Key(key)), context);
+        const toml::table* spec = t.Table(key);
+        if (!spec) t.FailAt(key, "expected a file name or { pattern = ..., cells = [x, y], values = [a, b] }");
+        TableReader p(*spec, t.Key(key), file);
+        const std::string pattern = p.String("pattern").value_or("checker");
+        if (pattern != "checker" && pattern != "cells")
+            p.FailAt("pattern", fmt::format("unknown pattern '{}' (known: checker, cells)", pattern));
+        auto cells = p.Numbers("cells");
+        if (!cells || cells->size() != 2 || (*cells)[0] < 1 || (*cells)[1] < 1 || (*cells)[0] > 4096 ||
+            (*cells)[1] > 4096)
+            p.FailAt("cells", "expected [x, y] cell counts in [1, 4096]");
+        auto values = p.Numbers("values");
+        if (!values || values->size() != 2 || std::min((*values)[0], (*values)[1]) < 0.0 ||
+            std::max((*values)[0], (*values)[1]) > 1.0)
+            p.FailAt("values", "expected [a, b] in [0, 1]");
+        const int perCell = int(p.Float("texels_per_cell", 4.0f, 1.0f, 64.0f));
+        p.Finish();
+        context.scene.textures.push_back(detail::PatternTexture(
+            fmt::format("{}:{}", file, t.Key(key)), pattern == "cells", int((*cells)[0]), int((*cells)[1]),
+            float((*values)[0]), float((*values)[1]), perCell));
+        return int(context.scene.textures.size()) - 1;
     }
 
     void ReadCameraKeys(TableReader& camera, const std::vector<const toml::table*>& keys) {

@@ -90,7 +90,7 @@ void Write(StreamWriter& out, const Mesh& mesh) {
 
 void Write(StreamWriter& out, const Material& material) {
     const auto& [name, baseColor, baseColorTexture, roughness, metallic, metallicRoughnessTexture,
-                 specular, emission] = material;
+                 roughnessTexture, metallicTexture, specular, emission] = material;
     (void)name;
     out.Value(baseColor);
     out.Value(int32_t(baseColorTexture));
@@ -99,6 +99,12 @@ void Write(StreamWriter& out, const Material& material) {
     out.Value(int32_t(metallicRoughnessTexture));
     out.Value(specular);
     out.Value(emission);
+    // Scene-file roughness / metallic maps: only when present, so that the stream (and the
+    // reference-cache keys) of scenes without them is what it was before they existed.
+    if (roughnessTexture >= 0 || metallicTexture >= 0) {
+        out.Value(int32_t(roughnessTexture));
+        out.Value(int32_t(metallicTexture));
+    }
 }
 
 void Write(StreamWriter& out, const Texture& texture) {

@@ -5,6 +5,7 @@
 #include <stb_image.h>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "scene/loaders.h"
 
 namespace fovrt::detail {
@@ -53,6 +54,23 @@ Texture TextureFromPixels(const std::string& path, int width, int height, int ch
         }
         texture.texels[i] = vec4(c[0], c[1], c[2], c[3]);
     }
+    return texture;
+}
+
+Texture PatternTexture(const std::string& name, bool hashed, int cellsX, int cellsY, float a, float b,
+                       int texelsPerCell) {
+    Texture texture;
+    texture.path = name;
+    texture.width = cellsX * texelsPerCell;
+    texture.height = cellsY * texelsPerCell;
+    texture.texels.resize(size_t(texture.width) * size_t(texture.height));
+    for (int y = 0; y < texture.height; ++y)
+        for (int x = 0; x < texture.width; ++x) {
+            const uint32_t cx = uint32_t(x / texelsPerCell), cy = uint32_t(y / texelsPerCell);
+            const bool second = hashed ? (HashCombine(HashCombine(0x524f5547u, cx), cy) & 1u) != 0 : ((cx + cy) & 1u) != 0;
+            const float v = second ? b : a;
+            texture.texels[size_t(y) * size_t(texture.width) + size_t(x)] = vec4(v, v, v, 1.0f);
+        }
     return texture;
 }
 

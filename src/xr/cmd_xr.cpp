@@ -34,6 +34,9 @@ void RegisterXrCommand(CLI::App& app) {
     cmd->add_option("--speed", options->speed, "scene seconds per second of display time")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--view", options->view, "what the headset shows: denoised | noisy | spp | ... (as preview)");
+    cmd->add_flag("--async", options->async,
+                  "render on a thread of its own and submit the newest frame at every display slot (the "
+                  "compositor reprojects it); default: one frame rendered per xrBeginFrame/xrEndFrame");
     cmd->add_flag("--mirror", options->mirror, "show what the headset gets in a desktop window, with the panel");
     cmd->add_option("--window", *window, "mirror window size WxH");
     cmd->add_option("--screenshot", options->screenshot,

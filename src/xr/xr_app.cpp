@@ -188,55 +188,78 @@ private:
         const XrHeadsetSession::FrameTiming timing = session_->BeginFrame();
         waitMs_ = MsBetween(waitStart, LiveClock::now());
         if (session_->Ended() != XrSessionEnd::None) return;
-        const bool wanted = !(options_.frames && rendered_ >= options_.frames) && !session_->ExitRequested();
+        const bool wanted = !AllFramesSubmitted() && !session_->ExitRequested();
         std::vector<XrCompositionLayerProjectionView> layer;
-        std::optional<LiveClock::time_point> gazeTakenAt;
-        bool newFrame = false;
+        std::shared_ptr<const LiveFrame> fresh;  // a frame submitted for the first time
         if (timing.shouldRender && wanted) {
             const auto views = session_->LocateViews(timing.displayTime);
             const auto head = session_->LocateHead(timing.displayTime);
             if (views && head) {
-                const bool paused = loop_->Controls().paused && last_;
-                if (!paused) {
-                    gazeTakenAt = LiveClock::now();
-                    std::optional<vec3> tracked;
-                    if (gaze_)
-                        if (auto sample = gaze_->Locate(session_->viewSpace(), timing.displayTime))
-                            tracked = sample->directionHead;
-                    // Inputs flow only while FOCUSED: before that the fallback is expected, not news.
-                    if (gaze_ && !tracked && !warnedInactive_ && session_->State() == XR_SESSION_STATE_FOCUSED) {
-                        std::fprintf(stderr,
-                                     "fovrt xr: warning: the eye gaze action is not active (no eye tracker "
-                                     "delivering): gaze from gaze.source = %s until it is\n",
-                                     source_->FallbackName().c_str());
-                        warnedInactive_ = true;
+                if (!options_.async) {
+                    if (!(loop_->Controls().paused && last_)) {
+                        SetNextFrame(timing, *views, *head);
+                        fresh = loop_->RenderOne();
                     }
-                    if (!firstDisplayTime_) firstDisplayTime_ = timing.displayTime;
-                    const double sceneTime =
-                        double(timing.displayTime - *firstDisplayTime_) * 1e-9 * double(options_.speed);
-                    source_->Set(*views, *head, sceneTime, tracked, *gazeTakenAt);
-                    last_ = loop_->RenderOne();
-                    lastViews_ = *views;
-                    newFrame = true;
-                    ++rendered_;
+                } else {
+                    // The render thread takes the newest views and gaze whenever it starts a frame;
+                    // this thread submits the newest finished frame at every display slot.
+                    SetNextFrame(timing, *views, *head);
+                    if (!loopStarted_) {
+                        loop_->Start(options_.frames, false);
+                        loopStarted_ = true;
+                    }
+                    if (auto error = loop_->Error()) Fail("render thread: {}", *error);
+                    auto latest = loop_->Latest();
+                    if (latest && (!last_ || latest->number != last_->number)) fresh = latest;
                 }
-                layer = WriteEyes(*last_);
+                if (fresh) {
+                    last_ = fresh;
+                    lastLayer_ = WriteEyes(*fresh);
+                    ++submitted_;
+                }
+                // Nothing new: the last released images again, with the poses they were traced
+                // from (the compositor reprojects them to the current head pose).
+                layer = lastLayer_;
             }
         }
         const auto endStart = LiveClock::now();
         session_->EndFrame(timing.displayTime, layer);
         const auto submitted = LiveClock::now();
-        if (newFrame && session_->Ended() == XrSessionEnd::None) Log(*last_, timing, *gazeTakenAt, endStart, submitted);
-        if (options_.frames && rendered_ >= options_.frames && !session_->ExitRequested()) {
-            std::fprintf(stderr, "fovrt xr: %llu frames rendered: ending the session\n",
-                         (unsigned long long)rendered_);
+        if (fresh && session_->Ended() == XrSessionEnd::None) Log(*fresh, timing, endStart, submitted);
+        if (AllFramesSubmitted() && !session_->ExitRequested()) {
+            std::fprintf(stderr, "fovrt xr: %llu frames submitted: ending the session\n",
+                         (unsigned long long)submitted_);
             session_->RequestExit();
         }
         if (mirror_) mirror_->Present(*loop_, *stats_, last_, SessionLines());
     }
 
+    bool AllFramesSubmitted() const { return options_.frames && last_ && last_->number >= options_.frames; }
+
+    // Eye gaze at the display time (or the fallback) and the located views, for the next frame.
+    void SetNextFrame(const XrHeadsetSession::FrameTiming& timing, const std::array<XrEyeView, 2>& views,
+                      const Pose& head) {
+        const auto gazeTakenAt = LiveClock::now();
+        std::optional<vec3> tracked;
+        if (gaze_)
+            if (auto sample = gaze_->Locate(session_->viewSpace(), timing.displayTime)) tracked = sample->directionHead;
+        // Inputs flow only while FOCUSED: before that the fallback is expected, not news.
+        if (gaze_ && !tracked && !warnedInactive_ && session_->State() == XR_SESSION_STATE_FOCUSED) {
+            std::fprintf(stderr,
+                         "fovrt xr: warning: the eye gaze action is not active (no eye tracker delivering): gaze "
+                         "from gaze.source = %s until it is\n",
+                         source_->FallbackName().c_str());
+            warnedInactive_ = true;
+        }
+        if (!firstDisplayTime_) firstDisplayTime_ = timing.displayTime;
+        const double sceneTime = double(timing.displayTime - *firstDisplayTime_) * 1e-9 * double(options_.speed);
+        source_->Set(views, head, sceneTime, tracked, gazeTakenAt);
+    }
+
     // Both eyes into their swapchains; the layer's views carry the poses the frame was traced from.
     std::vector<XrCompositionLayerProjectionView> WriteEyes(const LiveFrame& frame) {
+        const auto issued = source_->IssuedFrame(frame.source.request.frame);
+        if (!issued) Fail("xr: frame {} was not issued by the headset source", frame.source.request.frame);
         std::array<VkImage, 2> images{};
         for (int eye = 0; eye < 2; ++eye) images[size_t(eye)] = swapchains_[size_t(eye)]->Acquire();
         DisplaySettings settings;
@@ -244,12 +267,13 @@ private:
         settings.exposure = config_.output.exposure;
         writer_->Write({&frame.shown[0].rgb, &frame.shown[1].rgb}, settings, {&*swapchains_[0], &*swapchains_[1]},
                        images);
-        std::vector<XrCompositionLayerProjectionView> views(2, XrInit<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW));
+        std::vector<XrCompositionLayerProjectionView> views(
+            2, XrInit<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW));
         for (int eye = 0; eye < 2; ++eye) {
             swapchains_[size_t(eye)]->Release();
             auto& v = views[size_t(eye)];
-            v.pose = PoseToXr(lastViews_[size_t(eye)].pose);
-            v.fov = FovToXr(lastViews_[size_t(eye)].fov);
+            v.pose = PoseToXr(issued->views[size_t(eye)].pose);
+            v.fov = FovToXr(issued->views[size_t(eye)].fov);
             v.subImage.swapchain = swapchains_[size_t(eye)]->handle();
             v.subImage.imageRect.offset = {0, 0};
             v.subImage.imageRect.extent = {int32_t(swapchains_[size_t(eye)]->width()),
@@ -259,15 +283,16 @@ private:
         return views;
     }
 
-    void Log(const LiveFrame& frame, const XrHeadsetSession::FrameTiming& timing, LiveClock::time_point gazeTakenAt,
-             LiveClock::time_point endStart, LiveClock::time_point submitted) {
-        const double latencyMs = MsBetween(gazeTakenAt, submitted);
+    void Log(const LiveFrame& frame, const XrHeadsetSession::FrameTiming& timing, LiveClock::time_point endStart,
+             LiveClock::time_point submitted) {
+        const double latencyMs = MsBetween(frame.source.gazeTakenAt, submitted);
+        const auto issued = source_->IssuedFrame(frame.source.request.frame);
         const double submitMs = writer_->lastMs() + MsBetween(endStart, submitted);
         stats_->Add({frame.number, latencyMs, submitMs, frame.timings});
         const SourcedFrame& s = frame.source;
         nlohmann::json eyes = nlohmann::json::array();
         for (int eye = 0; eye < 2; ++eye) {
-            const XrEyeView& v = lastViews_[size_t(eye)];
+            const XrEyeView& v = issued->views[size_t(eye)];
             eyes.push_back({{"local", PoseJson(v.pose)},
                             {"fov", {v.fov.angleLeft, v.fov.angleRight, v.fov.angleUp, v.fov.angleDown}},
                             {"gaze_pixel", {frame.gazePixel[size_t(eye)].x, frame.gazePixel[size_t(eye)].y}}});
@@ -277,7 +302,7 @@ private:
             {"xr_frame", session_->FramesEnded()},  // the xrEndFrame (1-based) that submitted it
             {"display_time_ns", timing.displayTime},
             {"scene_time_s", s.request.timeSeconds},
-            {"gaze_source", source_->LastGazeSource()},
+            {"gaze_source", issued->gazeSource},
             {"gaze_direction", {s.request.gaze.direction.x, s.request.gaze.direction.y, s.request.gaze.direction.z}},
             {"eyes", eyes},
             {"gaze_to_submit_ms", latencyMs},
@@ -304,11 +329,12 @@ private:
                             config_.camera.height),
                 fmt::format("session: {}", XrSessionStateName(session_->State())),
                 fmt::format("gaze: {}", source_->LastGazeSource().empty() ? "-" : source_->LastGazeSource()),
-                fmt::format("frames: {} ended, {} with a layer, {} rendered", session_->FramesEnded(),
-                            session_->FramesWithLayers(), rendered_)};
+                fmt::format("frames: {} ended, {} with a layer, {} rendered, {} submitted", session_->FramesEnded(),
+                            session_->FramesWithLayers(), loop_->FramesRendered(), submitted_)};
     }
 
     void Finish() {
+        loop_->Stop();  // --async: the render thread (the recorder's writer) first
         if (recorder_) recorder_->Close();
         const XrSessionEnd end = session_->Ended();
         const char* outcome = end == XrSessionEnd::Exited         ? "exited"
@@ -332,7 +358,8 @@ private:
         manifest["session_states"] = session_->StatesSeen();
         manifest["frames"] = {{"ended", session_->FramesEnded()},
                               {"with_layer", session_->FramesWithLayers()},
-                              {"rendered", rendered_},
+                              {"rendered", loop_->FramesRendered()},
+                              {"submitted", submitted_},
                               {"records", "frames.jsonl"}};
         manifest["gaze_source_frames"] = gazeFrames;
         manifest["gaze_fallback"] = source_->FallbackName();
@@ -362,11 +389,11 @@ private:
         if (end == XrSessionEnd::SessionLost)
             Fail("the OpenXR runtime lost the session (LOSS_PENDING) after {} frames; the recording holds the "
                  "frames rendered so far",
-                 rendered_);
+                 submitted_);
         if (end == XrSessionEnd::InstanceLost)
             Fail("the OpenXR runtime went away (instance lost) after {} frames; the recording holds the frames "
                  "rendered so far",
-                 rendered_);
+                 submitted_);
     }
 
     // Members die in reverse order: the render stages, the XR objects, the instance, then the
@@ -388,9 +415,10 @@ private:
     fs::path outDir_;
     std::FILE* frameLog_ = nullptr;
     std::shared_ptr<const LiveFrame> last_;
-    std::array<XrEyeView, 2> lastViews_{};
+    std::vector<XrCompositionLayerProjectionView> lastLayer_;  // the last frame's layer views
+    uint64_t submitted_ = 0;   // frames submitted for the first time
+    bool loopStarted_ = false; // --async: the render thread runs
     std::optional<XrTime> firstDisplayTime_;
-    uint64_t rendered_ = 0;
     bool warnedInactive_ = false;
     double waitMs_ = 0.0;  // xrWaitFrame + xrBeginFrame of the current frame
     LiveClock::time_point start_;

@@ -2,8 +2,10 @@
 //   xrWaitFrame -> xrBeginFrame -> xrLocateViews + eye gaze at the predicted display time ->
 //   spp maps -> path tracer -> denoiser (Vulkan, on the device the runtime created) ->
 //   display pass into each eye's swapchain image -> xrEndFrame with one projection layer.
-// The frame is rendered between xrBeginFrame and xrEndFrame with the poses located for its own
-// display time, so every submitted layer carries the exact poses its pixels were traced from.
+// By default the frame is rendered between xrBeginFrame and xrEndFrame with the poses located for
+// its own display time; with `async` the live loop renders on its own thread from the newest
+// located views while the session thread submits the newest finished frame every display slot.
+// Either way every submitted layer carries the exact poses its pixels were traced from.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +17,7 @@
 namespace fovrt {
 
 struct XrOptions {
-    uint64_t frames = 0;         // rendered frames, then xrRequestExitSession (0: until Ctrl-C or the runtime stops)
+    uint64_t frames = 0;         // frames rendered and submitted, then xrRequestExitSession (0: until Ctrl-C or the runtime stops)
     std::string record;          // session recording (live/session_record.h), as `fovrt preview --record`
     std::string stats;           // per-frame timings and latency, JSON Lines
     bool writeInputs = false;    // FrameInputs + spp map EXRs per frame and eye in <output.dir>/inputs
@@ -23,6 +25,10 @@ struct XrOptions {
     bool followPath = false;     // the scene camera's path carries the headset's origin along
     float speed = 1.0f;          // scene seconds per second of display time
     std::string view = "denoised";
+    // Render on the live loop's own thread and submit the newest finished frame at every display
+    // slot (with the poses it was traced from, for the compositor to reproject); otherwise each
+    // frame is rendered between xrBeginFrame and xrEndFrame.
+    bool async = false;
     bool mirror = false;         // the preview window shows what the headset gets, with its panel
     std::string screenshot;      // with --mirror and --frames: the window's last image (PNG)
     WindowOptions window;

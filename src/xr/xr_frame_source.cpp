@@ -43,6 +43,7 @@ XrFrameSource::XrFrameSource(const RunConfig& config, bool followPath) : config_
 
 void XrFrameSource::Set(const std::array<XrEyeView, 2>& views, const Pose& headLocal, double sceneTime,
                         std::optional<vec3> trackedGaze, LiveClock::time_point gazeTakenAt) {
+    std::lock_guard<std::mutex> lock(mutex_);
     views_ = views;
     headLocal_ = headLocal;
     sceneTime_ = sceneTime;
@@ -56,7 +57,30 @@ Pose XrFrameSource::WorldFromLocal(double sceneTime) const {
     return Compose(anchor, Inverse(*recentre_));
 }
 
+bool XrFrameSource::HasViews() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return recentre_.has_value();
+}
+
+std::optional<XrFrameSource::Issued> XrFrameSource::IssuedFrame(uint32_t frame) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto& slot = issued_[frame % issued_.size()];
+    if (slot && slot->frame == frame) return slot;
+    return std::nullopt;
+}
+
+std::map<std::string, uint64_t> XrFrameSource::FramesPerGazeSource() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return framesPerSource_;
+}
+
+std::string XrFrameSource::LastGazeSource() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lastSource_;
+}
+
 SourcedFrame XrFrameSource::Next(uint32_t frame, double) {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (!pipeline_ || !recentre_) Fail("XrFrameSource: Next before Bind and Set");
     SourcedFrame out;
     out.request.frame = frame;
@@ -80,6 +104,7 @@ SourcedFrame XrFrameSource::Next(uint32_t frame, double) {
     out.gazeTakenAt = gazeTakenAt_;
     out.gazeSamples = {TimedGaze{out.request.gaze, gazeTakenAt_}};
     ++framesPerSource_[lastSource_];
+    issued_[frame % issued_.size()] = Issued{frame, views_, lastSource_};
     return out;
 }
 

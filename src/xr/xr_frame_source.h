@@ -7,11 +7,13 @@
 // starts where the scene's camera stands, looking where it looks.
 // Without an active eye gaze sample the configured gaze source (gaze.*) gives the gaze, and each
 // frame is counted under the source that gave it.
+// Thread-safe: the session thread calls Set, the render thread Next (xr --async).
 #pragma once
 
 #include <array>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -34,11 +36,22 @@ public:
 
     SourcedFrame Next(uint32_t frame, double sceneTime) override;
 
-    // The gaze source's name per frame rendered ("eye-tracker" or the fallback's name).
-    const std::map<std::string, uint64_t>& FramesPerGazeSource() const { return framesPerSource_; }
+    // Whether Set has been called (the render thread may start asking).
+    bool HasViews() const;
+
+    // What Next gave for `frame`, in the headset's terms (the last few frames are kept): the LOCAL
+    // views the projection layer must carry, and the gaze's source.
+    struct Issued {
+        uint32_t frame = 0;
+        std::array<XrEyeView, 2> views{};
+        std::string gazeSource;
+    };
+    std::optional<Issued> IssuedFrame(uint32_t frame) const;
+
+    // Frames per gaze source ("eye-tracker" or the fallback's name).
+    std::map<std::string, uint64_t> FramesPerGazeSource() const;
     std::string FallbackName() const { return fallbackName_; }
-    // The source of the last frame's gaze.
-    const std::string& LastGazeSource() const { return lastSource_; }
+    std::string LastGazeSource() const;
 
 private:
     Pose WorldFromLocal(double sceneTime) const;
@@ -56,6 +69,8 @@ private:
     LiveClock::time_point gazeTakenAt_;
     std::map<std::string, uint64_t> framesPerSource_;
     std::string lastSource_;
+    std::array<std::optional<Issued>, 8> issued_;  // ring, by frame index
+    mutable std::mutex mutex_;
 };
 
 // Pose algebra used by the mapping (a·b applies b first; Inverse(a)·a = identity).

@@ -1,0 +1,105 @@
+// Sharded experiments (SPEC §13, issue #15): an experiment is a list of runs, one per
+// (scene, run seed, eye, variant) in the order a single machine runs them; `--shard I/N` computes a
+// contiguous block of them (never part of a denoiser's frame sequence) and writes its part apart,
+// and `--merge` combines the N parts into the same CSV (byte for byte), summary, table and report
+// a single run writes.
+//
+// A shard's part is a directory <output.dir>/shards/shard-I-of-N/, built under a temporary name
+// and renamed into place when complete, so a killed shard leaves nothing that looks finished:
+//   part.json     the experiment's fingerprint, the runs, per-scene records, pass timings
+//   rows.tsv      every result row, values as %.17g (exact)
+//   visuals-K/    scene K's report images (EXR) when the shard ran the report's eye and seed
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/report.h"
+#include "app/report_html.h"
+
+namespace fovrt {
+
+struct ExperimentSpec;
+
+// --shard I/N: 0 ≤ I < N. {0, 1} is the whole experiment.
+struct ShardSelection {
+    int index = 0;
+    int count = 1;
+    bool Sharded() const { return count > 1 || index != 0; }
+    std::string Name() const;  // "shard-1-of-3"
+};
+// "I/N" with 0 ≤ I < N; a bad text is one error naming --shard.
+ShardSelection ParseShard(const std::string& text);
+
+// One run: a denoiser's whole frame sequence for one eye of one scene under one run seed.
+struct RunUnit {
+    size_t scene = 0;
+    size_t seed = 0;  // index into the experiment's seeds
+    int eye = 0;
+    size_t variant = 0;
+};
+// Every run in single-machine order: scene, seed, eye, variant.
+std::vector<RunUnit> ExperimentUnits(size_t scenes, size_t seeds, size_t variants);
+// The block of runs shard `selection` computes: contiguous, sizes differing by at most one.
+std::vector<RunUnit> ShardUnits(const std::vector<RunUnit>& all, const ShardSelection& selection);
+
+// Mean per-pass denoiser times, mergeable (sums and counts).
+class PassTimings {
+public:
+    void Add(const std::string& variant, const std::string& pass, double ms, int count = 1);
+    void Merge(const PassTimings& other);
+    ReportTable ToReport(const std::string& title) const;
+    nlohmann::json MeansJson() const;      // variant -> pass -> mean ms (the manifest's pass_ms)
+    nlohmann::json ToJson() const;         // sums and counts, for a shard's part
+    static PassTimings FromJson(const nlohmann::json& json);
+
+private:
+    std::map<std::string, std::map<std::string, std::pair<double, int>>> sums_;
+    std::vector<std::string> order_;
+};
+
+// What the runs of one scene measured (the manifest's scene record) and its report images.
+struct SceneRecord {
+    size_t index = 0;  // in the experiment's scenes
+    std::string label, requested, source;
+    uint64_t fingerprint = 0;
+    double renderMs = 0.0, referenceMs = 0.0;
+    int referenceHits = 0, referenceLookups = 0, eyeFrames = 0, blinkFrames = 0;
+    uint64_t rays = 0, droppedSamples = 0;
+    bool hasVisuals = false;  // ran the report's eye under the first seed
+    SceneVisuals visuals;     // its variants: those this part ran
+};
+
+// The result of computing some (or all) runs.
+struct ExperimentPart {
+    Results results;
+    std::vector<SceneRecord> scenes;  // scenes this part touched, by index
+    PassTimings timings;
+    std::string deviceDescription;
+    nlohmann::json replayRecord;
+};
+
+// Sorts the rows into single-machine order (scene, seed, frame, eye, variant; the order of rows
+// within one denoised frame is kept), given each label's scene index.
+void SortRowsCanonically(Results& results, const std::map<std::string, size_t>& sceneIndex,
+                         const std::vector<uint32_t>& seeds, const std::vector<std::string>& variants);
+
+// What identifies an experiment for its shards: the resolved config, scenes, variants, seeds,
+// quick, replay. Shards of different experiments never merge.
+std::string ExperimentFingerprint(const ExperimentSpec& spec);
+
+// Writes `part` as shard `selection`'s directory under `shardsDir`, atomically (a rerun replaces it).
+void WriteShardPart(const std::filesystem::path& shardsDir, const ShardSelection& selection,
+                    const std::string& fingerprint, const ExperimentPart& part);
+// Reads and combines every part under `shardsDir`. Refuses a set that is incomplete (naming the
+// missing shards and the command that makes them), mixed (different N or experiment), or corrupt.
+ExperimentPart MergeShardParts(const std::filesystem::path& shardsDir, const std::string& fingerprint,
+                               const std::string& rerunCommand);
+
+}  // namespace fovrt
