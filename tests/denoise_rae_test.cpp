@@ -17,9 +17,11 @@
 #include "denoise/reference/rae_features.h"
 #include "denoise/reference/rae_net.h"
 #include "io/npy.h"
+#include "denoise_rae_support.h"
 #include "test_support.h"
 
 using namespace fovrt;
+using fovrt::test::RelativeError;
 
 namespace {
 
@@ -30,17 +32,6 @@ Tensor Frame(const NpyArray& a, int t) {
     Tensor x(int(a.shape[1]), int(a.shape[2]), int(a.shape[3]));
     std::copy_n(a.data.begin() + std::ptrdiff_t(size_t(t) * x.data.size()), x.data.size(), x.data.begin());
     return x;
-}
-
-// max |a - b| / max |b|.
-double RelativeError(const Tensor& a, const Tensor& b) {
-    REQUIRE(a.data.size() == b.data.size());
-    double err = 0.0, scale = 0.0;
-    for (size_t i = 0; i < a.data.size(); ++i) {
-        err = std::max(err, double(std::abs(a.data[i] - b.data[i])));
-        scale = std::max(scale, double(std::abs(b.data[i])));
-    }
-    return err / std::max(scale, 1e-30);
 }
 
 RaeConv Conv(int out, int in, float bias = 0.0f) {

@@ -14,10 +14,12 @@
 #include "denoise/reference/rae_features.h"
 #include "denoise/reference/rae_net.h"
 #include "denoise/vulkan/rae_vk.h"
+#include "denoise_rae_support.h"
 #include "test_support.h"
 #include "vk_test_support.h"
 
 using namespace fovrt;
+using fovrt::test::RelativeError;
 using fovrt::test::TestContext;
 
 namespace {
@@ -34,16 +36,6 @@ Tensor RandomInput(const RaeWeights& w, int width, int height, uint64_t seed) {
     Pcg32 rng(seed);
     for (float& v : x.data) v = rng.NextFloat() * 2.0f - 0.5f;
     return x;
-}
-
-double RelativeError(const Tensor& a, const Tensor& b) {
-    REQUIRE(a.data.size() == b.data.size());
-    double err = 0.0, scale = 0.0;
-    for (size_t i = 0; i < a.data.size(); ++i) {
-        err = std::max(err, double(std::abs(a.data[i] - b.data[i])));
-        scale = std::max(scale, double(std::abs(b.data[i])));
-    }
-    return err / std::max(scale, 1e-30);
 }
 
 // The reference's tensors of one frame, by layout name (the same sequence as RaeForward).
