@@ -80,22 +80,31 @@ const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
 }
 
 
+namespace {
+
 std::string UnknownDenoiserMessage(std::string_view name) {
     return fmt::format("unknown denoiser '{}' (did you mean '{}'? known: {}; each also as <name>+brdf or "
                        "<name>+albedo)",
                        name, NearestName(DenoiserBaseName(name), DenoiserNames()), fmt::join(DenoiserNames(), ", "));
 }
 
-const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
+}  // namespace
+
+std::optional<std::string> DenoiserNameProblem(std::string_view name) {
     const DenoiserVariant* v = LookupDenoiserVariant(name);
-    if (!v) Fail("{}: {}", what, UnknownDenoiserMessage(name));
+    if (!v) return UnknownDenoiserMessage(name);
     // The network's weights were trained on albedo-demodulated illumination (SPEC §12); F_β input
     // would need weights trained on it.
     if (v->family == DenoiserFamily::Rae && DenoiserDemodulation(name) == Demodulation::Brdf)
-        Fail("{}: '{}': the RAE's weights were trained on albedo-demodulated illumination; use '{}' "
-             "(it re-divides an F_β-demodulated frame by the albedo itself)",
-             what, name, v->name);
-    return *v;
+        return fmt::format("'{}': the RAE's weights were trained on albedo-demodulated illumination; use '{}' "
+                           "(it re-divides an F_β-demodulated frame by the albedo itself)",
+                           name, v->name);
+    return std::nullopt;
+}
+
+const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
+    if (std::optional<std::string> problem = DenoiserNameProblem(name)) Fail("{}: {}", what, *problem);
+    return *LookupDenoiserVariant(name);
 }
 
 const std::vector<std::string>& DenoiserNames() {

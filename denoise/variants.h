@@ -46,8 +46,9 @@ const std::vector<DenoiserVariant>& DenoiserVariants();
 // known names and suggesting the nearest one otherwise.
 const DenoiserVariant& FindDenoiserVariant(std::string_view name,
                                            std::string_view what = "denoiser");
-// "unknown denoiser 'x' (did you mean 'y'? known: ...)", for callers that name the key themselves.
-std::string UnknownDenoiserMessage(std::string_view name);
+// Why `name` cannot be used, for callers that name the key themselves: "unknown denoiser 'x' (did
+// you mean 'y'? known: ...)", or a suffix its family refuses (rae+brdf); nullopt when it can.
+std::optional<std::string> DenoiserNameProblem(std::string_view name);
 // Null when `name` is not a variant (with or without a demodulation suffix).
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 

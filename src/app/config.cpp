@@ -377,7 +377,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Strings("denoise.denoisers", d.denoisers);
     for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
-        if (!LookupDenoiserVariant(name)) r.Bad("denoise.denoisers", UnknownDenoiserMessage(name));
+        if (auto problem = DenoiserNameProblem(name)) r.Bad("denoise.denoisers", *problem);
     }
     // A device index may be given as a number (device = 1) or a string ("1").
     if (const toml::node* n = r.Find("denoise.device"); n && n->is_integer()) {
