@@ -4,7 +4,7 @@
 // 2..n−1 of eye 0) of each RAE variant with its recurrent state carried and with the state reset
 // before every frame. The paper's claim is that the first is lower; the README reports whether
 // the committed weights make it true (they did not: it is a ctest again once they do).
-// Usage: rae_temporal_probe [frames = 8]
+// Usage: rae_temporal_probe [frames = 8 [rae.raew [rae-spp.raew]]] (default: the committed weights)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,8 +21,9 @@ namespace {
 float Lum(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 // Frame 0 has no predecessor, and frame 1 still carries the reset of frame 0 in both runs.
-double TemporalError(const std::string& variant, bool resetEveryFrame, int frames) {
+double TemporalError(const std::string& variant, bool resetEveryFrame, int frames, const RaeParams& weights) {
     RunConfig config = test::SmallCornellConfig();
+    config.denoise.params.rae = weights;
     config.camera.width = 96;
     config.camera.height = 64;
     config.foveation.model = "uniform";
@@ -56,10 +57,13 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "rae_temporal_probe: frames must be >= 3 (got '%s')\n", argv[1]);
         return 2;
     }
+    RaeParams weights;
+    if (argc > 2) weights.weights = argv[2];
+    if (argc > 3) weights.weightsSpp = argv[3];
     try {
         for (const char* variant : {"rae", "rae-spp"}) {
-            const double carried = TemporalError(variant, false, frames);
-            const double reset = TemporalError(variant, true, frames);
+            const double carried = TemporalError(variant, false, frames, weights);
+            const double reset = TemporalError(variant, true, frames, weights);
             std::printf("%-8s temporal error with state %.5f, reset every frame %.5f: %s\n", variant, carried, reset,
                         carried < reset ? "the state lowers it" : "the state does NOT lower it");
         }
