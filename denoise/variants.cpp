@@ -107,6 +107,15 @@ const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_vi
     return *LookupDenoiserVariant(name);
 }
 
+RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string_view what) {
+    RendererNeeds needs;
+    for (const std::string& name : names) {
+        needs.gradientSamples |= FindDenoiserVariant(name, what).needsGradientSamples;
+        needs.fbetaPlane |= DenoiserDemodulation(name) == Demodulation::Brdf;
+    }
+    return needs;
+}
+
 const std::vector<std::string>& DenoiserNames() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n;

@@ -57,6 +57,14 @@ std::optional<Demodulation> DenoiserDemodulation(std::string_view name);
 // `name` without its demodulation suffix ("svgf+brdf" → "svgf").
 std::string_view DenoiserBaseName(std::string_view name);
 
+// What the renderer must produce for a set of variant names, from their rows and suffixes.
+struct RendererNeeds {
+    bool gradientSamples = false;  // some row's needsGradientSamples
+    bool fbetaPlane = false;       // some "+brdf" name: FrameInputs::fbeta (RenderSettings::fbetaPlane)
+};
+// fovrt::Error naming the key `what` on an unknown name.
+RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string_view what);
+
 // Names accepted by CreateDenoiser, in table order.
 const std::vector<std::string>& DenoiserNames();
 

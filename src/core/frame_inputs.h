@@ -62,7 +62,8 @@ bool ParseDemodulation(std::string_view name, Demodulation& d);
       "demodulation")                                                                             \
     X(fbeta, vec3, vec3(0.0f), "RGB",                                                             \
       "primary-hit BRDF pre-integration F_beta (SPEC §6), >= 1e-3 (may exceed 1): the "           \
-      "(de)modulation factor under brdf demodulation")                                            \
+      "(de)modulation factor under brdf demodulation; 0 when not asked for "                      \
+      "(RenderSettings::fbetaPlane)")                                                             \
     X(emission, vec3, vec3(0.0f), "RGB",                                                          \
       "emitted radiance at the primary hit (added after remodulation)")                           \
     X(normal, vec3, vec3(0.0f), "XYZ", "world-space unit shading normal; 0 for background")       \

@@ -25,8 +25,10 @@
 //   dielectrics and metals (whose albedo is then their base colour).
 // - F_β = the BSDF's directional albedo at the primary hit's outgoing cosine (the BSDF's own
 //   local wo, after the shading-normal bend), from the shared pre-integrated table
-//   (render/brdf_table.h), clamped below at 1e-3 only (it may exceed 1 at grazing angles). Both
-//   planes are written whichever demodulation is on, so one render feeds both kinds of variant.
+//   (render/brdf_table.h), clamped below at 1e-3 only (it may exceed 1 at grazing angles). The
+//   albedo plane is always written; the F_β plane under brdf demodulation or when asked
+//   (RenderSettings::fbetaPlane, for "+brdf" variants), so that one render feeds both kinds of
+//   variant and albedo-only runs skip the lookups (0 in the plane).
 // - Samples with a non-finite value are dropped (contribute 0, counted in RenderStats).
 // - spp-map entries of 0 are taken as 1 (sampleCount records what was traced).
 // - Gradient samples replace the pixel's own sample, as in the paper (§3): the merged pixel holds
@@ -137,8 +139,7 @@ class PathTracer final : public Renderer {
 public:
     PathTracer(const Scene& scene, const RenderSettings& settings)
         : scene_(scene), settings_(settings),
-          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic),
-          fbetaTable_(SharedBrdfTable()) {
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
         if (settings_.maxDepth < 1) Fail("render: maxDepth must be >= 1 (got {})", settings_.maxDepth);
         if (scene_.materials.empty()) scene_.materials.push_back(Material{});
         for (const Mesh& mesh : scene_.meshes)
@@ -168,6 +169,7 @@ public:
                 if (Luminance(scene_.materials[mat].emission) > 0.0f) emissive_.push_back({i, t});
             }
         }
+        SetFbetaPlane(settings_.fbetaPlane);
         SetFrame(0);
         prevState_ = state_;
         prevXforms_ = embree_->xforms();
@@ -193,6 +195,11 @@ public:
 
     const SceneState& State() const override { return state_; }
     void SetGradientSamples(bool on) override { settings_.gradientSamples = on; }
+    void SetFbetaPlane(bool on) override {
+        settings_.fbetaPlane = on;
+        // The table (seconds to build) only once some frame needs F_β.
+        if (!fbetaTable_ && (on || settings_.demodulation == Demodulation::Brdf)) fbetaTable_ = &SharedBrdfTable();
+    }
     const Scene& GetScene() const override { return scene_; }
 
     void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
@@ -710,8 +717,10 @@ private:
         direct *= inv;
         indirect *= inv;
         out.albedo = p.albedo;
-        out.fbeta = glm::max(PreintegratedReflectance(fbetaTable_, p.bsdf, primary.wo.wo.z), vec3(kMinAlbedo));
-        out.modulation = settings_.demodulation == Demodulation::Brdf ? out.fbeta : out.albedo;
+        const bool brdf = settings_.demodulation == Demodulation::Brdf;
+        if (brdf || settings_.fbetaPlane)
+            out.fbeta = glm::max(PreintegratedReflectance(*fbetaTable_, p.bsdf, primary.wo.wo.z), vec3(kMinAlbedo));
+        out.modulation = brdf ? out.fbeta : out.albedo;
         out.emission = p.emission;
         out.radiance = p.emission + direct + indirect;
         out.direct = direct / out.modulation;  // both factors >= kMinAlbedo
@@ -913,7 +922,7 @@ private:
     Scene scene_;
     RenderSettings settings_;
     mutable tbb::task_arena arena_;
-    const BrdfTable& fbetaTable_;  // the process's F_β table (built by the first renderer)
+    const BrdfTable* fbetaTable_ = nullptr;  // the process's F_β table, once F_β is needed (SetFbetaPlane)
     std::unique_ptr<EmbreeScene> embree_;
     bool hasFrame_ = false;
     uint32_t frame_ = 0;
