@@ -17,7 +17,7 @@ const std::vector<DebugView>& DebugViewTable() {
                     "two-history family's W_u (saturates at 1/alpha); 1 where it was dropped",
          .lo = 1.0f,
          .hi = kUnbounded,
-         .offeredBy = [](const V&) { return true; }},
+         .offeredBy = [](const V& v) { return v.family != DenoiserFamily::Rae; }},  // the RAE keeps no history length
         {.id = DebugViewId::HistorySamples,
          .name = "historySamples",
          .meaning = "samples in the weighted history, sum of beta^(t-i) n_i: svgf-weighted's W, "

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "core/check.h"
+#include "core/error.h"
 
 namespace fovrt {
 
@@ -14,7 +15,15 @@ const FrameInputs& Redemodulate(const FrameInputs& in, Demodulation want, FrameI
     const Plane<vec3>& to = scratch.Modulation();
     for (size_t i = 0; i < from.size(); ++i) {
         for (int c = 0; c < 3; ++c) {
-            if (!(to[i][c] > 0.0f)) continue;
+            if (!(to[i][c] > 0.0f)) {
+                // Both factors are >= 1e-3 on surfaces: a 0 there is a plane the renderer skipped.
+                if (in.objectId[i] != kNoObject)
+                    Fail("{} demodulation: the frame's {} plane is 0 on a surface (the renderer fills fbeta "
+                         "only under render.demodulation = \"brdf\" or for a +brdf variant: "
+                         "RenderSettings::fbetaPlane)",
+                         DemodulationName(want), want == Demodulation::Brdf ? "fbeta" : "albedo");
+                continue;
+            }
             const float ratio = from[i][c] / to[i][c];
             scratch.direct[i][c] = in.direct[i][c] * ratio;
             scratch.indirect[i][c] = in.indirect[i][c] * ratio;

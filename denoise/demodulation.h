@@ -1,7 +1,7 @@
 // The shared demodulation step (Zhuang et al. §4.3: "we treat the original methods as a black
 // box, and only change the inputs and the outputs of the filtering ... and change the demodulation
 // from the diffuse albedo to F_β"). A FrameInputs carries direct / indirect divided by one factor
-// (FrameInputs::demodulation, Modulation()) and both factor planes (albedo, fbeta); every
+// (FrameInputs::demodulation, Modulation()) and the factor planes (albedo; fbeta when asked for); every
 // denoiser remodulates by Modulation(). A variant named "<name>+brdf" / "<name>+albedo"
 // (denoise/variants.h) re-divides the frame's illumination by the factor it asks for before the
 // filter sees it, so one render feeds both kinds of variant.
@@ -15,7 +15,8 @@
 namespace fovrt {
 
 // `in` with direct and indirect divided by `want`'s factor instead of in.demodulation's:
-// illum · from / to per channel (pixels whose target factor is 0, the background, keep theirs).
+// illum · from / to per channel (pixels whose target factor is 0, the background, keep theirs;
+// fovrt::Error when a surface pixel has none: a frame rendered without the F_β plane).
 // Returns `in` itself, copying nothing, when it already is; otherwise fills and returns `scratch`
 // (every other plane and field copied unchanged).
 const FrameInputs& Redemodulate(const FrameInputs& in, Demodulation want, FrameInputs& scratch);

@@ -7,7 +7,9 @@
 #include "core/error.h"
 #include "denoise/demodulation.h"
 #include "denoise/memory_plan.h"
+#include "denoise/reference/rae_cpu.h"
 #include "denoise/reference/svgf_cpu.h"
+#include "denoise/vulkan/rae_vk.h"
 #include "denoise/vulkan/svgf_vk.h"
 #include "denoise/reference/two_history_ref.h"
 #include "denoise/vulkan/two_history_vk.h"
@@ -47,6 +49,14 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
         return WithDemodulation(CreateDenoiser(std::string(v.name), device, params, context), *want, name);
     // The family picks the host; the row's flags pick the passes inside it.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
+    if (v.family == DenoiserFamily::Rae) {
+        std::unique_ptr<Denoiser> rae;
+        if (ctx) rae = std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);
+        else rae = std::make_unique<RaeReferenceDenoiser>(name, p);
+        // Its features and remodulation are the albedo's (SPEC §12) whatever render.demodulation the
+        // frame was traced with (a no-op on albedo-demodulated frames).
+        return WithDemodulation(std::move(rae), Demodulation::Albedo, name);
+    }
     if (v.family == DenoiserFamily::Svgf) {
         if (!ctx) return std::make_unique<SvgfReferenceDenoiser>(name, p);
         return std::make_unique<SvgfVulkanDenoiser>(name, std::move(ctx), p);

@@ -1,3 +1,4 @@
+#include "denoise/rae_weights.h"
 #include "denoise/memory_plan.h"
 
 #include <algorithm>
@@ -143,6 +144,7 @@ std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, i
     const DenoiserVariant& v = FindDenoiserVariant(name);
     const DenoiserParams p = ParamsForVariant(v, params);
     if (v.family == DenoiserFamily::Svgf) return PlanSvgfMemory(width, height, p);
+    if (v.family == DenoiserFamily::Rae) return PlanRaeMemory(width, height, p);
     return PlanTwoHistoryMemory(name, width, height, p);
 }
 

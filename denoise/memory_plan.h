@@ -26,10 +26,12 @@ std::string UploadBufferOf(std::string_view plane, std::string_view side = "");
 size_t SampleCountBytes(size_t pixels);
 
 // Whether a frame uploads this FrameInputs plane with the others: all but the sample counts,
-// which only the variants that read them (DenoiserVariant::needsSampleCount) upload, and F_β,
-// which no shader reads (a +brdf variant's host puts it in the modulation plane's place before
-// the upload: denoise/demodulation.h).
-inline bool UploadedWithInputs(std::string_view plane) { return plane != "sampleCount" && plane != "fbeta"; }
+// which only the variants that read them (DenoiserVariant::needsSampleCount) upload; F_β, which no
+// shader reads (a +brdf variant's host puts it in the modulation plane's place before the upload:
+// denoise/demodulation.h); and the roughness, which only the RAE reads (SPEC §12).
+inline bool UploadedWithInputs(std::string_view plane) {
+    return plane != "sampleCount" && plane != "fbeta" && plane != "roughness";
+}
 
 // Bytes per element of a history plane scalar.
 inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }

@@ -36,10 +36,21 @@ struct TwoHistoryParams {
     float qScale = 1.0f;           // S
 };
 
+// The recurrent denoising autoencoder (SPEC §12): which trained network to run. A relative path
+// is looked up in the working directory, then in the source tree (the committed weights).
+inline constexpr const char* kRaeWeightsKey = "denoise.rae.weights";
+inline constexpr const char* kRaeWeightsDoc = "RAE network weights (.raew, training/rae_net.py)";
+inline constexpr const char* kRaeWeightsSppKey = "denoise.rae.weights_spp";
+struct RaeParams {
+    std::string weights = "training/weights/rae-quarter.raew";           // variant rae
+    std::string weightsSpp = "training/weights/rae-quarter-spp.raew";    // variant rae-spp
+};
+
 struct DenoiserParams {
     SvgfParams svgf;
     AsvgfParams asvgf;
     TwoHistoryParams twoHistory;
+    RaeParams rae;
     Precision precision = Precision::Fp32;
 };
 

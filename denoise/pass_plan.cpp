@@ -249,6 +249,32 @@ void PlanTwoHistoryFamily(PlanWriter& w, const DenoiserVariant& v, const Denoise
     ModulateAndDownload(w, channels, p.atrousIterations);
 }
 
+// The recurrent autoencoder (denoise/rae_weights.h): features on the host, the network's encoder
+// (recurrent blocks: the previous hidden side read, the other written) and decoder (reading the
+// hidden states as skips) on the device, remodulation on the host. Every activation counts once
+// per pass that writes or reads it (the byte model's convention; a conv's 3×3 taps hit cache).
+void PlanRae(PlanWriter& w, const std::vector<BufferPlan>& buffers) {
+    auto unsided = [](const std::string& n) {
+        const size_t dot = n.rfind('.');
+        return n.rfind("rae.hidden", 0) == 0 ? n.substr(0, dot) : n;
+    };
+    auto starts = [](const std::string& n, const char* p) { return n.rfind(p, 0) == 0; };
+    w.Pass("rae_features").Write("rae.input");
+    w.Pass("upload").Upload("rae.input");
+    w.Pass("rae_encoder").Read("rae.input").Read("rae.weights");
+    for (const BufferPlan& b : buffers) {
+        if (starts(b.name, "rae.enc") || starts(b.name, "rae.bottleneck")) w.Write(b.name).Read(b.name);
+        if (starts(b.name, "rae.hidden") && b.name.back() == 'A') w.Read(unsided(b.name)).Write(unsided(b.name));
+    }
+    w.Pass("rae_decoder").Read("rae.weights").Write("rae.output");
+    for (const BufferPlan& b : buffers) {
+        if (starts(b.name, "rae.dec")) w.Write(b.name).Read(b.name);
+        if (starts(b.name, "rae.hidden") && b.name.back() == 'A') w.Read(unsided(b.name));
+    }
+    w.Pass("download").Read("rae.output", 2.0);
+    w.Pass("rae_remodulate").Read("rae.output");
+}
+
 }  // namespace
 
 DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& params, int width,
@@ -260,6 +286,8 @@ DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& para
     PlanWriter w(plan.passes);
     if (v.family == DenoiserFamily::Svgf)
         PlanSvgf(w, v, p);
+    else if (v.family == DenoiserFamily::Rae)
+        PlanRae(w, plan.buffers);
     else
         PlanTwoHistoryFamily(w, v, p);
     return plan;

@@ -36,6 +36,13 @@ const std::vector<DenoiserVariant>& DenoiserVariants() {
          .asvgfGradient = true,
          .needsGradientSamples = true,
          .needsSampleCount = true},
+        {.name = "rae",
+         .summary = "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights",
+         .family = F::Rae},
+        {.name = "rae-spp",
+         .summary = "rae with the per-pixel sample count as an 8th input, denoise.rae.weights_spp",
+         .family = F::Rae,
+         .raeSampleCount = true},
     };
     return rows;
 }
@@ -73,15 +80,40 @@ const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
 }
 
 
+namespace {
+
 std::string UnknownDenoiserMessage(std::string_view name) {
     return fmt::format("unknown denoiser '{}' (did you mean '{}'? known: {}; each also as <name>+brdf or "
                        "<name>+albedo)",
                        name, NearestName(DenoiserBaseName(name), DenoiserNames()), fmt::join(DenoiserNames(), ", "));
 }
 
+}  // namespace
+
+std::optional<std::string> DenoiserNameProblem(std::string_view name) {
+    const DenoiserVariant* v = LookupDenoiserVariant(name);
+    if (!v) return UnknownDenoiserMessage(name);
+    // The network's weights were trained on albedo-demodulated illumination (SPEC §12); F_β input
+    // would need weights trained on it.
+    if (v->family == DenoiserFamily::Rae && DenoiserDemodulation(name) == Demodulation::Brdf)
+        return fmt::format("'{}': the RAE's weights were trained on albedo-demodulated illumination; use '{}' "
+                           "(it re-divides an F_β-demodulated frame by the albedo itself)",
+                           name, v->name);
+    return std::nullopt;
+}
+
 const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
-    if (const DenoiserVariant* v = LookupDenoiserVariant(name)) return *v;
-    Fail("{}: {}", what, UnknownDenoiserMessage(name));
+    if (std::optional<std::string> problem = DenoiserNameProblem(name)) Fail("{}: {}", what, *problem);
+    return *LookupDenoiserVariant(name);
+}
+
+RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string_view what) {
+    RendererNeeds needs;
+    for (const std::string& name : names) {
+        needs.gradientSamples |= FindDenoiserVariant(name, what).needsGradientSamples;
+        needs.fbetaPlane |= DenoiserDemodulation(name) == Demodulation::Brdf;
+    }
+    return needs;
 }
 
 const std::vector<std::string>& DenoiserNames() {
@@ -95,6 +127,7 @@ const std::vector<std::string>& DenoiserNames() {
 
 DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams params) {
     params.svgf.weightBySampleCount = variant.weightBySampleCount;
+    if (variant.raeSampleCount) params.rae.weights = params.rae.weightsSpp;
     return params;
 }
 

@@ -22,7 +22,9 @@ namespace fovrt {
 // The pass family a variant runs. Svgf: reproject → moments → à-trous → modulate (SPEC §3).
 // TwoHistory: the same stages composed with A-SVGF's temporal gradient and/or two-history's
 // second history (SPEC §4–§5).
-enum class DenoiserFamily { Svgf, TwoHistory };
+// Rae: the recurrent denoising autoencoder (SPEC §12): features → U-Net with recurrent blocks →
+// remodulation; its weights come from denoise.rae.weights (denoise/rae_weights.h).
+enum class DenoiserFamily { Svgf, TwoHistory, Rae };
 
 struct DenoiserVariant {
     std::string_view name;     // the factory name, e.g. "two-history-asvgf"
@@ -35,6 +37,7 @@ struct DenoiserVariant {
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device
+    bool raeSampleCount = false;  // rae: the network with the sample-count input (weights_spp)
 };
 
 // Every variant, in the order tables list them.
@@ -43,8 +46,9 @@ const std::vector<DenoiserVariant>& DenoiserVariants();
 // known names and suggesting the nearest one otherwise.
 const DenoiserVariant& FindDenoiserVariant(std::string_view name,
                                            std::string_view what = "denoiser");
-// "unknown denoiser 'x' (did you mean 'y'? known: ...)", for callers that name the key themselves.
-std::string UnknownDenoiserMessage(std::string_view name);
+// Why `name` cannot be used, for callers that name the key themselves: "unknown denoiser 'x' (did
+// you mean 'y'? known: ...)", or a suffix its family refuses (rae+brdf); nullopt when it can.
+std::optional<std::string> DenoiserNameProblem(std::string_view name);
 // Null when `name` is not a variant (with or without a demodulation suffix).
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 
@@ -52,6 +56,14 @@ const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 std::optional<Demodulation> DenoiserDemodulation(std::string_view name);
 // `name` without its demodulation suffix ("svgf+brdf" → "svgf").
 std::string_view DenoiserBaseName(std::string_view name);
+
+// What the renderer must produce for a set of variant names, from their rows and suffixes.
+struct RendererNeeds {
+    bool gradientSamples = false;  // some row's needsGradientSamples
+    bool fbetaPlane = false;       // some "+brdf" name: FrameInputs::fbeta (RenderSettings::fbetaPlane)
+};
+// fovrt::Error naming the key `what` on an unknown name.
+RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string_view what);
 
 // Names accepted by CreateDenoiser, in table order.
 const std::vector<std::string>& DenoiserNames();

@@ -14,5 +14,5 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   catch2 libtinygltf-dev libtinyobjloader-dev libstb-dev libtomlplusplus-dev libcli11-dev \
   nlohmann-json3-dev libspdlog-dev libfmt-dev libimgui-dev xvfb xauth \
   xdotool x11-apps netpbm openxr-layer-corevalidation chromium python3 \
-  slurm-wlm munge parallel \
+  python3-torch python3-numpy slurm-wlm munge parallel \
   >/dev/null

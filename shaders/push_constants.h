@@ -49,6 +49,16 @@
     F(ivec2, gaze0) F(ivec2, gaze1) F(float, step_x) F(float, step_y) F(int, radius0) F(int, radius1) \
     F(float, scale) F(uint, flags)
 
+// rae_conv (denoise/vulkan/rae_vk.h): output size; channels of input a (upsampled 2×2 nearest by
+// addressing when flags & RAE_FLAG_UPSAMPLE_A) and of input b (concatenated after a; 0 = none);
+// offsets in elements of the activation buffer and of the weight buffer; tiles_x = workgroups
+// along x per output-channel group (the group index rides on gl_WorkGroupID.x).
+#define FOVRT_PUSH_RAE_CONV(F)                                                                   \
+    F(ivec2, size) F(int, in_a) F(int, in_b) F(int, out_channels) F(uint, a_offset) F(uint, b_offset) \
+    F(uint, dst_offset) F(uint, w_offset) F(uint, bias_offset) F(uint, flags) F(int, tiles_x)
+// rae_pool: output size, channels, source and destination offsets (elements).
+#define FOVRT_PUSH_RAE_POOL(F) F(ivec2, size) F(int, channels) F(uint, src_offset) F(uint, dst_offset) F(int, tiles_x)
+
 #define FOVRT_PUSH_FIELD(type, name) type name;
 
 #ifdef __cplusplus
@@ -80,6 +90,8 @@ FOVRT_DECLARE_PUSH(AsvgfSigmaPush, FOVRT_PUSH_ASVGF_SIGMA);
 FOVRT_DECLARE_PUSH(AsvgfAlphaPush, FOVRT_PUSH_ASVGF_ALPHA);
 FOVRT_DECLARE_PUSH(BandwidthPush, FOVRT_PUSH_BANDWIDTH);
 FOVRT_DECLARE_PUSH(DisplayComposePush, FOVRT_PUSH_DISPLAY_COMPOSE);
+FOVRT_DECLARE_PUSH(RaeConvPush, FOVRT_PUSH_RAE_CONV);
+FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 #undef FOVRT_DECLARE_PUSH
 #undef FOVRT_PUSH_FIELD_QUALIFIED
 // 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
@@ -90,6 +102,7 @@ static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && s
               sizeof(AsvgfAlphaPush) == 20 && sizeof(BandwidthPush) == 8);
 // Seven ivec2 first, then the scalars: 80 bytes, within the 128 every device allows.
 static_assert(sizeof(DisplayComposePush) == 80);
+static_assert(sizeof(RaeConvPush) == 48 && sizeof(RaePoolPush) == 24);
 }  // namespace fovrt
 #else
 // GLSL: the block every shader reads as `pc`.

@@ -74,6 +74,7 @@
 #include "bindings/svgf_pack_guide.h"
 #include "bindings/svgf_reproject.h"
 #include "bindings/bandwidth_copy.h"
+#include "bindings/rae.h"
 #ifdef __cplusplus
 FOVRT_PASS_BINDINGS(SVGF_REPROJECT)  // one channel ("svgf_reproject")
 FOVRT_PAIR_BINDINGS(SVGF_REPROJECT)  // "svgf_reproject_pair"
@@ -84,6 +85,8 @@ FOVRT_PASS_BINDINGS(SVGF_ATROUS)  // "svgf_atrous"
 FOVRT_PAIR_BINDINGS(SVGF_ATROUS)  // "svgf_atrous_pair"
 FOVRT_PASS_BINDINGS(SVGF_MODULATE)
 FOVRT_PASS_BINDINGS(BANDWIDTH)
+FOVRT_PASS_BINDINGS(RAE_CONV)
+FOVRT_PASS_BINDINGS(RAE_POOL)
 #endif
 
 #endif

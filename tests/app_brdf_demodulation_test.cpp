@@ -3,6 +3,7 @@
 // and on the detailed surfaces F_β demodulation lowers SVGF's relMSE (the paper's direction).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "app/config.h"
 #include "app/frame_pipeline.h"
@@ -40,6 +41,38 @@ TEST_CASE("variant names take a demodulation suffix", "[app]") {
     CHECK_THROWS_WITH(CreateDenoiser("svgf+phong", "cpu", DenoiserParams{}), Catch::Contains("+brdf"));
 }
 
+TEST_CASE("the renderer traces F_beta only for +brdf names, and a +brdf variant refuses a frame without it", "[app]") {
+    CHECK(!RendererNeedsOf({"svgf", "two-history", "asvgf+albedo"}, "test").fbetaPlane);
+    CHECK(RendererNeedsOf({"svgf", "two-history+brdf"}, "test").fbetaPlane);
+    CHECK(RendererNeedsOf({"asvgf"}, "test").gradientSamples);
+    CHECK(!RendererNeedsOf({"svgf+brdf"}, "test").gradientSamples);
+    CHECK_THROWS_WITH(RendererNeedsOf({"svgf+phong"}, "test"), Catch::Contains("test"));
+    RunConfig config = SmallDetail();
+    config.denoise.denoisers = {"svgf", "two-history+albedo"};
+    FramePipeline pipeline(config);
+    StereoFrame frame;
+    pipeline.Render(0, frame);
+    const FrameInputs& in = frame.eyes[0].inputs;
+    auto fbetaOnSurfaces = [&] {  // pixels with a surface and F_beta >= 1e-3; of how many surfaces
+        std::pair<size_t, size_t> n{0, 0};
+        for (size_t i = 0; i < in.fbeta.size(); ++i)
+            if (in.objectId[i] != kNoObject) {
+                ++n.second;
+                n.first += glm::all(glm::greaterThanEqual(in.fbeta[i], vec3(1e-3f))) ? 1 : 0;
+            }
+        return n;
+    };
+    REQUIRE(fbetaOnSurfaces().second > 1000);
+    CHECK(fbetaOnSurfaces().first == 0);
+    Plane<vec3> out;
+    CHECK_THROWS_WITH(CreateDenoiser("svgf+brdf", "cpu", DenoiserParams{})->Denoise(in, out),
+                      Catch::Contains("fbeta plane is 0 on a surface"));
+    // A live switch to a +brdf variant turns it on from the next frame.
+    pipeline.SetRendererNeeds(RendererNeedsOf({"svgf+brdf"}, "test"));
+    pipeline.Render(1, frame);
+    CHECK(fbetaOnSurfaces().first == fbetaOnSurfaces().second);
+}
+
 TEST_CASE("re-demodulation to F_beta keeps the noisy colour and swaps the factor", "[app]") {
     RunConfig config = SmallDetail();
     FramePipeline pipeline(config);
@@ -61,6 +94,30 @@ TEST_CASE("re-demodulation to F_beta keeps the noisy colour and swaps the factor
             }
     INFO("max relative change of the noisy colour " << worst);
     CHECK(worst < 1e-6);
+}
+
+TEST_CASE("rae takes F_beta-demodulated frames back to its albedo; rae+brdf is refused", "[app]") {
+    RunConfig config = SmallDetail();
+    FramePipeline pipeline(config);
+    StereoFrame frame;
+    pipeline.Render(0, frame);
+    const FrameInputs& albedoFrame = frame.eyes[0].inputs;
+    FrameInputs scratch;
+    const FrameInputs& brdfFrame = Redemodulate(albedoFrame, Demodulation::Brdf, scratch);
+    // The network's features and remodulation are the albedo's (SPEC §12): the same output from
+    // either demodulation of one render, up to the rounding of dividing twice.
+    Plane<vec3> a, b;
+    CreateDenoiser("rae", "cpu", DenoiserParams{})->Denoise(albedoFrame, a);
+    CreateDenoiser("rae", "cpu", DenoiserParams{})->Denoise(brdfFrame, b);
+    double worst = 0.0;
+    for (size_t i = 0; i < a.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, std::fabs(double(a[i][c]) - b[i][c]) / std::max(std::fabs(double(a[i][c])), 1e-3));
+    INFO("max relative difference " << worst);
+    CHECK(worst < 1e-4);
+    CHECK_THROWS_WITH(FindDenoiserVariant("rae+brdf", "denoise.denoisers"),
+                      Catch::Contains("denoise.denoisers") && Catch::Contains("albedo"));
+    CHECK(FindDenoiserVariant("rae+albedo").name == "rae");
 }
 
 TEST_CASE("vulkan +brdf denoisers match the C++ reference on real frames", "[vulkan]") {
@@ -110,6 +167,7 @@ TEST_CASE("on the detailed surfaces brdf demodulation lowers SVGF's relMSE", "[a
     const EyeCamera camera(scene.HeadAt(0.0f), Fov::FromHorizontal(Radians(30.0f), float(w) / float(h)), w, h);
     RenderSettings settings;
     settings.seed = 5;
+    settings.fbetaPlane = true;  // for svgf+brdf
     auto renderer = CreateRenderer(scene, settings);
     Plane<uint16_t> spp(w, h, uint16_t(2));
     auto albedo = CreateDenoiser("svgf", "cpu", DenoiserParams{});

@@ -130,6 +130,10 @@ TEST_CASE("Unknown keys are errors naming the key and the file", "[config]") {
                       Catch::Contains("unknown config key 'camera.widht'") && Catch::Contains("--set"));
     CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.alpha=0.1"}), Catch::Contains("'denoise.svgf.alpha'"));
     CHECK_THROWS_WITH(Resolve("", {"top_level_typo=1"}), Catch::Contains("'top_level_typo'"));
+    // A known variant with a suffix its family refuses is refused here, before any rendering.
+    CHECK_THROWS_WITH(Resolve("", {"denoise.denoisers=[\"rae+brdf\"]"}),
+                      Catch::Contains("denoise.denoisers") && Catch::Contains("albedo-demodulated"));
+    CHECK(Resolve("", {"denoise.denoisers=[\"rae+albedo\", \"svgf+brdf\"]"}).denoise.denoisers.size() == 2);
 }
 
 TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {

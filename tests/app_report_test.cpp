@@ -168,6 +168,10 @@ TEST_CASE("base64, escaping and viridis building blocks", "[app][report]") {
     Plane<vec3> crop = Crop(img, vec2(9.5f, 7.5f), 2);  // clamped to the corner
     REQUIRE(crop.width() == 4);
     CHECK(crop(3, 3).x == 1.0f);
+    const CropRect rect = CropRectOf(10, 8, vec2(9.5f, 7.5f), 2);
+    CHECK((rect.x0 == 6 && rect.y0 == 4 && rect.width == 4 && rect.height == 4));
+    const CropRect inside = CropRectOf(10, 8, vec2(4.2f, 3.9f), 2);
+    CHECK((inside.x0 == 2 && inside.y0 == 1));
 }
 
 TEST_CASE("HTML report is a single offline file with plots, images and tables", "[app][report]") {

@@ -43,8 +43,8 @@ TEST_CASE("ForEachPlane, PlaneNames and Bytes describe the same planes", "[core]
     CHECK(names.front() == "direct");
     CHECK(f.Bytes() == bytes);
     // 6 RGB planes (direct, indirect, albedo, fbeta, emission, normal), depth, depth gradient,
-    // object id, motion, sample count.
-    CHECK(bytes == size_t(7 * 4) * (6 * 12 + 4 + 8 + 4 + 8 + 2));
+    // object id, motion, sample count, roughness.
+    CHECK(bytes == size_t(7 * 4) * (6 * 12 + 4 + 8 + 4 + 8 + 2 + 4));
     f.gradientSamples.resize(3);
     CHECK(f.Bytes() == bytes + 3 * sizeof(GradientSample));
     // The data pointers are the planes' own, with their element sizes.

@@ -54,6 +54,8 @@ TEST_CASE("binding lists: slots 0..count-1, each once") {
     CheckSlots(FOVRT_TEST_ROWS(ASVGF_ATROUS_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(ASVGF_ALPHA_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(BANDWIDTH_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(RAE_CONV_BINDING_LIST));
+    CheckSlots(FOVRT_TEST_ROWS(RAE_POOL_BINDING_LIST));
     CHECK(SVGF_ATROUS_PAIR_BINDINGS == SVGF_ATROUS_BINDINGS + 3);
     // Both reprojection shaders bind the shared inputs at the same slots (BindReprojectionInputs).
     CHECK(TH_REPROJECT_B_LIST == SVGF_REPROJECT_B_LIST);

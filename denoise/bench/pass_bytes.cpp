@@ -77,7 +77,7 @@ std::vector<PassBytes> DenoiserPassBytes(const std::string& name, const std::str
     const DenoiserVariant* variant = LookupDenoiserVariant(name);
     if (!variant) Fail("pass bytes: unknown denoiser '{}'", name);
     const std::vector<PassBytes> vk = PlanPassBytes(BuildDenoiserPlan(name, params, width, height), width, height, o);
-    if (backend == "vulkan" || variant->family == DenoiserFamily::Svgf) return vk;
+    if (backend == "vulkan" || variant->family != DenoiserFamily::TwoHistory) return vk;
     if (backend != "cpu") Fail("pass bytes: unknown backend '{}'", backend);
     // The reference's passes: the same names, except two that span several Vulkan passes.
     std::vector<PassBytes> ref;

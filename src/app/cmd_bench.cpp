@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,7 @@ struct BenchOptions {
     int threads = 0;
     bool compare = true;
     bool bareProbe = true;  // trace the same rays with bare Embree calls (ProbeBareEmbree)
+    std::string fbetaPlane = "off";  // RenderSettings::fbetaPlane: off, on, or ab (both, frames alternated)
     int compareSpp = 4;
     std::string embreeBinary = "/usr/bin/pathtracer";
     bool denoisers = false;  // time the denoisers instead (denoise/bench/denoise_bench.h)
@@ -84,28 +86,40 @@ uint64_t Checksum(const std::vector<FrameInputs>& frames) {
     return h;
 }
 
-// Renders `frames` frames of the given eye cameras (after one untimed warm-up frame).
-Throughput Measure(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames) {
-    std::vector<FrameInputs> out(eyes.size());
+// Renders `frames` frames of the given eye cameras with each renderer (after one untimed warm-up
+// frame each). Several renderers take turns frame by frame, so that a load drifting over the run
+// falls on each alike (A/B timings on a shared machine).
+std::vector<Throughput> Measure(const std::vector<Renderer*>& renderers, const std::vector<EyeCamera>& eyes,
+                                int spp, int frames) {
+    std::vector<std::vector<FrameInputs>> out(renderers.size(), std::vector<FrameInputs>(eyes.size()));
+    std::vector<Throughput> t(renderers.size());
     Plane<uint16_t> sppMap(eyes[0].width(), eyes[0].height(), uint16_t(spp));
-    for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
-    renderer.ResetStats();
-    auto start = Clock::now();
-    double cpuStart = CpuSeconds(RUSAGE_SELF);
-    for (int f = 1; f <= frames; ++f) {
-        renderer.SetFrame(uint32_t(f));
-        for (size_t e = 0; e < eyes.size(); ++e) renderer.RenderEye(int(e), eyes[e], eyes[e], sppMap, out[e]);
+    for (size_t r = 0; r < renderers.size(); ++r) {
+        for (size_t e = 0; e < eyes.size(); ++e) renderers[r]->RenderEye(int(e), eyes[e], eyes[e], sppMap, out[r][e]);
+        renderers[r]->ResetStats();
     }
-    return Throughput{Seconds(start, Clock::now()), CpuSeconds(RUSAGE_SELF) - cpuStart, renderer.Stats(),
-                      Checksum(out)};
+    for (int f = 1; f <= frames; ++f)
+        for (size_t r = 0; r < renderers.size(); ++r) {
+            auto start = Clock::now();
+            double cpuStart = CpuSeconds(RUSAGE_SELF);
+            renderers[r]->SetFrame(uint32_t(f));
+            for (size_t e = 0; e < eyes.size(); ++e) renderers[r]->RenderEye(int(e), eyes[e], eyes[e], sppMap, out[r][e]);
+            t[r].seconds += Seconds(start, Clock::now());
+            t[r].cpuSeconds += CpuSeconds(RUSAGE_SELF) - cpuStart;
+        }
+    for (size_t r = 0; r < renderers.size(); ++r) {
+        t[r].stats = renderers[r]->Stats();
+        t[r].checksum = Checksum(out[r]);
+    }
+    return t;
 }
 
 void PrintThroughput(const char* label, const Throughput& t, int frames) {
     const RenderStats& s = t.stats;
-    std::printf("  %s: %.1f ms/frame, %.2f Mrays/s traced (primary %.2fM, shadow %.2fM of which %.2fM "
+    std::printf("  %s: %.1f ms/frame (%.1f per eye), %.2f Mrays/s traced (primary %.2fM, shadow %.2fM of which %.2fM "
                 "reused per pixel, bounce %.2fM per frame), %.2f Msamples/s (%.2f per CPU-second), "
                 "%llu dropped samples, checksum %016llx\n",
-                label, 1e3 * t.seconds / frames, 1e-6 * double(s.Rays()) / t.seconds,
+                label, 1e3 * t.seconds / frames, 1e3 * t.seconds / frames / 2.0, 1e-6 * double(s.Rays()) / t.seconds,
                 1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.shadowRays) / frames,
                 1e-6 * double(s.shadowRaysReused) / frames, 1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
                 1e-6 * double(s.samples) / t.cpuSeconds,
@@ -152,22 +166,40 @@ void BenchScene(const std::string& name, const BenchOptions& o) {
     RenderSettings settings;
     settings.maxDepth = o.maxDepth;
     settings.threads = o.threads;
+    settings.fbetaPlane = o.fbetaPlane == "on";
     auto renderer = CreateRenderer(scene, settings);
     auto t2 = Clock::now();
+    std::unique_ptr<Renderer> withFbeta;  // --fbeta-plane ab: the same renderer with the plane on
+    if (o.fbetaPlane == "ab") {
+        settings.fbetaPlane = true;
+        withFbeta = CreateRenderer(scene, settings);
+    }
+    auto t3 = Clock::now();
     StereoRig rig;
     rig.head = scene.HeadAt(0.0f);
     rig.width = o.width;
     rig.height = o.height;
     rig.fov[0] = rig.fov[1] =
         Fov::FromHorizontal(Radians(scene.horizontalFovDegrees), float(o.width) / float(o.height));
-    Throughput t = Measure(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames);
-    std::printf("scene %s (%s): %zu triangles, load %.2f s, BVH %.2f s\n", name.c_str(),
-                path.string().c_str(), TriangleCount(scene), Seconds(t0, t1), Seconds(t1, t2));
-    std::string label = std::to_string(o.width) + "x" + std::to_string(o.height) + " x 2 eyes, " +
-                        std::to_string(o.spp) + " spp, max depth " + std::to_string(o.maxDepth) +
-                        ", " + std::to_string(o.frames) + " frames";
-    PrintThroughput(label.c_str(), t, o.frames);
-    if (o.bareProbe) ProbeBareEmbree(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames, t);
+    std::vector<Renderer*> renderers = {renderer.get()};
+    if (withFbeta) renderers.push_back(withFbeta.get());
+    const std::vector<Throughput> t = Measure(renderers, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames);
+    std::printf("scene %s (%s): %zu triangles, load %.2f s, BVH %.2f s", name.c_str(), path.string().c_str(),
+                TriangleCount(scene), Seconds(t0, t1), Seconds(t1, t2));
+    // The second renderer's setup is the F_beta table (built once per process, on first need).
+    if (withFbeta) std::printf(", second renderer (F_beta table) %.2f s", Seconds(t2, t3));
+    std::printf("\n");
+    for (size_t r = 0; r < t.size(); ++r) {
+        const bool on = o.fbetaPlane == "on" || r == 1;
+        std::string label = std::to_string(o.width) + "x" + std::to_string(o.height) + " x 2 eyes, " +
+                            std::to_string(o.spp) + " spp, max depth " + std::to_string(o.maxDepth) + ", " +
+                            std::to_string(o.frames) + " frames, F_beta plane " + (on ? "on" : "off");
+        PrintThroughput(label.c_str(), t[r], o.frames);
+    }
+    if (t.size() == 2)
+        std::printf("  F_beta plane on / off, time per frame (frames alternated): %.3f wall-clock, %.3f CPU\n",
+                    t[1].seconds / t[0].seconds, t[1].cpuSeconds / t[0].cpuSeconds);
+    if (o.bareProbe) ProbeBareEmbree(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames, t[0]);
 }
 
 // Our tracer vs Embree's pathtracer tutorial on the shared Cornell box OBJ.
@@ -205,7 +237,7 @@ void CompareWithEmbree(const BenchOptions& o) {
     settings.maxDepth = o.maxDepth;
     settings.threads = 2;
     auto renderer = CreateRenderer(scene, settings);
-    Throughput ours = Measure(*renderer, {camera}, o.compareSpp, o.frames);
+    const Throughput ours = Measure({renderer.get()}, {camera}, o.compareSpp, o.frames)[0];
     // Both rates count pixel samples, W x H x spp per frame, background pixels included (Embree's
     // tutorial traces them too; ours stops after the primary ray there).
     double pixelSamples = double(o.width) * o.height * o.compareSpp * o.frames;
@@ -272,6 +304,10 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Threads (0 = all)")->check(CLI::Range(0, 1024));
     cmd->add_flag("!--no-compare", o->compare, "Skip the comparison with Embree's pathtracer");
     cmd->add_flag("!--no-bare", o->bareProbe, "Skip tracing the same rays with bare rtcIntersect1/rtcOccluded1");
+    cmd->add_option("--fbeta-plane", o->fbetaPlane,
+                    "Fill the F_beta plane as for a +brdf variant (albedo demodulation): off, on, or ab "
+                    "(both, frames alternated, and their ratio)")
+        ->check(CLI::IsMember({"off", "on", "ab"}));
     cmd->add_option("--compare-spp", o->compareSpp, "spp of the Embree comparison")->check(CLI::Range(1, 4096));
     cmd->add_option("--embree-bin", o->embreeBinary, "Embree's tutorial path tracer");
     cmd->add_flag("--denoisers", o->denoisers, "Time the denoisers (Vulkan and C++ reference) at --width x --height instead");

@@ -11,6 +11,7 @@ void RegisterConfigCommand(CLI::App& app);
 void RegisterRunCommand(CLI::App& app);
 void RegisterExperimentCommand(CLI::App& app);
 void RegisterReferenceCommand(CLI::App& app);
+void RegisterDatasetCommand(CLI::App& app);  // RAE training data (training/)
 void RegisterBenchCommand(CLI::App& app);
 void RegisterMemoryCommand(CLI::App& app);
 void RegisterPreviewCommand(CLI::App& app);  // src/preview

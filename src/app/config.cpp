@@ -38,6 +38,7 @@ const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
         std::set<std::string> names = {"scene", "camera",  "run",    "render",   "foveation",
                                        "gaze",  "denoise", "output", "reference"};
+        names.insert("denoise.rae");  // RaeParams: string keys, outside the numeric tables
         const DenoiserParams defaults;
         ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
             const std::string key = info.key;
@@ -376,7 +377,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Strings("denoise.denoisers", d.denoisers);
     for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
-        if (!LookupDenoiserVariant(name)) r.Bad("denoise.denoisers", UnknownDenoiserMessage(name));
+        if (auto problem = DenoiserNameProblem(name)) r.Bad("denoise.denoisers", *problem);
     }
     // A device index may be given as a number (device = 1) or a string ("1").
     if (const toml::node* n = r.Find("denoise.device"); n && n->is_integer()) {
@@ -393,6 +394,10 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     for (const PrecisionRow& row : PrecisionTable()) precisionNames.push_back(row.name);
     r.String(kPrecisionKey, precision, precisionNames);
     PrecisionFromName(precision, d.params.precision);
+    r.String(kRaeWeightsKey, d.params.rae.weights);
+    if (d.params.rae.weights.empty()) r.Bad(kRaeWeightsKey, "must not be empty");
+    r.String(kRaeWeightsSppKey, d.params.rae.weightsSpp);
+    if (d.params.rae.weightsSpp.empty()) r.Bad(kRaeWeightsSppKey, "must not be empty");
     ForEachDenoiserParam(d.params, [&](const ParamInfo& info, auto& value) { r.Param(info, value); });
     if (std::optional<ParamProblem> problem = DenoiserParamConflict(d.params))
         r.Bad(problem->key, problem->message);
@@ -452,6 +457,8 @@ void InsertAt(toml::table& root, const std::string& key, Value value) {
 // The denoiser parameters from their tables: floats as their shortest decimal, like every float.
 void InsertDenoiserParams(toml::table& root, const DenoiserParams& p) {
     InsertAt(root, kPrecisionKey, std::string(PrecisionName(p.precision)));
+    InsertAt(root, kRaeWeightsKey, p.rae.weights);
+    InsertAt(root, kRaeWeightsSppKey, p.rae.weightsSpp);
     ForEachDenoiserParam(p, [&](const ParamInfo& info, const auto& value) {
         if constexpr (std::is_same_v<std::decay_t<decltype(value)>, float>) InsertAt(root, info.key, CleanFloat(value));
         else InsertAt(root, info.key, value);

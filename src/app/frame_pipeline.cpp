@@ -26,12 +26,6 @@ double MillisecondsSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
-bool AnyDenoiserNeedsGradients(const DenoiseConfig& denoise) {
-    for (const std::string& name : denoise.denoisers)
-        if (FindDenoiserVariant(name, "denoise.denoisers").needsGradientSamples) return true;
-    return false;
-}
-
 }  // namespace
 
 std::string FrameOutputStem(uint32_t frame, int eye) {
@@ -57,7 +51,9 @@ FramePipeline::FramePipeline(const RunConfig& config)
     settings.maxDepth = config.run.maxDepth;
     settings.seed = config.run.seed;
     settings.threads = config.run.threads;
-    settings.gradientSamples = AnyDenoiserNeedsGradients(config.denoise);
+    const RendererNeeds needs = RendererNeedsOf(config.denoise.denoisers, "denoise.denoisers");
+    settings.gradientSamples = needs.gradientSamples;
+    settings.fbetaPlane = needs.fbetaPlane;
     ParseDemodulation(config.render.demodulation, settings.demodulation);  // validated by the config
     renderer_ = CreateRenderer(scene_, settings);
     sppModel_ = CreateSppModel(config.foveation);

@@ -10,6 +10,7 @@
 
 #include "app/config.h"
 #include "core/frame_inputs.h"
+#include "denoise/variants.h"
 #include "foveation/spp_model.h"
 #include "gaze/gaze_source.h"
 #include "live/frame_request.h"
@@ -60,9 +61,12 @@ public:
     // treated as a camera cut (cameraCut = true, no history may be reused).
     void Render(const FrameRequest& request, StereoFrame& out);
     void Render(uint32_t frame, StereoFrame& out) { Render(RequestAt(frame), out); }
-    // Live changes: a new spp model (foveation panel), gradient samples for the denoiser shown.
+    // Live changes: a new spp model (foveation panel), what the renderer traces for the denoiser shown.
     void SetFoveation(const FoveationParams& params);
-    void SetGradientSamples(bool on) { renderer_->SetGradientSamples(on); }
+    void SetRendererNeeds(const RendererNeeds& needs) {
+        renderer_->SetGradientSamples(needs.gradientSamples);
+        renderer_->SetFbetaPlane(needs.fbetaPlane);
+    }
     // The next Render() is a camera cut (a teleport, a denoiser switch, a resumed recording).
     void Cut() { hasPrevious_ = false; }
 

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     fovrt::RegisterRunCommand(app);
     fovrt::RegisterReferenceCommand(app);
+    fovrt::RegisterDatasetCommand(app);
     fovrt::RegisterExperimentCommand(app);
     fovrt::RegisterClusterCommand(app);
     fovrt::RegisterInfoCommand(app);

@@ -77,9 +77,7 @@ std::string Show(const std::map<std::string, nlohmann::json>& leaves, const std:
 }
 
 bool NeedsGradientSamples(const DenoiseConfig& denoise) {
-    for (const std::string& name : denoise.denoisers)
-        if (FindDenoiserVariant(name, "denoise.denoisers").needsGradientSamples) return true;
-    return false;
+    return RendererNeedsOf(denoise.denoisers, "denoise.denoisers").gradientSamples;
 }
 
 // Sets a dotted key of a JSON object (making the objects on the way); `value` null = erase it.

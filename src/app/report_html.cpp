@@ -280,7 +280,12 @@ std::string SceneSection(const HtmlReport& report, const ExperimentStats* stats,
             out += "</div>";
             // Fovea crops.
             const int radius = std::max(8, int(std::lround(v.foveaRadiusPixels)));
-            out += "<h3>Fovea crops</h3><div class=\"row\">";
+            // The rectangle in the heading: a crop can be cut again from the full frames.
+            const CropRect rect = CropRectOf(v.reference.width(), v.reference.height(), v.gazePixel, radius);
+            out += fmt::format("<h3>Fovea crops: x {}–{}, y {}–{} of {}×{} (gaze at pixel ({:.1f}, {:.1f}))</h3>"
+                               "<div class=\"row\">",
+                               rect.x0, rect.x0 + rect.width - 1, rect.y0, rect.y0 + rect.height - 1,
+                               v.reference.width(), v.reference.height(), v.gazePixel.x, v.gazePixel.y);
             out += Figure(PngImg(EncodePngToMemory(Crop(v.reference, v.gazePixel, radius)), "reference", 240), "reference");
             if (!v.noisy.empty())
                 out += Figure(PngImg(EncodePngToMemory(Crop(v.noisy, v.gazePixel, radius)), "noisy", 240), "noisy");
@@ -382,15 +387,21 @@ std::vector<uint8_t> FalseColorPng(const Plane<float>& values, float lo, float h
     return DisplayColorPng(colors);
 }
 
-Plane<vec3> Crop(const Plane<vec3>& image, const vec2& centre, int radius) {
+CropRect CropRectOf(int width, int height, const vec2& centre, int radius) {
     const int side = std::max(1, 2 * radius);
-    int x0 = int(std::floor(centre.x)) - radius, y0 = int(std::floor(centre.y)) - radius;
-    x0 = std::clamp(x0, 0, std::max(0, image.width() - side));
-    y0 = std::clamp(y0, 0, std::max(0, image.height() - side));
-    const int w = std::min(side, image.width()), h = std::min(side, image.height());
-    Plane<vec3> out(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) out(x, y) = image(x0 + x, y0 + y);
+    CropRect r;
+    r.x0 = std::clamp(int(std::floor(centre.x)) - radius, 0, std::max(0, width - side));
+    r.y0 = std::clamp(int(std::floor(centre.y)) - radius, 0, std::max(0, height - side));
+    r.width = std::min(side, width);
+    r.height = std::min(side, height);
+    return r;
+}
+
+Plane<vec3> Crop(const Plane<vec3>& image, const vec2& centre, int radius) {
+    const CropRect r = CropRectOf(image.width(), image.height(), centre, radius);
+    Plane<vec3> out(r.width, r.height);
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x) out(x, y) = image(r.x0 + x, r.y0 + y);
     return out;
 }
 

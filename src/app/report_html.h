@@ -83,7 +83,13 @@ std::string HtmlEscape(const std::string& text);
 vec3 Viridis(float t);  // t in [0,1]
 // PNG of a scalar map through viridis, values mapped linearly from [lo, hi].
 std::vector<uint8_t> FalseColorPng(const Plane<float>& values, float lo, float hi);
-// A crop (clamped to the image) of side 2·radius around centre.
+// The pixels Crop takes from a width × height image: a square of side 2·radius around centre,
+// moved inside the image (x0, y0: its top-left pixel).
+struct CropRect {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+};
+CropRect CropRectOf(int width, int height, const vec2& centre, int radius);
+// Those pixels of `image`.
 Plane<vec3> Crop(const Plane<vec3>& image, const vec2& centre, int radius);
 
 struct PlotSeries {

@@ -62,7 +62,8 @@ bool ParseDemodulation(std::string_view name, Demodulation& d);
       "demodulation")                                                                             \
     X(fbeta, vec3, vec3(0.0f), "RGB",                                                             \
       "primary-hit BRDF pre-integration F_beta (SPEC §6), >= 1e-3 (may exceed 1): the "           \
-      "(de)modulation factor under brdf demodulation")                                            \
+      "(de)modulation factor under brdf demodulation; 0 when not asked for "                      \
+      "(RenderSettings::fbetaPlane)")                                                             \
     X(emission, vec3, vec3(0.0f), "RGB",                                                          \
       "emitted radiance at the primary hit (added after remodulation)")                           \
     X(normal, vec3, vec3(0.0f), "XYZ", "world-space unit shading normal; 0 for background")       \
@@ -75,7 +76,10 @@ bool ParseDemodulation(std::string_view name, Demodulation& d);
       "previous eye")                                                                             \
     X(sampleCount, uint16_t, uint16_t(1), "",                                                     \
       "n >= 1: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the "     \
-      "previous frame's n, reused)")
+      "previous frame's n, reused)")                                                             \
+    X(roughness, float, 0.0f, "",                                                                 \
+      "primary hit's GGX roughness in [0,1] (sqrt of alpha); 0 for background. Only the RAE "    \
+      "(SPEC §12) reads it")
 
 struct FrameInputs {
     int eye = 0;                 // 0 left, 1 right

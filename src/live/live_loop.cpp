@@ -228,8 +228,8 @@ void LiveLoop::DenoiseThread() {
 
 std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
     if (controls.denoiser != tracedDenoiser_) {
-        // Gradient samples as the new denoiser needs them; its histories start at this frame.
-        pipeline_.SetGradientSamples(FindDenoiserVariant(controls.denoiser, "denoiser").needsGradientSamples);
+        // Gradient samples and F_β as the new denoiser needs them; its histories start at this frame.
+        pipeline_.SetRendererNeeds(RendererNeedsOf({controls.denoiser}, "denoiser"));
         pipeline_.Cut();
         tracedDenoiser_ = controls.denoiser;
     }

@@ -30,8 +30,10 @@
 //   dielectrics and metals (whose albedo is then their base colour).
 // - F_β = the BSDF's directional albedo at the primary hit's outgoing cosine (the BSDF's own
 //   local wo, after the shading-normal bend), from the shared pre-integrated table
-//   (render/brdf_table.h), clamped below at 1e-3 only (it may exceed 1 at grazing angles). Both
-//   planes are written whichever demodulation is on, so one render feeds both kinds of variant.
+//   (render/brdf_table.h), clamped below at 1e-3 only (it may exceed 1 at grazing angles). The
+//   albedo plane is always written; the F_β plane under brdf demodulation or when asked
+//   (RenderSettings::fbetaPlane, for "+brdf" variants), so that one render feeds both kinds of
+//   variant and albedo-only runs skip the lookups (0 in the plane).
 // - Samples with a non-finite value are dropped (contribute 0, counted in RenderStats).
 // - spp-map entries of 0 are taken as 1 (sampleCount records what was traced).
 // - Gradient samples replace the pixel's own sample, as in the paper (§3): the merged pixel holds
@@ -114,6 +116,7 @@ struct PixelShade {
     vec3 modulation = vec3(0.0f);  // albedo or fbeta (RenderSettings::demodulation)
     vec3 emission = vec3(0.0f);
     vec3 radiance = vec3(0.0f);  // emission + direct + indirect, not demodulated
+    float roughness = 0.0f;      // primary hit's GGX roughness (sqrt alpha): the RAE's input
 };
 
 // core's Remodulate, as FrameInputs::NoisyColor uses: re-shaded and stored luminances match bit for bit.
@@ -142,8 +145,7 @@ class PathTracer final : public Renderer {
 public:
     PathTracer(const Scene& scene, const RenderSettings& settings)
         : scene_(scene), settings_(settings),
-          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic),
-          fbetaTable_(SharedBrdfTable()) {
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
         if (settings_.maxDepth < 1) Fail("render: maxDepth must be >= 1 (got {})", settings_.maxDepth);
         if (scene_.materials.empty()) scene_.materials.push_back(Material{});
         for (const Mesh& mesh : scene_.meshes)
@@ -173,6 +175,7 @@ public:
                 if (Luminance(scene_.materials[mat].emission) > 0.0f) emissive_.push_back({i, t});
             }
         }
+        SetFbetaPlane(settings_.fbetaPlane);
         SetFrame(0);
         prevState_ = state_;
         prevXforms_ = embree_->xforms();
@@ -198,6 +201,11 @@ public:
 
     const SceneState& State() const override { return state_; }
     void SetGradientSamples(bool on) override { settings_.gradientSamples = on; }
+    void SetFbetaPlane(bool on) override {
+        settings_.fbetaPlane = on;
+        // The table (seconds to build) only once some frame needs F_β.
+        if (!fbetaTable_ && (on || settings_.demodulation == Demodulation::Brdf)) fbetaTable_ = &SharedBrdfTable();
+    }
     const Scene& GetScene() const override { return scene_; }
 
     void RenderEye(int eye, const EyeCamera& camera, const EyeCamera& prevCamera,
@@ -366,6 +374,13 @@ private:
         dropped_ += c.dropped;
     }
 
+    // The luminance by which lights are picked (per unit area): a two-sided emitter sends twice the
+    // flux of a one-sided one (pbrt's DiffuseAreaLight). BuildLightDistribution and LightPdf must
+    // agree on it, so both call this.
+    static float SelectionLuminance(const vec3& emission, bool twoSided) {
+        return Luminance(emission) * (twoSided ? 2.0f : 1.0f);
+    }
+
     void BuildLightDistribution() {
         lightCdf_.resize(emissive_.size());
         emitters_.resize(emissive_.size());
@@ -374,7 +389,7 @@ private:
             SurfaceSample s{emissive_[i].instance, emissive_[i].primitive, vec2(1.0f / 3.0f)};
             SurfaceHit hit = embree_->Surface(s);
             const bool twoSided = scene_.materials[hit.material].emissionTwoSided;
-            float power = hit.area * Luminance(EmissionOf(hit, s.instance)) * (twoSided ? 2.0f : 1.0f);
+            float power = hit.area * SelectionLuminance(EmissionOf(hit, s.instance), twoSided);
             total += double(std::max(power, 0.0f));
             lightCdf_[i] = float(total);
             // What NEE reads of the triangle, with SurfaceAt's arithmetic (bit-identical points).
@@ -431,11 +446,11 @@ private:
     // (from the receiver): 0 when the receiver is behind a one-sided emitter, which NEE then
     // skips and a BSDF-sampled hit sees black, so MIS weights stay consistent.
     float LightPdf(const vec3& emission, const vec3& geomNormal, bool twoSided, float t, const vec3& wi) const {
-        float lum = Luminance(emission);
+        float lum = SelectionLuminance(emission, twoSided);
         float cosL = -glm::dot(geomNormal, wi);
         if (twoSided) cosL = std::abs(cosL);
         if (lightPower_ <= 0.0f || lum <= 0.0f || cosL <= 0.0f) return 0.0f;
-        return lum * (twoSided ? 2.0f : 1.0f) / lightPower_ * t * t / cosL;
+        return lum / lightPower_ * t * t / cosL;
     }
 
     // Point/spot/directional lights at one vertex (one shadow ray each): the sample-independent
@@ -731,12 +746,15 @@ private:
         direct *= inv;
         indirect *= inv;
         out.albedo = p.albedo;
-        out.fbeta = glm::max(PreintegratedReflectance(fbetaTable_, p.bsdf, primary.wo.wo.z), vec3(kMinAlbedo));
-        out.modulation = settings_.demodulation == Demodulation::Brdf ? out.fbeta : out.albedo;
+        const bool brdf = settings_.demodulation == Demodulation::Brdf;
+        if (brdf || settings_.fbetaPlane)
+            out.fbeta = glm::max(PreintegratedReflectance(*fbetaTable_, p.bsdf, primary.wo.wo.z), vec3(kMinAlbedo));
+        out.modulation = brdf ? out.fbeta : out.albedo;
         out.emission = p.emission;
         out.radiance = p.emission + direct + indirect;
         out.direct = direct / out.modulation;  // both factors >= kMinAlbedo
         out.indirect = indirect / out.modulation;
+        out.roughness = std::sqrt(p.bsdf.alpha);
         return out;
     }
 
@@ -867,6 +885,7 @@ private:
         out.normal(x, y) = ns;
         out.linearDepth(x, y) = depth;
         out.depthGradient(x, y) = DepthGradient(view.rays, eyeRay, ng, depth);
+        out.roughness(x, y) = shade.roughness;
         vis.worldPosition(x, y) = hit.position;
         vec3 prevWorld = vec3(prevXforms_[s.instance].worldFromObject * vec4(embree_->ObjectPosition(s), 1.0f));
         auto prev = view.prevCamera.Project(prevWorld);
@@ -932,7 +951,7 @@ private:
     Scene scene_;
     RenderSettings settings_;
     mutable tbb::task_arena arena_;
-    const BrdfTable& fbetaTable_;  // the process's F_β table (built by the first renderer)
+    const BrdfTable* fbetaTable_ = nullptr;  // the process's F_β table, once F_β is needed (SetFbetaPlane)
     std::unique_ptr<EmbreeScene> embree_;
     bool hasFrame_ = false;
     uint32_t frame_ = 0;

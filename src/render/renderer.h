@@ -19,9 +19,12 @@ struct RenderSettings {
     uint32_t seed = 1;         // run seed; per-pixel seeds = PixelSeed(seed, eye, x, y, frame)
     int threads = 0;           // 0: all hardware threads (result is identical for any count)
     bool gradientSamples = false;  // A-SVGF: fill FrameInputs::gradientSamples
-    // render.demodulation: what FrameInputs' direct / indirect are divided by (the albedo and F_β
-    // planes are both written either way; FrameInputs::demodulation records the choice).
+    // render.demodulation: what FrameInputs' direct / indirect are divided by (FrameInputs::
+    // demodulation records the choice). The albedo plane is always written.
     Demodulation demodulation = Demodulation::Albedo;
+    // Fill FrameInputs::fbeta (one table lookup per primary hit) also under albedo demodulation,
+    // for "+brdf" variants; under brdf demodulation it is always filled. Off, the plane stays 0.
+    bool fbetaPlane = false;
 };
 
 // Work counters since the last ResetStats(): rays (primary, shadow, bounce) and every path sample
@@ -70,6 +73,8 @@ public:
     // Turns A-SVGF gradient samples on or off (a live session switching denoisers); they start
     // on the frame after the next, once a previous frame's surface samples exist.
     virtual void SetGradientSamples(bool on) = 0;
+    // Turns RenderSettings::fbetaPlane on or off from the next RenderEye (a live denoiser switch).
+    virtual void SetFbetaPlane(bool on) = 0;
     virtual const Scene& GetScene() const = 0;
 
     // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's

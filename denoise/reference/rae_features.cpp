@@ -1,0 +1,72 @@
+#include "denoise/reference/rae_features.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fovrt {
+namespace {
+
+float Clean(float v) { return std::isfinite(v) && v > 0.0f ? v : 0.0f; }
+
+}  // namespace
+
+void RaeFeatures(const FrameInputs& in, Tensor& f) {
+    const int w = in.width(), h = in.height();
+    f = Tensor(kRaeFeatureChannels, h, w);
+    const mat3 view = mat3(in.camera.View());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const vec3 c = in.direct(x, y) + in.indirect(x, y);
+            f.At(0, y, x) = Clean(c.x);
+            f.At(1, y, x) = Clean(c.y);
+            f.At(2, y, x) = Clean(c.z);
+            const vec3 n = view * in.normal(x, y);
+            f.At(3, y, x) = n.x;
+            f.At(4, y, x) = n.y;
+            const float d = in.linearDepth(x, y);
+            f.At(5, y, x) = std::isfinite(d) && d >= 0.0f ? d / (d + 1.0f) : 1.0f;
+            f.At(6, y, x) = in.roughness(x, y);
+            f.At(7, y, x) = std::log2(float(std::max<uint16_t>(in.sampleCount(x, y), 1))) * 0.25f;
+        }
+}
+
+void RaeNetworkInput(const Tensor& f, const RaeWeights& weights, Tensor& input) {
+    const int L = weights.Levels();
+    const int pw = RaePaddedSize(f.w, L), ph = RaePaddedSize(f.h, L);
+    if (input.c != weights.inChannels || input.w != pw || input.h != ph)
+        input = Tensor(weights.inChannels, ph, pw);
+    else
+        std::fill(input.data.begin(), input.data.end(), 0.0f);
+    for (int c = 0; c < weights.inChannels; ++c)
+        for (int y = 0; y < f.h; ++y)
+            for (int x = 0; x < f.w; ++x) {
+                const float v = f.At(c, y, x);
+                input.At(c, y, x) = c < 3 ? std::pow(v, weights.gamma) : v;
+            }
+}
+
+void RaeTarget(const FrameInputs& in, const Plane<vec3>& reference, Tensor& t) {
+    const int w = in.width(), h = in.height();
+    t = Tensor(3, h, w);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (in.objectId(x, y) == kNoObject) continue;
+            const vec3 a = glm::max(in.albedo(x, y), vec3(1e-3f));
+            const vec3 d = (reference(x, y) - in.emission(x, y)) / a;
+            for (int c = 0; c < 3; ++c) t.At(c, y, x) = Clean(d[c]);
+        }
+}
+
+void RaeRemodulate(const FrameInputs& in, const Tensor& y, float gamma, Plane<vec3>& output) {
+    const int w = in.width(), h = in.height();
+    output.Resize(w, h);
+    const float inv = 1.0f / gamma;
+    for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+            vec3 illum;
+            for (int c = 0; c < 3; ++c) illum[c] = std::pow(std::max(y.At(c, py, px), 0.0f), inv);
+            output(px, py) = in.albedo(px, py) * illum + in.emission(px, py);
+        }
+}
+
+}  // namespace fovrt

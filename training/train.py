@@ -1,0 +1,248 @@
+#!/usr/bin/env python3
+"""Trains the recurrent denoising autoencoder (training/rae_net.py) on a `fovrt dataset` folder.
+
+Paper recipe (Chaitanya 2017 §4.3-4.4, §5.3; SPEC §12): 7-frame sequences, 128² crops, batch 4;
+loss 0.8 L1 + 0.1 HFEN (L1 of LoG σ 1.5) + 0.1 temporal (L1 of frame differences), per-frame
+weights exp(-(6-t)²/8); augmentations: playback direction, camera stops, 90° rotations (view-space
+normals rotated too), per-channel colour scale U[0, 2]; Adam 1e-3, β (0.9, 0.99), learning rate
+ramped up tenfold geometrically, then ∝ 1/√t. CPU, torch.set_num_threads(--threads).
+
+Writes into --out: train_log.csv (one row per --log-every steps), checkpoint.pt (every
+--ckpt-every steps and at the end; --resume continues from it), rae.raew (the exported weights).
+
+  python3 training/train.py --data DATASET --out training/runs/quarter --widths quarter --steps 4000
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import random
+import sys
+import time
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import rae_net  # noqa: E402
+
+SEQ = 7
+FRAME_WEIGHTS = torch.tensor([math.exp(-((6 - t) ** 2) / 8.0) for t in range(SEQ)])
+
+
+def log_kernel(sigma=1.5, radius=4):
+    r = torch.arange(-radius, radius + 1, dtype=torch.float32)
+    y, x = torch.meshgrid(r, r, indexing="ij")
+    q = (x * x + y * y) / (2 * sigma * sigma)
+    k = -(1.0 - q) * torch.exp(-q) / (math.pi * sigma ** 4)
+    return (k - k.mean()).view(1, 1, 2 * radius + 1, 2 * radius + 1)
+
+
+LOG = log_kernel()
+
+
+def hfen(x):
+    """LoG of every channel, x [N, C, H, W]."""
+    n, c, h, w = x.shape
+    return F.conv2d(x.reshape(n * c, 1, h, w), LOG, padding=LOG.shape[-1] // 2).reshape(n, c, h, w)
+
+
+def rae_loss(out, tgt):
+    """out, tgt [B, T, 3, H, W] in gamma space. Returns (total, l1, hfen, temporal)."""
+    B, T = out.shape[:2]
+    w = FRAME_WEIGHTS[:T] / FRAME_WEIGHTS[:T].sum()
+    l1 = ((out - tgt).abs().mean(dim=(0, 2, 3, 4)) * w).sum()
+    hf = (hfen(out.flatten(0, 1)) - hfen(tgt.flatten(0, 1))).abs().view(B, T, -1).mean(dim=(0, 2))
+    hf = (hf * w).sum()
+    d_out = out[:, 1:] - out[:, :-1]
+    d_tgt = tgt[:, 1:] - tgt[:, :-1]
+    tw = w[1:] / w[1:].sum()
+    tm = ((d_out - d_tgt).abs().mean(dim=(0, 2, 3, 4)) * tw).sum()
+    return 0.8 * l1 + 0.1 * hf + 0.1 * tm, l1, hf, tm
+
+
+class Dataset:
+    """Every sequence of a `fovrt dataset` folder in memory (see its manifest.json)."""
+
+    def __init__(self, folder, split="train"):
+        with open(os.path.join(folder, "manifest.json")) as f:
+            self.manifest = json.load(f)
+        self.inputs, self.targets, self.names = [], [], []
+        for s in self.manifest["sequences"]:
+            if s["split"] != split:
+                continue
+            self.inputs.append(np.load(os.path.join(folder, s["input"]), mmap_mode="r"))
+            self.targets.append(np.load(os.path.join(folder, s["target"]), mmap_mode="r"))
+            self.names.append(s["name"])
+
+    def __len__(self):
+        return len(self.inputs)
+
+
+def frame_indices(n, rng, augment):
+    """7 frame indices into a sequence of n frames: playback direction and camera stops."""
+    start = rng.randrange(0, n - SEQ + 1)
+    idx = list(range(start, start + SEQ))
+    if augment and rng.random() < 0.25:  # camera stop: one frame held for 1-3 extra frames
+        j = rng.randrange(0, SEQ)
+        idx = (idx[:j] + [idx[j]] * rng.randint(2, 4) + idx[j + 1:])[:SEQ]
+    if augment and rng.random() < 0.5:
+        idx.reverse()
+    return idx
+
+
+def rotate_normals(x, k):
+    """View-space normal (x right, y up) under k counter-clockwise image rotations of 90°."""
+    nx, ny = x[:, 3].clone(), x[:, 4].clone()
+    for _ in range(k % 4):
+        nx, ny = -ny, nx
+    x = x.clone()
+    x[:, 3], x[:, 4] = nx, ny
+    return x
+
+
+def sample_batch(ds, batch, crop, channels, rng, augment=True):
+    xs, ys = [], []
+    for _ in range(batch):
+        i = rng.randrange(len(ds))
+        inp, tgt = ds.inputs[i], ds.targets[i]
+        T, _, H, W = inp.shape
+        idx = frame_indices(T, rng, augment)
+        y0, x0 = rng.randrange(0, H - crop + 1), rng.randrange(0, W - crop + 1)
+        x = torch.from_numpy(np.ascontiguousarray(inp[idx, :channels, y0:y0 + crop, x0:x0 + crop]))
+        y = torch.from_numpy(np.ascontiguousarray(tgt[idx, :, y0:y0 + crop, x0:x0 + crop]))
+        if augment:
+            k = rng.randrange(4)
+            if k:
+                x = rotate_normals(torch.rot90(x, k, dims=(2, 3)), k)
+                y = torch.rot90(y, k, dims=(2, 3))
+            s = torch.tensor([rng.uniform(0.0, 2.0) for _ in range(3)]).view(1, 3, 1, 1)
+            x = x.clone()
+            x[:, 0:3] *= s
+            y = y * s
+        xs.append(rae_net.gamma_inputs(x))
+        ys.append(torch.clamp(y, min=0.0) ** rae_net.GAMMA)
+    return torch.stack(xs), torch.stack(ys)
+
+
+def learning_rate(step, base, ramp):
+    """Tenfold geometric ramp-up over `ramp` steps, then base·sqrt(ramp/step)."""
+    if step < ramp:
+        return base * 10.0 ** (step / ramp - 1.0)
+    return base * math.sqrt(ramp / max(step, 1))
+
+
+def parse_widths(text):
+    if text == "paper":
+        return rae_net.PAPER_WIDTHS
+    if text == "quarter":
+        return rae_net.QUARTER_WIDTHS
+    return tuple(int(w) for w in text.split(","))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--data", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--widths", default="quarter", help="paper | quarter | comma list")
+    ap.add_argument("--sample-count", action="store_true", help="8th input: log2(spp)/4")
+    ap.add_argument("--steps", type=int, default=4000)
+    ap.add_argument("--batch", type=int, default=4)
+    ap.add_argument("--crop", type=int, default=128)
+    ap.add_argument("--lr", type=float, default=1e-3)
+    ap.add_argument("--ramp", type=int, default=200, help="steps of the tenfold ramp-up")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--log-every", type=int, default=20)
+    ap.add_argument("--ckpt-every", type=int, default=200)
+    ap.add_argument("--resume", action="store_true")
+    ap.add_argument("--fixed-batch", action="store_true",
+                    help="one batch (no augmentation) for every step: the CI smoke test's overfit")
+    args = ap.parse_args(argv)
+
+    torch.set_num_threads(args.threads)
+    torch.manual_seed(args.seed)
+    rng = random.Random(args.seed)
+    os.makedirs(args.out, exist_ok=True)
+    train = Dataset(args.data, "train")
+    val = Dataset(args.data, "eval")
+    if len(train) == 0:
+        sys.exit(f"no training sequences in {args.data}")
+    net = rae_net.RaeNet(parse_widths(args.widths), sample_count=args.sample_count)
+    channels = net.in_channels
+    opt = torch.optim.Adam(net.parameters(), lr=args.lr, betas=(0.9, 0.99))
+    step, elapsed = 0, 0.0
+    ckpt_path = os.path.join(args.out, "checkpoint.pt")
+    log_path = os.path.join(args.out, "train_log.csv")
+    if args.resume and os.path.exists(ckpt_path):
+        ck = torch.load(ckpt_path)
+        net.load_state_dict(ck["net"])
+        opt.load_state_dict(ck["opt"])
+        step, elapsed = ck["step"], ck["elapsed"]
+        rng.setstate(ck["rng"])
+        torch.set_rng_state(ck["torch_rng"])
+        print(f"resumed at step {step}", flush=True)
+    else:
+        with open(log_path, "w", newline="") as f:
+            csv.writer(f).writerow(["step", "seconds", "lr", "loss", "l1", "hfen", "temporal", "val_loss"])
+    print(f"widths {net.widths} inputs {channels}: {rae_net.count_parameters(net)} parameters, "
+          f"{rae_net.flops_per_pixel(net):.0f} FLOP/px; {len(train)} train / {len(val)} eval sequences",
+          flush=True)
+    # A fixed validation batch (held-out scenes, no augmentation) for the loss curve.
+    vbatch = None
+    src = val if len(val) else train
+    if src is not None and len(src):
+        vbatch = sample_batch(src, 4, args.crop, channels, random.Random(12345), augment=False)
+
+    def save():
+        torch.save({"net": net.state_dict(), "opt": opt.state_dict(), "step": step, "elapsed": elapsed,
+                    "rng": rng.getstate(), "torch_rng": torch.get_rng_state(), "args": vars(args)},
+                   ckpt_path + ".tmp")
+        os.replace(ckpt_path + ".tmp", ckpt_path)
+        rae_net.save_weights(net, os.path.join(args.out, "rae.raew"))
+
+    acc = np.zeros(4)
+    n_acc = 0
+    while step < args.steps:
+        t0 = time.time()
+        lr = learning_rate(step, args.lr, args.ramp)
+        for g in opt.param_groups:
+            g["lr"] = lr
+        if args.fixed_batch:
+            if step == 0 or "fixed" not in locals():
+                fixed = sample_batch(train, args.batch, args.crop, channels, random.Random(args.seed), augment=False)
+            x, y = fixed
+        else:
+            x, y = sample_batch(train, args.batch, args.crop, channels, rng)
+        out = net(x)
+        loss, l1, hf, tm = rae_loss(out, y)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+        step += 1
+        elapsed += time.time() - t0
+        acc += [loss.item(), l1.item(), hf.item(), tm.item()]
+        n_acc += 1
+        if step % args.log_every == 0 or step == args.steps:
+            vloss = float("nan")
+            if vbatch is not None:
+                with torch.no_grad():
+                    vloss = rae_loss(net(vbatch[0]), vbatch[1])[0].item()
+            m = acc / n_acc
+            with open(log_path, "a", newline="") as f:
+                csv.writer(f).writerow([step, f"{elapsed:.1f}", f"{lr:.3e}"] + [f"{v:.5f}" for v in m] +
+                                       [f"{vloss:.5f}"])
+            print(f"step {step} {elapsed:.0f}s lr {lr:.2e} loss {m[0]:.4f} (l1 {m[1]:.4f} hfen {m[2]:.4f} "
+                  f"temporal {m[3]:.4f}) val {vloss:.4f}", flush=True)
+            acc[:] = 0
+            n_acc = 0
+        if step % args.ckpt_every == 0:
+            save()
+    save()
+    print(f"done: {step} steps in {elapsed:.0f} s; weights {os.path.join(args.out, 'rae.raew')}", flush=True)
+
+
+if __name__ == "__main__":
+    main()
