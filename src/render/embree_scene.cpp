@@ -146,6 +146,60 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     }
     xforms_.assign(scene.instances.size(), InstanceXform{});
     rtcCommitScene(top_);
+    BuildStaticRecords();
+}
+
+void EmbreeScene::BuildStaticRecords() {
+    // The transform of a static instance is the same in every frame: take it from time 0.
+    const std::vector<InstanceXform> xforms = MakeXforms(scene_, scene_.StateAt(0.0f));
+    staticRanges_.assign(scene_.instances.size(), StaticRange{});
+    size_t count = 0;
+    for (const Instance& inst : scene_.instances)
+        if (inst.keys.size() <= 1) count += scene_.meshes[inst.mesh].triangles.size();
+    staticTriangles_.reserve(count);
+    for (size_t i = 0; i < scene_.instances.size(); ++i) {
+        const Instance& inst = scene_.instances[i];
+        if (inst.keys.size() > 1) continue;
+        const InstanceXform& x = xforms[i];
+        const Mesh& mesh = scene_.meshes[inst.mesh];
+        staticRanges_[i] = StaticRange{uint32_t(staticTriangles_.size()), uint32_t(mesh.triangles.size())};
+        for (size_t k = 0; k < mesh.triangles.size(); ++k) {
+            const uvec3& tri = mesh.triangles[k];
+            // As SurfaceAt: corners, then edges and the cross product of the edges.
+            vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
+            if (!x.identity) {
+                p0 = vec3(x.worldFromObject * vec4(p0, 1.0f));
+                p1 = vec3(x.worldFromObject * vec4(p1, 1.0f));
+                p2 = vec3(x.worldFromObject * vec4(p2, 1.0f));
+            }
+            StaticTriangle t;
+            t.p0 = p0;
+            t.e1 = p1 - p0;
+            t.e2 = p2 - p0;
+            vec3 c = glm::cross(t.e1, t.e2);
+            float len = glm::length(c);
+            t.area = 0.5f * len;
+            t.geomNormal = len > 0.0f ? c / len : vec3(0.0f, 0.0f, 1.0f);
+            t.material = mesh.materials.empty() ? 0u : mesh.materials[k];
+            t.flags = (mesh.normals.empty() ? 0u : kHasNormals) | (mesh.uvs.empty() ? 0u : kHasUvs) |
+                      (x.identity ? 0u : kTransformNormals);
+            t.attributes = 0;
+            if (!mesh.normals.empty() || !mesh.uvs.empty()) {
+                TriangleAttributes a{};
+                for (int corner = 0; corner < 3; ++corner) {
+                    if (!mesh.normals.empty()) a.normal[corner] = mesh.normals[tri[corner]];
+                    if (!mesh.uvs.empty()) a.uv[corner] = mesh.uvs[tri[corner]];
+                }
+                t.attributes = uint32_t(staticAttributes_.size());
+                staticAttributes_.push_back(a);
+            }
+            staticTriangles_.push_back(t);
+        }
+    }
+}
+
+size_t EmbreeScene::StaticRecordBytes() const {
+    return staticTriangles_.size() * sizeof(StaticTriangle) + staticAttributes_.size() * sizeof(TriangleAttributes);
 }
 
 EmbreeScene::~EmbreeScene() {
@@ -294,8 +348,37 @@ std::array<vec3, 3> EmbreeScene::WorldTriangle(uint32_t instance, uint32_t primi
     return p;
 }
 
+// SurfaceAt for a triangle of a static instance, from its record: the same operations on the
+// same values, in the same order.
+SurfaceHit EmbreeScene::StaticSurface(const StaticTriangle& t, const SurfaceSample& s) const {
+    float u = s.barycentrics.x, v = s.barycentrics.y, w = 1.0f - u - v;
+    SurfaceHit h;
+    h.position = t.p0 + u * t.e1 + v * t.e2;
+    h.area = t.area;
+    h.geomNormal = t.geomNormal;
+    h.shadingNormal = h.geomNormal;
+    const TriangleAttributes* a = (t.flags & (kHasNormals | kHasUvs)) ? &staticAttributes_[t.attributes] : nullptr;
+    if (t.flags & kHasNormals) {
+        vec3 n = w * a->normal[0] + u * a->normal[1] + v * a->normal[2];
+        if (t.flags & kTransformNormals) n = xforms_[s.instance].normalMatrix * n;
+        float nlen = glm::length(n);
+        if (nlen > 0.0f && std::isfinite(nlen)) {
+            h.shadingNormal = n / nlen;
+            if (glm::dot(h.shadingNormal, h.geomNormal) < 0.0f) h.geomNormal = -h.geomNormal;
+        }
+    }
+    h.uv = (t.flags & kHasUvs) ? w * a->uv[0] + u * a->uv[1] + v * a->uv[2] : vec2(u, v);
+    h.material = t.material;
+    return h;
+}
+
 SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const {
     FOVRT_CHECK_OP(s.instance, <, scene_.instances.size());
+    // A static instance's transform is the same in every frame's xforms: its record serves all.
+    if (const StaticRange& r = staticRanges_[s.instance]; r.first != kNotStatic) {
+        FOVRT_CHECK_OP(s.primitive, <, r.count);
+        return StaticSurface(staticTriangles_[r.first + s.primitive], s);
+    }
     const InstanceXform& x = xforms[s.instance];
     const Mesh& mesh = scene_.meshes[scene_.instances[s.instance].mesh];
     FOVRT_CHECK_OP(s.primitive, <, mesh.triangles.size());

@@ -71,7 +71,33 @@ public:
     const std::vector<InstanceXform>& xforms() const { return xforms_; }
     static std::vector<InstanceXform> MakeXforms(const Scene& scene, const SceneState& state);
 
+    // Bytes of the per-triangle surface records of static instances (StaticTriangle).
+    size_t StaticRecordBytes() const;
+
 private:
+    // What SurfaceAt reads of one triangle of a static instance (at most one transform key),
+    // gathered once at load: a hit then reads one 64-byte record (and one attribute record where
+    // the mesh has normals or uvs) instead of chasing the instance, mesh, index, position, normal,
+    // uv and material arrays. Every field is computed with SurfaceAt's own arithmetic on the
+    // static transform, so hits are bit-identical to the general path.
+    struct StaticTriangle {
+        vec3 p0, e1, e2;      // world corner p0 and edges p1 - p0, p2 - p0
+        vec3 geomNormal;      // cross(e1, e2) / |cross|, +z for a degenerate triangle
+        float area;           // |cross| / 2
+        uint32_t material;
+        uint32_t flags;       // kHasNormals, kHasUvs, kTransformNormals
+        uint32_t attributes;  // index into staticAttributes_ (flags say whether it is read)
+    };
+    static_assert(sizeof(StaticTriangle) == 64, "one cache line per static triangle");
+    struct TriangleAttributes {
+        vec3 normal[3];  // object space (the instance's normal matrix applies after interpolation)
+        vec2 uv[3];
+    };
+    static constexpr uint32_t kHasNormals = 1u, kHasUvs = 2u, kTransformNormals = 4u;
+    static constexpr uint32_t kNotStatic = 0xFFFFFFFFu;
+    void BuildStaticRecords();
+    SurfaceHit StaticSurface(const StaticTriangle& t, const SurfaceSample& s) const;
+
     // Scene instance of a hit: flattened static geometry reports it as the geometry ID.
     uint32_t InstanceOf(unsigned instID, unsigned geomID) const {
         return instID == RTC_INVALID_GEOMETRY_ID || instID == staticGroupId_ ? geomID : instID;
@@ -84,6 +110,12 @@ private:
     std::vector<RTCScene> blas_;
     std::vector<RTCGeometry> instances_;
     std::vector<InstanceXform> xforms_;
+    struct StaticRange {
+        uint32_t first = kNotStatic, count = 0;  // the instance's StaticTriangles
+    };
+    std::vector<StaticRange> staticRanges_;  // per instance; first = kNotStatic for animated ones
+    std::vector<StaticTriangle> staticTriangles_;
+    std::vector<TriangleAttributes> staticAttributes_;
     std::vector<TracedRay>* log_ = nullptr;
     mutable std::mutex logMutex_;
     // Out of line and cold, so the traced-ray paths keep their no-log code lean.
