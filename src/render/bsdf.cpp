@@ -12,8 +12,8 @@ vec3 SchlickFresnel(const vec3& f0, float cosTheta) {
 
 // Probability of choosing the specular lobe for outgoing direction wo.
 float SpecularProbability(const BsdfParams& p, float cosThetaO) {
-    float spec = Luminance(SchlickFresnel(p.f0, cosThetaO));
-    if (p.f0 == vec3(0.0f)) spec = 0.0f;
+    // No specular interface (F0 = 0, e.g. an MTL with Ks 0): no Fresnel term to evaluate.
+    float spec = p.f0 == vec3(0.0f) ? 0.0f : Luminance(SchlickFresnel(p.f0, cosThetaO));
     float diff = Luminance(p.diffuse);
     if (spec + diff <= 0.0f) return 0.0f;
     return spec / (spec + diff);
