@@ -66,6 +66,7 @@ vec3 SampleGgxVndfDisk(float alpha, const vec3& wo, const vec2& disk);
 // Orthonormal basis around a unit normal (Duff et al. 2017).
 struct Frame {
     vec3 t, b, n;
+    Frame() = default;  // uninitialised (a PathVertex member, set in place)
     explicit Frame(const vec3& normal);
     vec3 ToLocal(const vec3& v) const { return vec3(glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)); }
     vec3 ToWorld(const vec3& v) const { return v.x * t + v.y * b + v.z * n; }

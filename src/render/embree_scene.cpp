@@ -350,9 +350,8 @@ std::array<vec3, 3> EmbreeScene::WorldTriangle(uint32_t instance, uint32_t primi
 
 // SurfaceAt for a triangle of a static instance, from its record: the same operations on the
 // same values, in the same order.
-SurfaceHit EmbreeScene::StaticSurface(const StaticTriangle& t, const SurfaceSample& s) const {
+void EmbreeScene::StaticSurface(const StaticTriangle& t, const SurfaceSample& s, SurfaceHit& h) const {
     float u = s.barycentrics.x, v = s.barycentrics.y, w = 1.0f - u - v;
-    SurfaceHit h;
     h.position = t.p0 + u * t.e1 + v * t.e2;
     h.area = t.area;
     h.geomNormal = t.geomNormal;
@@ -369,7 +368,16 @@ SurfaceHit EmbreeScene::StaticSurface(const StaticTriangle& t, const SurfaceSamp
     }
     h.uv = (t.flags & kHasUvs) ? w * a->uv[0] + u * a->uv[1] + v * a->uv[2] : vec2(u, v);
     h.material = t.material;
-    return h;
+}
+
+void EmbreeScene::SurfaceInto(const SurfaceSample& s, SurfaceHit& h) const {
+    FOVRT_CHECK_OP(s.instance, <, scene_.instances.size());
+    if (const StaticRange& r = staticRanges_[s.instance]; r.first != kNotStatic) {
+        FOVRT_CHECK_OP(s.primitive, <, r.count);
+        StaticSurface(staticTriangles_[r.first + s.primitive], s, h);
+        return;
+    }
+    h = SurfaceAt(s, xforms_);
 }
 
 SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const {
@@ -377,7 +385,9 @@ SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<Inst
     // A static instance's transform is the same in every frame's xforms: its record serves all.
     if (const StaticRange& r = staticRanges_[s.instance]; r.first != kNotStatic) {
         FOVRT_CHECK_OP(s.primitive, <, r.count);
-        return StaticSurface(staticTriangles_[r.first + s.primitive], s);
+        SurfaceHit h;
+        StaticSurface(staticTriangles_[r.first + s.primitive], s, h);
+        return h;
     }
     const InstanceXform& x = xforms[s.instance];
     const Mesh& mesh = scene_.meshes[scene_.instances[s.instance].mesh];

@@ -58,7 +58,13 @@ public:
     // rtcIntersect1 / rtcOccluded1 on one recorded ray, nothing else; true on a hit.
     bool TraceBare(const TracedRay& ray) const;
 
-    SurfaceHit Surface(const SurfaceSample& s) const { return SurfaceAt(s, xforms_); }
+    SurfaceHit Surface(const SurfaceSample& s) const {
+        SurfaceHit h;
+        SurfaceInto(s, h);
+        return h;
+    }
+    // Surface(s) written into h (the tracer's hot path: no SurfaceHit copied through the stack).
+    void SurfaceInto(const SurfaceSample& s, SurfaceHit& h) const;
     // Surface with another frame's transforms (motion vectors).
     SurfaceHit SurfaceAt(const SurfaceSample& s, const std::vector<InstanceXform>& xforms) const;
     // Object-space point of a surface sample.
@@ -96,7 +102,7 @@ private:
     static constexpr uint32_t kHasNormals = 1u, kHasUvs = 2u, kTransformNormals = 4u;
     static constexpr uint32_t kNotStatic = 0xFFFFFFFFu;
     void BuildStaticRecords();
-    SurfaceHit StaticSurface(const StaticTriangle& t, const SurfaceSample& s) const;
+    void StaticSurface(const StaticTriangle& t, const SurfaceSample& s, SurfaceHit& h) const;
 
     // Scene instance of a hit: flattened static geometry reports it as the geometry ID.
     uint32_t InstanceOf(unsigned instID, unsigned geomID) const {

@@ -100,6 +100,9 @@ struct ShadingPoint {
 // A path vertex with everything that depends only on the incoming direction, computed once
 // (for the primary vertex: once per pixel, not per sample).
 struct PathVertex {
+    // Left uninitialised: a vertex is built in place (Resolve, InitVertex), never copied, since
+    // copying ~200 bytes through the stack stalled store forwarding on every bounce.
+    PathVertex() {}
     ShadingPoint p;
     vec3 ng;      // geometric normal on the side the path arrives from
     Frame frame;  // around the shading normal, bent so that wo stays above it
@@ -409,9 +412,9 @@ private:
         return scene_.materials[hit.material].emission * embree_->xforms()[instance].emissionScale;
     }
 
-    ShadingPoint Resolve(const SurfaceSample& s) const {
-        ShadingPoint p;
-        p.hit = embree_->Surface(s);
+    // Fills p (in place: it is usually a PathVertex's) with the surface and material at s.
+    void Resolve(const SurfaceSample& s, ShadingPoint& p) const {
+        embree_->SurfaceInto(s, p.hit);
         const Material& m = scene_.materials[p.hit.material];
         const ResolvedMaterial& r = materials_[p.hit.material];
         p.emission = m.emission * embree_->xforms()[s.instance].emissionScale;
@@ -419,7 +422,7 @@ private:
         if (!r.textured) {
             p.bsdf = r.bsdf;
             p.albedo = r.albedo;
-            return p;
+            return;
         }
         vec3 base = m.baseColor;
         float roughness = m.roughness, metallic = m.metallic;
@@ -434,7 +437,6 @@ private:
         if (m.metallicTexture >= 0) metallic *= scene_.textures[m.metallicTexture].Sample(p.hit.uv).r;
         p.bsdf = MakeBsdfParams(base, roughness, metallic, m.specular);
         p.albedo = glm::clamp(p.bsdf.diffuse + p.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
-        return p;
     }
 
     // The radiance p emits towards w (any length): none from the back of a one-sided emitter.
@@ -548,15 +550,19 @@ private:
         return result;
     }
 
-    PathVertex MakeVertex(const ShadingPoint& p, const vec3& wo) const {
+    // Completes vertex v (v.p resolved) for a path arriving from direction wo.
+    void InitVertex(PathVertex& v, const vec3& wo) const {
+        const ShadingPoint& p = v.p;
         // Face-forward both normals to the side the path arrives from.
         vec3 ng = glm::dot(p.hit.geomNormal, wo) < 0.0f ? -p.hit.geomNormal : p.hit.geomNormal;
         vec3 ns = glm::dot(p.hit.shadingNormal, ng) < 0.0f ? -p.hit.shadingNormal : p.hit.shadingNormal;
         float cosO = glm::dot(ns, wo);
         if (cosO < 0.01f) ns = glm::normalize(ns + (0.01f - cosO) * wo);  // keep wo above
         Frame frame(ns);
-        return PathVertex{p, ng, frame, PrepareBsdfWo(p.bsdf, frame.ToLocal(wo)),
-                          OffsetRayOrigin(p.hit.position, ng)};
+        v.ng = ng;
+        v.frame = frame;
+        v.wo = PrepareBsdfWo(p.bsdf, frame.ToLocal(wo));
+        v.origin = OffsetRayOrigin(p.hit.position, ng);
     }
 
     // One path sample from the primary vertex, one ray at a time; adds radiance to direct /
@@ -590,14 +596,16 @@ private:
                 return;
             }
             throughput *= bs.weight;
-            ShadingPoint p = Resolve(next);
+            PathVertex& landed = storage.emplace();  // v's vertex is not read again
+            const ShadingPoint& p = landed.p;
+            Resolve(next, landed.p);
             if (vec3 le = EmissionToward(p, -wi); le != vec3(0.0f)) {
                 float pdfLight = LightPdf(le, p.hit.geomNormal, p.emissionTwoSided, t, wi);
                 float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
                 target += throughput * le * weight;
             }
-            storage.emplace(MakeVertex(p, -wi));
-            v = &*storage;
+            InitVertex(landed, -wi);
+            v = &landed;
         }
     }
 
@@ -647,14 +655,16 @@ private:
             return false;
         }
         st.throughput *= bs.weight;
-        ShadingPoint p = Resolve(next);
+        PathVertex& landed = st.storage.emplace();  // st.v's vertex is not read again
+        const ShadingPoint& p = landed.p;
+        Resolve(next, landed.p);
         if (vec3 le = EmissionToward(p, -wi); le != vec3(0.0f)) {
             float pdfLight = LightPdf(le, p.hit.geomNormal, p.emissionTwoSided, t, wi);
             float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
             target += st.throughput * le * weight;
         }
-        st.storage.emplace(MakeVertex(p, -wi));
-        st.v = &*st.storage;
+        InitVertex(landed, -wi);
+        st.v = &landed;
         ++st.depth;
         return true;
     }
@@ -682,11 +692,13 @@ private:
     // n samples at one primary surface sample seen from eyePos.
     PixelShade ShadePixel(const vec3& eyePos, const SurfaceSample& s, uint32_t seed, int n,
                           RayCounts& counts, SurfaceHit* hitOut = nullptr) const {
-        ShadingPoint p = Resolve(s);
+        PathVertex primary;
+        ShadingPoint& p = primary.p;
+        Resolve(s, p);
         if (hitOut) *hitOut = p.hit;
         const vec3 wo = glm::normalize(eyePos - p.hit.position);
         p.emission = EmissionToward(p, wo);  // what the eye sees of it; read below as out.emission
-        PathVertex primary = MakeVertex(p, wo);
+        InitVertex(primary, wo);
         vec3 direct(0.0f), indirect(0.0f);
         PixelSampler pixelSampler(seed, CachedSamplerPairs(n));
         DeterministicLights primaryLights;
