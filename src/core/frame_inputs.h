@@ -99,6 +99,14 @@ struct FrameInputs {
 
     // Allocates every plane at W×H with neutral values (background everywhere).
     void Allocate(int width, int height);
+    // Every plane at W×H with unspecified contents, for a writer that then sets every pixel
+    // (the path tracer: SetNeutral per tile, then its values), and no gradient samples.
+    void AllocateForOverwrite(int width, int height) {
+        FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_RESIZE_FOR_OVERWRITE)
+        gradientSamples.clear();
+    }
+    // Neutral values (background) in the rectangle [x0, x1) × [y0, y1) of every plane.
+    void SetNeutral(int x0, int y0, int x1, int y1) { FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_SET_NEUTRAL) }
     // The (de)modulation factor of direct and indirect: albedo, or fbeta under brdf demodulation.
     const Plane<vec3>& Modulation() const { return demodulation == Demodulation::Brdf ? fbeta : albedo; }
     // The noisy colour the renderer would display: Modulation() * (direct + indirect) + emission.

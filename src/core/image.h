@@ -22,6 +22,12 @@ public:
         data_.assign(size_t(width) * size_t(height), fill);
     }
     void Fill(const T& value) { std::fill(data_.begin(), data_.end(), value); }
+    // Resize for a writer that sets every element: the contents are kept (unspecified to the
+    // writer) when the size does not change, so no pass over the memory precedes the writes.
+    void ResizeForOverwrite(int width, int height, const T& fill = T{}) {
+        if (width == width_ && height == height_) return;
+        Resize(width, height, fill);
+    }
 
     int width() const { return width_; }
     int height() const { return height_; }

@@ -5,6 +5,8 @@
 // f(const PlaneSpec&, Plane<T>&) per plane in list order; the helpers below read nothing else.
 #pragma once
 
+#include <algorithm>
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -33,6 +35,11 @@ struct PlaneBytes {
 #define FOVRT_PLANE_MEMBER(member, Type, neutral, channels, doc) Plane<Type> member;
 #define FOVRT_PLANE_RESIZE(member, Type, neutral, channels, doc) \
     member.Resize(width, height, neutral);
+#define FOVRT_PLANE_RESIZE_FOR_OVERWRITE(member, Type, neutral, channels, doc) \
+    member.ResizeForOverwrite(width, height, neutral);
+// Sets rows y0..y1-1, columns x0..x1-1 of the plane to its neutral value.
+#define FOVRT_PLANE_SET_NEUTRAL(member, Type, neutral, channels, doc) \
+    for (int y = y0; y < y1; ++y) std::fill_n(&member(x0, y), x1 - x0, neutral);
 #define FOVRT_PLANE_VISIT(member, Type, neutral, channels, doc) \
     f(PlaneSpec{#member, channels, doc}, member);
 #define FOVRT_PLANE_NAME(member, Type, neutral, channels, doc) #member,

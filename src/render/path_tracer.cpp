@@ -218,20 +218,22 @@ public:
         FOVRT_CHECK_OP(spp.width(), ==, w);
         FOVRT_CHECK_OP(spp.height(), ==, h);
         bool cut = out.cameraCut;
-        out.Allocate(w, h);
+        out.AllocateForOverwrite(w, h);  // TraceTile sets every pixel of every plane
         out.eye = eye;
         out.frameIndex = frame_;
         out.timeSeconds = state_.time;
         out.camera = camera;
         out.prevCamera = prevCamera;
         out.demodulation = settings_.demodulation;
-        Plane<float> luminance(w, h, 0.0f);
+        // The noisy luminance only feeds A-SVGF's gradient samples (this frame's and the history's).
+        Plane<float> luminance;
+        if (settings_.gradientSamples) luminance.Resize(w, h, 0.0f);
 
         EyeHistory& history = history_[eye];
         EyeVisibility& visibility = visibility_[eye];
         if (settings_.gradientSamples) visibility.latest = 1 - visibility.latest;  // last frame's is now Previous()
         VisibilityBuffer& vis = visibility.Latest();
-        vis.Allocate(w, h);
+        vis.AllocateForOverwrite(w, h);
         bool merge = settings_.gradientSamples && history.valid && !cut && history.frame + 1 == frame_ &&
                      history.instance.width() == w && history.instance.height() == h;
         const EyeView view(camera, prevCamera);
@@ -826,6 +828,11 @@ private:
     void TraceTile(int eye, const EyeView& view, const Plane<uint16_t>& spp, int x0, int y0, int x1, int y1,
                    bool shade, FrameInputs& out, VisibilityBuffer& vis, Plane<float>& luminance,
                    RayCounts& counts) const {
+        // Background in every plane first (the planes were sized for overwrite, so they hold the
+        // last frame's values): one tile at a time, the writes below then hit cached lines instead
+        // of following a whole-frame fill pass through memory.
+        out.SetNeutral(x0, y0, x1, y1);
+        vis.SetNeutral(x0, y0, x1, y1);
         for (int y = y0; y < y1; ++y) {
             for (int xs = x0; xs < x1; xs += 8) {
                 vec3 dirs[8];
@@ -887,7 +894,7 @@ private:
                                            RayCounts& counts) const {
         if (s.instance == kNoObject) {
             out.emission(x, y) = scene_.background;
-            luminance(x, y) = Luminance(scene_.background);
+            if (!luminance.empty()) luminance(x, y) = Luminance(scene_.background);
             vec3 e = view.prevView * dir;
             out.prevPixel(x, y) = e.z < 0.0f ? view.prevCamera.PixelOfEyeDirection(e) : vec2(-1.0f);
             return;
@@ -910,7 +917,7 @@ private:
         vec3 prevWorld = vec3(prevXforms_[s.instance].worldFromObject * vec4(embree_->ObjectPosition(s), 1.0f));
         auto prev = view.prevCamera.Project(prevWorld);
         out.prevPixel(x, y) = prev ? prev->pixel : vec2(-1.0f);
-        luminance(x, y) = Luminance(Remodulate(shade));
+        if (!luminance.empty()) luminance(x, y) = Luminance(Remodulate(shade));
     }
 
     // A-SVGF forward projection and merge (paper §3, "Constructing Gradient Samples"): one random

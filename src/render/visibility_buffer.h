@@ -30,6 +30,9 @@ struct VisibilityBuffer {
 
     // Every plane at W×H with its neutral value (background everywhere).
     void Allocate(int width, int height) { FOVRT_VISIBILITY_PLANES(FOVRT_PLANE_RESIZE) }
+    // As FrameInputs::AllocateForOverwrite / SetNeutral.
+    void AllocateForOverwrite(int width, int height) { FOVRT_VISIBILITY_PLANES(FOVRT_PLANE_RESIZE_FOR_OVERWRITE) }
+    void SetNeutral(int x0, int y0, int x1, int y1) { FOVRT_VISIBILITY_PLANES(FOVRT_PLANE_SET_NEUTRAL) }
     size_t Bytes() const { return TotalPlaneBytes(*this); }
 
     // f(const PlaneSpec&, Plane<T>&) per plane, in list order (EXR layers: io/exr.h PlaneLayers).
