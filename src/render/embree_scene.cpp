@@ -153,10 +153,15 @@ void EmbreeScene::BuildStaticRecords() {
     // The transform of a static instance is the same in every frame: take it from time 0.
     const std::vector<InstanceXform> xforms = MakeXforms(scene_, scene_.StateAt(0.0f));
     staticRanges_.assign(scene_.instances.size(), StaticRange{});
-    size_t count = 0;
-    for (const Instance& inst : scene_.instances)
-        if (inst.keys.size() <= 1) count += scene_.meshes[inst.mesh].triangles.size();
+    size_t count = 0, withAttributes = 0;
+    for (const Instance& inst : scene_.instances) {
+        if (inst.keys.size() > 1) continue;
+        const Mesh& mesh = scene_.meshes[inst.mesh];
+        count += mesh.triangles.size();
+        if (!mesh.normals.empty() || !mesh.uvs.empty()) withAttributes += mesh.triangles.size();
+    }
     staticTriangles_.reserve(count);
+    staticAttributes_.reserve(withAttributes);
     for (size_t i = 0; i < scene_.instances.size(); ++i) {
         const Instance& inst = scene_.instances[i];
         if (inst.keys.size() > 1) continue;
