@@ -49,10 +49,20 @@ def hfen(x):
     return F.conv2d(x.reshape(n * c, 1, h, w), LOG, padding=LOG.shape[-1] // 2).reshape(n, c, h, w)
 
 
-def rae_loss(out, tgt):
-    """out, tgt [B, T, 3, H, W] in gamma space. Returns (total, l1, hfen, temporal)."""
+def frame_weights(floor=0.0):
+    """Per-frame loss weights: the paper's exp(-(6-t)²/8), raised to at least `floor`."""
+    return torch.clamp(FRAME_WEIGHTS, min=floor)
+
+
+def rae_loss(out, tgt, w_temporal=0.1, w_temporal_linear=0.0, fw=FRAME_WEIGHTS):
+    """out, tgt [B, T, 3, H, W] in gamma space. Returns (total, l1, hfen, temporal, temporal_linear).
+
+    Weights 0.8 / 0.1 / w_temporal (paper: 0.8 / 0.1 / 0.1) and, a deviation from the paper,
+    w_temporal_linear on the same temporal L1 taken in linear space (out^(1/γ) against
+    tgt^(1/γ)): γ = 0.2 compresses the flicker of bright regions that the temporal error of
+    fovrt's experiments (mean |lum_t − lum_{t−1}|, linear) is made of."""
     B, T = out.shape[:2]
-    w = FRAME_WEIGHTS[:T] / FRAME_WEIGHTS[:T].sum()
+    w = fw[:T] / fw[:T].sum()
     l1 = ((out - tgt).abs().mean(dim=(0, 2, 3, 4)) * w).sum()
     hf = (hfen(out.flatten(0, 1)) - hfen(tgt.flatten(0, 1))).abs().view(B, T, -1).mean(dim=(0, 2))
     hf = (hf * w).sum()
@@ -60,7 +70,15 @@ def rae_loss(out, tgt):
     d_tgt = tgt[:, 1:] - tgt[:, :-1]
     tw = w[1:] / w[1:].sum()
     tm = ((d_out - d_tgt).abs().mean(dim=(0, 2, 3, 4)) * tw).sum()
-    return 0.8 * l1 + 0.1 * hf + 0.1 * tm, l1, hf, tm
+    if w_temporal_linear:
+        lin_out = torch.clamp(out, min=0.0) ** (1.0 / rae_net.GAMMA)
+        lin_tgt = tgt ** (1.0 / rae_net.GAMMA)
+        dl_out = lin_out[:, 1:] - lin_out[:, :-1]
+        dl_tgt = lin_tgt[:, 1:] - lin_tgt[:, :-1]
+        tl = ((dl_out - dl_tgt).abs().mean(dim=(0, 2, 3, 4)) * tw).sum()
+    else:
+        tl = torch.zeros(())
+    return 0.8 * l1 + 0.1 * hf + w_temporal * tm + w_temporal_linear * tl, l1, hf, tm, tl
 
 
 class Dataset:
@@ -69,25 +87,43 @@ class Dataset:
     def __init__(self, folder, split="train"):
         with open(os.path.join(folder, "manifest.json")) as f:
             self.manifest = json.load(f)
+        # inputs[i][r]: noise realisation r of sequence i (r = 0: "input"; r >= 1: "inputs_extra",
+        # the same frames, camera and targets traced with other seeds: `fovrt dataset --noise-realisations`)
         self.inputs, self.targets, self.names = [], [], []
         for s in self.manifest["sequences"]:
             if s["split"] != split:
                 continue
-            self.inputs.append(np.load(os.path.join(folder, s["input"]), mmap_mode="r"))
+            files = [s["input"]] + list(s.get("inputs_extra", []))
+            self.inputs.append([np.load(os.path.join(folder, f), mmap_mode="r") for f in files])
             self.targets.append(np.load(os.path.join(folder, s["target"]), mmap_mode="r"))
             self.names.append(s["name"])
+
+    def realisations(self):
+        """Noise realisations every sequence has (1 = a dataset without extra noise)."""
+        return min(len(r) for r in self.inputs) if self.inputs else 1
 
     def __len__(self):
         return len(self.inputs)
 
 
-def frame_indices(n, rng, augment):
-    """7 frame indices into a sequence of n frames: playback direction and camera stops."""
+STOP_PROB, STOP_HOLD = 0.25, (2, 4)  # camera stops: probability, copies of the held frame (--stops)
+
+
+def frame_indices(n, rng, augment, realisations=1):
+    """7 (frame, noise realisation) pairs into a sequence of n frames: playback direction and
+    camera stops.
+
+    A camera stop (paper §4.3) holds the camera and the target at one frame for 1-3 extra frames
+    "while advancing the noisy image to a different random seed": each held copy takes the next
+    noise realisation of that frame (round robin over the dataset's realisations, so a held frame
+    never repeats its predecessor's noise when there are at least two). With one realisation the
+    held frame repeats its noise exactly, which is not the paper's camera stop."""
     start = rng.randrange(0, n - SEQ + 1)
-    idx = list(range(start, start + SEQ))
-    if augment and rng.random() < 0.25:  # camera stop: one frame held for 1-3 extra frames
+    idx = [(i, 0) for i in range(start, start + SEQ)]
+    if augment and rng.random() < STOP_PROB:  # camera stop: one frame held for 1-3 extra frames
         j = rng.randrange(0, SEQ)
-        idx = (idx[:j] + [idx[j]] * rng.randint(2, 4) + idx[j + 1:])[:SEQ]
+        held = [(idx[j][0], k % realisations) for k in range(rng.randint(*STOP_HOLD))]
+        idx = (idx[:j] + held + idx[j + 1:])[:SEQ]
     if augment and rng.random() < 0.5:
         idx.reverse()
     return idx
@@ -105,14 +141,15 @@ def rotate_normals(x, k):
 
 def sample_batch(ds, batch, crop, channels, rng, augment=True):
     xs, ys = [], []
+    realisations = ds.realisations()
     for _ in range(batch):
         i = rng.randrange(len(ds))
         inp, tgt = ds.inputs[i], ds.targets[i]
-        T, _, H, W = inp.shape
-        idx = frame_indices(T, rng, augment)
+        T, _, H, W = inp[0].shape
+        idx = frame_indices(T, rng, augment, realisations)
         y0, x0 = rng.randrange(0, H - crop + 1), rng.randrange(0, W - crop + 1)
-        x = torch.from_numpy(np.ascontiguousarray(inp[idx, :channels, y0:y0 + crop, x0:x0 + crop]))
-        y = torch.from_numpy(np.ascontiguousarray(tgt[idx, :, y0:y0 + crop, x0:x0 + crop]))
+        x = torch.from_numpy(np.stack([inp[r][f, :channels, y0:y0 + crop, x0:x0 + crop] for f, r in idx]))
+        y = torch.from_numpy(np.stack([tgt[f, :, y0:y0 + crop, x0:x0 + crop] for f, _ in idx]))
         if augment:
             k = rng.randrange(4)
             if k:
@@ -128,7 +165,8 @@ def sample_batch(ds, batch, crop, channels, rng, augment=True):
 
 
 def learning_rate(step, base, ramp):
-    """Tenfold geometric ramp-up over `ramp` steps, then base·sqrt(ramp/step)."""
+    """Tenfold geometric ramp-up over `ramp` steps, then base·sqrt(ramp/step). A fine-tuning run
+    (--init) evaluates it at step + --schedule-offset, continuing the schedule it started from."""
     if step < ramp:
         return base * 10.0 ** (step / ramp - 1.0)
     return base * math.sqrt(ramp / max(step, 1))
@@ -158,10 +196,25 @@ def main(argv=None):
     ap.add_argument("--log-every", type=int, default=20)
     ap.add_argument("--ckpt-every", type=int, default=200)
     ap.add_argument("--resume", action="store_true")
+    ap.add_argument("--keep-exports", action="store_true", help="also keep rae-step<N>.raew of every checkpoint")
+    ap.add_argument("--temporal-weight", type=float, default=0.1,
+                    help="weight of the temporal L1 term (paper 0.1; spatial 0.8 and HFEN 0.1 stay)")
+    ap.add_argument("--temporal-linear", type=float, default=0.0,
+                    help="weight of the temporal L1 in linear space (0 = the paper's loss)")
+    ap.add_argument("--frame-weight-floor", type=float, default=0.0,
+                    help="per-frame loss weights max(exp(-(6-t)²/8), floor); 0 = the paper's")
+    ap.add_argument("--stops", default="0.25,2,4",
+                    help="camera stops: probability, fewest and most copies of the held frame")
+    ap.add_argument("--init", help="start from these exported weights (.raew): fine-tuning, fresh Adam state")
+    ap.add_argument("--schedule-offset", type=int, default=0,
+                    help="learning rate of step s is the schedule's at s + offset (fine-tuning)")
     ap.add_argument("--fixed-batch", action="store_true",
                     help="one batch (no augmentation) for every step: the CI smoke test's overfit")
     args = ap.parse_args(argv)
 
+    global STOP_PROB, STOP_HOLD
+    p, lo, hi = args.stops.split(",")
+    STOP_PROB, STOP_HOLD = float(p), (int(lo), int(hi))
     torch.set_num_threads(args.threads)
     torch.manual_seed(args.seed)
     rng = random.Random(args.seed)
@@ -171,6 +224,12 @@ def main(argv=None):
     if len(train) == 0:
         sys.exit(f"no training sequences in {args.data}")
     net = rae_net.RaeNet(parse_widths(args.widths), sample_count=args.sample_count)
+    if args.init:
+        init, _ = rae_net.load_weights(args.init)
+        if init.widths != net.widths or init.in_channels != net.in_channels:
+            sys.exit(f"--init {args.init}: widths {init.widths} / {init.in_channels} inputs, "
+                     f"this run {net.widths} / {net.in_channels}")
+        net.load_state_dict(init.state_dict())
     channels = net.in_channels
     opt = torch.optim.Adam(net.parameters(), lr=args.lr, betas=(0.9, 0.99))
     step, elapsed = 0, 0.0
@@ -186,10 +245,13 @@ def main(argv=None):
         print(f"resumed at step {step}", flush=True)
     else:
         with open(log_path, "w", newline="") as f:
-            csv.writer(f).writerow(["step", "seconds", "lr", "loss", "l1", "hfen", "temporal", "val_loss"])
+            csv.writer(f).writerow(["step", "seconds", "lr", "loss", "l1", "hfen", "temporal", "val_loss",
+                                    "temporal_linear"])
     print(f"widths {net.widths} inputs {channels}: {rae_net.count_parameters(net)} parameters, "
-          f"{rae_net.flops_per_pixel(net):.0f} FLOP/px; {len(train)} train / {len(val)} eval sequences",
-          flush=True)
+          f"{rae_net.flops_per_pixel(net):.0f} FLOP/px; {len(train)} train / {len(val)} eval sequences, "
+          f"{train.realisations()} noise realisation(s) each; temporal weight {args.temporal_weight}"
+          f", linear {args.temporal_linear}; frame weights {[round(v, 3) for v in frame_weights(args.frame_weight_floor).tolist()]}"
+          + (f"; from {args.init}" if args.init else ""), flush=True)
     # A fixed validation batch (held-out scenes, no augmentation) for the loss curve.
     vbatch = None
     src = val if len(val) else train
@@ -202,12 +264,14 @@ def main(argv=None):
                    ckpt_path + ".tmp")
         os.replace(ckpt_path + ".tmp", ckpt_path)
         rae_net.save_weights(net, os.path.join(args.out, "rae.raew"))
+        if args.keep_exports:
+            rae_net.save_weights(net, os.path.join(args.out, f"rae-step{step}.raew"))
 
-    acc = np.zeros(4)
+    acc = np.zeros(5)
     n_acc = 0
     while step < args.steps:
         t0 = time.time()
-        lr = learning_rate(step, args.lr, args.ramp)
+        lr = learning_rate(step + args.schedule_offset, args.lr, args.ramp)
         for g in opt.param_groups:
             g["lr"] = lr
         if args.fixed_batch:
@@ -217,25 +281,26 @@ def main(argv=None):
         else:
             x, y = sample_batch(train, args.batch, args.crop, channels, rng)
         out = net(x)
-        loss, l1, hf, tm = rae_loss(out, y)
+        loss, l1, hf, tm, tl = rae_loss(out, y, args.temporal_weight, args.temporal_linear,
+                                        frame_weights(args.frame_weight_floor))
         opt.zero_grad()
         loss.backward()
         opt.step()
         step += 1
         elapsed += time.time() - t0
-        acc += [loss.item(), l1.item(), hf.item(), tm.item()]
+        acc += [loss.item(), l1.item(), hf.item(), tm.item(), tl.item()]
         n_acc += 1
         if step % args.log_every == 0 or step == args.steps:
             vloss = float("nan")
             if vbatch is not None:
                 with torch.no_grad():
-                    vloss = rae_loss(net(vbatch[0]), vbatch[1])[0].item()
+                    vloss = rae_loss(net(vbatch[0]), vbatch[1])[0].item()  # paper weights: comparable
             m = acc / n_acc
             with open(log_path, "a", newline="") as f:
-                csv.writer(f).writerow([step, f"{elapsed:.1f}", f"{lr:.3e}"] + [f"{v:.5f}" for v in m] +
-                                       [f"{vloss:.5f}"])
+                csv.writer(f).writerow([step, f"{elapsed:.1f}", f"{lr:.3e}"] + [f"{v:.5f}" for v in m[:4]] +
+                                       [f"{vloss:.5f}", f"{m[4]:.5f}"])
             print(f"step {step} {elapsed:.0f}s lr {lr:.2e} loss {m[0]:.4f} (l1 {m[1]:.4f} hfen {m[2]:.4f} "
-                  f"temporal {m[3]:.4f}) val {vloss:.4f}", flush=True)
+                  f"temporal {m[3]:.4f} linear {m[4]:.4f}) val {vloss:.4f}", flush=True)
             acc[:] = 0
             n_acc = 0
         if step % args.ckpt_every == 0:

@@ -6,9 +6,14 @@
 //                                    (denoise/reference/rae_features.h; colour linear)
 //   <scene>_<mode>_<eye>_target.npy  float32 [T, 3, H, W]: the reference.spp reference,
 //                                    demodulated like the input (RaeTarget)
-// and manifest.json (channels, sizes, split per sequence, the settings). Scenes listed with
+// and manifest.json (channels, sizes, split per sequence, the settings). With
+// --noise-realisations K > 1, training sequences also get K−1 more noisy inputs of the same frames
+// traced with other seeds, <scene>_<mode>_<eye>_input_n<r>.npy (manifest "inputs_extra"): the
+// paper's camera stops (§4.3) hold the camera and target while the noise advances. Scenes listed with
 // --eval are marked split "eval" (held out of training); references come from the reference cache
 // (rendered with the base seed, so both spp modes share them).
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -37,7 +42,11 @@ struct DatasetOptions {
     std::vector<std::string> scenes = {"cornell", "pillars", "room", "box"};
     std::vector<std::string> eval = {"veach-ajar", "suzanne"};
     bool uniform = true;  // also a uniform 1-spp sequence per scene and eye
+    int noiseRealisations = 1;  // noisy inputs per training frame (1 + extra seeds)
 };
+
+// Seed of noise realisation r (>= 1) of spp mode m: apart from every mode's base seed.
+uint32_t RealisationSeed(uint32_t base, size_t mode, int r) { return base + uint32_t(mode) * 7919u + uint32_t(r) * 104729u; }
 
 void Append(NpyArray& array, const Tensor& t) {
     array.data.insert(array.data.end(), t.data.begin(), t.data.end());
@@ -57,6 +66,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
     manifest["reference_spp"] = base.reference.spp;
     manifest["max_depth"] = base.run.maxDepth;
     manifest["foveation"] = base.foveation.model;
+    manifest["noise_realisations"] = o.noiseRealisations;
     manifest["sequences"] = nlohmann::json::array();
     std::vector<std::pair<std::string, bool>> scenes;
     for (const std::string& s : o.scenes)
@@ -65,7 +75,11 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
         if (!s.empty()) scenes.push_back({s, true});  // --eval "": no held-out scene
     std::vector<std::string> modes = {base.foveation.model};
     if (o.uniform && base.foveation.model != "uniform") modes.push_back("uniform");
-    Progress progress("dataset", int(scenes.size() * modes.size()) * base.run.frames);
+    size_t heldScenes = 0;
+    for (const auto& s : scenes) heldScenes += s.second ? 1 : 0;
+    const int extraPerTrainScene = int(modes.size()) * (o.noiseRealisations - 1);
+    Progress progress("dataset", (int(scenes.size() * modes.size()) +
+                                  int(scenes.size() - heldScenes) * extraPerTrainScene) * base.run.frames);
     const auto start = std::chrono::steady_clock::now();
     for (const auto& [scene, held] : scenes)
         for (size_t m = 0; m < modes.size(); ++m) {
@@ -103,10 +117,37 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
                 }
                 progress.Step();
             }
+            // Extra noise realisations of the training frames: same camera, gaze and references.
+            const int extra = held ? 0 : o.noiseRealisations - 1;
+            std::vector<std::array<NpyArray, 2>> extraInputs(size_t(std::max(extra, 0)));
+            std::vector<uint32_t> extraSeeds;
+            for (int r = 1; r <= extra; ++r) {
+                RunConfig noisy = config;
+                noisy.run.seed = RealisationSeed(base.run.seed, m, r);
+                extraSeeds.push_back(noisy.run.seed);
+                FramePipeline again(noisy);
+                auto& arrays = extraInputs[size_t(r - 1)];
+                for (int eye = 0; eye < 2; ++eye) arrays[size_t(eye)].shape = {T, kRaeFeatureChannels, h, w};
+                for (int i = 0; i < T; ++i) {
+                    again.Render(uint32_t(config.run.firstFrame + i), frame);
+                    for (int eye = 0; eye < 2; ++eye) {
+                        Tensor features;
+                        RaeFeatures(frame.eyes[size_t(eye)].inputs, features);
+                        Append(arrays[size_t(eye)], features);
+                    }
+                    progress.Step();
+                }
+            }
             for (int eye = 0; eye < 2; ++eye) {
                 const std::string name = fmt::format("{}_{}_{}", scene, modes[m], eye == 0 ? "left" : "right");
                 WriteNpy(dir / (name + "_input.npy"), inputs[eye]);
                 WriteNpy(dir / (name + "_target.npy"), targets[eye]);
+                nlohmann::json extraFiles = nlohmann::json::array();
+                for (int r = 1; r <= extra; ++r) {
+                    const std::string file = fmt::format("{}_input_n{}.npy", name, r);
+                    WriteNpy(dir / file, extraInputs[size_t(r - 1)][size_t(eye)]);
+                    extraFiles.push_back(file);
+                }
                 manifest["sequences"].push_back({{"name", name},
                                                   {"scene", scene},
                                                   {"mode", modes[m]},
@@ -115,7 +156,9 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
                                                   {"frames", T},
                                                   {"seed", config.run.seed},
                                                   {"input", name + "_input.npy"},
-                                                  {"target", name + "_target.npy"}});
+                                                  {"target", name + "_target.npy"},
+                                                  {"inputs_extra", extraFiles},
+                                                  {"seeds_extra", extraSeeds}});
             }
         }
     progress.Finish();
@@ -137,6 +180,9 @@ void RegisterDatasetCommand(CLI::App& app) {
     cmd->add_option("--scenes", dataset->scenes, "training scenes")->delimiter(',');
     cmd->add_option("--eval", dataset->eval, "held-out scenes (split \"eval\")")->delimiter(',');
     cmd->add_flag("!--no-uniform", dataset->uniform, "only the config's foveation, no uniform 1-spp sequences");
+    cmd->add_option("--noise-realisations", dataset->noiseRealisations,
+                    "noisy inputs per training frame (other seeds, same camera and target): camera stops")
+        ->check(CLI::Range(1, 16));
     cmd->callback([options, dataset] { WriteDataset(ResolveConfig(*options), *dataset); });
 }
 

@@ -1,0 +1,70 @@
+// Temporal error of an RAE variant with its recurrent state carried and with the state reset
+// before every frame (issue #14's temporal-stability claim), shared by app_rae_temporal_test and
+// tests/tools/rae_temporal_probe. Header only: both link fovrt_app.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "app/frame_pipeline.h"
+#include "app_test_configs.h"
+#include "denoise/reference/rae_cpu.h"
+
+namespace fovrt::test {
+
+struct RaeTemporalSetup {
+    std::string scene = "cornell";
+    int width = 96, height = 64, frames = 16, first = 0;
+    bool foveated = false;  // false: uniform 1 spp; true: the default disc (8 spp inside, 1 outside)
+    RaeParams weights;      // default: the committed weights
+};
+
+struct RaeTemporalSeries {
+    std::vector<double> temporal;  // [i] = mean |lum_i − lum_{i−1}| of eye 0 (SVGF §5.4); [0] = 0
+    std::vector<double> meanLum;   // mean output luminance per frame
+    // Mean over frames 2..n−1: frame 0 has no predecessor, and frame 1 still carries the reset
+    // of frame 0 in both runs.
+    double Mean() const {
+        double sum = 0.0;
+        for (size_t i = 2; i < temporal.size(); ++i) sum += temporal[i];
+        return sum / double(temporal.size() - 2);
+    }
+};
+
+inline RaeTemporalSeries RaeTemporalError(const RaeTemporalSetup& p, const std::string& variant, bool resetEveryFrame) {
+    RunConfig config = SmallCornellConfig();
+    config.scene.name = p.scene;
+    config.denoise.params.rae = p.weights;
+    config.camera.width = p.width;
+    config.camera.height = p.height;
+    if (p.foveated) {
+        config.foveation.radiusPx = 200.0f;
+        config.foveation.radiusReferenceWidth = 1280;
+    } else {
+        config.foveation.model = "uniform";
+        config.foveation.uniformSpp = 1;
+    }
+    FramePipeline pipeline(config);
+    RaeReferenceDenoiser denoiser(variant, ParamsForVariant(FindDenoiserVariant(variant), config.denoise.params));
+    StereoFrame frame;
+    Plane<vec3> out, prev;
+    RaeTemporalSeries s;
+    auto lum = [](const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
+    for (int i = 0; i < p.frames; ++i) {
+        pipeline.Render(uint32_t(p.first + i), frame);
+        if (resetEveryFrame) denoiser.Reset();
+        denoiser.Denoise(frame.eyes[0].inputs, out);
+        double e = 0.0, l = 0.0;
+        for (size_t q = 0; q < out.size(); ++q) {
+            l += lum(out[q]);
+            if (i > 0) e += std::abs(lum(out[q]) - lum(prev[q]));
+        }
+        s.temporal.push_back(e / double(out.size()));
+        s.meanLum.push_back(l / double(out.size()));
+        prev = out;
+    }
+    return s;
+}
+
+}  // namespace fovrt::test
