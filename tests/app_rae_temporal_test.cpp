@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "rae_temporal.h"
+#include "test_support.h"
 
 using namespace fovrt;
 
@@ -25,6 +26,7 @@ TEST_CASE("rae: the recurrent state lowers the temporal error against resetting 
     const auto [scene, foveated] = GENERATE(table<std::string, bool>({{"cornell", false},
                                                                       {"cornell", true},
                                                                       {"veach-ajar", true}}));
+    if (scene == "veach-ajar") FOVRT_REQUIRE_SHARED_SCENES();
     test::RaeTemporalSetup setup;
     setup.scene = scene;
     setup.foveated = foveated;

@@ -50,15 +50,14 @@ inline RaeTemporalSeries RaeTemporalError(const RaeTemporalSetup& p, const std::
     StereoFrame frame;
     Plane<vec3> out, prev;
     RaeTemporalSeries s;
-    auto lum = [](const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
     for (int i = 0; i < p.frames; ++i) {
         pipeline.Render(uint32_t(p.first + i), frame);
         if (resetEveryFrame) denoiser.Reset();
         denoiser.Denoise(frame.eyes[0].inputs, out);
         double e = 0.0, l = 0.0;
         for (size_t q = 0; q < out.size(); ++q) {
-            l += lum(out[q]);
-            if (i > 0) e += std::abs(lum(out[q]) - lum(prev[q]));
+            l += Luminance(out[q]);
+            if (i > 0) e += std::abs(Luminance(out[q]) - Luminance(prev[q]));
         }
         s.temporal.push_back(e / double(out.size()));
         s.meanLum.push_back(l / double(out.size()));
