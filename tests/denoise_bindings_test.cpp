@@ -57,7 +57,8 @@ TEST_CASE("binding lists: slots 0..count-1, each once") {
     CheckSlots(FOVRT_TEST_ROWS(RAE_CONV_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(RAE_POOL_BINDING_LIST));
     CHECK(SVGF_ATROUS_PAIR_BINDINGS == SVGF_ATROUS_BINDINGS + 3);
-    // Both reprojection shaders bind the shared inputs at the same slots (BindReprojectionInputs).
+    // Both reprojection shaders bind the shared inputs at the same slots (ReprojectionInputs in
+    // denoise/svgf_family_plan.cpp).
     CHECK(TH_REPROJECT_B_LIST == SVGF_REPROJECT_B_LIST);
     CHECK(TH_REPROJECT_B_COLOR_IN2 == SVGF_REPROJECT_B_COLOR_IN2);
     CHECK(SVGF_REPROJECT_PAIR_BINDINGS == 32);  // lavapipe: at most 32 storage buffers per stage
