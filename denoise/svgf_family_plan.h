@@ -1,7 +1,9 @@
 // The pass list of the SVGF family (svgf, svgf-weighted, asvgf, two-history, two-history-asvgf):
-// one function per pass kind, each deciding once which planes the pass reads and writes and
-// emitting both the reference's stage and the Vulkan commands from that decision. Which passes
-// run follows from the variant row's flags (denoise/variants.h).
+// one function per pass kind (svgf_family_plan.cpp; the reprojection in reprojection_plan.cpp,
+// A-SVGF's gradient in asvgf_plan.cpp, their toolkit in plan_writer.h), each deciding once which
+// planes the pass reads and writes and emitting both the reference's stage and the Vulkan
+// commands from that decision. Which passes run follows from the variant row's flags
+// (denoise/variants.h).
 #pragma once
 
 #include <cstdint>
