@@ -23,6 +23,11 @@ size_t IllumIndex(PlaneKind kind) {
     }
 }
 
+size_t GradientIndex(PlaneKind kind) {
+    FOVRT_CHECK(kind == PlaneKind::AsvgfGrad0 || kind == PlaneKind::AsvgfGrad1);
+    return kind == PlaneKind::AsvgfGrad0 ? 0 : 1;
+}
+
 }  // namespace
 
 SvgfFamilyReferenceDenoiser::SvgfFamilyReferenceDenoiser(const DenoiserVariant& variant,
@@ -221,12 +226,9 @@ const Plane<float>* SvgfFamilyReferenceDenoiser::ScalarPlane(const PlaneRef& ref
     }
 }
 
-Plane<vec2>& SvgfFamilyReferenceDenoiser::Gradient(const PlaneId& id) {
-    FOVRT_CHECK(id.kind == PlaneKind::AsvgfGrad0 || id.kind == PlaneKind::AsvgfGrad1);
-    return gradient_[id.kind == PlaneKind::AsvgfGrad0 ? 0 : 1];
-}
+Plane<vec2>& SvgfFamilyReferenceDenoiser::Gradient(const PlaneId& id) { return gradient_[GradientIndex(id.kind)]; }
 const Plane<vec2>& SvgfFamilyReferenceDenoiser::Gradient(const PlaneId& id) const {
-    return const_cast<SvgfFamilyReferenceDenoiser*>(this)->Gradient(id);
+    return gradient_[GradientIndex(id.kind)];
 }
 
 const SvgfHistory& SvgfFamilyReferenceDenoiser::CurrentHistory(size_t channel) const {

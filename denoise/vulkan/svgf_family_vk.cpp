@@ -17,13 +17,17 @@ static_assert(sizeof(GradientSample) == 32);
 SvgfFamilyVulkanDenoiser::SvgfFamilyVulkanDenoiser(const DenoiserVariant& variant,
                                                    std::shared_ptr<VulkanContext> context,
                                                    const DenoiserParams& params)
-    : variant_(variant), context_(std::move(context)), params_(ParamsForVariant(variant, params)),
-      buffers_(std::string(variant.name)) {
+    : variant_(variant), context_(std::move(context)), buffers_(std::string(variant.name)) {
     FOVRT_CHECK(context_ != nullptr && variant.family != DenoiserFamily::Rae);
-    ValidateDenoiserParamRanges(params_);
-    if (params_.precision == Precision::Fp16 && !context_->supports16BitStorage())
-        Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess", context_->deviceName());
+    Configure(params);
     commands_ = CommandSlot(*context_);
+}
+
+void SvgfFamilyVulkanDenoiser::Configure(const DenoiserParams& params) {
+    ValidateDenoiserParamRanges(params);
+    if (params.precision == Precision::Fp16 && !context_->supports16BitStorage())
+        Fail("--precision fp16: Vulkan device '{}' lacks storageBuffer16BitAccess", context_->deviceName());
+    params_ = ParamsForVariant(variant_, params);
 }
 
 SvgfFamilyVulkanDenoiser::~SvgfFamilyVulkanDenoiser() = default;
@@ -34,11 +38,10 @@ void SvgfFamilyVulkanDenoiser::Reset() {
 }
 
 void SvgfFamilyVulkanDenoiser::SetParams(const DenoiserParams& params) {
-    ValidateDenoiserParamRanges(params);
+    Configure(params);
     prepared_.clear();
     pipelines_.clear();  // the descriptor sets die with them
     buffers_.Release();
-    params_ = ParamsForVariant(variant_, params);
     width_ = height_ = 0;  // the next Denoise() plans and allocates
     Reset();
 }

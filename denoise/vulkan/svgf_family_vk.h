@@ -62,6 +62,8 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
     };
 
     bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
+    // Checks `params` (ranges; fp16 storage on this device) and keeps them as the row implies.
+    void Configure(const DenoiserParams& params);
     void Allocate(int width, int height);
     void PrepareDispatches();
     void Record(CommandRecorder& rec, const DispatchCommand& d, const PreparedDispatch& prepared, Frame& frame);
