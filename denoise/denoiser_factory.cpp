@@ -8,11 +8,9 @@
 #include "denoise/demodulation.h"
 #include "denoise/memory_plan.h"
 #include "denoise/reference/rae_cpu.h"
-#include "denoise/reference/svgf_cpu.h"
+#include "denoise/reference/svgf_family_ref.h"
 #include "denoise/vulkan/rae_vk.h"
-#include "denoise/vulkan/svgf_vk.h"
-#include "denoise/reference/two_history_ref.h"
-#include "denoise/vulkan/two_history_vk.h"
+#include "denoise/vulkan/svgf_family_vk.h"
 #include "denoise/variants.h"
 #include "vk/context.h"
 #include "vk/device_choice.h"
@@ -47,7 +45,7 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
     // A demodulation suffix wraps the variant's host in the shared re-demodulation step.
     if (std::optional<Demodulation> want = DenoiserDemodulation(name))
         return WithDemodulation(CreateDenoiser(std::string(v.name), device, params, context), *want, name);
-    // The family picks the host; the row's flags pick the passes inside it.
+    // The family picks the host; the row's flags pick the passes of its plan.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
     if (v.family == DenoiserFamily::Rae) {
         std::unique_ptr<Denoiser> rae;
@@ -57,12 +55,10 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
         // frame was traced with (a no-op on albedo-demodulated frames).
         return WithDemodulation(std::move(rae), Demodulation::Albedo, name);
     }
-    if (v.family == DenoiserFamily::Svgf) {
-        if (!ctx) return std::make_unique<SvgfReferenceDenoiser>(name, p);
-        return std::make_unique<SvgfVulkanDenoiser>(name, std::move(ctx), p);
-    }
-    if (!ctx) return CreateTwoHistoryCpuDenoiser(v, p);
-    return std::make_unique<TwoHistoryVulkanDenoiser>(v, std::move(ctx), p);
+    // svgf, svgf-weighted, asvgf, two-history, two-history-asvgf: one host per backend runs the
+    // row's pass plan.
+    if (!ctx) return std::make_unique<SvgfFamilyReferenceDenoiser>(v, p);
+    return std::make_unique<SvgfFamilyVulkanDenoiser>(v, std::move(ctx), p);
 }
 
 }  // namespace fovrt

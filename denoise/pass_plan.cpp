@@ -2,295 +2,262 @@
 
 #include <fmt/format.h>
 
-#include "core/frame_inputs.h"
-#include "denoise/memory_plan.h"
-#include "denoise/schedule.h"
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "denoise/rae_weights.h"
+#include "denoise/svgf_family_plan.h"
 #include "denoise/variants.h"
 
 namespace fovrt {
 
 namespace {
 
-// Appends passes and the planes they use, in recording order.
-class PlanWriter {
-  public:
-    explicit PlanWriter(std::vector<PlannedPass>& passes) : passes_(passes) {}
+#define FOVRT_STAGE_SHADER_STEM(id, stem, list, pairList) stem,
+const char* const kShaderStems[] = {FOVRT_STAGE_SHADERS(FOVRT_STAGE_SHADER_STEM)};
+#undef FOVRT_STAGE_SHADER_STEM
+#define FOVRT_STAGE_SHADER_COUNTS(id, stem, list, pairList) {FOVRT_BINDING_COUNT(list), FOVRT_BINDING_COUNT(pairList)},
+const std::pair<int, int> kBindingCounts[] = {FOVRT_STAGE_SHADERS(FOVRT_STAGE_SHADER_COUNTS)};
+#undef FOVRT_STAGE_SHADER_COUNTS
 
-    PlanWriter& Pass(std::string name) {
-        passes_.push_back({std::move(name), {}});
-        return *this;
+// Every plane a command names, with the history side it names.
+template <typename F>
+void ForEachPlaneRef(const Command& command, F&& f) {
+    std::visit(
+        [&](const auto& op) {
+            using T = std::decay_t<decltype(op)>;
+            if constexpr (std::is_same_v<T, DispatchCommand>) {
+                for (const Binding& b : op.bindings) f(b.plane);
+                if (op.grid == Grid::PixelList) f(PlaneRef{op.listArgs, HistorySide::None});
+            } else if constexpr (std::is_same_v<T, FillCommand>) {
+                f(op.plane);
+            } else if constexpr (std::is_same_v<T, CopyCommand>) {
+                f(op.from);
+                f(op.to);
+            } else if constexpr (std::is_same_v<T, UploadCommand> || std::is_same_v<T, DownloadCommand>) {
+                f(PlaneRef{{op.staging, Channel::None}, HistorySide::None});
+                if constexpr (std::is_same_v<T, UploadCommand>) f(op.to);
+                else f(op.from);
+            }
+        },
+        command.op);
+}
+
+// The memory plan: every plane a command names (a history: both sides), in plane-table order,
+// sized by its row; a staging plane sized by the transfers routed through it.
+void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent) {
+    std::set<BufferKey> keys;
+    std::map<PlaneKind, size_t> transfers;
+    for (const PlannedPass& pass : plan.passes)
+        for (const Command& command : pass.commands) {
+            ForEachPlaneRef(command, [&](const PlaneRef& ref) {
+                if (IsHistory(ref.id.kind)) {
+                    keys.insert({ref.id, BufferSide::A});
+                    keys.insert({ref.id, BufferSide::B});
+                } else {
+                    keys.insert({ref.id, BufferSide::None});
+                }
+            });
+            if (const auto* up = std::get_if<UploadCommand>(&command.op))
+                transfers[up->staging] += StagingAlign(PlaneBytes(up->to.id.kind, extent));
+            if (const auto* down = std::get_if<DownloadCommand>(&command.op))
+                transfers[down->staging] += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+        }
+    for (const BufferKey& key : keys) {
+        const PlaneKind kind = key.id.kind;
+        const size_t planeBytes = PlaneBytes(kind, extent);
+        const size_t bytes = IsStaging(kind) && planeBytes == 0 ? transfers[kind] : planeBytes;
+        plan.buffers.push_back({BufferName(key), bytes, IsHistory(kind)});
+        plan.bufferKeys.push_back(key);
     }
-    PlanWriter& Read(const std::string& plane, double times = 1.0,
-                     Coverage coverage = Coverage::EveryPixel) {
-        passes_.back().uses.push_back({plane, Access::Read, times, coverage});
-        return *this;
-    }
-    PlanWriter& Write(const std::string& plane, double times = 1.0,
-                      Coverage coverage = Coverage::EveryPixel) {
-        passes_.back().uses.push_back({plane, Access::Write, times, coverage});
-        return *this;
-    }
-    // Staging → device: the staging copy is read, the device plane written.
-    PlanWriter& Upload(const std::string& plane, Coverage coverage = Coverage::EveryPixel) {
-        return Write(plane, 2.0, coverage);
-    }
-    // A placeholder binding the shader loads on every pixel (its bytes are fixed, not a plane's).
-    PlanWriter& ReadPlaceholder(const std::string& plane, double bytesPerPixel) {
-        passes_.back().uses.push_back(
-            {plane, Access::Read, 1.0, Coverage::EveryPixel, bytesPerPixel});
-        return *this;
+}
+
+// The byte model of one pass from its commands (steady state: what runs after a reset only is
+// left out; fixed-size planes move ~0 bytes per pixel).
+class UseCounter {
+  public:
+    UseCounter(const PlaneExtent& e, std::vector<PlaneUse>& uses)
+        : extent_(e), pixels_(double(e.width) * double(e.height)), uses_(uses) {}
+
+    void Count(const Command& command) {
+        if (command.when == When::NoPrevious) return;
+        std::visit([&](const auto& op) { Count(op); }, command.op);
     }
 
   private:
-    std::vector<PlannedPass>& passes_;
+    void Add(const PlaneRef& p, Access access, double times, Coverage coverage, double fixedBytes = 0.0) {
+        if (IsFixedSize(p.id.kind)) return;
+        const double planeBytes = double(PlaneBytes(p.id.kind, extent_)) / pixels_;
+        uses_.push_back({PlaneName(p.id), access, times, coverage, planeBytes, fixedBytes});
+    }
+    void Count(const DispatchCommand& d) {
+        for (const Binding& b : d.bindings) {
+            const Coverage c = d.grid == Grid::PixelList && b.coverage == Coverage::EveryPixel ? d.listCoverage : b.coverage;
+            if (b.access == Access::Read || b.access == Access::ReadWrite)
+                Add(b.plane, Access::Read, b.share, c, b.placeholderBytesPerPixel);
+            if (b.access == Access::Write || b.access == Access::ReadWrite) Add(b.plane, Access::Write, b.share, c);
+        }
+    }
+    void Count(const FillCommand& f) { Add(f.plane, Access::Write, 1.0, Coverage::EveryPixel); }
+    void Count(const CopyCommand& c) {
+        Add(c.from, Access::Read, 1.0, Coverage::EveryPixel);
+        Add(c.to, Access::Write, 1.0, Coverage::EveryPixel);
+    }
+    // Staging → device: the staging copy is read, the device plane written.
+    void Count(const UploadCommand& u) { Add(u.to, Access::Write, 2.0, u.coverage); }
+    // Device → staging: the device plane read, the staging copy written.
+    void Count(const DownloadCommand& d) {
+        Add(d.from, Access::Read, 1.0, Coverage::EveryPixel);
+        Add(d.from, Access::Write, 1.0, Coverage::EveryPixel);
+    }
+    void Count(const ClearCommand&) {}
+    void Count(const BarrierCommand&) {}
+
+    PlaneExtent extent_;
+    double pixels_;
+    std::vector<PlaneUse>& uses_;
 };
 
-const char* const kGeometry[] = {"geometry.depth", "geometry.normal", "geometry.objectId"};
-
-// The FrameInputs planes every SVGF-family frame uploads (DenoiserBuffers::RecordUploadInputs):
-// the plane list but the sample counts, which only the variants that read them upload.
-#define FOVRT_PLANE_NAME(member, Type, neutral, channels, doc) #member,
-void UploadInputs(PlanWriter& w) {
-    for (const char* plane : {FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_NAME)})
-        if (UploadedWithInputs(plane)) w.Upload(UploadBufferOf(plane));
-}
-#undef FOVRT_PLANE_NAME
-
-// svgf_pack_guide: this frame's depth, normal, object id → the edge-stopping guide.
-void PackGuide(PlanWriter& w) {
-    w.Pass("pack_guide");
-    for (const char* plane : kGeometry) w.Read(plane);
-    w.Write("geometry.guide");
-}
-
-// What every reprojection shader reads once per pixel: both colour inputs, the geometry of this
-// frame and the previous one, depth gradient and motion. The box-fallback pass over the listed
-// pixels moves bytes only for those: none in the steady state.
-void ReprojectionInputs(PlanWriter& w) {
-    w.Read("input.direct").Read("input.indirect");
-    for (const char* plane : kGeometry) w.Read(plane, 2.0);  // this frame and the previous one
-    w.Read("input.depthGradient").Read("input.prevPixel");
-}
-
-// One history's share of "filter_moments": copy in → out for every pixel, and the 7×7 variance
-// estimate of the listed pixels. `classify`: this history's channel is classified here (one list
-// per channel serves both histories of two-history).
-void FilterMoments(PlanWriter& w, const std::string& ch, const std::string& illum, bool classify) {
-    const std::string in = ch + "." + illum + "0", out = ch + "." + illum + "1",
-                      list = ch + ".spatialList";
-    w.Read(in).Write(out);  // vkCmdCopyBuffer
-    if (classify)
-        w.Read("geometry.guide").Read(ch + ".length").Write(list, 1.0, Coverage::ListedPixels);
-    const Coverage listed = Coverage::ListedPixels;
-    w.Read(in, 1.0, listed)
-        .Read("geometry.guide", 1.0, listed)
-        .Read("input.depthGradient", 1.0, listed);
-    w.Read(ch + ".moments", 1.0, listed).Read(ch + ".length", 1.0, listed).Read(list, 1.0, listed);
-    w.Write(out, 1.0, listed);
-}
-
-// One à-trous history filtered at iteration i (0-based): illumination in → out, the colour
-// history written on the feedback iteration.
-void AtrousHistory(PlanWriter& w, const std::string& ch, const std::string& illum,
-                   const std::string& history, int i, bool feedback) {
-    w.Read(ch + "." + illum + ((i + 1) & 1 ? "1" : "0"))
-        .Write(ch + "." + illum + (i & 1 ? "1" : "0"));
-    if (feedback) w.Write(ch + "." + history);
-}
-
-// The guide and depth gradient of à-trous dispatches filtering `histories` illumination planes,
-// up to two per dispatch (svgf_atrous_pair shares them).
-void AtrousShared(PlanWriter& w, int histories) {
-    const int dispatches = (histories + 1) / 2;
-    w.Read("geometry.guide", dispatches).Read("input.depthGradient", dispatches);
-}
-
-// svgf_modulate: every channel's filtered illumination, the modulation factor, emission → output; then the
-// output downloaded (device read + staging write).
-void ModulateAndDownload(PlanWriter& w, const std::vector<std::string>& channels, int iterations) {
-    w.Pass("modulate").Read("input.modulation").Read("input.emission");
-    for (const std::string& ch : channels)
-        w.Read(ch + ".illum" + std::to_string(FilteredIlluminationPlane(iterations)));
-    w.Write("output");
-    w.Pass("download").Read("output").Write("output");
-}
-
-void PlanSvgf(PlanWriter& w, const DenoiserVariant& v, const DenoiserParams& params) {
-    const SvgfParams& p = params.svgf;
-    const std::vector<std::string> channels = SvgfChannels(p);
-    const bool weighted = p.weightBySampleCount;
-    const int feedback = FeedbackIteration(p, false);
-    w.Pass("upload");
-    UploadInputs(w);
-    if (v.needsSampleCount) w.Upload("input.sampleCount");
-    PackGuide(w);
-    // One dispatch for both channels (svgf_reproject_pair; combined: one channel of direct +
-    // indirect).
-    w.Pass("reproject");
-    ReprojectionInputs(w);
-    if (weighted) w.Read("input.sampleCount");
-    for (const std::string& ch : channels) {
-        // Previous frame's histories gathered, this frame's written; the colour history only
-        // without à-trous feedback (else the feedback iteration writes it).
-        w.Read(ch + ".color").Read(ch + ".moments").Read(ch + ".length");
-        if (feedback == 0) w.Write(ch + ".color");
-        w.Write(ch + ".moments").Write(ch + ".length");
-        if (weighted) w.Read(ch + ".weight").Write(ch + ".weight");
-        w.Write(ch + ".illum0");
+DenoiserPlan PlanSvgfFamilyDenoiser(const DenoiserVariant& v, const DenoiserParams& p, int width, int height) {
+    DenoiserPlan plan;
+    plan.passes = PlanSvgfFamily(v, p, width, height);
+    const PlaneExtent extent{width, height, p.precision};
+    DeriveMemory(plan, extent);
+    for (PlannedPass& pass : plan.passes) {
+        if (pass.when == When::NoPrevious) continue;
+        UseCounter counter(extent, pass.uses);
+        for (const Command& command : pass.commands) counter.Count(command);
     }
-    w.Pass("filter_moments");
-    for (const std::string& ch : channels) FilterMoments(w, ch, "illum", true);
-    for (int i = 0; i < p.atrousIterations; ++i) {
-        w.Pass(fmt::format("atrous{}", i));
-        AtrousShared(w, int(channels.size()));
-        for (const std::string& ch : channels)
-            AtrousHistory(w, ch, "illum", "color", i, i + 1 == feedback);
-    }
-    ModulateAndDownload(w, channels, p.atrousIterations);
+    return plan;
 }
 
-// A-SVGF's temporal gradient at stratum resolution: claim-slot fill, claim, gather (with the
-// stratum guide), σ_l·std, à-trous iterations; then the per-pixel α and λ.
-void PlanAsvgfGradient(PlanWriter& w, const DenoiserParams& params) {
-    w.Pass("asvgf_gradient");
-    w.Write("asvgf.claim");  // vkCmdFillBuffer: every slot empty
-    // asvgf_gradient_claim: the uploaded samples, atomicMin on the claimed slots.
-    w.Read("asvgf.samples", 1.0, Coverage::UploadedSamples)
-        .Write("asvgf.claim", 2.0, Coverage::ClaimedStrata);
-    // asvgf_gradient_gather: the claimed samples → (δ, Δ), and the stratum guide from the per-pixel
-    // planes at the guide pixels.
-    w.Read("asvgf.claim").Read("asvgf.samples", 0.5, Coverage::ClaimedStrata).Write("asvgf.grad0");
-    for (const char* plane :
-         {"geometry.objectId", "geometry.depth", "geometry.normal", "input.depthGradient",
-          "input.direct", "input.indirect", "input.modulation", "input.emission"})
-        w.Read(plane, 1.0, Coverage::StratumGuidePixels);
-    w.Write("asvgf.guideGeometry").Write("asvgf.guideLuminance");
-    // asvgf_stratum_sigma
-    w.Read("asvgf.guideGeometry").Read("asvgf.guideLuminance").Write("asvgf.sigmaL");
-    for (int i = 0; i < params.asvgf.gradientIterations; ++i) {
-        w.Read(i & 1 ? "asvgf.grad1" : "asvgf.grad0").Write(i & 1 ? "asvgf.grad0" : "asvgf.grad1");
-        w.Read("asvgf.guideGeometry").Read("asvgf.guideLuminance").Read("asvgf.sigmaL");
-    }
-    const int gi = params.asvgf.gradientIterations;
-    w.Pass("asvgf_alpha").Read(gi > 0 && (gi - 1) % 2 == 0 ? "asvgf.grad1" : "asvgf.grad0");
-    w.Write("asvgf.alpha").Write("asvgf.lambda");
-}
-
-void PlanTwoHistoryFamily(PlanWriter& w, const DenoiserVariant& v, const DenoiserParams& params) {
-    const SvgfParams& p = params.svgf;
-    const std::vector<std::string> channels = SvgfChannels(p);
-    const bool two = v.twoHistory, ema = v.emaGradient;
-    const int feedback = FeedbackIteration(p, two);
-    w.Pass("upload");
-    UploadInputs(w);
-    if (v.needsSampleCount) w.Upload("input.sampleCount");
-    if (v.asvgfGradient) w.Upload("asvgf.samples", Coverage::UploadedSamples);
-    if (v.asvgfGradient) PlanAsvgfGradient(w, params);
-    PackGuide(w);
-
-    // two_history_reproject: one dispatch for both channels (pair; combined: one channel).
-    w.Pass("two_history_reproject");
-    ReprojectionInputs(w);
-    if (two)
-        w.Read("input.sampleCount");
-    else  // the shader loads a sample count on every pixel; A-SVGF binds a placeholder
-        w.ReadPlaceholder("input.prevPixel", 2.0);
-    if (v.asvgfGradient) w.Read("asvgf.alpha");
-    w.Read(channels[0] + ".length");  // W_u, gathered once
-    if (two) w.Read("wweight").Write("wweight").Read("powerSums").Write("powerSums");
-    if (ema) w.Read("gradient").Write("gradient");
-    for (const std::string& ch : channels) {
-        w.Read(ch + ".color").Read(ch + ".moments");  // previous I_u and moments, gathered
-        w.Write(ch + ".moments").Write(ch + ".length").Write(ch + ".illum0");
-        if (feedback == 0) w.Write(ch + ".color");
-        if (two) {
-            w.Read(ch + ".wcolor").Write(ch + ".willum0");
-            if (feedback == 0) w.Write(ch + ".wcolor");
-        }
-    }
-
-    w.Pass("filter_moments");
-    for (const std::string& ch : channels) {
-        FilterMoments(w, ch, "illum", true);
-        if (two) FilterMoments(w, ch, "willum", false);  // one list per channel serves both
-    }
-    if (ema) {
-        // 5×5 filter of g on the packed guide, each channel's variance → q.
-        w.Pass("two_history_gradient")
-            .Read("gradient")
-            .Read("geometry.guide")
-            .Read("input.depthGradient");
-        for (const std::string& ch : channels) w.Read(ch + ".illum1");
-        w.Write("q");
-    }
-    // two_history_blend per channel, in place on I_u: W_u (channel 0's length), W_w, S, and q
-    // (λ̂ with A-SVGF). Runs after à-trous iteration 0, or after the variance estimate.
-    auto blend = [&](const std::string& illum) {
-        w.Pass("two_history_blend");
-        for (const std::string& ch : channels) {
-            w.Read(ch + ".illum" + illum).Write(ch + ".illum" + illum).Read(ch + ".willum" + illum);
-            w.Read(channels[0] + ".length")
-                .Read("wweight")
-                .Read("powerSums")
-                .Read(ema ? "q" : "asvgf.lambda");
-        }
+// The recurrent autoencoder (denoise/rae_weights.h; its own host, denoise/vulkan/rae_vk.h):
+// features on the host, the network's encoder (recurrent blocks: the previous hidden side read,
+// the other written) and decoder (reading the hidden states as skips) on the device, remodulation
+// on the host. Its buffers are the slots of its tensor layout, named there. Every activation
+// counts once per pass that writes or reads it (the byte model's convention; a conv's 3×3 taps
+// hit cache).
+DenoiserPlan PlanRae(int width, int height, const DenoiserParams& params) {
+    DenoiserPlan plan;
+    plan.buffers = PlanRaeMemory(width, height, params);
+    const double pixels = double(width) * double(height);
+    std::vector<PlannedPass>& passes = plan.passes;
+    auto pass = [&](const char* name) { passes.push_back({name, When::Always, "", {}, {}, {}}); };
+    auto use = [&](const BufferPlan& b, Access access, double times = 1.0) {
+        const std::string name = b.name.rfind("rae.hidden", 0) == 0 ? b.name.substr(0, b.name.rfind('.')) : b.name;
+        passes.back().uses.push_back({name, access, times, Coverage::EveryPixel, double(b.bytes) / pixels, 0.0});
     };
-    if (two && p.atrousIterations == 0) blend("1");
-    for (int i = 0; i < p.atrousIterations; ++i) {
-        const bool both = two && i == 0;  // iteration 0 filters I_u and I_w
-        w.Pass(fmt::format("atrous{}", i));
-        AtrousShared(w, int(channels.size()) * (both ? 2 : 1));
-        for (const std::string& ch : channels) {
-            AtrousHistory(w, ch, "illum", "color", i, i + 1 == feedback);
-            if (both) AtrousHistory(w, ch, "willum", "wcolor", i, i + 1 == feedback);
-        }
-        if (both) blend("0");
-    }
-    ModulateAndDownload(w, channels, p.atrousIterations);
-}
-
-// The recurrent autoencoder (denoise/rae_weights.h): features on the host, the network's encoder
-// (recurrent blocks: the previous hidden side read, the other written) and decoder (reading the
-// hidden states as skips) on the device, remodulation on the host. Every activation counts once
-// per pass that writes or reads it (the byte model's convention; a conv's 3×3 taps hit cache).
-void PlanRae(PlanWriter& w, const std::vector<BufferPlan>& buffers) {
-    auto unsided = [](const std::string& n) {
-        const size_t dot = n.rfind('.');
-        return n.rfind("rae.hidden", 0) == 0 ? n.substr(0, dot) : n;
+    auto buffer = [&](const char* name) -> const BufferPlan& {
+        for (const BufferPlan& b : plan.buffers)
+            if (b.name == name) return b;
+        Fail("rae plan: no buffer '{}'", name);
     };
     auto starts = [](const std::string& n, const char* p) { return n.rfind(p, 0) == 0; };
-    w.Pass("rae_features").Write("rae.input");
-    w.Pass("upload").Upload("rae.input");
-    w.Pass("rae_encoder").Read("rae.input").Read("rae.weights");
-    for (const BufferPlan& b : buffers) {
-        if (starts(b.name, "rae.enc") || starts(b.name, "rae.bottleneck")) w.Write(b.name).Read(b.name);
-        if (starts(b.name, "rae.hidden") && b.name.back() == 'A') w.Read(unsided(b.name)).Write(unsided(b.name));
+    auto hiddenA = [&](const BufferPlan& b) { return starts(b.name, "rae.hidden") && b.name.back() == 'A'; };
+    pass("rae_features");
+    use(buffer("rae.input"), Access::Write);
+    pass("upload");
+    use(buffer("rae.input"), Access::Write, 2.0);
+    pass("rae_encoder");
+    use(buffer("rae.input"), Access::Read);
+    use(buffer("rae.weights"), Access::Read);
+    for (const BufferPlan& b : plan.buffers) {
+        if (starts(b.name, "rae.enc") || starts(b.name, "rae.bottleneck")) {
+            use(b, Access::Write);
+            use(b, Access::Read);
+        }
+        if (hiddenA(b)) {
+            use(b, Access::Read);
+            use(b, Access::Write);
+        }
     }
-    w.Pass("rae_decoder").Read("rae.weights").Write("rae.output");
-    for (const BufferPlan& b : buffers) {
-        if (starts(b.name, "rae.dec")) w.Write(b.name).Read(b.name);
-        if (starts(b.name, "rae.hidden") && b.name.back() == 'A') w.Read(unsided(b.name));
+    pass("rae_decoder");
+    use(buffer("rae.weights"), Access::Read);
+    use(buffer("rae.output"), Access::Write);
+    for (const BufferPlan& b : plan.buffers) {
+        if (starts(b.name, "rae.dec")) {
+            use(b, Access::Write);
+            use(b, Access::Read);
+        }
+        if (hiddenA(b)) use(b, Access::Read);
     }
-    w.Pass("download").Read("rae.output", 2.0);
-    w.Pass("rae_remodulate").Read("rae.output");
+    pass("download");
+    use(buffer("rae.output"), Access::Read, 2.0);
+    pass("rae_remodulate");
+    use(buffer("rae.output"), Access::Read);
+    return plan;
 }
 
 }  // namespace
 
-DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& params, int width,
-                               int height) {
+bool Holds(When when, const FrameConditions& frame) {
+    switch (when) {
+        case When::Always: return true;
+        case When::HasPrevious: return frame.hasPrevious;
+        case When::NoPrevious: return !frame.hasPrevious;
+        case When::GradientSamples: return frame.gradientSamples;
+    }
+    return true;
+}
+
+Specialization Specialization::Of(std::initializer_list<std::pair<int, int32_t>> idValues) {
+    Specialization s;
+    s.values.fill(-1);
+    for (const auto& [id, value] : idValues) {
+        FOVRT_CHECK(id >= 0 && size_t(id) < s.values.size());
+        s.values[size_t(id)] = value;
+        s.count = uint8_t(std::max<int>(s.count, id + 1));
+    }
+    for (size_t i = s.count; i < s.values.size(); ++i) s.values[i] = 0;  // unused: equal keys compare equal
+    return s;
+}
+
+std::string ShaderVariantName(const PipelineKey& key) {
+    std::string name = kShaderStems[size_t(key.shader)];
+    if (key.pair) name += "_pair";
+    if (key.step1) name += "_step1";
+    if (key.box) name += "_box";
+    if (key.fp16) name += "_fp16";
+    return name;
+}
+
+int BindingCount(const PipelineKey& key) {
+    const auto& [one, pair] = kBindingCounts[size_t(key.shader)];
+    return key.pair ? pair : one;
+}
+
+DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& params, int width, int height) {
     const DenoiserVariant& v = FindDenoiserVariant(name);
+    if (width <= 0 || height <= 0) Fail("denoiser plan: invalid size {}x{}", width, height);
     const DenoiserParams p = ParamsForVariant(v, params);
-    DenoiserPlan plan;
-    plan.buffers = PlanDenoiserMemory(std::string(name), width, height, p);
-    PlanWriter w(plan.passes);
-    if (v.family == DenoiserFamily::Svgf)
-        PlanSvgf(w, v, p);
-    else if (v.family == DenoiserFamily::Rae)
-        PlanRae(w, plan.buffers);
-    else
-        PlanTwoHistoryFamily(w, v, p);
-    return plan;
+    if (v.family == DenoiserFamily::Rae) return PlanRae(width, height, p);
+    return PlanSvgfFamilyDenoiser(v, p, width, height);
+}
+
+std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& v, const DenoiserParams& params, DebugViewId view) {
+    if (v.family == DenoiserFamily::Rae) return std::nullopt;
+    const Channel first = FilteredChannels(params.svgf).front();
+    switch (view) {
+        case DebugViewId::HistoryLength:  // W_u: every channel's length holds it
+            return PlaneRef{{PlaneKind::Length, first}, HistorySide::This};
+        case DebugViewId::HistorySamples:  // W of svgf-weighted, W_w of two-history
+            if (v.weightBySampleCount) return PlaneRef{{PlaneKind::Weight, first}, HistorySide::This};
+            if (v.twoHistory) return PlaneRef{{PlaneKind::WWeight, Channel::None}, HistorySide::This};
+            return std::nullopt;
+        case DebugViewId::Alpha:
+            if (v.asvgfGradient) return PlaneRef{{PlaneKind::AsvgfAlpha, Channel::None}, HistorySide::None};
+            return std::nullopt;
+        case DebugViewId::Lambda:
+            if (v.asvgfGradient) return PlaneRef{{PlaneKind::AsvgfLambda, Channel::None}, HistorySide::None};
+            return std::nullopt;
+        case DebugViewId::Q:
+            if (v.twoHistory) return PlaneRef{BlendQPlane(v), HistorySide::None};
+            return std::nullopt;
+        case DebugViewId::P:  // evaluated from W_u, W_w and S, as the blend does
+            return std::nullopt;
+    }
+    return std::nullopt;
 }
 
 }  // namespace fovrt

@@ -1,58 +1,262 @@
-// The pass plan of a denoiser variant: the ordered passes one frame runs (the names the Vulkan
-// hosts time) and, for each, the planes of the memory plan it reads and writes. Built in one
-// place from the variant row, the parameters and the size; the byte model of `fovrt bench`
-// (denoise/bench/pass_bytes.h) is the sum of its uses, and a test holds it to the memory plan:
-// every plane a pass uses is allocated, and every allocated plane is used.
+// The pass plan of a denoiser variant: the ordered passes one frame runs and, for each, everything
+// its readers need, built in one place from the variant row, the parameters and the size.
+//   - The Vulkan host (denoise/vulkan/svgf_family_vk.h) records each pass's commands: pipelines
+//     (shader variant + specialization constants), bindings (slot → plane and history side),
+//     push-constant blocks, dispatch shapes (image, 2×2 à-trous blocks, strata, gradient
+//     samples, or indirect over a pixel list), fills, copies and transfers.
+//   - The C++ reference (denoise/reference/svgf_family_ref.h) runs each pass's ReferenceStage:
+//     one function of denoise/reference/*_ref.h, on the planes the stage names.
+//   - The memory plan is the union of the planes the commands name (denoise/planes.h sizes them).
+//   - The byte model of `fovrt bench` (denoise/bench/pass_bytes.h) is the sum of each pass's
+//     uses, derived from its commands.
+// The lavapipe-driven choices are properties of the commands, kept out of the maths: both
+// channels in one dispatch ("_pair" variants), 2×2 à-trous blocks ("_step1" at step 1), the
+// reprojection's 3×3 fallback as a second pass over a pixel list ("_box", indirect), modes as
+// specialization constants (denoise/svgf.md).
 //
-// Counting convention (the byte model's): every plane a dispatch binds counts once per dispatch,
-// whatever its gather footprint (5×5 à-trous, 7×7 moments, bilinear taps hit cache), so a pass's
-// sum is its compulsory traffic: a lower bound on the bytes it moves.
+// Byte-model convention: every plane a dispatch binds counts once per dispatch, whatever its
+// gather footprint (5×5 à-trous, 7×7 moments, bilinear taps hit cache), so a pass's sum is its
+// compulsory traffic: a lower bound on the bytes it moves.
 #pragma once
 
+#include <array>
+#include <compare>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
+#include "denoise/planes.h"
+#include "denoise/stage_shaders.h"
 
 namespace fovrt {
 
 // Which part of a plane a use touches, resolved when the bytes are counted (PassBytesOptions).
-enum class Coverage {
-    EveryPixel,          // the whole plane
-    ListedPixels,        // the pixels on the spatial-variance list (svgf_filter_moments' indirect
-                         // dispatch)
+enum class Coverage : uint8_t {
+    EveryPixel,          // the whole plane (in a dispatch over a pixel list: the listed pixels)
+    ListedPixels,        // the pixels on the spatial-variance list (svgf_filter_moments)
+    FallbackPixels,      // the pixels whose bilinear reprojection taps all failed (none in the
+                         // steady state)
     StratumGuidePixels,  // one pixel per 3×3 stratum (A-SVGF's gather of the stratum guide)
     ClaimedStrata,       // strata that received a gradient sample
     UploadedSamples,     // the uploaded share of the gradient-sample capacity (two per stratum)
 };
 
-enum class Access { Read, Write };
+enum class Access : uint8_t {
+    Read,
+    Write,
+    ReadWrite,
+    Unused,  // bound because the layout has the slot; a mode folds the access away
+};
 
-struct PlaneUse {
-    std::string plane;  // memory-plan buffer name without its ".A"/".B" history side
+// When a pass or command runs, decided per frame by the host and the reference.
+enum class When : uint8_t {
+    Always,
+    HasPrevious,      // the histories hold a previous frame (not after a reset or cut)
+    NoPrevious,       // the first frame after a reset or cut
+    GradientSamples,  // the frame carries A-SVGF gradient samples
+};
+
+// What a frame decides the Whens by.
+struct FrameConditions {
+    bool hasPrevious = false;
+    bool gradientSamples = false;
+};
+bool Holds(When when, const FrameConditions& frame);
+
+// ---- Vulkan commands ------------------------------------------------------------------------
+
+struct Binding {
+    int slot = 0;
+    PlaneRef plane;
     Access access = Access::Read;
-    double times =
-        1.0;  // whole-plane transfers: 2 for an upload (staging read + device write) or a copy
     Coverage coverage = Coverage::EveryPixel;
-    // > 0: bytes per pixel of a binding the shader loads whatever is bound (a placeholder plane).
-    double fixedBytesPerPixel = 0.0;
+    double share = 1.0;  // the part of the covered plane one use moves (a gather of one sample
+                         // of the two each stratum has room for: 0.5)
+    double placeholderBytesPerPixel = 0.0;  // > 0: the shader loads this much per pixel whatever
+                                            // is bound (a placeholder plane)
+};
+
+// Int specialization constants by constant_id (ids a shader does not declare are ignored).
+struct Specialization {
+    std::array<int32_t, 5> values{};
+    uint8_t count = 0;
+    // values[id] = value for each pair, −1 for the ids in between.
+    static Specialization Of(std::initializer_list<std::pair<int, int32_t>> idValues);
+    auto operator<=>(const Specialization&) const = default;
+};
+
+// One compiled pipeline: a shader variant (shaders/CMakeLists.txt builds "<stem>[_pair]
+// [_step1|_box][_fp16]") with its specialization constants.
+struct PipelineKey {
+    StageShader shader = StageShader::PackGuide;
+    bool pair = false;   // two illumination channels per dispatch
+    bool step1 = false;  // svgf_atrous at step 1
+    bool box = false;    // the reprojection's 3×3 fallback pass
+    bool fp16 = false;   // 16-bit history storage
+    Specialization spec;
+    auto operator<=>(const PipelineKey&) const = default;
+};
+// "svgf_atrous_pair_step1_fp16": the name ShaderCode() knows it by.
+std::string ShaderVariantName(const PipelineKey& key);
+// Binding count of the variant's layout.
+int BindingCount(const PipelineKey& key);
+
+// Push-constant values the host sets per frame (the rest are fixed by the plan).
+enum class FrameValue : uint8_t { HasPrevious, GradientSampleCount };
+
+// A push-constant block (shaders/push_constants.h) filled when the plan is built.
+struct PushBlock {
+    std::array<uint32_t, 8> words{};
+    uint32_t bytes = 0;
+    std::vector<std::pair<uint32_t, FrameValue>> perFrame;  // (word, value) set per frame
+
+    template <typename Block>
+    static PushBlock Of(const Block& block) {
+        static_assert(sizeof(Block) <= sizeof(words) && sizeof(Block) % 4 == 0);
+        PushBlock p;
+        std::memcpy(p.words.data(), &block, sizeof(Block));
+        p.bytes = sizeof(Block);
+        return p;
+    }
+};
+// Marks push field `field` of struct `Block` as set per frame to `value`.
+#define FOVRT_PUSH_PER_FRAME(push, Block, field, value) \
+    (push).perFrame.push_back({uint32_t(offsetof(Block, field) / 4), value})
+
+enum class Grid : uint8_t {
+    Pixels,           // one invocation per pixel
+    AtrousBlocks,     // one invocation per 2×2 block at stride `step`
+    Strata,           // one invocation per 3×3 stratum
+    GradientSamples,  // one invocation per uploaded gradient sample (1-D)
+    PixelList,        // indirect: one invocation per listed pixel (`listArgs` holds the groups)
+};
+
+struct DispatchCommand {
+    PipelineKey pipeline;
+    std::vector<Binding> bindings;
+    PushBlock push;
+    Grid grid = Grid::Pixels;
+    int step = 1;                                   // AtrousBlocks
+    PlaneId listArgs{};                             // PixelList
+    Coverage listCoverage = Coverage::EveryPixel;   // PixelList: which pixels the list holds
+};
+struct FillCommand {
+    PlaneRef plane;
+    uint32_t value = 0;
+};
+struct CopyCommand {
+    PlaneRef from, to;
+};
+// A FrameInputs plane (FrameSource of the plane's kind) through `staging` into the device plane.
+struct UploadCommand {
+    PlaneRef to;
+    PlaneKind staging = PlaneKind::Staging;
+    Coverage coverage = Coverage::EveryPixel;
+};
+struct DownloadCommand {
+    PlaneRef from;
+    PlaneKind staging = PlaneKind::Staging;
+};
+// Every device plane to its ClearValue: histories dropped (Reset, cut, resize).
+struct ClearCommand {};
+// Earlier writes visible to later commands (and to indirect-argument reads).
+struct BarrierCommand {};
+
+struct Command {
+    When when = When::Always;
+    std::variant<DispatchCommand, FillCommand, CopyCommand, UploadCommand, DownloadCommand,
+                 ClearCommand, BarrierCommand>
+        op;
+};
+
+// ---- The reference's stages -----------------------------------------------------------------
+
+// One channel's plane through a stage: illumination + variance `in` → `out`, and the colour
+// history this stage writes (the reprojection without à-trous feedback, the feedback iteration).
+struct StagePlane {
+    Channel channel = Channel::None;
+    PlaneId in, out;
+    std::optional<PlaneRef> history;
+};
+// svgf_reproject (SvgfReprojectRef per channel) or two_history_reproject
+// (TwoHistoryReprojectRef): `outputs` the illumination planes written (Illum0, WIllum0).
+struct ReprojectStage {
+    bool twoHistory = false;
+    std::vector<StagePlane> outputs;
+};
+struct FilterMomentsStage {  // SvgfFilterMomentsRef per plane
+    std::vector<StagePlane> planes;
+};
+struct AtrousStage {  // SvgfAtrousRef per plane
+    int iteration = 0;
+    std::vector<StagePlane> planes;
+};
+struct BlendStage {  // TwoHistoryBlendRef per plane: `out` blended in place with `in` (I_w)
+    std::vector<StagePlane> planes;
+    PlaneId q;
+};
+struct EmaGradientStage {  // TwoHistoryGradientRef: the filtered gradient and these → q
+    std::vector<PlaneId> illumination;
+};
+struct ModulateStage {  // SvgfModulateRef
+    std::vector<PlaneId> illumination;
+};
+struct AsvgfGradientStage {  // AsvgfScatterGradientsRef → `scattered`, AsvgfGradientAtrousRef per iteration
+    PlaneId scattered;
+    std::vector<StagePlane> iterations;
+};
+struct AsvgfAlphaStage {  // AsvgfAlphaRef: α and λ from the reconstructed gradient
+    PlaneId reconstructed;
+};
+using ReferenceStage =
+    std::variant<std::monostate, ReprojectStage, FilterMomentsStage, AtrousStage, BlendStage,
+                 EmaGradientStage, ModulateStage, AsvgfGradientStage, AsvgfAlphaStage>;
+
+// ---- Passes ---------------------------------------------------------------------------------
+
+// One plane use of the byte model.
+struct PlaneUse {
+    std::string plane;  // printed name without the history side
+    Access access = Access::Read;  // Read or Write
+    double times = 1.0;  // whole-plane transfers: 2 for an upload (staging read + device write)
+    Coverage coverage = Coverage::EveryPixel;
+    double planeBytesPerPixel = 0.0;  // bytes of the plane (one history side) per image pixel
+    double fixedBytesPerPixel = 0.0;  // > 0: a placeholder binding's load, instead of the plane's
 };
 
 struct PlannedPass {
-    std::string name;  // the timer name: "reproject", "atrous0", …
-    std::vector<PlaneUse> uses;
+    std::string name;  // the GPU timer: "reproject", "atrous0", …; empty: recorded untimed
+    When when = When::Always;
+    // The C++ reference's timer ("" when it runs nothing here): consecutive passes with one
+    // timer are timed as one (the two-history family's reference reports "asvgf_gradient" and
+    // "atrous_blend" over several GPU passes).
+    std::string referenceTimer;
+    ReferenceStage stage;
+    std::vector<Command> commands;
+    std::vector<PlaneUse> uses;  // the byte model (SVGF family: derived from the commands)
 };
 
 struct DenoiserPlan {
-    std::vector<BufferPlan> buffers;  // the memory plan (PlanDenoiserMemory)
-    std::vector<PlannedPass> passes;  // Vulkan recording order
+    std::vector<BufferPlan> buffers;     // the memory plan (PlanDenoiserMemory)
+    std::vector<BufferKey> bufferKeys;   // the plane of buffers[i] (SVGF family; RAE: empty)
+    std::vector<PlannedPass> passes;     // recording order
 };
 
-// The plan of the named variant (DenoiserVariants()) at W×H for one eye. fovrt::Error for an
-// unknown name or size.
+// The plan of the named variant (DenoiserVariants(), without a demodulation suffix) at W×H for
+// one eye. fovrt::Error for an unknown name or size.
 DenoiserPlan BuildDenoiserPlan(std::string_view variant, const DenoiserParams& params, int width,
                                int height);
+
+// The plane a debug view reads in a variant's plan (HistoryLength, HistorySamples, Alpha,
+// Lambda, Q); nullopt for views computed from several planes (P) or not offered.
+std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& variant, const DenoiserParams& params,
+                                       DebugViewId view);
 
 }  // namespace fovrt

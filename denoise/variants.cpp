@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/nearest_name.h"
+#include "denoise/planes.h"
 
 namespace fovrt {
 
@@ -132,8 +133,9 @@ DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams p
 }
 
 std::vector<std::string> SvgfChannels(const SvgfParams& params) {
-    if (params.filterCombined) return {"combined"};
-    return {"direct", "indirect"};
+    std::vector<std::string> names;
+    for (Channel ch : FilteredChannels(params)) names.emplace_back(ChannelName(ch));
+    return names;
 }
 
 }  // namespace fovrt

@@ -68,7 +68,8 @@ RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string
 // Names accepted by CreateDenoiser, in table order.
 const std::vector<std::string>& DenoiserNames();
 
-// Channels the SVGF stages filter: {"direct", "indirect"}, or {"combined"} with filterCombined.
+// Names of the channels the SVGF stages filter (FilteredChannels, denoise/planes.h): {"direct",
+// "indirect"}, or {"combined"} with filterCombined.
 std::vector<std::string> SvgfChannels(const SvgfParams& params);
 
 // Parameters the variant implies (svgf-weighted sets svgf.weightBySampleCount; the two-history

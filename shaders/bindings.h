@@ -13,7 +13,7 @@
 // From the rows, GLSL gets `const int PASS_B_NAME = slot;` and the declaration
 // (FOVRT_DECLARE_BINDINGS(LIST)); C++ gets the same constants, the binding count
 // (FOVRT_BINDING_COUNT) and, on the host, the texel-format table (denoise/vulkan/
-// svgf_texel_formats.h: BindingTexelFormats). Why texel buffers: common/access.glsl.
+// svgf_texel_formats.h: FOVRT_TEXEL_FORMATS). Why texel buffers: common/access.glsl.
 #ifndef FOVRT_BINDINGS_H
 #define FOVRT_BINDINGS_H
 

@@ -23,7 +23,7 @@
 // Specialization constant (constant_id) of the edge-stopping shaders: k ≥ 0 when σn = 2^k, so that
 // w_n = max(0, n·n')^σn is k squarings instead of exp2(σn·log2(n·n')) (a log2 per tap is ~1/5 of an
 // à-trous pass on lavapipe); −1 = any other σn, evaluated with log2. Set by the host from σn
-// (EdgeStoppingSpecialization in denoise/vulkan/svgf_layout.h). Up to 2^12 = 4096.
+// (NormalWeightSquarings in denoise/svgf_family_plan.h). Up to 2^12 = 4096.
 #define FOVRT_SPEC_NORMAL_SQUARINGS 0
 #define FOVRT_MAX_NORMAL_SQUARINGS 12
 // Specialization constant (constant_id) of the reprojection shaders: their mode bits

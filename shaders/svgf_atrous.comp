@@ -14,7 +14,7 @@
 // Blocks: one invocation filters a 2×2 block of pixels at stride 2^i (see main), fetching the
 //   6×6 tap lattice they share once: per pixel 9 (guide + channels) tap fetches instead of 25.
 //   FOVRT_ATROUS_STEP1 ("…_step1", iteration 0 only): the four 3×3 variance windows are one 4×4
-//   block, 4 fetches per pixel instead of 9. The host dispatches AtrousBlockGroups (svgf_atrous_vk.h).
+//   block, 4 fetches per pixel instead of 9. The host dispatches AtrousBlockGroups (denoise/vulkan/svgf_layout.h).
 // Reads:  per channel illumination + variance (vec4); guide (normal, depth, background), depth gradient.
 // Writes: per channel illumination + variance (vec4); colour history when kWriteHistory.
 #include "shared_constants.h"

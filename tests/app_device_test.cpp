@@ -6,7 +6,7 @@
 #include "app/denoiser_set.h"
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
-#include "denoise/vulkan/svgf_vk.h"
+#include "denoise/vulkan/svgf_family_vk.h"
 #include "test_support.h"
 #include "vk/device_choice.h"
 
@@ -28,7 +28,7 @@ std::string SetDeviceName(const std::string& device) {
 
 std::string FactoryDeviceName(const std::string& device) {
     auto denoiser = CreateDenoiser("svgf", device, DenoiserParams{});
-    auto* vk = dynamic_cast<SvgfVulkanDenoiser*>(denoiser.get());
+    auto* vk = dynamic_cast<SvgfFamilyVulkanDenoiser*>(denoiser.get());
     return vk ? vk->context().deviceName() : "cpu";
 }
 

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "denoise/reference/asvgf_ref.h"
+#include "denoise/denoiser_factory.h"
 #include "denoise/reference/two_history_ref.h"
 #include "denoise_two_history_scene.h"
 #include "test_support.h"
@@ -106,7 +107,7 @@ TEST_CASE("asvgf denoiser: no gradient samples behaves like SVGF with alpha 0.1"
     DenoiserParams params;
     params.svgf.alphaColor = params.asvgf.alpha;
     params.svgf.alphaMoments = params.asvgf.alpha;
-    auto asvgf = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("asvgf"), params);
+    auto asvgf = CreateDenoiser("asvgf", "cpu", params);
     CHECK(asvgf->Name() == "asvgf");
     auto svgf = test::MakeSvgf(params.svgf);
     std::mt19937 rng(11);

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "denoise/vulkan/svgf_texel_formats.h"
+#include "denoise/vulkan/svgf_texel_formats.h"  // StageTexelFormats
 #include "shaders/common/two_history_constants.glsl"
 
 using namespace fovrt;
@@ -57,7 +57,8 @@ TEST_CASE("binding lists: slots 0..count-1, each once") {
     CheckSlots(FOVRT_TEST_ROWS(RAE_CONV_BINDING_LIST));
     CheckSlots(FOVRT_TEST_ROWS(RAE_POOL_BINDING_LIST));
     CHECK(SVGF_ATROUS_PAIR_BINDINGS == SVGF_ATROUS_BINDINGS + 3);
-    // Both reprojection shaders bind the shared inputs at the same slots (BindReprojectionInputs).
+    // Both reprojection shaders bind the shared inputs at the same slots (ReprojectionInputs in
+    // denoise/svgf_family_plan.cpp).
     CHECK(TH_REPROJECT_B_LIST == SVGF_REPROJECT_B_LIST);
     CHECK(TH_REPROJECT_B_COLOR_IN2 == SVGF_REPROJECT_B_COLOR_IN2);
     CHECK(SVGF_REPROJECT_PAIR_BINDINGS == 32);  // lavapipe: at most 32 storage buffers per stage
@@ -65,7 +66,10 @@ TEST_CASE("binding lists: slots 0..count-1, each once") {
 }
 
 TEST_CASE("texel-format tables follow the binding kinds") {
-    const auto fp32 = SvgfMomentsTexelFormats(Precision::Fp32), fp16 = SvgfMomentsTexelFormats(Precision::Fp16);
+    using S = StageShader;
+    const Precision p32 = Precision::Fp32, p16 = Precision::Fp16;
+    const auto fp32 = StageTexelFormats(S::FilterMoments, false, p32);
+    const auto fp16 = StageTexelFormats(S::FilterMoments, false, p16);
     CHECK(fp32[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // TEXEL
     CHECK(fp16[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // not a history plane
     CHECK(fp32[SVGF_MOMENTS_B_MOMENTS] == VK_FORMAT_R32G32_SFLOAT);              // HTEXEL
@@ -73,15 +77,15 @@ TEST_CASE("texel-format tables follow the binding kinds") {
     CHECK(fp16[SVGF_MOMENTS_B_LENGTH] == VK_FORMAT_R16_SFLOAT);
     CHECK(fp32[SVGF_MOMENTS_B_ILLUM_OUT] == VK_FORMAT_UNDEFINED);                // WRITE: storage
     CHECK(fp32[SVGF_MOMENTS_B_LIST] == VK_FORMAT_UNDEFINED);                     // LIST: storage
-    CHECK(SvgfGuideTexelFormats()[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);  // UTEXEL
+    CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);  // UTEXEL
     // HTEXEL3: an RGB history is a texel buffer in fp32 and storage in fp16.
-    CHECK(BlendTexelFormats(Precision::Fp32)[TH_BLEND_B_S] == VK_FORMAT_R32G32B32_SFLOAT);
-    CHECK(BlendTexelFormats(Precision::Fp16)[TH_BLEND_B_S] == VK_FORMAT_UNDEFINED);
-    CHECK(SvgfAtrousTexelFormats()[SVGF_ATROUS_B_ILLUM_IN2] == VK_FORMAT_R32G32B32A32_SFLOAT);
-    CHECK(TwoHistoryReprojectTexelFormats(Precision::Fp32)[TH_REPROJECT_B_PREV_IW2] == VK_FORMAT_R32G32B32_SFLOAT);
-    CHECK(TwoHistoryReprojectTexelFormats(Precision::Fp16)[TH_REPROJECT_B_PREV_IW2] == VK_FORMAT_UNDEFINED);
-    CHECK(TwoHistoryReprojectTexelFormats(Precision::Fp16)[TH_REPROJECT_B_PREV_M2] == VK_FORMAT_R16G16_SFLOAT);
-    CHECK(SvgfReprojectTexelFormats(Precision::Fp16)[SVGF_REPROJECT_B_PREV_WEIGHT2] == VK_FORMAT_R16_SFLOAT);
-    CHECK(SvgfReprojectTexelFormats(Precision::Fp32)[SVGF_REPROJECT_B_SAMPLE_COUNT] == VK_FORMAT_UNDEFINED);
-    CHECK(SvgfAtrousTexelFormats()[SVGF_ATROUS_B_HIST_COLOR2] == VK_FORMAT_UNDEFINED);
+    CHECK(StageTexelFormats(S::TwoHistoryBlend, false, p32)[TH_BLEND_B_S] == VK_FORMAT_R32G32B32_SFLOAT);
+    CHECK(StageTexelFormats(S::TwoHistoryBlend, false, p16)[TH_BLEND_B_S] == VK_FORMAT_UNDEFINED);
+    CHECK(StageTexelFormats(S::Atrous, true, p32)[SVGF_ATROUS_B_ILLUM_IN2] == VK_FORMAT_R32G32B32A32_SFLOAT);
+    CHECK(StageTexelFormats(S::TwoHistoryReproject, true, p32)[TH_REPROJECT_B_PREV_IW2] == VK_FORMAT_R32G32B32_SFLOAT);
+    CHECK(StageTexelFormats(S::TwoHistoryReproject, true, p16)[TH_REPROJECT_B_PREV_IW2] == VK_FORMAT_UNDEFINED);
+    CHECK(StageTexelFormats(S::TwoHistoryReproject, true, p16)[TH_REPROJECT_B_PREV_M2] == VK_FORMAT_R16G16_SFLOAT);
+    CHECK(StageTexelFormats(S::SvgfReproject, true, p16)[SVGF_REPROJECT_B_PREV_WEIGHT2] == VK_FORMAT_R16_SFLOAT);
+    CHECK(StageTexelFormats(S::SvgfReproject, true, p32)[SVGF_REPROJECT_B_SAMPLE_COUNT] == VK_FORMAT_UNDEFINED);
+    CHECK(StageTexelFormats(S::Atrous, true, p32)[SVGF_ATROUS_B_HIST_COLOR2] == VK_FORMAT_UNDEFINED);
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <random>
 
+#include "denoise/denoiser_factory.h"
 #include "denoise/reference/two_history_ref.h"
 #include "denoise_two_history_scene.h"
 #include "test_support.h"
@@ -84,9 +85,9 @@ int FramesToSettle(const std::vector<double>& means, double tolerance) {
 TEST_CASE("A-SVGF follows a light switched off; SVGF lags", "[asvgf][lag]") {
     DenoiserParams params;  // SVGF α = 0.2 (paper), A-SVGF α = 0.1 (paper)
     auto svgf = test::MakeSvgf(params.svgf);
-    auto asvgf = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("asvgf"), params);
-    auto thAsvgf = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history-asvgf"), params);
-    auto th = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history"), params);
+    auto asvgf = CreateDenoiser("asvgf", "cpu", params);
+    auto thAsvgf = CreateDenoiser("two-history-asvgf", "cpu", params);
+    auto th = CreateDenoiser("two-history", "cpu", params);
     auto run = [](Denoiser& d) {
         return RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { d.Denoise(f, o); });
     };

@@ -1,8 +1,10 @@
 // The pass plan (denoise/pass_plan.h) against the memory plan: the planes the passes use are
-// exactly the planes allocated, for every variant and mode.
+// exactly the planes allocated, for every variant and mode; and against the binding lists: every
+// dispatch binds each slot of its shader's layout once, reading only what its kind lets it read.
 #include <catch2/catch.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "denoise/pass_plan.h"
 #include "denoise/variants.h"
@@ -96,5 +98,63 @@ TEST_CASE("variant rows are consistent: sample counts where a history weighs by 
             CHECK(v.emaGradient != v.asvgfGradient);  // q comes from exactly one of them
         CHECK(!(v.emaGradient && !v.twoHistory));     // g feeds only the blend's q
         CHECK((v.family == DenoiserFamily::Svgf) == !(v.twoHistory || v.asvgfGradient));
+    }
+}
+
+namespace {
+// The kinds of a stage shader's layout (one channel or "_pair"), by slot, from its binding list.
+#define FOVRT_TEST_KIND(pass, name, slot, kind, format, variable) kinds.at(size_t(slot)) = #kind;
+#define FOVRT_TEST_KINDS(LIST)                                                  \
+    [] {                                                                        \
+        std::vector<std::string> kinds(size_t(FOVRT_BINDING_COUNT(LIST)));      \
+        LIST(FOVRT_TEST_KIND)                                                   \
+        return kinds;                                                           \
+    }()
+std::vector<std::string> BindingKinds(StageShader shader, bool pair) {
+#define FOVRT_TEST_SHADER(id, stem, list, pairList) \
+    case StageShader::id: return pair ? FOVRT_TEST_KINDS(pairList) : FOVRT_TEST_KINDS(list);
+    switch (shader) { FOVRT_STAGE_SHADERS(FOVRT_TEST_SHADER) }
+#undef FOVRT_TEST_SHADER
+    return {};
+}
+// Whether a binding of `kind` may be used so: read-only kinds are never written, write-only never
+// read (LIST slots are the pixel lists and their counters, appended to and read).
+bool AccessFits(const std::string& kind, Access access) {
+    if (access == Access::Unused || kind == "RW" || kind == "LIST") return true;
+    if (kind == "WRITE") return access == Access::Write;
+    return access == Access::Read;  // TEXEL, HTEXEL, HTEXEL3, UTEXEL, READ
+}
+}  // namespace
+
+TEST_CASE("every dispatch of every plan binds each slot of its layout once, as its kind allows") {
+    for (const DenoiserVariant& v : DenoiserVariants()) {
+        if (v.family == DenoiserFamily::Rae) continue;  // its own host
+        for (bool combined : {false, true})
+            for (Precision precision : {Precision::Fp32, Precision::Fp16})
+                for (int iterations : {0, 1, 5}) {
+                    DenoiserParams p;
+                    p.svgf.filterCombined = combined;
+                    p.precision = precision;
+                    p.svgf.atrousIterations = iterations;
+                    p.svgf.feedbackIteration = iterations > 0 ? 1 : 0;
+                    for (const PlannedPass& pass : BuildDenoiserPlan(v.name, p, 40, 24).passes)
+                        for (const Command& command : pass.commands) {
+                            const auto* d = std::get_if<DispatchCommand>(&command.op);
+                            if (!d) continue;
+                            const std::vector<std::string> kinds = BindingKinds(d->pipeline.shader, d->pipeline.pair);
+                            INFO(v.name << " " << ShaderVariantName(d->pipeline) << " in " << pass.name);
+                            CHECK(int(kinds.size()) == BindingCount(d->pipeline));
+                            std::set<int> bound;
+                            for (const Binding& b : d->bindings) {
+                                INFO("slot " << b.slot << ", plane " << PlaneName(b.plane.id));
+                                REQUIRE(b.slot >= 0);
+                                REQUIRE(size_t(b.slot) < kinds.size());
+                                CHECK(bound.insert(b.slot).second);
+                                CHECK(AccessFits(kinds[size_t(b.slot)], b.access));
+                                CHECK((b.plane.side != HistorySide::None) == IsHistory(b.plane.id.kind));
+                            }
+                            CHECK(bound.size() == kinds.size());
+                        }
+                }
     }
 }

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/reference/svgf_cpu.h"
+#include "denoise/reference/svgf_family_ref.h"
 #include "denoise/reference/svgf_ref.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
@@ -151,7 +151,7 @@ TEST_CASE("a constant image is preserved exactly by every stage", "[svgf]") {
 TEST_CASE("disocclusion, camera cut and NaN inputs never leave stale or non-finite history", "[svgf]") {
     StaticScene scene;
     scene.sigma = [](int, int) { return 0.3f; };
-    SvgfReferenceDenoiser d("svgf", Params(2));
+    SvgfFamilyReferenceDenoiser d(FindDenoiserVariant("svgf"), Params(2));
     Plane<vec3> out;
     for (uint32_t t = 0; t < 6; ++t) d.Denoise(scene.Frame(t), out);
     CHECK(d.CurrentHistory(0).length(10, 20) == Approx(6.0f));
@@ -239,7 +239,7 @@ TEST_CASE("Fig. 9: temporal variance keeps the low-noise side sharper than spati
     auto run = [&](int threshold) {
         DenoiserParams p = Params();
         p.svgf.varianceHistoryThreshold = threshold;
-        SvgfReferenceDenoiser d("svgf", p);
+        SvgfFamilyReferenceDenoiser d(FindDenoiserVariant("svgf"), p);
         Plane<vec3> out;
         for (uint32_t t = 0; t < 24; ++t) d.Denoise(scene.Frame(t, 5), out);
         // Error of demodulated direct vs clean, low-noise quarter (x < 16) of object 1 rows.

@@ -15,9 +15,9 @@
 
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
-#include "denoise/reference/svgf_cpu.h"
+#include "denoise/reference/svgf_family_ref.h"
 #include "denoise/vulkan/svgf_layout.h"
-#include "denoise/vulkan/svgf_vk.h"
+#include "denoise/vulkan/svgf_family_vk.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"
@@ -70,8 +70,8 @@ using FrameMaker = FrameInputs (*)(int width, int height, uint32_t seed, uint32_
 void RunPair(const DenoiserParams& params, const std::string& name, int frames, double tol,
              bool checkIllum, int width = 64, int height = 64, FrameMaker makeFrame = RandomFrame) {
     auto ctx = TestContext();
-    SvgfVulkanDenoiser vk(name, ctx, params);
-    SvgfReferenceDenoiser ref(name, params);
+    SvgfFamilyVulkanDenoiser vk(FindDenoiserVariant(name), ctx, params);
+    SvgfFamilyReferenceDenoiser ref(FindDenoiserVariant(name), params);
     Plane<vec3> outVk, outRef;
     const bool fp16 = params.precision == Precision::Fp16;
     auto read = [&](const std::string& buffer, bool history) {
@@ -281,7 +281,7 @@ TEST_CASE("vulkan svgf: disocclusion, camera cut, NaN never reaches history", "[
     scene.sigma = [](int, int) { return 0.3f; };
     DenoiserParams p;
     p.svgf.atrousIterations = 2;
-    SvgfVulkanDenoiser d("svgf", ctx, p);
+    SvgfFamilyVulkanDenoiser d(FindDenoiserVariant("svgf"), ctx, p);
     Plane<vec3> out;
     auto length = [&](int x, int y) {
         return AsFloats(d.ReadBuffer("direct.length." + d.LastWrittenSide()))[size_t(y * 64 + x)];
@@ -331,7 +331,7 @@ TEST_CASE("vulkan svgf: parameter change resets histories and rebuilds buffers",
     StaticScene scene;
     DenoiserParams p;
     p.svgf.atrousIterations = 1;
-    SvgfVulkanDenoiser d("svgf", ctx, p);
+    SvgfFamilyVulkanDenoiser d(FindDenoiserVariant("svgf"), ctx, p);
     Plane<vec3> out;
     for (uint32_t t = 0; t < 3; ++t) d.Denoise(scene.Frame(t), out);
     CHECK(AsFloats(d.ReadBuffer("direct.length." + d.LastWrittenSide()))[20 * 64 + 10] == Approx(3.0f));
@@ -339,7 +339,7 @@ TEST_CASE("vulkan svgf: parameter change resets histories and rebuilds buffers",
     d.SetParams(p);
     d.Denoise(scene.Frame(3), out);
     CHECK(AsFloats(d.ReadBuffer("combined.length." + d.LastWrittenSide()))[20 * 64 + 10] == Approx(1.0f));
-    auto plan = PlanSvgfMemory(64, 64, p);
+    auto plan = PlanDenoiserMemory("svgf", 64, 64, p);
     CHECK(ctx->allocator().LiveBytes() == TotalBytes(plan));
     CHECK(ctx->validationErrors() == 0);
 }

@@ -10,7 +10,7 @@
 
 #include "core/frame_inputs.h"
 #include "denoise/params.h"
-#include "denoise/reference/svgf_cpu.h"
+#include "denoise/reference/svgf_family_ref.h"
 
 namespace fovrt::test {
 
@@ -29,11 +29,11 @@ inline void MakeStaticPlane(FrameInputs& f, int w, int h, uint32_t frameIndex) {
         }
 }
 
-// The project's plain SVGF (C++ reference backend, denoise/reference/svgf_cpu.h).
-inline SvgfReferenceDenoiser MakeSvgf(const SvgfParams& svgf) {
+// The project's plain SVGF (C++ reference backend, denoise/reference/svgf_family_ref.h).
+inline SvgfFamilyReferenceDenoiser MakeSvgf(const SvgfParams& svgf) {
     DenoiserParams params;
     params.svgf = svgf;
-    return SvgfReferenceDenoiser("svgf", params);
+    return SvgfFamilyReferenceDenoiser(FindDenoiserVariant("svgf"), params);
 }
 
 // relMSE (SPEC §8, ε = 0.01) over the pixels where mask(x, y) is true.

@@ -52,7 +52,7 @@ TEST_CASE("two-history with constant n equals SVGF", "[two_history]") {
         for (int feedback : {0, 1}) {
             DenoiserParams params;
             params.svgf.feedbackIteration = feedback;
-            auto th = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history"), params);
+            auto th = CreateDenoiser("two-history", "cpu", params);
             CHECK(th->Name() == "two-history");
             CHECK(th->Backend() == "cpu");
             auto svgf = test::MakeSvgf(params.svgf);
@@ -97,7 +97,7 @@ bool InMovingFovea(int frame, int x, int y) {
 // relMSE (ε = 0.01) against the truth, averaged over frames 30..119.
 FoveaResult RunMovingFovea(const DenoiserParams& params) {
     constexpr int kW = kFoveaW, kH = kFoveaH, kFrames = kFoveaFrames, kWarmup = kFoveaWarmup;
-    auto th = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history"), params);
+    auto th = CreateDenoiser("two-history", "cpu", params);
     auto svgf = test::MakeSvgf(params.svgf);
     Plane<vec3> truth(kW, kH);
     for (int y = 0; y < kH; ++y)
@@ -187,7 +187,7 @@ PeripheryGap DecomposeMovingFovea(const DenoiserParams& params, float amplitude,
     PeripheryGap gap;
     std::array<double, 3> count{};
     for (int seed = 0; seed < seeds; ++seed) {
-        TwoHistoryReferenceDenoiser th(FindDenoiserVariant("two-history"), params);
+        SvgfFamilyReferenceDenoiser th(FindDenoiserVariant("two-history"), params);
         auto svgf = test::MakeSvgf(params.svgf);
         std::mt19937 rng(2024 + 7777 * uint32_t(seed));
         std::vector<int> lastInFovea(kPixels, -1000);
@@ -361,7 +361,7 @@ GradientEvent RunGradientEvent(const vec3& tint0, const vec3& tint1, float light
     constexpr int kW = 24, kH = 24, kEvent = 8;
     const DenoiserParams params;
     const float beta = params.twoHistory.gradientBeta;
-    TwoHistoryReferenceDenoiser th(FindDenoiserVariant("two-history"), params);
+    SvgfFamilyReferenceDenoiser th(FindDenoiserVariant("two-history"), params);
     std::mt19937 rng(77);
     std::normal_distribution<float> noise(0.0f, 0.02f);
     GradientEvent ev;
@@ -472,7 +472,7 @@ TEST_CASE("two-history luminance gradient: q equals the SPEC's lum(|g|) when R, 
 
 TEST_CASE("two-history resets on camera cuts and rejects bad parameters", "[two_history]") {
     DenoiserParams params;
-    auto th = CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history"), params);
+    auto th = CreateDenoiser("two-history", "cpu", params);
     FrameInputs f;
     Plane<vec3> out;
     MakeStaticPlane(f, 8, 8, 0);
@@ -488,7 +488,7 @@ TEST_CASE("two-history resets on camera cuts and rejects bad parameters", "[two_
     CHECK(!th->LastTimings().empty());
 
     params.twoHistory.gradientBeta = 1.5f;  // outside [0, 1]
-    CHECK_THROWS_AS(CreateTwoHistoryCpuDenoiser(FindDenoiserVariant("two-history"), params), Error);
+    CHECK_THROWS_AS(CreateDenoiser("two-history", "cpu", params), Error);
 }
 
 TEST_CASE("two-history memory plan: the thesis's 88 B/pixel (44 fp16) with separate channels",
@@ -543,7 +543,7 @@ TEST_CASE("two-history memory plan: the thesis's 88 B/pixel (44 fp16) with separ
 
 TEST_CASE("two-history: disocclusion restarts every history, NaN never reaches them",
           "[two_history]") {
-    TwoHistoryReferenceDenoiser th(FindDenoiserVariant("two-history"), DenoiserParams{});
+    SvgfFamilyReferenceDenoiser th(FindDenoiserVariant("two-history"), DenoiserParams{});
     FrameInputs f;
     Plane<vec3> out;
     for (uint32_t frame = 0; frame < 3; ++frame) {

@@ -16,9 +16,8 @@
 
 #include "denoise/reference/asvgf_ref.h"
 #include "denoise/denoiser_factory.h"
-#include "denoise/vulkan/svgf_vk.h"
-#include "denoise/reference/two_history_ref.h"
-#include "denoise/vulkan/two_history_vk.h"
+#include "denoise/reference/svgf_family_ref.h"
+#include "denoise/vulkan/svgf_family_vk.h"
 #include "denoise_svgf_scenes.h"
 #include "test_support.h"
 #include "vk/context.h"
@@ -65,8 +64,8 @@ Mismatch Compare(const std::vector<float>& vk, const Plane<T>& ref, double tol) 
 void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int frames, int width = 64,
              int height = 64, bool boxFallback = false) {
     auto ctx = TestContext();
-    TwoHistoryVulkanDenoiser vk(variant, ctx, params);
-    TwoHistoryReferenceDenoiser ref(variant, params);
+    SvgfFamilyVulkanDenoiser vk(variant, ctx, params);
+    SvgfFamilyReferenceDenoiser ref(variant, params);
     const bool half = params.precision == Precision::Fp16;
     const double histTol = half ? 1e-2 : 2e-3, tol = half ? 1e-2 : 2e-3;
     const bool two = variant.twoHistory;
@@ -222,8 +221,8 @@ TEST_CASE("vulkan two-history with constant n equals vulkan svgf", "[vulkan][two
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     auto ctx = TestContext();
     DenoiserParams params;
-    TwoHistoryVulkanDenoiser th(FindDenoiserVariant("two-history"), ctx, params);
-    SvgfVulkanDenoiser svgf("svgf", ctx, params);
+    SvgfFamilyVulkanDenoiser th(FindDenoiserVariant("two-history"), ctx, params);
+    SvgfFamilyVulkanDenoiser svgf(FindDenoiserVariant("svgf"), ctx, params);
     Plane<vec3> a, b;
     double maxRel = 0.0;
     for (uint32_t frame = 0; frame < 6; ++frame) {

@@ -86,7 +86,7 @@ TEST_CASE("buffers, dispatch, timestamps and accounting", "[vk][vulkan]") {
             e[i] = vec3(0.0f, 0.0f, float(i));
         }
         ComputePipeline pipe(c, "svgf_modulate", SVGF_MODULATE_BINDINGS, sizeof(ImageSizePush), 2,
-                             SvgfModulateTexelFormats());
+                             StageTexelFormats(StageShader::Modulate, false, Precision::Fp32));
         std::array<const Buffer*, SVGF_MODULATE_BINDINGS> b{};
         b[SVGF_MODULATE_B_ILLUM0] = &illum0;
         b[SVGF_MODULATE_B_ILLUM1] = &illum1;

@@ -8,7 +8,9 @@
 #include <random>
 
 #include "denoise/bench/pass_bytes.h"
-#include "denoise/vulkan/svgf_atrous_vk.h"
+#include "denoise/svgf_family_plan.h"
+#include "denoise/vulkan/stage_pipelines.h"
+#include "denoise/vulkan/svgf_layout.h"
 #include "vk/context.h"
 
 namespace fovrt {
@@ -53,11 +55,20 @@ AtrousProbe::AtrousProbe(VulkanContext& context, const AtrousProbeImage& image, 
     out_ = {alloc.CreateBuffer("probe.out0", 16 * n), alloc.CreateBuffer("probe.out1", 16 * n)};
     history_ = alloc.CreateBuffer("probe.history", 12 * n);  // bound, not written (no feedback)
     staging_ = alloc.CreateBuffer("probe.staging", 64 * n + 4096, MemoryUsage::Staging);
-    const std::array<AtrousChannel, 2> channels{AtrousChannel{&in_[0], &out_[0], &history_},
-                                                AtrousChannel{&in_[1], &out_[1], &history_}};
+    // The pair layout the denoisers' iterations ≥ 1 use (no feedback: the history is bound, unwritten).
+    std::array<const Buffer*, SVGF_ATROUS_PAIR_BINDINGS> slots{};
+    slots[SVGF_ATROUS_B_GUIDE] = &guide_;
+    slots[SVGF_ATROUS_B_DEPTH_GRAD] = &depthGradient_;
+    slots[SVGF_ATROUS_B_ILLUM_IN] = &in_[0];
+    slots[SVGF_ATROUS_B_ILLUM_OUT] = &out_[0];
+    slots[SVGF_ATROUS_B_HIST_COLOR] = &history_;
+    slots[SVGF_ATROUS_B_ILLUM_IN2] = &in_[1];
+    slots[SVGF_ATROUS_B_ILLUM_OUT2] = &out_[1];
+    slots[SVGF_ATROUS_B_HIST_COLOR2] = &history_;
     for (int unit = 0; unit < 2; ++unit) {
-        pipelines_[size_t(unit)] = MakeAtrousPipeline(context, 2, DenoiserParams{}, 1, false, false, unit == 1);
-        sets_[size_t(unit)] = MakeAtrousSet(pipelines_[size_t(unit)], guide_, depthGradient_, channels);
+        const PipelineKey key = AtrousPipeline(DenoiserParams{}, true, false, false, unit == 1);
+        pipelines_[size_t(unit)] = MakeStagePipeline(context, key, sizeof(SvgfAtrousPush), 1);
+        sets_[size_t(unit)] = pipelines_[size_t(unit)].MakeSet(slots);
     }
     timestamps_ = TimestampPool(context, 1);
     CommandRecorder rec(context);

@@ -1,7 +1,8 @@
 // Byte models of the denoiser passes (`fovrt bench --denoisers`): the bytes each timed pass reads
 // and writes per pixel per frame — the sum of the plane uses of the variant's pass plan
-// (denoise/pass_plan.h), each at the element size of its memory-plan buffer, so fp16 histories,
-// combined/separate channels and plane shapes follow the plan.
+// (denoise/pass_plan.h: derived from each pass's bindings, fills, copies and transfers), each at
+// the size of its plane, so fp16 histories, combined/separate channels and plane shapes follow
+// the plan.
 // Assumption: every plane a dispatch binds is counted once per dispatch (the taps of a gather —
 // 5×5 à-trous, 7×7 moments, bilinear reprojection, 3×3 strata — hit cache), so each figure is
 // the compulsory traffic of the pass: a lower bound on the bytes it moves to and from memory.
@@ -37,10 +38,11 @@ struct PassBytesOptions {
 std::vector<PassBytes> SvgfPassBytes(int width, int height, const DenoiserParams& params,
                                      const PassBytesOptions& options = {});
 
-// Any denoiser by backend: "vulkan" gives the Vulkan pass names; "cpu" the C++ reference's, where
-// a reference pass spanning several Vulkan passes gets their sum (two-history family:
+// Any denoiser by backend: "vulkan" gives the Vulkan pass names; "cpu" the C++ reference's timers
+// (PlannedPass::referenceTimer), each the sum of the passes it spans (two-history family:
 // "asvgf_gradient" = asvgf_gradient + asvgf_alpha, "atrous_blend" = Σ atrous<i> +
-// two_history_blend). fovrt::Error for an unknown name.
+// two_history_blend); passes the reference runs nothing for keep their names. fovrt::Error for
+// an unknown name or backend.
 std::vector<PassBytes> DenoiserPassBytes(const std::string& name, const std::string& backend, int width,
                                          int height, const DenoiserParams& params,
                                          const PassBytesOptions& options = {});

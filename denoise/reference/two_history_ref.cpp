@@ -2,15 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include <tbb/parallel_for.h>
 
-#include "core/error.h"
-#include "denoise/schedule.h"
-#include "denoise/reference/asvgf_ref.h"
 #include "denoise/reference/two_history_math.h"
 #include "shaders/shared_constants.h"
 
@@ -176,163 +171,6 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
             out[i] = glm::mix(illumW[i], illumU[i], t);
         }
     });
-}
-
-TwoHistoryReferenceDenoiser::TwoHistoryReferenceDenoiser(const DenoiserVariant& variant,
-                                                         const DenoiserParams& params)
-    : variant_(variant), params_(params) {
-    ValidateDenoiserParamRanges(params);
-}
-
-std::string TwoHistoryReferenceDenoiser::Name() const { return std::string(variant_.name); }
-
-void TwoHistoryReferenceDenoiser::Reset() {
-    width_ = 0;
-    hasPrev_ = false;
-    hasFrame_ = false;
-}
-
-void TwoHistoryReferenceDenoiser::Denoise(const FrameInputs& frame, Plane<vec3>& output) {
-    using Clock = std::chrono::steady_clock;
-    timings_.clear();
-    auto t0 = Clock::now();
-    auto lap = [&](const char* pass) {
-        const auto t1 = Clock::now();
-        timings_.push_back({pass, std::chrono::duration<double, std::milli>(t1 - t0).count()});
-        t0 = t1;
-    };
-    const SvgfParams& s = params_.svgf;
-    const int w = frame.width(), h = frame.height();
-    const bool two = variant_.twoHistory;
-    const bool useAsvgf = variant_.asvgfGradient;
-    const int channels = s.filterCombined ? 1 : 2;
-    if (frame.cameraCut || w != width_ || h != height_) {
-        width_ = w, height_ = h;
-        hasPrev_ = false;
-        for (auto& st : state_)
-            st.Allocate(w, h, channels, two, variant_.emaGradient);
-        prevGeometry_.Allocate(w, h);
-    }
-    TwoHistoryState& prev = state_[parity_];
-    TwoHistoryState& cur = state_[parity_ ^ 1];
-
-    // A-SVGF: per-pixel α of colour and moments from the reconstructed temporal gradient.
-    const Plane<float>* alphaMap = nullptr;
-    if (useAsvgf) {
-        if (hasPrev_) {
-            AsvgfTemporalAlphaRef(frame, params_.asvgf, s, alpha_, lambda_, &recon_);
-        } else {
-            alpha_.Resize(w, h, 1.0f);
-            lambda_.Resize(w, h, 1.0f);
-        }
-        alphaMap = &alpha_;
-        lap("asvgf_gradient");
-    }
-
-    const int feedback = FeedbackIteration(s, two);
-    TwoHistoryReprojectOptions ro;
-    ro.alpha = s.alphaColor;
-    ro.alphaMoments = s.alphaMoments;
-    ro.gradientBeta = params_.twoHistory.gradientBeta;
-    ro.twoHistory = two;
-    ro.gradient = variant_.emaGradient;  // two-history-asvgf: q = λ̂
-    ro.writeColorHistory = feedback == 0;
-    ro.precision = params_.precision;
-    const std::array<const Plane<vec3>*, 2> colors = {&frame.direct, &frame.indirect};
-    TwoHistoryReprojectRef(colors, channels, s.filterCombined ? &frame.indirect : nullptr, frame,
-                           prevGeometry_.View(), hasPrev_, prev, cur, alphaMap, u_, w_, ro, stats_);
-    lap("two_history_reproject");
-
-    const SvgfGeometry geo = GeometryOf(frame);
-    for (int c = 0; c < channels; ++c) {
-        SvgfFilterMomentsRef(u_[size_t(c)], geo, frame.depthGradient, cur.moments[size_t(c)],
-                             cur.wu, tmp_, s);
-        std::swap(u_[size_t(c)], tmp_);
-        if (two) {
-            SvgfFilterMomentsRef(w_[size_t(c)], geo, frame.depthGradient, cur.moments[size_t(c)],
-                                 cur.wu, tmp_, s);
-            std::swap(w_[size_t(c)], tmp_);
-        }
-    }
-    lap("filter_moments");
-
-    if (variant_.emaGradient) {
-        TwoHistoryGradientRef(cur.gradient, u_, channels, frame, s, params_.twoHistory.qScale, q_);
-        lap("two_history_gradient");
-    } else if (two && useAsvgf) {
-        q_ = lambda_;  // q = λ̂: the reconstructed A-SVGF gradient (see the report/README)
-    }
-
-    for (int c = 0; c < channels; ++c) {
-        const size_t ch = size_t(c);
-        Plane<vec4>& u = u_[ch];
-        for (int it = 0; it < s.atrousIterations; ++it) {
-            const bool fb = it + 1 == feedback;
-            SvgfAtrousRef(u, geo, frame.depthGradient, it, tmp_, fb ? &cur.iu[ch] : nullptr, s,
-                          params_.precision);
-            std::swap(u, tmp_);
-            if (two && it == 0) {
-                SvgfAtrousRef(w_[ch], geo, frame.depthGradient, 0, tmp_, fb ? &cur.iw[ch] : nullptr,
-                              s, params_.precision);
-                std::swap(w_[ch], tmp_);
-            }
-            if (two && it == 0) {
-                TwoHistoryBlendRef(u, w_[ch], cur.wu, cur.ww, cur.powerSums, q_, tmp_);
-                std::swap(u, tmp_);
-            }
-        }
-        if (two && s.atrousIterations == 0) {
-            TwoHistoryBlendRef(u, w_[ch], cur.wu, cur.ww, cur.powerSums, q_, tmp_);
-            std::swap(u, tmp_);
-        }
-    }
-    lap("atrous_blend");
-
-    SvgfModulateRef(u_[0], channels == 2 ? &u_[1] : nullptr, frame.Modulation(), frame.emission, output);
-    lap("modulate");
-
-    prevGeometry_.CopyFrom(frame);
-    hasPrev_ = true;
-    hasFrame_ = true;
-    parity_ ^= 1;
-}
-
-bool TwoHistoryReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
-    if (!hasFrame_) return false;
-    const TwoHistoryState& st = CurrentState();
-    // Planes a variant does not compute are empty: false rather than an empty view.
-    auto copy = [&out](const Plane<float>& plane) {
-        if (plane.empty()) return false;
-        out = plane;
-        return true;
-    };
-    switch (view) {
-        case DebugViewId::HistoryLength:
-            return copy(st.wu);
-        case DebugViewId::HistorySamples:
-            return copy(st.ww);
-        case DebugViewId::Alpha:
-            return variant_.asvgfGradient && copy(alpha_);
-        case DebugViewId::Lambda:
-            return variant_.asvgfGradient && copy(lambda_);
-        case DebugViewId::P: {  // not stored: the blend evaluates it from the state, as here
-            if (st.ww.empty()) return false;
-            Plane<float> p(st.wu.width(), st.wu.height());
-            for (size_t i = 0; i < p.size(); ++i)
-                p[i] = TwoHistoryOptimalBlend(
-                    StoredTwoHistoryWeights(st.wu[i], st.ww[i], st.powerSums[i]));
-            out = std::move(p);
-            return true;
-        }
-        case DebugViewId::Q:
-            return variant_.twoHistory && copy(q_);
-    }
-    return false;
-}
-
-std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(const DenoiserVariant& variant,
-                                                      const DenoiserParams& params) {
-    return std::make_unique<TwoHistoryReferenceDenoiser>(variant, params);
 }
 
 }  // namespace fovrt

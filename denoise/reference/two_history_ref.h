@@ -1,7 +1,8 @@
-// C++ reference (Backend() == "cpu") of two-history SVGF (Tu 2024, SPEC §5), A-SVGF (Schied 2018,
-// SPEC §4) and their combination two-history-asvgf. One function per new stage, each mirroring a
-// shader (shaders/two_history_*.comp); the SVGF stages (variance estimate, à-trous, modulation)
-// are the svgf_ref ones, composed:
+// C++ reference stages of two-history SVGF (Tu 2024, SPEC §5), A-SVGF (Schied 2018, SPEC §4) and
+// their combination two-history-asvgf. One function per new stage, each mirroring a shader
+// (shaders/two_history_*.comp); the SVGF stages (variance estimate, à-trous, modulation) are the
+// svgf_ref ones. The pass plan (denoise/svgf_family_plan.cpp) composes them, and
+// SvgfFamilyReferenceDenoiser (svgf_family_ref.h) runs that list:
 //
 //   [asvgf_*: per-pixel α]  → two_history_reproject (both histories, weights, power sums, g)
 //   → svgf_filter_moments on both → two_history_gradient (edge-aware g → q)
@@ -31,7 +32,6 @@
 #pragma once
 
 #include <array>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,7 +39,6 @@
 #include "core/image.h"
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
-#include "denoise/variants.h"
 #include "denoise/reference/svgf_ref.h"
 
 namespace fovrt {
@@ -99,46 +98,5 @@ T FilterTwoHistoryGradient(const Plane<T>& gradient, const FrameInputs& frame,
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
                         const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out);
-
-// The CPU denoisers "asvgf", "two-history", "two-history-asvgf": the stages above composed.
-class TwoHistoryReferenceDenoiser final : public Denoiser {
-  public:
-    TwoHistoryReferenceDenoiser(const DenoiserVariant& variant, const DenoiserParams& params);
-    std::string Name() const override;
-    std::string Backend() const override { return "cpu"; }
-    void Reset() override;
-    void Denoise(const FrameInputs& inputs, Plane<vec3>& output) override;
-    std::vector<PassTiming> LastTimings() const override { return timings_; }
-    DenoiseStats Stats() const override { return stats_; }
-
-    // Read access for tests (after Denoise): this frame's state, q, A-SVGF α / λ / (δ̂, Δ̂).
-    const TwoHistoryState& CurrentState() const { return state_[size_t(parity_)]; }
-    const Plane<float>& Q() const { return q_; }
-    const Plane<float>& Alpha() const { return alpha_; }
-    const Plane<float>& Lambda() const { return lambda_; }
-    const Plane<vec2>& ReconstructedGradient() const { return recon_; }
-
-  private:
-    bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
-
-    const DenoiserVariant& variant_;  // a row of DenoiserVariants(): which stages run
-    DenoiserParams params_;
-    int width_ = 0, height_ = 0;
-    bool hasPrev_ = false;
-    bool hasFrame_ = false;  // a Denoise() since construction or Reset() (debug views)
-    int parity_ = 0;  // during Denoise: state_[parity_] previous, state_[parity_ ^ 1] this frame
-                      // (then flipped)
-    std::array<TwoHistoryState, 2> state_;
-    SvgfGeometryPlanes prevGeometry_;
-    std::array<Plane<vec4>, 2> u_, w_;
-    Plane<vec4> tmp_;
-    Plane<float> alpha_, lambda_, q_;
-    Plane<vec2> recon_;
-    std::vector<PassTiming> timings_;
-    DenoiseStats stats_;
-};
-
-std::unique_ptr<Denoiser> CreateTwoHistoryCpuDenoiser(const DenoiserVariant& variant,
-                                                      const DenoiserParams& params);
 
 }  // namespace fovrt

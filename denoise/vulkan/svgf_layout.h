@@ -1,13 +1,13 @@
-// Dispatch helpers shared by the Vulkan hosts: workgroup counts and the edge-stopping
-// specialization constants. Push-constant blocks: shaders/push_constants.h (declared once for GLSL and C++).
+// Dispatch sizes of the Vulkan hosts: workgroups over an image and over the 2×2 blocks of an
+// à-trous iteration. Push-constant blocks: shaders/push_constants.h (declared once for GLSL and
+// C++); specialization constants: the pass plan (denoise/svgf_family_plan.h).
 #pragma once
 
-#include <array>
-#include <cstddef>
+#include <algorithm>
 #include <cstdint>
 
 #include "core/math.h"
-#include "denoise/params.h"
+#include "denoise/svgf_family_plan.h"
 #include "shaders/push_constants.h"
 #include "shaders/shared_constants.h"
 
@@ -19,16 +19,13 @@ inline uvec2 DispatchGroups(int width, int height) {
                  (height + FOVRT_WORKGROUP_Y - 1) / FOVRT_WORKGROUP_Y);
 }
 
-// Specialization constants of the edge-stopping shaders (shaders/common/edge_stopping.glsl), by
-// constant_id: FOVRT_SPEC_NORMAL_SQUARINGS = k when σn = 2^k exactly (0 ≤ k ≤ 12), else −1.
-inline int32_t NormalWeightSquarings(float sigmaNormal) {
-    for (int k = 0; k <= FOVRT_MAX_NORMAL_SQUARINGS; ++k)
-        if (sigmaNormal == float(1 << k)) return k;
-    return -1;
-}
-inline std::array<int32_t, 1> EdgeStoppingSpecialization(const SvgfParams& p) {
-    static_assert(FOVRT_SPEC_NORMAL_SQUARINGS == 0);
-    return {NormalWeightSquarings(p.sigmaNormal)};
+// Blocks per axis of `n` pixels at stride `step`: pixels pair up (x, x + step) inside each run of
+// 2·step, and a last partial run of r pixels has min(r, step) blocks (partners past the edge).
+inline int AtrousBlocks(int n, int step) { return n / (2 * step) * step + std::min(n % (2 * step), step); }
+
+// Workgroups of an à-trous dispatch at `step` (one invocation per 2×2 block: shaders/svgf_atrous.comp).
+inline uvec2 AtrousBlockGroups(int width, int height, int step) {
+    return DispatchGroups(AtrousBlocks(width, step), FOVRT_ATROUS_BLOCK_Y == 2 ? AtrousBlocks(height, step) : height);
 }
 
 }  // namespace fovrt

@@ -1,5 +1,5 @@
 // Bindings and push-constant flags of the two-history and A-SVGF shaders (shaders/two_history_*.comp,
-// shaders/asvgf_*.comp). Macros only: included by GLSL and by C++ (denoise/vulkan/two_history_vk.cpp).
+// shaders/asvgf_*.comp). Macros only: included by GLSL and by C++ (the pass plan, denoise/stage_shaders.h).
 #ifndef FOVRT_TWO_HISTORY_CONSTANTS_GLSL
 #define FOVRT_TWO_HISTORY_CONSTANTS_GLSL
 

@@ -1,0 +1,164 @@
+// The planes of the SVGF-family denoisers (svgf, svgf-weighted, asvgf, two-history,
+// two-history-asvgf), declared once: one row per kind of plane with its printed name, whether
+// each filtered channel has its own, whether it is a history (an A/B pair: this frame writes one
+// side, the next frame reads it as "previous"), its size and, for the per-frame inputs, the
+// FrameInputs data it is uploaded from. The pass plan (denoise/pass_plan.h) names planes by
+// PlaneId; the memory plan is the union of what its passes name, sized by these rows; the Vulkan
+// host and the C++ reference address their buffers and planes by the same ids. Names are for
+// printing (`fovrt memory`, error messages, tests): nothing is looked up by a name built at run
+// time.
+#pragma once
+
+#include <compare>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/frame_inputs.h"
+#include "denoise/params.h"
+
+namespace fovrt {
+
+// Size rules of the rows below (W×H pixels, strata of 3×3 pixels):
+//   PIXELS_OF(m)      one element of FrameInputs::m per pixel
+//   PIXELS(b)         b bytes per pixel
+//   HISTORY(k)        k history scalars per pixel (4 bytes each, 2 in fp16)
+//   STRATA(b)         b bytes per stratum
+//   FIXED(b)          b bytes whatever the size (counters, dispatch arguments)
+//   SAMPLE_COUNTS     uint16 per pixel, padded to whole 32-bit words (the shaders read pairs)
+//   GRADIENT_SAMPLES  the gradient-sample capacity, two per stratum
+//   TRANSFERS         the transfers the plan routes through it, each 16-byte aligned
+//   EXTRA_STAGING     room for sample counts and gradient samples, whichever a variant uploads
+// Sources: EVERY_FRAME(m) uploaded from FrameInputs::m every frame; MODULATION from
+// FrameInputs::Modulation() (the albedo, or F_β under brdf demodulation); WHEN_READ(m) uploaded
+// only by the variants that read it; NONE written on the device.
+// X(kind, name, scope, lifetime, size, source); per-channel names are prefixed by the channel.
+#define FOVRT_DENOISER_PLANES(X)                                                                    \
+    X(Direct, "input.direct", Shared, Scratch, PIXELS_OF(direct), EVERY_FRAME(direct))              \
+    X(Indirect, "input.indirect", Shared, Scratch, PIXELS_OF(indirect), EVERY_FRAME(indirect))      \
+    X(Modulation, "input.modulation", Shared, Scratch, PIXELS_OF(albedo), MODULATION)               \
+    X(Emission, "input.emission", Shared, Scratch, PIXELS_OF(emission), EVERY_FRAME(emission))      \
+    X(DepthGradient, "input.depthGradient", Shared, Scratch, PIXELS_OF(depthGradient),             \
+      EVERY_FRAME(depthGradient))                                                                   \
+    X(PrevPixel, "input.prevPixel", Shared, Scratch, PIXELS_OF(prevPixel), EVERY_FRAME(prevPixel))  \
+    X(SampleCount, "input.sampleCount", Shared, Scratch, SAMPLE_COUNTS, WHEN_READ(sampleCount))     \
+    /* this frame's geometry, the next frame's previous one */                                     \
+    X(Normal, "geometry.normal", Shared, History, PIXELS_OF(normal), EVERY_FRAME(normal))           \
+    X(Depth, "geometry.depth", Shared, History, PIXELS_OF(linearDepth), EVERY_FRAME(linearDepth))   \
+    X(ObjectId, "geometry.objectId", Shared, History, PIXELS_OF(objectId), EVERY_FRAME(objectId))   \
+    /* edge-stopping guide (svgf_pack_guide): normal, depth */                                     \
+    X(Guide, "geometry.guide", Shared, Scratch, PIXELS(16), NONE)                                   \
+    /* per channel: SVGF's histories; W_u of two-history is the channel's length */                \
+    X(Color, "color", PerChannel, History, HISTORY(3), NONE)                                        \
+    X(Moments, "moments", PerChannel, History, HISTORY(2), NONE)                                    \
+    X(Length, "length", PerChannel, History, HISTORY(1), NONE)                                      \
+    X(Weight, "weight", PerChannel, History, HISTORY(1), NONE)                                      \
+    X(WColor, "wcolor", PerChannel, History, HISTORY(3), NONE)                                      \
+    /* per channel: (illumination, variance) ping-pong of the unweighted / weighted history */     \
+    X(Illum0, "illum0", PerChannel, Scratch, PIXELS(16), NONE)                                      \
+    X(Illum1, "illum1", PerChannel, Scratch, PIXELS(16), NONE)                                      \
+    X(WIllum0, "willum0", PerChannel, Scratch, PIXELS(16), NONE)                                    \
+    X(WIllum1, "willum1", PerChannel, Scratch, PIXELS(16), NONE)                                    \
+    /* pixels needing the spatial variance estimate (svgf_moments_classify) and the indirect */    \
+    /* dispatch arguments (groups x, y, z, count); earlier in the frame channel 0's list holds */  \
+    /* the reprojection's box-fallback pixels, used up before the classify pass refills it */      \
+    X(SpatialList, "spatialList", PerChannel, Scratch, PIXELS(4), NONE)                             \
+    X(SpatialArgs, "spatialArgs", PerChannel, Scratch, FIXED(16), NONE)                             \
+    /* two-history: W_w, (S_-1, S_0, S_1), the luminance gradient g, and q */                      \
+    X(WWeight, "wweight", Shared, History, HISTORY(1), NONE)                                        \
+    X(PowerSums, "powerSums", Shared, History, HISTORY(3), NONE)                                    \
+    X(Gradient, "gradient", Shared, History, HISTORY(1), NONE)                                      \
+    X(Q, "q", Shared, Scratch, PIXELS(4), NONE)                                                     \
+    /* A-SVGF: samples, stratum claims, (δ, Δ) ping-pong, stratum guide, σ_l·std, α, λ */          \
+    X(AsvgfSamples, "asvgf.samples", Shared, Scratch, GRADIENT_SAMPLES, WHEN_READ(gradientSamples)) \
+    X(AsvgfClaim, "asvgf.claim", Shared, Scratch, STRATA(4), NONE)                                  \
+    X(AsvgfGrad0, "asvgf.grad0", Shared, Scratch, STRATA(8), NONE)                                  \
+    X(AsvgfGrad1, "asvgf.grad1", Shared, Scratch, STRATA(8), NONE)                                  \
+    X(AsvgfGuideGeometry, "asvgf.guideGeometry", Shared, Scratch, STRATA(16), NONE)                 \
+    X(AsvgfGuideLuminance, "asvgf.guideLuminance", Shared, Scratch, STRATA(16), NONE)               \
+    X(AsvgfSigma, "asvgf.sigmaL", Shared, Scratch, STRATA(4), NONE)                                 \
+    X(AsvgfAlpha, "asvgf.alpha", Shared, Scratch, PIXELS(4), NONE)                                  \
+    X(AsvgfLambda, "asvgf.lambda", Shared, Scratch, PIXELS(4), NONE)                                \
+    X(Output, "output", Shared, Scratch, PIXELS(12), NONE)                                          \
+    /* sanitising counters: non-finite and negative inputs */                                      \
+    X(Stats, "stats", Shared, Scratch, FIXED(8), NONE)                                              \
+    X(Staging, "staging", Shared, Staging, TRANSFERS, NONE)                                         \
+    X(StagingExtra, "staging.extra", Shared, Staging, EXTRA_STAGING, NONE)
+
+#define FOVRT_PLANE_KIND(kind, name, scope, lifetime, size, source) kind,
+enum class PlaneKind : uint8_t { FOVRT_DENOISER_PLANES(FOVRT_PLANE_KIND) };
+#undef FOVRT_PLANE_KIND
+
+// The illumination a plane of scope PerChannel belongs to (SvgfParams::filterCombined: one
+// "combined" channel, else "direct" and "indirect").
+enum class Channel : uint8_t { None, Direct, Indirect, Combined };
+const char* ChannelName(Channel channel);  // "direct", "indirect", "combined"; "" for None
+// The channels the SVGF stages filter, in order.
+std::vector<Channel> FilteredChannels(const SvgfParams& params);
+
+struct PlaneId {
+    PlaneKind kind = PlaneKind::Output;
+    Channel channel = Channel::None;  // set exactly for the PerChannel kinds
+    auto operator<=>(const PlaneId&) const = default;
+};
+
+// Which side of a history a use reads or writes; the host and the reference map it to A or B
+// by the parity of the frame.
+enum class HistorySide : uint8_t { None, This, Previous };
+struct PlaneRef {
+    PlaneId id;
+    HistorySide side = HistorySide::None;  // set exactly for the history kinds
+};
+// A buffer: a plane, and for a history its side A or B.
+enum class BufferSide : uint8_t { None, A, B };
+struct BufferKey {
+    PlaneId id;
+    BufferSide side = BufferSide::None;
+    auto operator<=>(const BufferKey&) const = default;
+};
+// The buffer side of `side` in a frame whose histories are written to side A (parity 0) or B (1).
+BufferSide SideOf(HistorySide side, int parity);
+// The buffer of `ref` in that frame.
+BufferKey ResolveSide(const PlaneRef& ref, int parity);
+
+bool IsPerChannel(PlaneKind kind);
+bool IsHistory(PlaneKind kind);
+bool IsStaging(PlaneKind kind);  // host-visible: the transfers go through it
+// Fixed-size planes (counters, dispatch arguments) move ~0 bytes per pixel: the byte model and
+// the plan ↔ memory test leave them out.
+bool IsFixedSize(PlaneKind kind);
+// The value a reset fills a plane with (as 32-bit words): background object ids, so that nothing
+// reprojects; A-SVGF's α = λ = 1.0f, so that the first frame is taken whole (its gradient passes
+// need a previous frame and do not run); 0 everywhere else.
+uint32_t ClearValue(PlaneKind kind);
+
+// "input.direct", "direct.color", "direct.color.A".
+std::string PlaneName(const PlaneId& id);
+std::string BufferName(const BufferKey& key);
+
+// What a plane's size depends on.
+struct PlaneExtent {
+    int width = 0, height = 0;
+    Precision precision = Precision::Fp32;
+};
+inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }
+// Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
+inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
+// Bytes of one buffer of `kind` (one side of a history). Staging (TRANSFERS) is sized by the
+// plan from its transfers: 0 here.
+size_t PlaneBytes(PlaneKind kind, const PlaneExtent& extent);
+// Bytes per element of a plane whose every pixel holds one (0 for strata and fixed planes).
+size_t PlaneElementBytes(PlaneKind kind, Precision precision);
+
+// Where the per-frame planes come from: the data of a FrameInputs plane (or its gradient
+// samples) for the kinds with a source; null data for the others.
+struct HostBytes {
+    const void* data = nullptr;
+    size_t bytes = 0;
+};
+HostBytes FrameSource(PlaneKind kind, const FrameInputs& in);
+// The kinds every frame uploads (EVERY_FRAME and MODULATION), in table order.
+const std::vector<PlaneKind>& PlanesUploadedEveryFrame();
+
+}  // namespace fovrt
