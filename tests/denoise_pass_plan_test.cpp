@@ -25,35 +25,43 @@ bool ModelledByNoPass(const std::string& name) {
     return name.rfind("staging", 0) == 0 || name == "stats" ||
            name.find(".spatialArgs") != std::string::npos;
 }
+// Every mode the plans are checked in: separate and combined filtering, fp32 and fp16, and 0, 1
+// and 5 à-trous iterations (feedback after the first where there is one).
+template <typename Check>
+void ForEachPlanMode(Check check) {
+    for (bool combined : {false, true})
+        for (Precision precision : {Precision::Fp32, Precision::Fp16})
+            for (int iterations : {0, 1, 5}) {
+                DenoiserParams p;
+                p.svgf.filterCombined = combined;
+                p.precision = precision;
+                p.svgf.atrousIterations = iterations;
+                p.svgf.feedbackIteration = iterations > 0 ? 1 : 0;
+                INFO((combined ? "combined" : "separate") << " iterations " << iterations);
+                check(p);
+            }
+}
 }  // namespace
 
 TEST_CASE("every plane a pass uses is allocated, and every allocated plane is used") {
     for (const std::string& name : DenoiserNames())
-        for (bool combined : {false, true})
-            for (Precision precision : {Precision::Fp32, Precision::Fp16})
-                for (int iterations : {0, 1, 5}) {
-                    DenoiserParams p;
-                    p.svgf.filterCombined = combined;
-                    p.precision = precision;
-                    p.svgf.atrousIterations = iterations;
-                    p.svgf.feedbackIteration = iterations > 0 ? 1 : 0;
-                    INFO(name << (combined ? " combined" : " separate") << " iterations "
-                              << iterations);
-                    const DenoiserPlan plan = BuildDenoiserPlan(name, p, 40, 24);
-                    std::set<std::string> allocated, used;
-                    for (const BufferPlan& b : plan.buffers) allocated.insert(Unsided(b.name));
-                    for (const PlannedPass& pass : plan.passes)
-                        for (const PlaneUse& use : pass.uses) {
-                            INFO("pass " << pass.name);
-                            CHECK(allocated.count(use.plane) == 1);
-                            used.insert(use.plane);
-                        }
-                    for (const std::string& buffer : allocated)
-                        if (!ModelledByNoPass(buffer)) {
-                            INFO("buffer " << buffer);
-                            CHECK(used.count(buffer) == 1);
-                        }
+        ForEachPlanMode([&](const DenoiserParams& p) {
+            INFO(name);
+            const DenoiserPlan plan = BuildDenoiserPlan(name, p, 40, 24);
+            std::set<std::string> allocated, used;
+            for (const BufferPlan& b : plan.buffers) allocated.insert(Unsided(b.name));
+            for (const PlannedPass& pass : plan.passes)
+                for (const PlaneUse& use : pass.uses) {
+                    INFO("pass " << pass.name);
+                    CHECK(allocated.count(use.plane) == 1);
+                    used.insert(use.plane);
                 }
+            for (const std::string& buffer : allocated)
+                if (!ModelledByNoPass(buffer)) {
+                    INFO("buffer " << buffer);
+                    CHECK(used.count(buffer) == 1);
+                }
+        });
 }
 
 TEST_CASE(
@@ -104,15 +112,16 @@ TEST_CASE("variant rows are consistent: sample counts where a history weighs by 
 namespace {
 // The kinds of a stage shader's layout (one channel or "_pair"), by slot, from its binding list.
 #define FOVRT_TEST_KIND(pass, name, slot, kind, format, variable) kinds.at(size_t(slot)) = #kind;
-#define FOVRT_TEST_KINDS(LIST)                                                  \
-    [] {                                                                        \
-        std::vector<std::string> kinds(size_t(FOVRT_BINDING_COUNT(LIST)));      \
-        LIST(FOVRT_TEST_KIND)                                                   \
-        return kinds;                                                           \
+#define FOVRT_TEST_KINDS(LIST)                                             \
+    [] {                                                                   \
+        std::vector<std::string> kinds(size_t(FOVRT_BINDING_COUNT(LIST))); \
+        LIST(FOVRT_TEST_KIND)                                              \
+        return kinds;                                                      \
     }()
 std::vector<std::string> BindingKinds(StageShader shader, bool pair) {
 #define FOVRT_TEST_SHADER(id, stem, list, pairList) \
-    case StageShader::id: return pair ? FOVRT_TEST_KINDS(pairList) : FOVRT_TEST_KINDS(list);
+    case StageShader::id:                           \
+        return pair ? FOVRT_TEST_KINDS(pairList) : FOVRT_TEST_KINDS(list);
     switch (shader) { FOVRT_STAGE_SHADERS(FOVRT_TEST_SHADER) }
 #undef FOVRT_TEST_SHADER
     return {};
@@ -129,32 +138,26 @@ bool AccessFits(const std::string& kind, Access access) {
 TEST_CASE("every dispatch of every plan binds each slot of its layout once, as its kind allows") {
     for (const DenoiserVariant& v : DenoiserVariants()) {
         if (v.family == DenoiserFamily::Rae) continue;  // its own host
-        for (bool combined : {false, true})
-            for (Precision precision : {Precision::Fp32, Precision::Fp16})
-                for (int iterations : {0, 1, 5}) {
-                    DenoiserParams p;
-                    p.svgf.filterCombined = combined;
-                    p.precision = precision;
-                    p.svgf.atrousIterations = iterations;
-                    p.svgf.feedbackIteration = iterations > 0 ? 1 : 0;
-                    for (const PlannedPass& pass : BuildDenoiserPlan(v.name, p, 40, 24).passes)
-                        for (const Command& command : pass.commands) {
-                            const auto* d = std::get_if<DispatchCommand>(&command.op);
-                            if (!d) continue;
-                            const std::vector<std::string> kinds = BindingKinds(d->pipeline.shader, d->pipeline.pair);
-                            INFO(v.name << " " << ShaderVariantName(d->pipeline) << " in " << pass.name);
-                            CHECK(int(kinds.size()) == BindingCount(d->pipeline));
-                            std::set<int> bound;
-                            for (const Binding& b : d->bindings) {
-                                INFO("slot " << b.slot << ", plane " << PlaneName(b.plane.id));
-                                REQUIRE(b.slot >= 0);
-                                REQUIRE(size_t(b.slot) < kinds.size());
-                                CHECK(bound.insert(b.slot).second);
-                                CHECK(AccessFits(kinds[size_t(b.slot)], b.access));
-                                CHECK((b.plane.side != HistorySide::None) == IsHistory(b.plane.id.kind));
-                            }
-                            CHECK(bound.size() == kinds.size());
-                        }
+        ForEachPlanMode([&](const DenoiserParams& p) {
+            for (const PlannedPass& pass : BuildDenoiserPlan(v.name, p, 40, 24).passes)
+                for (const Command& command : pass.commands) {
+                    const auto* d = std::get_if<DispatchCommand>(&command.op);
+                    if (!d) continue;
+                    const std::vector<std::string> kinds =
+                        BindingKinds(d->pipeline.shader, d->pipeline.pair);
+                    INFO(v.name << " " << ShaderVariantName(d->pipeline) << " in " << pass.name);
+                    CHECK(int(kinds.size()) == BindingCount(d->pipeline));
+                    std::set<int> bound;
+                    for (const Binding& b : d->bindings) {
+                        INFO("slot " << b.slot << ", plane " << PlaneName(b.plane.id));
+                        REQUIRE(b.slot >= 0);
+                        REQUIRE(size_t(b.slot) < kinds.size());
+                        CHECK(bound.insert(b.slot).second);
+                        CHECK(AccessFits(kinds[size_t(b.slot)], b.access));
+                        CHECK((b.plane.side != HistorySide::None) == IsHistory(b.plane.id.kind));
+                    }
+                    CHECK(bound.size() == kinds.size());
                 }
+        });
     }
 }

@@ -171,12 +171,7 @@ void EmbreeScene::BuildStaticRecords() {
         for (size_t k = 0; k < mesh.triangles.size(); ++k) {
             const uvec3& tri = mesh.triangles[k];
             // As SurfaceAt: corners, then edges and the cross product of the edges.
-            vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
-            if (!x.identity) {
-                p0 = vec3(x.worldFromObject * vec4(p0, 1.0f));
-                p1 = vec3(x.worldFromObject * vec4(p1, 1.0f));
-                p2 = vec3(x.worldFromObject * vec4(p2, 1.0f));
-            }
+            const auto [p0, p1, p2] = WorldTriangle(uint32_t(i), uint32_t(k), xforms);
             StaticTriangle t;
             t.p0 = p0;
             t.e1 = p1 - p0;
@@ -396,15 +391,9 @@ SurfaceHit EmbreeScene::SurfaceAt(const SurfaceSample& s, const std::vector<Inst
     }
     const InstanceXform& x = xforms[s.instance];
     const Mesh& mesh = scene_.meshes[scene_.instances[s.instance].mesh];
-    FOVRT_CHECK_OP(s.primitive, <, mesh.triangles.size());
+    const auto [p0, p1, p2] = WorldTriangle(s.instance, s.primitive, xforms);
     const uvec3& tri = mesh.triangles[s.primitive];
     float u = s.barycentrics.x, v = s.barycentrics.y, w = 1.0f - u - v;
-    vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
-    if (!x.identity) {
-        p0 = vec3(x.worldFromObject * vec4(p0, 1.0f));
-        p1 = vec3(x.worldFromObject * vec4(p1, 1.0f));
-        p2 = vec3(x.worldFromObject * vec4(p2, 1.0f));
-    }
     SurfaceHit h;
     h.position = p0 + u * (p1 - p0) + v * (p2 - p0);
     vec3 c = glm::cross(p1 - p0, p2 - p0);
