@@ -32,9 +32,9 @@ size_t GradientIndex(PlaneKind kind) {
 
 SvgfFamilyReferenceDenoiser::SvgfFamilyReferenceDenoiser(const DenoiserVariant& variant,
                                                          const DenoiserParams& params)
-    : variant_(variant), params_(ParamsForVariant(variant, params)) {
+    : variant_(variant) {
     FOVRT_CHECK(variant.family != DenoiserFamily::Rae);
-    ValidateDenoiserParamRanges(params_);
+    SetParams(params);
 }
 
 void SvgfFamilyReferenceDenoiser::Reset() {
@@ -42,6 +42,8 @@ void SvgfFamilyReferenceDenoiser::Reset() {
     hasFrame_ = false;
 }
 
+// As the Vulkan host's Configure: the caller's parameters are range-checked, then the row's
+// options are applied to them.
 void SvgfFamilyReferenceDenoiser::SetParams(const DenoiserParams& params) {
     ValidateDenoiserParamRanges(params);
     params_ = ParamsForVariant(variant_, params);
