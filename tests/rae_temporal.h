@@ -3,13 +3,13 @@
 // tests/tools/rae_temporal_probe. Header only: both link fovrt_app.
 #pragma once
 
-#include <cmath>
 #include <string>
 #include <vector>
 
 #include "app/frame_pipeline.h"
 #include "app_test_configs.h"
 #include "denoise/reference/rae_cpu.h"
+#include "metrics/image_metrics.h"
 
 namespace fovrt::test {
 
@@ -54,12 +54,9 @@ inline RaeTemporalSeries RaeTemporalError(const RaeTemporalSetup& p, const std::
         pipeline.Render(uint32_t(p.first + i), frame);
         if (resetEveryFrame) denoiser.Reset();
         denoiser.Denoise(frame.eyes[0].inputs, out);
-        double e = 0.0, l = 0.0;
-        for (size_t q = 0; q < out.size(); ++q) {
-            l += Luminance(out[q]);
-            if (i > 0) e += std::abs(Luminance(out[q]) - Luminance(prev[q]));
-        }
-        s.temporal.push_back(e / double(out.size()));
+        double l = 0.0;
+        for (size_t q = 0; q < out.size(); ++q) l += Luminance(out[q]);
+        s.temporal.push_back(i > 0 ? TemporalError(out, prev) : 0.0);  // the experiments' measure
         s.meanLum.push_back(l / double(out.size()));
         prev = out;
     }
