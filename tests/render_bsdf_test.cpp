@@ -114,5 +114,8 @@ TEST_CASE("the fast Sobol-Owen path equals the plain nested-scramble definition"
                 CHECK(pixel.Get(ReverseBits(i), pair) == fast);
                 CHECK(pixel.Get(ReverseBits(i), pair + PixelSampler::kCachedPairs) ==
                       SobolOwen2D(seed, i, pair + PixelSampler::kCachedPairs));
+                // Prepared or hashed on use, a pair gives the same point.
+                for (uint32_t mask : {0u, 1u << pair, ~(1u << pair)})
+                    CHECK(PixelSampler(seed, mask).Get(ReverseBits(i), pair) == fast);
             }
 }

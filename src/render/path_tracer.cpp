@@ -564,6 +564,15 @@ private:
         return result;
     }
 
+    // The vertex's selectors: x picks the emitter (read only with emissive triangles), y the BSDF
+    // lobe (read only where a bounce follows and the surface has a specular lobe: with pSpec = 0
+    // every y in [0, 1) picks the diffuse lobe, as 0 does). Drawn only when read, which leaves
+    // every image unchanged and halves the sampler's work on Lambert surfaces lit by point lights.
+    vec2 Selectors(const PathVertex& v, const PathSampler& sampler, int vertex, bool last) const {
+        bool read = lightPower_ > 0.0f || (!last && v.wo.pSpec > 0.0f);
+        return read ? sampler.Selectors(vertex) : vec2(0.0f);
+    }
+
     // Completes vertex v (v.p resolved) for a path arriving from direction wo.
     void InitVertex(PathVertex& v, const vec3& wo) const {
         const ShadingPoint& p = v.p;
@@ -591,9 +600,7 @@ private:
             int vertex = depth - 1;
             vec3& target = depth == 1 ? direct : indirect;
             bool last = depth >= settings_.maxDepth;
-            // The selectors pick the emitter and the BSDF lobe: not needed by a last vertex
-            // without emissive triangles.
-            vec2 sel = !last || lightPower_ > 0.0f ? sampler.Selectors(vertex) : vec2(0.0f);
+            vec2 sel = Selectors(*v, sampler, vertex, last);
             target += throughput * SampleLights(*v, sampler, vertex, sel, !last, counts,
                                                 depth == 1 ? &primaryLights : nullptr);
             if (last) return;
@@ -644,9 +651,7 @@ private:
         int vertex = st.depth - 1;
         vec3& target = st.depth == 1 ? st.direct : st.indirect;
         bool last = st.depth >= settings_.maxDepth;
-        // The selectors pick the emitter and the BSDF lobe: not needed by a last vertex
-        // without emissive triangles.
-        vec2 sel = !last || lightPower_ > 0.0f ? sampler.Selectors(vertex) : vec2(0.0f);
+        vec2 sel = Selectors(*v, sampler, vertex, last);
         target += st.throughput * SampleLights(*v, sampler, vertex, sel, !last, counts,
                                                st.depth == 1 ? &primaryLights : nullptr);
         if (last) return false;
@@ -694,13 +699,25 @@ private:
         }
     }
 
-    // Dimension pairs worth hashing once per pixel: those that n samples read more than once.
-    // One sample reads each pair at most once (hashing on use costs no more); otherwise every
-    // vertex but the last reads light point, selectors and BSDF direction, and the last one
-    // reads light point and selectors only with emissive triangles. (Same numbers either way.)
-    uint32_t CachedSamplerPairs(int n) const {
+    // Dimension pairs worth hashing once per pixel (PixelSampler's mask): those that n samples
+    // read more than once. One sample reads each pair at most once (hashing on use costs no
+    // more). Light points are read only with emissive triangles, selectors as Selectors() says
+    // (a later vertex's surface is not known here: its pair is prepared), BSDF directions by
+    // every vertex but the last. (Same numbers either way.)
+    uint32_t CachedSamplerPairs(int n, const PathVertex& primary) const {
         if (n <= 1) return 0;
-        return uint32_t(settings_.maxDepth - 1) * PathSampler::kPairsPerVertex + (lightPower_ > 0.0f ? 2u : 0u);
+        const bool emitters = lightPower_ > 0.0f;
+        uint32_t mask = 0;
+        for (int vertex = 0; vertex < settings_.maxDepth; ++vertex) {
+            const uint32_t first = uint32_t(vertex) * PathSampler::kPairsPerVertex;
+            if (first + PathSampler::kPairsPerVertex > PixelSampler::kCachedPairs) break;
+            const bool last = vertex + 1 >= settings_.maxDepth;
+            const bool specular = vertex > 0 || primary.wo.pSpec > 0.0f;
+            if (emitters) mask |= 1u << first;                                // light point
+            if (emitters || (!last && specular)) mask |= 1u << (first + 1);  // selectors
+            if (!last) mask |= 1u << (first + 2);                            // BSDF direction
+        }
+        return mask;
     }
 
     // n samples at one primary surface sample seen from eyePos.
@@ -714,7 +731,7 @@ private:
         p.emission = EmissionToward(p, wo);  // what the eye sees of it; read below as out.emission
         InitVertex(primary, wo);
         vec3 direct(0.0f), indirect(0.0f);
-        PixelSampler pixelSampler(seed, CachedSamplerPairs(n));
+        PixelSampler pixelSampler(seed, CachedSamplerPairs(n, primary));
         DeterministicLights primaryLights;
         if (n > 0) primaryLights = SampleDeterministicLights(primary);
         // Samples in groups of 8: the first bounce rays all leave the primary vertex's origin,

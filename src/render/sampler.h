@@ -4,6 +4,7 @@
 // re-shading with a stored seed reproduces the exact random numbers (A-SVGF §3.2).
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "core/math.h"
@@ -97,14 +98,18 @@ inline vec2 SobolOwen2D(uint32_t pixelSeed, uint32_t index, uint32_t pair) {
 class PixelSampler {
 public:
     static constexpr uint32_t kCachedPairs = 24;  // 8 path vertices; further pairs are hashed on use
-    // pairs: how many dimension pairs to prepare (at most kCachedPairs).
-    explicit PixelSampler(uint32_t pixelSeed, uint32_t pairs = kCachedPairs)
-        : seed_(pixelSeed), cached_(pairs < kCachedPairs ? pairs : kCachedPairs) {
-        for (uint32_t pair = 0; pair < cached_; ++pair) seeds_[pair] = Seeds(pair);
+    static constexpr uint32_t kAllPairs = (1u << kCachedPairs) - 1u;
+    // pairMask: bit p set = prepare dimension pair p (p < kCachedPairs); the others are hashed on use.
+    explicit PixelSampler(uint32_t pixelSeed, uint32_t pairMask = kAllPairs)
+        : seed_(pixelSeed), cached_(pairMask & kAllPairs) {
+        for (uint32_t m = cached_; m != 0; m &= m - 1u) {
+            uint32_t pair = uint32_t(std::countr_zero(m));
+            seeds_[pair] = Seeds(pair);
+        }
     }
     // Same value as SobolOwen2DReversed(pixelSeed, reversedIndex, pair).
     vec2 Get(uint32_t reversedIndex, uint32_t pair) const {
-        uvec3 s = pair < cached_ ? seeds_[pair] : Seeds(pair);
+        uvec3 s = pair < kCachedPairs && (cached_ >> pair) & 1u ? seeds_[pair] : Seeds(pair);
         uint32_t shuffled = ReverseBits(LaineKarrasPermutation(reversedIndex, s.x));
         uint32_t x = ReverseBits(LaineKarrasPermutation(shuffled, s.y));
         uint32_t y = ReverseBits(LaineKarrasPermutation(detail::RevSobolDim1(shuffled), s.z));
@@ -117,7 +122,7 @@ private:
         return uvec3(pairSeed, HashCombine(pairSeed, 1u), HashCombine(pairSeed, 2u));
     }
     uint32_t seed_;
-    uint32_t cached_;
+    uint32_t cached_;  // bit p: seeds_[p] holds pair p's seeds
     uvec3 seeds_[kCachedPairs];
 };
 
