@@ -6,10 +6,6 @@
 namespace fovrt {
 namespace {
 
-vec3 SchlickFresnel(const vec3& f0, float cosTheta) {
-    return f0 + (vec3(1.0f) - f0) * SchlickWeight(cosTheta);
-}
-
 // Probability of choosing the specular lobe for outgoing direction wo.
 float SpecularProbability(const BsdfParams& p, float cosThetaO) {
     // No specular interface (F0 = 0, e.g. an MTL with Ks 0): no Fresnel term to evaluate.
@@ -86,66 +82,8 @@ BsdfWo PrepareBsdfWo(const BsdfParams& p, const vec3& wo) {
     return w;
 }
 
-BsdfEval EvalBsdf(const BsdfParams& p, const BsdfWo& w, const vec3& wi) {
-    BsdfEval e;
-    const vec3& wo = w.wo;
-    if (wo.z <= 0.0f || wi.z <= 0.0f) return e;
-    if (w.pSpec <= 0.0f) {
-        // Pure Lambert (no specular interface): F = 0.
-        e.fCos = p.diffuse * (kInvPi * wi.z);
-        e.pdf = wi.z * kInvPi;
-        return e;
-    }
-    vec3 h = glm::normalize(wo + wi);
-    float woh = std::max(glm::dot(wo, h), 0.0f);
-    vec3 fresnel = SchlickFresnel(p.f0, woh);
-    // Diffuse: Lambert scaled by the energy the specular interface transmits.
-    e.fCos = p.diffuse * (vec3(1.0f) - fresnel) * (kInvPi * wi.z);
-    e.pdf = (1.0f - w.pSpec) * wi.z * kInvPi;
-    float d = GgxD(p.alpha, h.z);
-    float g2 = 1.0f / (1.0f + w.lambdaO + GgxLambda(p.alpha, wi.z));
-    float g1 = 1.0f / (1.0f + w.lambdaO);
-    // f_s cos = F D G2 / (4 cos_o); VNDF reflection pdf = G1 D / (4 cos_o).
-    e.fCos += fresnel * (d * g2 / (4.0f * wo.z));
-    e.pdf += w.pSpec * g1 * d / (4.0f * wo.z);
-    return e;
-}
-
 BsdfEval EvalBsdf(const BsdfParams& p, const vec3& wo, const vec3& wi) {
     return EvalBsdf(p, PrepareBsdfWo(p, wo), wi);
-}
-
-bool SampleBsdf(const BsdfParams& p, const BsdfWo& w, const vec2& u, float uLobe, BsdfSample& out) {
-    const vec3& wo = w.wo;
-    if (wo.z <= 0.0f) return false;
-    vec3 wi;
-    if (uLobe < w.pSpec) {
-        vec3 h = SampleGgxVndf(p.alpha, wo, u);
-        wi = 2.0f * glm::dot(wo, h) * h - wo;
-    } else {
-        // Cosine-weighted hemisphere (concentric disk).
-        vec2 d = 2.0f * u - vec2(1.0f);
-        float r, phi;
-        if (d.x == 0.0f && d.y == 0.0f) {
-            r = 0.0f;
-            phi = 0.0f;
-        } else if (std::abs(d.x) > std::abs(d.y)) {
-            r = d.x;
-            phi = (kPi / 4.0f) * (d.y / d.x);
-        } else {
-            r = d.y;
-            phi = (kPi / 2.0f) - (kPi / 4.0f) * (d.x / d.y);
-        }
-        float x = r * std::cos(phi), y = r * std::sin(phi);
-        wi = vec3(x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y)));
-    }
-    if (wi.z <= 0.0f) return false;
-    BsdfEval e = EvalBsdf(p, w, wi);
-    if (!(e.pdf > 0.0f)) return false;
-    out.wi = wi;
-    out.pdf = e.pdf;
-    out.weight = e.fCos / e.pdf;
-    return true;
 }
 
 bool SampleBsdf(const BsdfParams& p, const vec3& wo, const vec2& u, float uLobe, BsdfSample& out) {

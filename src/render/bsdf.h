@@ -4,6 +4,9 @@
 // lobes are chosen by their approximate Fresnel-weighted albedo and the pdf is the mixture pdf.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/math.h"
 
 namespace fovrt {
@@ -48,10 +51,11 @@ struct BsdfWo {
 BsdfWo PrepareBsdfWo(const BsdfParams& params, const vec3& wo);
 
 // wo, wi in the local frame (z up), both must have z > 0 for a non-zero value.
-BsdfEval EvalBsdf(const BsdfParams& params, const BsdfWo& wo, const vec3& wi);
+inline BsdfEval EvalBsdf(const BsdfParams& params, const BsdfWo& wo, const vec3& wi);  // below
 BsdfEval EvalBsdf(const BsdfParams& params, const vec3& wo, const vec3& wi);
 // u: direction random numbers, uLobe: lobe selection. Returns false when no direction was made.
-bool SampleBsdf(const BsdfParams& params, const BsdfWo& wo, const vec2& u, float uLobe, BsdfSample& out);
+inline bool SampleBsdf(const BsdfParams& params, const BsdfWo& wo, const vec2& u, float uLobe,
+                       BsdfSample& out);  // below
 bool SampleBsdf(const BsdfParams& params, const vec3& wo, const vec2& u, float uLobe, BsdfSample& out);
 
 // GGX pieces (exposed for tests).
@@ -71,5 +75,71 @@ struct Frame {
     vec3 ToLocal(const vec3& v) const { return vec3(glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)); }
     vec3 ToWorld(const vec3& v) const { return v.x * t + v.y * b + v.z * n; }
 };
+
+// Defined here, inline: the tracer calls these per ray, and as calls they cost it ~3 % of its
+// samples per CPU-second (src/render/PROFILE.md). Schlick's Fresnel with the weight above.
+
+inline vec3 SchlickFresnel(const vec3& f0, float cosTheta) {
+    return f0 + (vec3(1.0f) - f0) * SchlickWeight(cosTheta);
+}
+
+[[gnu::always_inline]] inline BsdfEval EvalBsdf(const BsdfParams& p, const BsdfWo& w, const vec3& wi) {
+    BsdfEval e;
+    const vec3& wo = w.wo;
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return e;
+    if (w.pSpec <= 0.0f) {
+        // Pure Lambert (no specular interface): F = 0.
+        e.fCos = p.diffuse * (kInvPi * wi.z);
+        e.pdf = wi.z * kInvPi;
+        return e;
+    }
+    vec3 h = glm::normalize(wo + wi);
+    float woh = std::max(glm::dot(wo, h), 0.0f);
+    vec3 fresnel = SchlickFresnel(p.f0, woh);
+    // Diffuse: Lambert scaled by the energy the specular interface transmits.
+    e.fCos = p.diffuse * (vec3(1.0f) - fresnel) * (kInvPi * wi.z);
+    e.pdf = (1.0f - w.pSpec) * wi.z * kInvPi;
+    float d = GgxD(p.alpha, h.z);
+    float g2 = 1.0f / (1.0f + w.lambdaO + GgxLambda(p.alpha, wi.z));
+    float g1 = 1.0f / (1.0f + w.lambdaO);
+    // f_s cos = F D G2 / (4 cos_o); VNDF reflection pdf = G1 D / (4 cos_o).
+    e.fCos += fresnel * (d * g2 / (4.0f * wo.z));
+    e.pdf += w.pSpec * g1 * d / (4.0f * wo.z);
+    return e;
+}
+
+[[gnu::always_inline]] inline bool SampleBsdf(const BsdfParams& p, const BsdfWo& w, const vec2& u, float uLobe,
+                                              BsdfSample& out) {
+    const vec3& wo = w.wo;
+    if (wo.z <= 0.0f) return false;
+    vec3 wi;
+    if (uLobe < w.pSpec) {
+        vec3 h = SampleGgxVndf(p.alpha, wo, u);
+        wi = 2.0f * glm::dot(wo, h) * h - wo;
+    } else {
+        // Cosine-weighted hemisphere (concentric disk).
+        vec2 d = 2.0f * u - vec2(1.0f);
+        float r, phi;
+        if (d.x == 0.0f && d.y == 0.0f) {
+            r = 0.0f;
+            phi = 0.0f;
+        } else if (std::abs(d.x) > std::abs(d.y)) {
+            r = d.x;
+            phi = (kPi / 4.0f) * (d.y / d.x);
+        } else {
+            r = d.y;
+            phi = (kPi / 2.0f) - (kPi / 4.0f) * (d.x / d.y);
+        }
+        float x = r * std::cos(phi), y = r * std::sin(phi);
+        wi = vec3(x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y)));
+    }
+    if (wi.z <= 0.0f) return false;
+    BsdfEval e = EvalBsdf(p, w, wi);
+    if (!(e.pdf > 0.0f)) return false;
+    out.wi = wi;
+    out.pdf = e.pdf;
+    out.weight = e.fCos / e.pdf;
+    return true;
+}
 
 }  // namespace fovrt
