@@ -564,13 +564,15 @@ private:
         return result;
     }
 
-    // The vertex's selectors: x picks the emitter (read only with emissive triangles), y the BSDF
-    // lobe (read only where a bounce follows and the surface has a specular lobe: with pSpec = 0
-    // every y in [0, 1) picks the diffuse lobe, as 0 does). Drawn only when read, which leaves
-    // every image unchanged and halves the sampler's work on Lambert surfaces lit by point lights.
+    // Whether a vertex reads its selectors: x picks the emitter (only with emissive triangles), y
+    // the BSDF lobe (only where a bounce follows and the surface has a specular lobe: with
+    // pSpec = 0 every y in [0, 1) picks the diffuse lobe, as 0 does).
+    bool ReadsSelectors(bool last, float pSpec) const { return lightPower_ > 0.0f || (!last && pSpec > 0.0f); }
+
+    // The vertex's selectors, drawn only when read: every image is unchanged, and the sampler's
+    // work halves on Lambert surfaces lit by point lights.
     vec2 Selectors(const PathVertex& v, const PathSampler& sampler, int vertex, bool last) const {
-        bool read = lightPower_ > 0.0f || (!last && v.wo.pSpec > 0.0f);
-        return read ? sampler.Selectors(vertex) : vec2(0.0f);
+        return ReadsSelectors(last, v.wo.pSpec) ? sampler.Selectors(vertex) : vec2(0.0f);
     }
 
     // Completes vertex v (v.p resolved) for a path arriving from direction wo.
@@ -701,8 +703,8 @@ private:
 
     // Dimension pairs worth hashing once per pixel (PixelSampler's mask): those that n samples
     // read more than once. One sample reads each pair at most once (hashing on use costs no
-    // more). Light points are read only with emissive triangles, selectors as Selectors() says
-    // (a later vertex's surface is not known here: its pair is prepared), BSDF directions by
+    // more). Light points are read only with emissive triangles, selectors as ReadsSelectors()
+    // says (a later vertex's surface is not known here: taken as specular), BSDF directions by
     // every vertex but the last. (Same numbers either way.)
     uint32_t CachedSamplerPairs(int n, const PathVertex& primary) const {
         if (n <= 1) return 0;
@@ -712,9 +714,9 @@ private:
             const uint32_t first = uint32_t(vertex) * PathSampler::kPairsPerVertex;
             if (first + PathSampler::kPairsPerVertex > PixelSampler::kCachedPairs) break;
             const bool last = vertex + 1 >= settings_.maxDepth;
-            const bool specular = vertex > 0 || primary.wo.pSpec > 0.0f;
+            const float pSpec = vertex == 0 ? primary.wo.pSpec : 1.0f;
             if (emitters) mask |= 1u << first;                                // light point
-            if (emitters || (!last && specular)) mask |= 1u << (first + 1);  // selectors
+            if (ReadsSelectors(last, pSpec)) mask |= 1u << (first + 1);      // selectors
             if (!last) mask |= 1u << (first + 2);                            // BSDF direction
         }
         return mask;
