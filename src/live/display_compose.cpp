@@ -187,4 +187,13 @@ uint32_t DisplayPixelRgb(uint32_t packed, DisplayByteOrder order) {
     return ((packed & 0xFFu) << 16) | (packed & 0xFF00u) | ((packed >> 16) & 0xFFu);
 }
 
+std::vector<uint8_t> DisplayPixelsRgb8(std::span<const uint32_t> packed, DisplayByteOrder order) {
+    std::vector<uint8_t> rgb(packed.size() * 3);
+    for (size_t i = 0; i < packed.size(); ++i) {
+        const uint32_t c = DisplayPixelRgb(packed[i], order);
+        for (int k = 0; k < 3; ++k) rgb[3 * i + size_t(k)] = uint8_t(c >> (16 - 8 * k));
+    }
+    return rgb;
+}
+
 }  // namespace fovrt

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/image.h"
@@ -87,5 +88,7 @@ std::vector<uint32_t> ComposeDisplayReference(const Plane<vec3>& left, const Pla
 
 // A packed pixel's colour as 0xRRGGBB (alpha dropped), whichever byte order it was written in.
 uint32_t DisplayPixelRgb(uint32_t packed, DisplayByteOrder order);
+// Packed pixels as R,G,B bytes (alpha dropped): what WriteRgb8Png takes.
+std::vector<uint8_t> DisplayPixelsRgb8(std::span<const uint32_t> packed, DisplayByteOrder order);
 
 }  // namespace fovrt

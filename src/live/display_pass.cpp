@@ -130,18 +130,31 @@ VkBufferImageCopy DisplayPass::OutputCopyRegion() const {
     return region;
 }
 
+void DisplayPass::RecordReadBack(VkCommandBuffer cmd) {
+    FOVRT_CHECK(cmd != VK_NULL_HANDLE && outSize_.x > 0);
+    const size_t bytes = size_t(outSize_.x) * size_t(outSize_.y) * sizeof(uint32_t);
+    if (readback_.size() < bytes)
+        readback_ = context_->allocator().CreateBuffer("display.readback", bytes, MemoryUsage::Staging);
+    const VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, output_.handle(), readback_.handle(), 1, &region);  // Record's barrier ordered it
+    const VkBufferMemoryBarrier copied = BufferBarrier(readback_, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &copied, 0,
+                         nullptr);
+}
+
+std::vector<uint32_t> DisplayPass::ReadBack() const {
+    std::vector<uint32_t> pixels(size_t(outSize_.x) * size_t(outSize_.y));
+    FOVRT_CHECK_OP(pixels.size() * sizeof(uint32_t), <=, readback_.size());
+    std::memcpy(pixels.data(), readback_.mapped(), pixels.size() * sizeof(uint32_t));
+    return pixels;
+}
+
 std::vector<uint32_t> DisplayPass::Run(const DisplaySettings& settings, int outWidth, int outHeight) {
     CommandRecorder recorder(*context_);
     Record(recorder.commandBuffer(), settings, outWidth, outHeight);
-    const size_t bytes = size_t(outWidth) * size_t(outHeight) * sizeof(uint32_t);
-    if (readback_.size() < bytes)
-        readback_ = context_->allocator().CreateBuffer("display.readback", bytes, MemoryUsage::Staging);
-    recorder.Download(output_, bytes, readback_, 0);
-    recorder.Barrier();  // the copy's writes visible to the host
+    RecordReadBack(recorder.commandBuffer());
     recorder.Submit();
-    std::vector<uint32_t> pixels(size_t(outWidth) * size_t(outHeight));
-    std::memcpy(pixels.data(), readback_.mapped(), bytes);
-    return pixels;
+    return ReadBack();
 }
 
 DisplayBenchResult BenchDisplayPass(VulkanContext& context, ivec2 outSize, ivec2 eyeSize, int repeats) {

@@ -67,8 +67,15 @@ public:
     ivec2 outputSize() const { return outSize_; }
     ivec2 eyeSize() const { return eyeSize_; }
 
+    // Records, after a Record into the same command buffer, a copy of Output() into the pass's
+    // host-visible read-back buffer and a barrier making it readable by the host. Once that command
+    // buffer has completed, ReadBack() returns the pixels as written (what a copy put into a
+    // swapchain image), one uint32 each, outputSize() of them.
+    void RecordReadBack(VkCommandBuffer cmd);
+    std::vector<uint32_t> ReadBack() const;
+
     // Records on its own command buffer, submits, waits and reads Output() back (tests,
-    // screenshots): the pixels as written, one uint32 each.
+    // screenshots): Record, RecordReadBack, ReadBack.
     std::vector<uint32_t> Run(const DisplaySettings& settings, int outWidth, int outHeight);
 
 private:
@@ -79,7 +86,7 @@ private:
     Buffer staging_;  // host-visible: left eye, then right eye, float[2·3·W·H]
     Buffer eyes_;     // device-local, the same layout
     Buffer output_;   // device-local, uint[outW·outH]
-    Buffer readback_; // host-visible, Run only
+    Buffer readback_; // host-visible, RecordReadBack only
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     ivec2 eyeSize_{0};
     ivec2 outSize_{0};

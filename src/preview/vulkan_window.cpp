@@ -374,10 +374,9 @@ void ParseWindowSize(const std::string& text, WindowOptions& options) {
 }
 
 void WriteWindowCapturePng(const std::filesystem::path& path, const Plane<uint32_t>& pixels) {
-    std::vector<uint8_t> rgb(pixels.size() * 3);
-    for (size_t i = 0; i < pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = uint8_t(pixels[i] >> (16 - 8 * c));
-    WriteRgb8Png(path, pixels.width(), pixels.height(), rgb);
+    // TakeCapture's 0xRRGGBB is the BGRA packing with its alpha byte cleared.
+    WriteRgb8Png(path, pixels.width(), pixels.height(),
+                 DisplayPixelsRgb8({pixels.data(), pixels.size()}, DisplayByteOrder::Bgra));
 }
 
 }  // namespace fovrt

@@ -104,7 +104,7 @@ public:
         for (auto& swapchain : swapchains_)
             swapchain.emplace(session_->handle(), *context_, format, uint32_t(config_.camera.width),
                               uint32_t(config_.camera.height));
-        writer_.emplace(*context_);
+        writer_.emplace(*context_, options_.writeFrames);
 
         source_.emplace(config_, options.followPath);
         loop_.emplace(config_, &*context_, *source_);
@@ -315,12 +315,14 @@ private:
               {"end_frame", MsBetween(endStart, submitted)}}}};
         std::fprintf(frameLog_, "%s\n", line.dump().c_str());
         std::fflush(frameLog_);
-        // The display pass's transform: exposure and tone curve for radiance views; a display-referred
-        // view (spp, normal, ...) is clamp + sRGB, which is the same transform at exposure 0.
+        // The bytes the device composed for each eye's swapchain image (the last Write was this
+        // frame's), not the C++ display transform of the same frame: the two may differ by 1 in
+        // a rare byte (shaders/common/display_transform.glsl).
         if (options_.writeFrames)
             for (int eye = 0; eye < 2; ++eye)
-                WritePng(outDir_ / "frames" / (FrameOutputStem(s.request.frame, eye) + ".png"),
-                         frame.shown[size_t(eye)].rgb, frame.shown[size_t(eye)].hdr ? config_.output.exposure : 0.0f);
+                WriteRgb8Png(outDir_ / "frames" / (FrameOutputStem(s.request.frame, eye) + ".png"),
+                             swapchains_[size_t(eye)]->width(), swapchains_[size_t(eye)]->height(),
+                             writer_->SentRgb8(eye));
     }
 
     std::vector<std::string> SessionLines() const {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "vk/context.h"
 #include "vk/recorder.h"
@@ -92,8 +93,8 @@ DisplayByteOrder XrEyeSwapchain::byteOrder() const {
                                                                                        : DisplayByteOrder::Rgba;
 }
 
-XrEyeImageWriter::XrEyeImageWriter(VulkanContext& context)
-    : context_(context), passes_{DisplayPass(context), DisplayPass(context)} {
+XrEyeImageWriter::XrEyeImageWriter(VulkanContext& context, bool keepSent)
+    : context_(context), passes_{DisplayPass(context), DisplayPass(context)}, keepSent_(keepSent) {
     auto poolInfo = VkInit<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = context.queueFamily();
@@ -132,6 +133,8 @@ void XrEyeImageWriter::Write(const std::array<const Plane<vec3>*, 2>& eyes, cons
         const VkBufferImageCopy region = pass.OutputCopyRegion();
         vkCmdCopyBufferToImage(cmd_, pass.Output().handle(), images[size_t(eye)], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                1, &region);
+        if (keepSent_) pass.RecordReadBack(cmd_);
+        sentOrder_[size_t(eye)] = eyeSettings.byteOrder;
         RecordImageBarrier(cmd_, images[size_t(eye)], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
@@ -148,6 +151,11 @@ void XrEyeImageWriter::Write(const std::array<const Plane<vec3>*, 2>& eyes, cons
     }
     FOVRT_VK(vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
     lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<uint8_t> XrEyeImageWriter::SentRgb8(int eye) const {
+    FOVRT_CHECK(keepSent_ && (eye == 0 || eye == 1));
+    return DisplayPixelsRgb8(passes_[size_t(eye)].ReadBack(), sentOrder_[size_t(eye)]);
 }
 
 }  // namespace fovrt

@@ -3,7 +3,7 @@
 // (live/display_pass.h: exposure, tone curve, sRGB encode in the shader, 8 bits) composes the eye
 // 1:1 into a buffer that is copied into the swapchain image (SPEC §11: images come and go in
 // COLOR_ATTACHMENT_OPTIMAL). The bytes are sRGB-encoded for UNORM and SRGB formats alike (copies
-// do not convert), so either shows the same picture as fovrt's PNGs.
+// do not convert), so either shows the same picture; `--write-frames` writes these bytes as PNGs.
 #pragma once
 
 #include <array>
@@ -50,7 +50,8 @@ private:
 
 class XrEyeImageWriter {
 public:
-    explicit XrEyeImageWriter(VulkanContext& context);
+    // keepSent: each Write also reads the composed bytes back (SentRgb8), for --write-frames.
+    XrEyeImageWriter(VulkanContext& context, bool keepSent);
     ~XrEyeImageWriter();
     XrEyeImageWriter(const XrEyeImageWriter&) = delete;
     XrEyeImageWriter& operator=(const XrEyeImageWriter&) = delete;
@@ -60,10 +61,16 @@ public:
     void Write(const std::array<const Plane<vec3>*, 2>& eyes, const DisplaySettings& settings,
                const std::array<XrEyeSwapchain*, 2>& swapchains, const std::array<VkImage, 2>& images);
     double lastMs() const { return lastMs_; }  // wall clock of the last Write (record, submit, wait)
+    // The bytes the last Write put into eye's swapchain image, as R,G,B rows (keepSent only):
+    // the device's display transform, which may differ from the C++ one (TonemapToRgb8) by 1 in
+    // a rare byte (shaders/common/display_transform.glsl).
+    std::vector<uint8_t> SentRgb8(int eye) const;
 
 private:
     VulkanContext& context_;
     std::array<DisplayPass, 2> passes_;
+    bool keepSent_;
+    std::array<DisplayByteOrder, 2> sentOrder_{};
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
