@@ -53,6 +53,7 @@ struct BenchOptions {
     bool bareProbe = true;  // trace the same rays with bare Embree calls (ProbeBareEmbree)
     std::string fbetaPlane = "off";  // RenderSettings::fbetaPlane: off, on, or ab (both, frames alternated)
     int compareSpp = 4;
+    int compareRounds = 3;
     std::string embreeBinary = "/usr/bin/pathtracer";
     bool denoisers = false;  // time the denoisers instead (denoise/bench/denoise_bench.h)
     std::vector<std::string> denoiserNames;  // --denoiser: empty = all
@@ -237,18 +238,12 @@ void CompareWithEmbree(const BenchOptions& o) {
     settings.maxDepth = o.maxDepth;
     settings.threads = 2;
     auto renderer = CreateRenderer(scene, settings);
-    const Throughput ours = Measure({renderer.get()}, {camera}, o.compareSpp, o.frames)[0];
-    // Both rates count pixel samples, W x H x spp per frame, background pixels included (Embree's
-    // tutorial traces them too; ours stops after the primary ray there).
-    double pixelSamples = double(o.width) * o.height * o.compareSpp * o.frames;
-    double oursRate = pixelSamples / ours.seconds;
-    double oursCpuRate = pixelSamples / ours.cpuSeconds;
 
     // Embree: time spp S and 3S in one process each; the difference removes loading, BVH build
     // and image writing, leaving the time of 2S spp over the image.
     std::filesystem::path image = std::filesystem::temp_directory_path() / "fovrt_bench_embree.ppm";
     struct Timing {
-        double wall, cpu;
+        double wall = 0.0, cpu = 0.0;
     };
     auto runEmbree = [&](int spp) {
         std::string cmd = o.embreeBinary + " -i '" + obj.string() + "' --size " + std::to_string(o.width) +
@@ -266,26 +261,56 @@ void CompareWithEmbree(const BenchOptions& o) {
         if (rc != 0) Fail("bench: '{}' failed with status {}", cmd, rc);
         return t;
     };
-    // S and 3S: a 2S difference keeps the estimate stable on a busy machine.
-    Timing tS = runEmbree(o.compareSpp), t2S = runEmbree(3 * o.compareSpp);
+    // Rounds of fovrt then Embree, so that the machine's speed drifting over the command falls on
+    // both alike. Each round times the same work on both sides: fovrt renders 2 frames at S spp,
+    // the W x H x 2S samples of Embree's 3S - S difference. Both rates count pixel samples,
+    // background pixels included (Embree's tutorial traces them too; ours stops after the primary
+    // ray there).
+    const double roundSamples = double(o.width) * o.height * 2.0 * o.compareSpp;
+    Throughput ours;
+    double rays = 0.0;
+    Timing embree, embreeS, embree3S;
+    std::vector<double> roundRatios;
+    for (int round = 0; round < o.compareRounds; ++round) {
+        const Throughput t = Measure({renderer.get()}, {camera}, o.compareSpp, 2)[0];
+        const Timing tS = runEmbree(o.compareSpp), t3S = runEmbree(3 * o.compareSpp);
+        ours.seconds += t.seconds;
+        ours.cpuSeconds += t.cpuSeconds;
+        rays += double(t.stats.Rays());
+        ours.checksum = t.checksum;
+        const Timing diff{std::max(t3S.wall - tS.wall, 1e-6), std::max(t3S.cpu - tS.cpu, 1e-6)};
+        embree.wall += diff.wall;
+        embree.cpu += diff.cpu;
+        embreeS.wall += tS.wall;
+        embreeS.cpu += tS.cpu;
+        embree3S.wall += t3S.wall;
+        embree3S.cpu += t3S.cpu;
+        roundRatios.push_back((roundSamples / t.cpuSeconds) / (roundSamples / diff.cpu));
+    }
     std::filesystem::remove(image);
-    double embreeSamples = double(o.width) * o.height * 2.0 * o.compareSpp;
-    double embreeRate = embreeSamples / std::max(t2S.wall - tS.wall, 1e-6);
-    double embreeCpuRate = embreeSamples / std::max(t2S.cpu - tS.cpu, 1e-6);
+    const double samples = roundSamples * o.compareRounds;
+    const double oursRate = samples / ours.seconds, oursCpuRate = samples / ours.cpuSeconds;
+    const double embreeRate = samples / embree.wall, embreeCpuRate = samples / embree.cpu;
     std::printf("  %dx%d, %d spp, path length %d (primary + %d bounce(s), NEE at every vertex), 2 threads,\n"
-                "  one point light (%.1f, %.1f, %.1f) in both\n",
-                o.width, o.height, o.compareSpp, o.maxDepth, o.maxDepth - 1, lightPosition.x,
-                lightPosition.y, lightPosition.z);
-    std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s traced; primary "
-                "rays and primary-vertex point-light shadow rays once per pixel, not per sample; checksum %016llx)\n",
-                1e-6 * oursRate, 1e-6 * oursCpuRate, 1e-6 * double(ours.stats.Rays()) / ours.seconds,
+                "  one point light (%.1f, %.1f, %.1f) in both; %d round(s), each fovrt's 2 frames then Embree's run pair\n",
+                o.width, o.height, o.compareSpp, o.maxDepth, o.maxDepth - 1, lightPosition.x, lightPosition.y,
+                lightPosition.z, o.compareRounds);
+    std::printf("  fovrt:  %.2f Msamples/s wall, %.2f Msamples per CPU-second (%.2f Mrays/s traced; "
+                "primary rays and primary-vertex point-light shadow rays once per pixel, not per sample; checksum "
+                "%016llx)\n",
+                1e-6 * oursRate, 1e-6 * oursCpuRate,
+                1e-6 * rays / ours.seconds,
                 static_cast<unsigned long long>(ours.checksum));
-    std::printf("  embree: %.2f Msamples/s wall, %.2f Msamples per CPU-second (%s: %.3f s / %.3f s CPU at "
-                "%d spp, %.3f s / %.3f s CPU at %d spp)\n",
-                1e-6 * embreeRate, 1e-6 * embreeCpuRate, o.embreeBinary.c_str(), tS.wall, tS.cpu,
-                o.compareSpp, t2S.wall, t2S.cpu, 3 * o.compareSpp);
-    std::printf("  ratio fovrt / embree samples per second: %.2f wall-clock, %.2f per CPU-second\n",
-                oursRate / embreeRate, oursCpuRate / embreeCpuRate);
+    std::printf("  embree: %.2f Msamples/s wall, %.2f Msamples per CPU-second (%s, per round on average: %.3f s / %.3f s "
+                "CPU at %d spp, %.3f s / %.3f s CPU at %d spp)\n",
+                1e-6 * embreeRate, 1e-6 * embreeCpuRate, o.embreeBinary.c_str(), embreeS.wall / o.compareRounds,
+                embreeS.cpu / o.compareRounds, o.compareSpp, embree3S.wall / o.compareRounds,
+                embree3S.cpu / o.compareRounds, 3 * o.compareSpp);
+    std::string rounds;
+    for (double r : roundRatios) rounds += fmt::format("{}{:.2f}", rounds.empty() ? "" : " / ", r);
+    std::printf("  ratio fovrt / embree samples per second: %.2f wall-clock, %.2f per CPU-second (rounds, per "
+                "CPU-second: %s)\n",
+                oursRate / embreeRate, oursCpuRate / embreeCpuRate, rounds.c_str());
 }
 
 }  // namespace
@@ -309,6 +334,9 @@ void RegisterBenchCommand(CLI::App& app) {
                     "(both, frames alternated, and their ratio)")
         ->check(CLI::IsMember({"off", "on", "ab"}));
     cmd->add_option("--compare-spp", o->compareSpp, "spp of the Embree comparison")->check(CLI::Range(1, 4096));
+    cmd->add_option("--compare-rounds", o->compareRounds,
+                    "Rounds of the Embree comparison (each: fovrt's 2 frames, then Embree at spp S and 3S)")
+        ->check(CLI::Range(1, 1000));
     cmd->add_option("--embree-bin", o->embreeBinary, "Embree's tutorial path tracer");
     cmd->add_flag("--denoisers", o->denoisers, "Time the denoisers (Vulkan and C++ reference) at --width x --height instead");
     cmd->add_option("--denoiser", o->denoiserNames, "With --denoisers: only these (repeatable; default all)");
