@@ -165,6 +165,19 @@ if "$fovrt" bench --denoisers --denoiser two-history --no-reference --precision 
 else
   bad "bench --denoiser failed: $(cat err.txt)"
 fi
+# The Embree comparison at a small size, in 2 rounds: a ratio per round and the pooled one (the
+# numbers are timings, not checked; the shared Cornell OBJ and embree-tools are needed).
+if "$fovrt" bench --scene none --width 64 --height 36 --compare-rounds 2 >cmp.txt 2>err.txt; then
+  if grep -q "^  skipped:" cmp.txt; then
+    echo "note: the Embree comparison was skipped: $(grep "^  skipped:" cmp.txt)"
+  else
+    grep -Eq "per CPU-second \(rounds, per CPU-second: [0-9.]+ / [0-9.]+\)$" cmp.txt \
+      && grep -q "2 round(s), each fovrt's 2 frames then Embree's run pair" cmp.txt \
+      && ok "bench: the Embree comparison in 2 rounds" || bad "bench comparison: $(grep -E 'ratio|round' cmp.txt)"
+  fi
+else
+  bad "bench comparison failed: $(cat err.txt)"
+fi
 expect_error "unknown bench denoiser" "svgf-typo" bench --denoisers --denoiser svgf-typo
 expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
 expect_error "unknown denoiser names the nearest" "did you mean 'two-history'" memory --width 64 --height 64 --denoiser two-histroy
