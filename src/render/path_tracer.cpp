@@ -1,8 +1,9 @@
-// The stereo Embree path tracer: TracePath -> ShadePixel (n from the spp map) -> ShadeEntry ->
-// RenderEye. Per eye: visibility buffer (TraceTile, into the eye's VisibilityBuffer, which the
-// tracer keeps; FrameInputs gets only what denoisers read), with A-SVGF gradient samples the
-// forward-projected previous surface samples merged into it (MergeGradientSamples), then every
-// entry shaded once (ShadeEntry, from TraceTile when nothing is merged, else from ShadeTile).
+// The stereo Embree path tracer: Advance / Land (one path vertex) -> ShadePixel (n from the spp
+// map) -> ShadeEntry -> RenderEye. Per eye: visibility buffer (TraceTile, into the eye's
+// VisibilityBuffer, which the tracer keeps; FrameInputs gets only what denoisers read), with
+// A-SVGF gradient samples the forward-projected previous surface samples merged into it
+// (MergeGradientSamples), then every entry shaded once (ShadeEntry, from TraceTile when nothing
+// is merged, else from ShadeTile).
 //
 // Integrator conventions:
 // - Primary visibility is noise-free: one ray through the pixel centre (a merged gradient sample
@@ -590,48 +591,6 @@ private:
         v.origin = OffsetRayOrigin(p.hit.position, ng);
     }
 
-    // One path sample from the primary vertex, one ray at a time; adds radiance to direct /
-    // indirect. Same arithmetic as Advance/Land below, kept for single samples (1 spp), where
-    // the packet bookkeeping measured slower.
-    void TracePath(const PathVertex& primary, const DeterministicLights& primaryLights,
-                   const PathSampler& sampler, vec3& direct, vec3& indirect, RayCounts& counts) const {
-        const PathVertex* v = &primary;
-        RawSlot<PathVertex> storage;
-        vec3 throughput(1.0f);
-        for (int depth = 1;; ++depth) {
-            int vertex = depth - 1;
-            vec3& target = depth == 1 ? direct : indirect;
-            bool last = depth >= settings_.maxDepth;
-            vec2 sel = Selectors(*v, sampler, vertex, last);
-            target += throughput * SampleLights(*v, sampler, vertex, sel, !last, counts,
-                                                depth == 1 ? &primaryLights : nullptr);
-            if (last) return;
-
-            BsdfSample bs;
-            if (!SampleBsdf(v->p.bsdf, v->wo, sampler.BsdfDirection(vertex), sel.y, bs)) return;
-            vec3 wi = v->frame.ToWorld(bs.wi);
-            if (glm::dot(wi, v->ng) <= 0.0f) return;  // below the geometric surface
-            ++counts.bounce;
-            SurfaceSample next;
-            float t;
-            if (!embree_->Intersect(v->origin, wi, kInf, next, t)) {
-                target += throughput * bs.weight * scene_.background;
-                return;
-            }
-            throughput *= bs.weight;
-            PathVertex& landed = storage.Emplace();  // v's vertex is not read again
-            const ShadingPoint& p = landed.p;
-            Resolve(next, landed.p);
-            if (vec3 le = EmissionToward(p, -wi); le != vec3(0.0f)) {
-                float pdfLight = LightPdf(le, p.hit.geomNormal, p.emissionTwoSided, t, wi);
-                float weight = bs.pdf * bs.pdf / (bs.pdf * bs.pdf + pdfLight * pdfLight);
-                target += throughput * le * weight;
-            }
-            InitVertex(landed, -wi);
-            v = &landed;
-        }
-    }
-
     // One path sample in flight: the vertex it is at and its next bounce ray.
     struct PathState {
         // User-provided, so that building one in place does not zero the ~300 bytes first.
@@ -750,11 +709,12 @@ private:
         };
         for (int base = 0; base < n; base += kGroup) {
             int m = std::min(kGroup, n - base);
-            if (m == 1) {  // one sample (1 spp): no packet bookkeeping
-                vec3 oneDirect(0.0f), oneIndirect(0.0f);
-                TracePath(primary, primaryLights, PathSampler(pixelSampler, uint32_t(base)), oneDirect,
-                          oneIndirect, counts);
-                accumulate(oneDirect, oneIndirect);
+            if (m == 1) {  // one sample (1 spp): one ray at a time, no packet bookkeeping
+                RawSlot<PathState> one;
+                PathState& st = one.Emplace();
+                st.v = &primary;
+                Finish(st, PathSampler(pixelSampler, uint32_t(base)), primaryLights, counts);
+                accumulate(st.direct, st.indirect);
                 continue;
             }
             // Only the m lanes in use are constructed: a PathState is ~300 bytes, and building all

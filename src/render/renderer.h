@@ -1,5 +1,5 @@
 // Renderer: the stereo Embree path tracer behind one small interface (SPEC §2, issue "Foundation").
-// Layers: TracePath -> RenderPixel (n from the spp map) -> RenderTile -> RenderEye.
+// Layers (path_tracer.cpp): Advance / Land -> ShadePixel (n from the spp map) -> ShadeEntry -> RenderEye.
 #pragma once
 
 #include <cstdint>
