@@ -48,6 +48,11 @@ vec3 OffsetRayOrigin(const vec3& p, const vec3& n) {
     return out;
 }
 
+// BVH quality of everything that does not move. MEDIUM, not HIGH (spatial splits): on
+// veach-ajar MEDIUM traced 5-18 % more rays per second and built faster, with the same hits (same
+// image checksums); on the 36-triangle Cornell box no difference (PROFILE.md, fourth pass).
+constexpr RTCBuildQuality kStaticBuildQuality = RTC_BUILD_QUALITY_MEDIUM;
+
 EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     device_ = rtcNewDevice(nullptr);
     if (!device_) Fail("embree: cannot create a device (error {})", int(rtcGetDeviceError(nullptr)));
@@ -75,7 +80,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
             indices[3 * i + 1] = t.y;
             indices[3 * i + 2] = t.z;
         }
-        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+        rtcSetGeometryBuildQuality(geom, kStaticBuildQuality);
         rtcCommitGeometry(geom);
         return geom;
     };
@@ -87,13 +92,13 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     bool animated = false;
     for (const Instance& inst : scene.instances) animated = animated || inst.keys.size() > 1;
     top_ = rtcNewScene(device_);
-    rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(top_, kStaticBuildQuality);
     RTCScene staticScene = top_;
     if (animated) {
         rtcSetSceneFlags(top_, RTC_SCENE_FLAG_DYNAMIC);
         rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);
         staticScene = rtcNewScene(device_);
-        rtcSetSceneBuildQuality(staticScene, RTC_BUILD_QUALITY_HIGH);
+        rtcSetSceneBuildQuality(staticScene, kStaticBuildQuality);
     }
     blas_.assign(scene.meshes.size(), nullptr);
     for (size_t i = 0; i < scene.instances.size(); ++i) {
@@ -114,7 +119,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
         // Animated instance: a BLAS per mesh (shared), transform updated per frame.
         if (!blas_[inst.mesh]) {
             RTCScene blas = rtcNewScene(device_);
-            rtcSetSceneBuildQuality(blas, RTC_BUILD_QUALITY_HIGH);
+            rtcSetSceneBuildQuality(blas, kStaticBuildQuality);
             if (RTCGeometry geom = makeTriangles(mesh, nullptr)) {
                 rtcAttachGeometryByID(blas, geom, 0);
                 rtcReleaseGeometry(geom);
