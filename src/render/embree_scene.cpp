@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "render/embree_rays.h"
 
 namespace fovrt {
 namespace {
@@ -15,21 +16,6 @@ void ErrorCallback(void*, RTCError code, const char* message) {
     // Embree reports programming errors here; they are invariant violations for us.
     ::fovrt::detail::CheckFailed(__FILE__, __LINE__,
                                  fmt::format("embree error {}: {}", int(code), message ? message : ""));
-}
-
-void InitRay(RTCRay& ray, const vec3& o, const vec3& d, float tFar) {
-    ray.org_x = o.x;
-    ray.org_y = o.y;
-    ray.org_z = o.z;
-    ray.tnear = 0.0f;
-    ray.dir_x = d.x;
-    ray.dir_y = d.y;
-    ray.dir_z = d.z;
-    ray.time = 0.0f;
-    ray.tfar = tFar;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
 }
 
 }  // namespace
@@ -265,23 +251,7 @@ void EmbreeScene::Intersect8(const vec3& origin, const vec3* dirs, const bool* v
     context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     alignas(32) int mask[8];
     alignas(32) RTCRayHit8 rh;
-    for (int i = 0; i < 8; ++i) {
-        mask[i] = valid[i] ? -1 : 0;
-        rh.ray.org_x[i] = origin.x;
-        rh.ray.org_y[i] = origin.y;
-        rh.ray.org_z[i] = origin.z;
-        rh.ray.tnear[i] = 0.0f;
-        rh.ray.dir_x[i] = dirs[i].x;
-        rh.ray.dir_y[i] = dirs[i].y;
-        rh.ray.dir_z[i] = dirs[i].z;
-        rh.ray.time[i] = 0.0f;
-        rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
-        rh.ray.mask[i] = 0xFFFFFFFFu;
-        rh.ray.id[i] = unsigned(i);
-        rh.ray.flags[i] = 0;
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-    }
+    InitRayPacket8(origin, dirs, valid, mask, rh);
     if (log_) [[unlikely]]
         for (int i = 0; i < 8; ++i)
             if (valid[i]) Log(origin, dirs[i], std::numeric_limits<float>::infinity(), false);
