@@ -1,9 +1,9 @@
-// How fovrt writes rays for Embree. Embree reads a ray's fields as vectors: (org, tnear),
-// (dir, time) and (tfar, mask, id, flags) of a single ray as 16-byte loads, each field of an
-// 8-ray packet as one 32-byte load. A load that follows narrower stores to the same bytes cannot
-// be served from the store buffer (store-to-load forwarding) and waits until the stores have
-// reached the cache, once per field and ray; written here as whole vectors, the loads are served
-// at once (+11 % bare rtcOccluded1/rtcIntersect1 rays per second, src/render/PROFILE.md).
+// How fovrt writes rays for Embree. Embree reads a single ray's (org, tnear) and (dir, time) as
+// 16-byte loads (its Vec3fa) and each field of an 8-ray packet as one 32-byte load. A load that
+// follows narrower stores to the same bytes cannot be served from the store buffer (store-to-load
+// forwarding) and waits until the stores have reached the cache, once per field and ray; written
+// here as whole vectors, the loads are served at once (bare rtcOccluded1/rtcIntersect1 rays +9 to
+// +11 % per second, src/render/PROFILE.md).
 #pragma once
 
 #include <embree3/rtcore.h>
