@@ -15,8 +15,9 @@
 namespace fovrt {
 namespace {
 
-using Float4 = float __attribute__((vector_size(16)));
-using Uint4 = uint32_t __attribute__((vector_size(16)));
+// may_alias: RTCRay's float and unsigned fields are written through these.
+using Float4 = float __attribute__((vector_size(16), may_alias));
+using Uint4 = uint32_t __attribute__((vector_size(16), may_alias));
 static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, time) == 28 && offsetof(RTCRay, flags) == 44,
               "InitRay writes RTCRay as three 16-byte groups");
 
@@ -71,11 +72,12 @@ void InitRayPacket8Lanes(const vec3& o, const vec3* dirs, const bool* valid, int
 }  // namespace
 
 void InitRay(RTCRay& ray, const vec3& o, const vec3& d, float tFar) {
-    const Float4 org = {o.x, o.y, o.z, 0.0f}, dir = {d.x, d.y, d.z, 0.0f};
-    const Uint4 rest = {std::bit_cast<uint32_t>(tFar), 0xFFFFFFFFu, 0u, 0u};
-    std::memcpy(&ray.org_x, &org, sizeof org);
-    std::memcpy(&ray.dir_x, &dir, sizeof dir);
-    std::memcpy(&ray.tfar, &rest, sizeof rest);
+    // Stored through vector lvalues, not memcpy: GCC may lower a memcpy of a vector into two
+    // 8-byte stores (it did where two InitRay calls shared a tail), which undoes the point.
+    auto* groups = reinterpret_cast<Float4*>(&ray.org_x);
+    groups[0] = Float4{o.x, o.y, o.z, 0.0f};
+    groups[1] = Float4{d.x, d.y, d.z, 0.0f};
+    *reinterpret_cast<Uint4*>(&ray.tfar) = Uint4{std::bit_cast<uint32_t>(tFar), 0xFFFFFFFFu, 0u, 0u};
 }
 
 bool CpuHasAvx() {
