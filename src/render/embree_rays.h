@@ -2,8 +2,8 @@
 // 16-byte loads (its Vec3fa) and each field of an 8-ray packet as one 32-byte load. A load that
 // follows narrower stores to the same bytes cannot be served from the store buffer (store-to-load
 // forwarding) and waits until the stores have reached the cache, once per field and ray; written
-// here as whole vectors, the loads are served at once (bare rtcOccluded1/rtcIntersect1 rays +9 to
-// +11 % per second, src/render/PROFILE.md).
+// here as whole vectors, the loads are served at once (`fovrt bench`'s bare rtcOccluded1 /
+// rtcIntersect1 rays +26 to +36 % per second; src/render/PROFILE.md, fifth pass).
 #pragma once
 
 #include <embree3/rtcore.h>
