@@ -11,7 +11,7 @@ fovrt=$build/src/app/fovrt
 command -v xvfb-run >/dev/null || { echo "$0: error: xvfb-run is missing (scripts/install-deps.sh)" >&2; exit 1; }
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+"$fovrt" info | sed -n 's/^machine  */machine: /p'   # CPU model, CPUs, vector extensions
 for scene in cornell veach-ajar; do
   for size in 320x180 640x360; do
     for denoiser in svgf two-history; do

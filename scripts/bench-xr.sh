@@ -15,7 +15,8 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 # shellcheck disable=SC1090
 . "$envsh" "$out/core-validation.txt"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); runtime: fovrt test runtime, ${FOVRT_TEST_XR_SIZE:-320x240} per eye, ${FOVRT_TEST_XR_HZ:-90} Hz"
+"$fovrt" info | sed -n 's/^machine  */machine: /p'   # CPU model, CPUs, vector extensions
+echo "runtime: fovrt test runtime, ${FOVRT_TEST_XR_SIZE:-320x240} per eye, ${FOVRT_TEST_XR_HZ:-90} Hz"
 for mode in sync async; do
  for scene in cornell veach-ajar; do
   for denoiser in svgf two-history; do

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's pictures of the detailed surface (issue #13): foveal crops of brdf-detail's metal
+# The picture of the detailed surface in docs/experiments.md: foveal crops of brdf-detail's metal
 # panel, reference | svgf | svgf+brdf | two-history | two-history+brdf, from the fovea crops of
 # one `fovrt experiment` report (presets/brdf-demodulation.toml at 640×360, 30 frames, 256-spp
 # references, the gaze held on the panel so that the fovea is where the detail is). The report

@@ -5,7 +5,7 @@
 // every difference between frames is flicker, at 96×64 per eye over 16 frames: cornell (a training
 // scene) with uniform 1 spp and with the foveated disc, and veach-ajar (held out of training, the
 // thesis scene) with the foveated disc. Deterministic (seeded tracer, the C++ reference network).
-// The claim does not hold everywhere for `rae` (box, suzanne: README); tests/tools/
+// The claim does not hold everywhere for `rae` (box, suzanne: training/README.md); tests/tools/
 // rae_temporal_probe measures any scene, size, length and weight file, per frame.
 #include <catch2/catch.hpp>
 

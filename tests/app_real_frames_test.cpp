@@ -94,7 +94,7 @@ TEST_CASE("reference denoisers keep real frames finite and close to the noisy me
         // regression, not a filter: the committed quarter-width networks (L1 in γ = 0.2 space,
         // which pulls towards the median, fine-tuned for temporal stability) come out 10 % darker
         // here (rae and rae-spp; the step-1400 weights 6 % darker and 2 % brighter), and darker
-        // on larger views (README); 30 % still catches a broken network or feature.
+        // on larger views (training/README.md); 30 % still catches a broken network or feature.
         const bool network = FindDenoiserVariant(name).family == DenoiserFamily::Rae;
         CHECK(outSum == Approx(noisySum).epsilon(network ? 0.30 : 0.15));
     }

@@ -183,7 +183,7 @@ TEST_CASE("quickstart preset: the first command compares two denoisers on built-
     CHECK(experiment["variants"].as_array()->size() >= 2u);  // a baseline and a variant: intervals
     CHECK(c.foveation.model == "disc");
     CHECK(c.output.report);
-    // Small enough to take about as long as the default `fovrt run` (README: Quick start).
+    // Small enough to take about as long as the default `fovrt run` (docs/performance.md: The first command).
     CHECK(int64_t(c.camera.width) * c.camera.height * c.run.frames * 3 <=
           int64_t(DefaultConfig().camera.width) * DefaultConfig().camera.height * DefaultConfig().run.frames);
 }

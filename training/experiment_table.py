@@ -3,7 +3,7 @@
 variant, relMSE, SSIM and temporal error (SVGF §5.4) for the whole image, the fovea and the
 periphery, means over frames and eyes (temporal error over frames 1.., as the CSV holds it).
 
-  python3 training/experiment_table.py out/rae          (the README's RAE experiment table)
+  python3 training/experiment_table.py out/rae          (the RAE experiment table in training/README.md)
 """
 import csv
 import glob

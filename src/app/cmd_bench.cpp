@@ -16,6 +16,7 @@
 #include <sys/resource.h>
 #include <tbb/info.h>
 
+#include "app/build_info.h"
 #include "commands.h"
 #include "core/camera.h"
 #include "core/error.h"
@@ -344,6 +345,8 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--precision", o->precision, "With --denoisers: history storage (fp32 or fp16)");
     cmd->add_option("--device", o->device, "With --denoisers: device, as denoise.device (auto, vulkan, cpu or an index from `fovrt info`)");
     cmd->callback([o] {
+        // Every figure says where it was measured.
+        std::printf("machine: %s\n", FormatCpu(DescribeCpu()).c_str());
         if (o->denoisers) {
             DenoiserBenchOptions options;  // named fields: no -Wmissing-field-initializers
             options.width = o->width;

@@ -1,5 +1,5 @@
 // `fovrt info`: versions of fovrt and the libraries it was built with, the Vulkan devices the
-// loader reports (the indices `--set denoise.device=<index>` accepts), the CPU thread count, and
+// loader reports (the indices `--set denoise.device=<index>` accepts), the CPU thread count and model, and
 // the denoiser variants with one line each (denoise/variants.cpp).
 #include <cstdio>
 #include <thread>
@@ -18,6 +18,7 @@ void RegisterInfoCommand(CLI::App& app) {
         for (const auto& [key, value] : build.items())
             std::printf("%-16s %s\n", key.c_str(), value.get<std::string>().c_str());
         std::printf("%-16s %u\n", "cpu threads", std::thread::hardware_concurrency());
+        std::printf("%-16s %s\n", "machine", FormatCpu(DescribeCpu()).c_str());  // the benchmark scripts' header
         auto devices = VulkanContext::ListDevices();
         if (devices.empty()) std::printf("vulkan devices   none (denoisers fall back to the C++ reference)\n");
         for (const VulkanDeviceInfo& d : devices)

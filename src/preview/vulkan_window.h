@@ -24,7 +24,7 @@ namespace fovrt {
 
 struct WindowOptions {
     // Every window pixel is composed on the device each present: on lavapipe a 1280×720 window
-    // costs the tracer about a frame per second at 320×180 per eye (README, Live preview).
+    // costs the tracer about a frame per second at 320×180 per eye (docs/performance.md, Live preview).
     int width = 960;
     int height = 540;
     std::string title = "fovrt preview";
