@@ -66,6 +66,8 @@
 #include "render/brdf_table.h"
 #include "render/bsdf.h"
 #include "render/embree_scene.h"
+#include "render/probes.h"
+#include "render/recording_scene.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
 
@@ -157,24 +159,15 @@ struct EyeVisibility {
     const VisibilityBuffer& Previous() const { return buffers[1 - latest]; }
 };
 
-class PathTracer final : public Renderer {
+// The path tracer, over `Rays`: the EmbreeScene itself (CreateRenderer) or a RecordingScene over it
+// (CreateProbeRenderer), whichever the ray calls go through; `Interface`: Renderer or ProbeRenderer.
+template <typename Rays, typename Interface>
+class PathTracer : public Interface {
 public:
     PathTracer(const Scene& scene, const RenderSettings& settings)
-        : scene_(scene), settings_(settings),
-          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic) {
-        if (settings_.maxDepth < 1) Fail("render: maxDepth must be >= 1 (got {})", settings_.maxDepth);
-        if (scene_.materials.empty()) scene_.materials.push_back(Material{});
-        for (const Mesh& mesh : scene_.meshes)
-            for (uint32_t m : mesh.materials)
-                if (m >= scene_.materials.size())
-                    Fail("scene {}: mesh '{}' uses material {} but there are {}", scene_.name,
-                         mesh.name, m, scene_.materials.size());
-        for (const Material& m : scene_.materials) {
-            if (m.baseColorTexture >= int(scene_.textures.size()) ||
-                m.metallicRoughnessTexture >= int(scene_.textures.size()) ||
-                m.roughnessTexture >= int(scene_.textures.size()) || m.metallicTexture >= int(scene_.textures.size()))
-                Fail("scene {}: material '{}' names a texture that does not exist", scene_.name, m.name);
-        }
+        : scene_(Checked(scene, settings)), settings_(settings),
+          arena_(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic),
+          embree_(std::make_unique<EmbreeScene>(scene_)), rays_(*embree_) {
         for (const Material& m : scene_.materials) {
             ResolvedMaterial r;
             r.textured = m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.roughnessTexture >= 0 ||
@@ -183,7 +176,6 @@ public:
             r.albedo = glm::clamp(r.bsdf.diffuse + r.bsdf.f0, vec3(kMinAlbedo), vec3(1.0f));
             materials_.push_back(r);
         }
-        embree_ = std::make_unique<EmbreeScene>(scene_);
         for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
             const Mesh& mesh = scene_.meshes[scene_.instances[i].mesh];
             for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -197,7 +189,7 @@ public:
         prevXforms_ = embree_->xforms();
     }
 
-    using Renderer::SetFrame;
+    using Interface::SetFrame;
     void SetFrame(uint32_t frame, float timeSeconds) override {
         if (hasFrame_ && frame == frame_) return;
         if (hasFrame_) {
@@ -286,7 +278,7 @@ public:
                     SurfaceSample s;
                     float t;
                     ++counts.primary;
-                    if (!embree_->Intersect(camera.Position(), dir, kInf, s, t, true)) {
+                    if (!rays_.Intersect(camera.Position(), dir, kInf, s, t, true)) {
                         out(x, y) = scene_.background;
                         continue;
                     }
@@ -296,35 +288,9 @@ public:
         });
     }
 
-    vec3 Shade(const EyeCamera& camera, const SurfaceSample& sample, uint32_t seed,
-               int sampleCount) const override {
-        RayCounts counts;
-        vec3 color = Remodulate(ShadePixel(camera.Position(), sample, seed, sampleCount, counts));
-        AddStats(counts);
-        return color;
-    }
-
     const VisibilityBuffer& Visibility(int eye) const override {
         FOVRT_CHECK(eye == 0 || eye == 1);
         return visibility_[eye].Latest();
-    }
-
-    vec3 WorldPosition(const SurfaceSample& sample) const override {
-        return embree_->Surface(sample).position;
-    }
-
-    void RecordRays(std::vector<TracedRay>* log) override { embree_->SetRayLog(log); }
-
-    uint64_t TraceBare(const std::vector<TracedRay>& rays) const override {
-        std::atomic<uint64_t> hits{0};
-        arena_.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-                uint64_t n = 0;
-                for (size_t i = r.begin(); i != r.end(); ++i) n += embree_->TraceBare(rays[i]) ? 1 : 0;
-                hits += n;
-            });
-        });
-        return hits.load();
     }
 
     RenderStats Stats() const override {
@@ -346,8 +312,31 @@ public:
         dropped_ = 0;
     }
 
-private:
+protected:
     static constexpr float kInf = std::numeric_limits<float>::infinity();
+
+    // The scene as the tracer keeps it (a default material when it has none), after the checks
+    // that would otherwise fail mid-frame.
+    static Scene Checked(const Scene& scene, const RenderSettings& settings) {
+        if (settings.maxDepth < 1) Fail("render: maxDepth must be >= 1 (got {})", settings.maxDepth);
+        Scene checked = scene;
+        if (checked.materials.empty()) checked.materials.push_back(Material{});
+        for (const Mesh& mesh : checked.meshes)
+            for (uint32_t m : mesh.materials)
+                if (m >= checked.materials.size())
+                    Fail("scene {}: mesh '{}' uses material {} but there are {}", checked.name, mesh.name, m,
+                         checked.materials.size());
+        const int textures = int(checked.textures.size());
+        for (const Material& m : checked.materials) {
+            if (m.baseColorTexture >= textures || m.metallicRoughnessTexture >= textures ||
+                m.roughnessTexture >= textures || m.metallicTexture >= textures)
+                Fail("scene {}: material '{}' names a texture that does not exist", checked.name, m.name);
+        }
+        return checked;
+    }
+
+    // World position of a surface sample in the current frame.
+    vec3 PositionOf(const SurfaceSample& sample) const { return embree_->Surface(sample).position; }
 
     struct EmissiveTriangle {
         uint32_t instance, primitive;
@@ -506,7 +495,7 @@ private:
             BsdfEval e = EvalBsdf(p.bsdf, v.wo, v.frame.ToLocal(wi));
             if (e.fCos == vec3(0.0f)) continue;
             ++out.shadowTests;
-            if (embree_->Occluded(origin, wi, tFar)) continue;
+            if (rays_.Occluded(origin, wi, tFar)) continue;
             result += e.fCos * li;
         }
         return out;
@@ -554,7 +543,7 @@ private:
                         // of dist by offset / cos: near a light at grazing angles that exceeds the
                         // 1e-3 margin and the light shadowed itself (a ceiling 2 cm above one).
                         float tPlane = glm::dot(light.normal, lightPosition - origin) / glm::dot(light.normal, wi);
-                        if (!embree_->Occluded(origin, wi, std::min(dist, tPlane) * (1.0f - 1e-3f))) {
+                        if (!rays_.Occluded(origin, wi, std::min(dist, tPlane) * (1.0f - 1e-3f))) {
                             float weight = mis ? pdf * pdf / (pdf * pdf + e.pdf * e.pdf) : 1.0f;
                             result += e.fCos * emission * (weight / pdf);
                         }
@@ -655,7 +644,7 @@ private:
         while (Advance(st, sampler, primaryLights, counts)) {
             SurfaceSample next;
             float t = kInf;
-            if (!embree_->Intersect(st.v->origin, st.wi, kInf, next, t)) next = SurfaceSample{};
+            if (!rays_.Intersect(st.v->origin, st.wi, kInf, next, t)) next = SurfaceSample{};
             if (!Land(st, next, t)) return;
         }
     }
@@ -736,13 +725,13 @@ private:
                 activeCount += active[j] ? 1 : 0;
             }
             if (activeCount >= 2) {
-                embree_->Intersect8(primary.origin, dirs, active, hits, ts, false);
+                rays_.Intersect8(primary.origin, dirs, active, hits, ts, false);
             } else {
                 // A packet of one ray is slower than a single ray (1 spp); same hits either way.
                 for (int j = 0; j < m; ++j) {
                     if (!active[j]) continue;
                     ts[j] = kInf;
-                    if (!embree_->Intersect(primary.origin, dirs[j], kInf, hits[j], ts[j])) hits[j] = SurfaceSample{};
+                    if (!rays_.Intersect(primary.origin, dirs[j], kInf, hits[j], ts[j])) hits[j] = SurfaceSample{};
                 }
             }
             for (int j = 0; j < m; ++j) {
@@ -835,7 +824,7 @@ private:
                     dirs[i] = view.rays.Direction(xs + i, y);
                     counts.primary += valid[i] ? 1 : 0;
                 }
-                embree_->Intersect8(view.eyePos, dirs, valid, hits, ts, true);
+                rays_.Intersect8(view.eyePos, dirs, valid, hits, ts, true);
                 for (int i = 0; i < 8 && xs + i < x1; ++i) {
                     int x = xs + i;
                     uint32_t seed = PixelSeed(settings_.seed, uint32_t(eye), uint32_t(x), uint32_t(y), frame_);
@@ -868,7 +857,7 @@ private:
                                vis, luminance, counts);
                     continue;
                 }
-                vec3 dir = WorldPosition(s) - view.eyePos;
+                vec3 dir = PositionOf(s) - view.eyePos;
                 vec3 eyeRay = view.rays.eyeFromWorld * dir;
                 eyeRay /= -eyeRay.z;  // in front of the camera (forward projection checked it)
                 ShadeEntry(view, x, y, s, seed, n, dir, eyeRay, out, vis, luminance, counts);
@@ -935,7 +924,7 @@ private:
                 int py = by + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, h - by))));
                 if (history.instance(px, py) == kNoObject) continue;
                 SurfaceSample s{history.instance(px, py), prevVis.primitiveId(px, py), prevVis.barycentrics(px, py)};
-                auto proj = camera.Project(WorldPosition(s));
+                auto proj = camera.Project(PositionOf(s));
                 if (!proj) continue;
                 int cx = int(std::floor(proj->pixel.x)), cy = int(std::floor(proj->pixel.y));
                 if (!out.objectId.InBounds(cx, cy) || out.objectId(cx, cy) == kNoObject) continue;
@@ -944,7 +933,7 @@ private:
                 SurfaceSample here{out.objectId(cx, cy), vis.primitiveId(cx, cy), vis.barycentrics(cx, cy)};
                 bool sameSurface = here.instance == s.instance && here.primitive == s.primitive;
                 if (!sameSurface) {
-                    float depth = camera.LinearDepth(WorldPosition(here));
+                    float depth = camera.LinearDepth(PositionOf(here));
                     if (std::abs(depth - proj->linearDepth) > kGradientDepthTolerance * proj->linearDepth)
                         continue;  // occluded in this frame
                 }
@@ -971,6 +960,7 @@ private:
     mutable tbb::task_arena arena_;
     const BrdfTable* fbetaTable_ = nullptr;  // the process's F_β table, once F_β is needed (SetFbetaPlane)
     std::unique_ptr<EmbreeScene> embree_;
+    Rays rays_;  // every ray traced goes through it
     bool hasFrame_ = false;
     uint32_t frame_ = 0;
     SceneState state_, prevState_;
@@ -986,10 +976,44 @@ private:
         bounceRays_{0}, samples_{0}, dropped_{0};
 };
 
+// The probe renderer: the tracer over a RecordingScene, and the probes.
+class ProbePathTracer final : public PathTracer<RecordingScene, ProbeRenderer> {
+public:
+    using PathTracer::PathTracer;
+
+    vec3 Shade(const EyeCamera& camera, const SurfaceSample& sample, uint32_t seed,
+               int sampleCount) const override {
+        RayCounts counts;
+        vec3 color = Remodulate(ShadePixel(camera.Position(), sample, seed, sampleCount, counts));
+        AddStats(counts);
+        return color;
+    }
+
+    vec3 WorldPosition(const SurfaceSample& sample) const override { return PositionOf(sample); }
+
+    void RecordRays(std::vector<TracedRay>* log) override { rays_.SetLog(log); }
+
+    uint64_t TraceBare(const std::vector<TracedRay>& rays) const override {
+        std::atomic<uint64_t> hits{0};
+        arena_.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+                uint64_t n = 0;
+                for (size_t i = r.begin(); i != r.end(); ++i) n += fovrt::TraceBare(*embree_, rays[i]) ? 1 : 0;
+                hits += n;
+            });
+        });
+        return hits.load();
+    }
+};
+
 }  // namespace
 
 std::unique_ptr<Renderer> CreateRenderer(const Scene& scene, const RenderSettings& settings) {
-    return std::make_unique<PathTracer>(scene, settings);
+    return std::make_unique<PathTracer<const EmbreeScene&, Renderer>>(scene, settings);
+}
+
+std::unique_ptr<ProbeRenderer> CreateProbeRenderer(const Scene& scene, const RenderSettings& settings) {
+    return std::make_unique<ProbePathTracer>(scene, settings);
 }
 
 }  // namespace fovrt
