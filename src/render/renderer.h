@@ -1,7 +1,7 @@
 // Renderer: the stereo Embree path tracer behind one small interface for rendering (SPEC §2).
-// Layers (path_tracer.cpp): Advance / Land -> ShadePixel (n from the spp map) -> ShadeEntry ->
-// RenderEye. Probes for tests and the bench (ray log, re-shading) are a separate interface:
-// render/probes.h.
+// Layers: Advance / Land -> ShadePixel (n from the spp map; render/integrator.h) -> ShadeEntry
+// (render/tiles.h) -> RenderEye (render/path_tracer.cpp, which lists the tracer's files). Probes
+// for tests and the bench (ray log, re-shading) are a separate interface: render/probes.h.
 #pragma once
 
 #include <cstdint>
