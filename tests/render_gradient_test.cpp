@@ -1,11 +1,12 @@
-// Re-shading API and A-SVGF gradient samples (paper §3): the forward-projected previous surface
-// sample and its seed replace the pixel's own visibility-buffer entry and are shaded once, as every
-// other pixel (no extra work). With nothing changing, that shading reproduces the old value
-// exactly; switching the light off makes the difference large.
+// Re-shading (ProbeRenderer::Shade, render/probes.h) and A-SVGF gradient samples (paper §3): the
+// forward-projected previous surface sample and its seed replace the pixel's own visibility-buffer
+// entry and are shaded once, as every other pixel (no extra work). With nothing changing, that
+// shading reproduces the old value exactly; switching the light off makes the difference large.
 #include <cmath>
 #include <cstring>
 
 #include "core/rng.h"
+#include "render/probes.h"
 #include "render_test_scenes.h"
 #include "test_support.h"
 
@@ -26,7 +27,7 @@ Plane<uint16_t> RandomSppMap(uint32_t seed, int maxSpp) {
 // Two frames of one eye; the spp maps differ between the frames, so a gradient pixel's previous
 // sample count n_prev mostly differs from the map's n_cur.
 struct TwoFrameRun {
-    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<ProbeRenderer> renderer;  // renders as CreateRenderer's (render_probes_test), and re-shades
     EyeCamera c0, c1;
     Plane<uint16_t> spp0, spp1;
     FrameInputs f0, f1;
@@ -40,7 +41,7 @@ TwoFrameRun RenderTwoFrames(const Scene& scene, bool gradients, const vec3& move
     settings.gradientSamples = gradients;
     settings.seed = 5;
     TwoFrameRun r;
-    r.renderer = CreateRenderer(scene, settings);
+    r.renderer = CreateProbeRenderer(scene, settings);
     Pose pose = scene.cameraPath.front().pose;
     r.c0 = MakeCamera(pose, kW, kH);
     pose.position += move;
@@ -82,7 +83,7 @@ SurfaceSample VisibilityAt(const FrameInputs& f, const VisibilityBuffer& v, ivec
 
 TEST_CASE("Shade() reproduces RenderEye's pixel colour exactly", "[render]") {
     Scene scene = BoxScene();
-    auto renderer = CreateRenderer(scene, RenderSettings{});
+    auto renderer = CreateProbeRenderer(scene, RenderSettings{});
     EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
     Plane<uint16_t> spp(kW, kH, uint16_t(3));
     FrameInputs out;
@@ -255,7 +256,7 @@ TEST_CASE("camera motion forward-projects samples; cuts skip them", "[render]") 
     Scene scene = BoxScene();
     RenderSettings settings;
     settings.gradientSamples = true;
-    auto renderer = CreateRenderer(scene, settings);
+    auto renderer = CreateProbeRenderer(scene, settings);
     Pose pose0 = scene.cameraPath.front().pose;
     Pose pose1 = pose0;
     pose1.position += vec3(0.03f, 0.0f, 0.0f);

@@ -1,6 +1,7 @@
 // Motion vectors (camera and rigid object motion) and stereo disparity.
 #include <cmath>
 
+#include "render/probes.h"
 #include "render_test_scenes.h"
 #include "test_support.h"
 
@@ -87,7 +88,7 @@ TEST_CASE("pure camera translation shifts a fronto-parallel wall by f * t / z", 
 TEST_CASE("object motion: prevPixel follows the previous object transform", "[render]") {
     const vec3 motion(0.1f, -0.05f, 0.0f);
     Scene scene = WallScene(4.0f, 2.0f, motion);
-    auto renderer = CreateRenderer(scene, RenderSettings{});
+    auto renderer = CreateProbeRenderer(scene, RenderSettings{});  // WorldPosition: a probe
     EyeCamera camera = MakeCamera(Pose{}, kW, kH, 70.0f);
     renderer->SetFrame(0);
     renderer->SetFrame(1);

@@ -21,6 +21,7 @@
 #include "core/camera.h"
 #include "core/error.h"
 #include "core/frame_inputs.h"
+#include "render/probes.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "denoise/bench/denoise_bench.h"
@@ -128,12 +129,16 @@ void PrintThroughput(const char* label, const Throughput& t, int frames) {
                 static_cast<unsigned long long>(s.droppedSamples), static_cast<unsigned long long>(t.checksum));
 }
 
-// The same rays again with nothing but rtcIntersect1 / rtcOccluded1 (issue #17): the rays of one
-// frame are recorded, then traced `frames` times on the renderer's threads. tracer / bare is what
-// shading, sampling and bookkeeping cost on top of Embree's traversal (primary rays, which the
-// tracer sends as 8-wide coherent packets, go one at a time here).
-void ProbeBareEmbree(Renderer& renderer, const std::vector<EyeCamera>& eyes, int spp, int frames,
-                     const Throughput& tracer) {
+// The same rays again with nothing but rtcIntersect1 / rtcOccluded1: the rays of the last timed
+// frame are recorded by a probe renderer (render/probes.h; the timed renderer logs nothing), then
+// traced `frames` times on its threads. tracer / bare is what shading, sampling and bookkeeping
+// cost on top of Embree's traversal (primary rays, which the tracer sends as 8-wide coherent
+// packets, go one at a time here).
+void ProbeBareEmbree(const Scene& scene, const RenderSettings& settings, const std::vector<EyeCamera>& eyes, int spp,
+                     int frames, const Throughput& tracer) {
+    auto probe = CreateProbeRenderer(scene, settings);
+    ProbeRenderer& renderer = *probe;
+    renderer.SetFrame(uint32_t(frames));
     std::vector<TracedRay> rays;
     std::vector<FrameInputs> out(eyes.size());
     Plane<uint16_t> sppMap(eyes[0].width(), eyes[0].height(), uint16_t(spp));
@@ -201,7 +206,7 @@ void BenchScene(const std::string& name, const BenchOptions& o) {
     if (t.size() == 2)
         std::printf("  F_beta plane on / off, time per frame (frames alternated): %.3f wall-clock, %.3f CPU\n",
                     t[1].seconds / t[0].seconds, t[1].cpuSeconds / t[0].cpuSeconds);
-    if (o.bareProbe) ProbeBareEmbree(*renderer, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames, t[0]);
+    if (o.bareProbe) ProbeBareEmbree(scene, settings, {rig.Eye(0), rig.Eye(1)}, o.spp, o.frames, t[0]);
 }
 
 // Our tracer vs Embree's pathtracer tutorial on the shared Cornell box OBJ.

@@ -234,7 +234,6 @@ bool EmbreeScene::Intersect(const vec3& origin, const vec3& dir, float tFar, Sur
     InitRay(rh.ray, origin, dir, tFar);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    if (log_) [[unlikely]] Log(origin, dir, tFar, false);
     rtcIntersect1(top_, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit.instance = InstanceOf(rh.hit.instID[0], rh.hit.geomID);
@@ -252,9 +251,6 @@ void EmbreeScene::Intersect8(const vec3& origin, const vec3* dirs, const bool* v
     alignas(32) int mask[8];
     alignas(32) RTCRayHit8 rh;
     InitRayPacket8(origin, dirs, valid, mask, rh);
-    if (log_) [[unlikely]]
-        for (int i = 0; i < 8; ++i)
-            if (valid[i]) Log(origin, dirs[i], std::numeric_limits<float>::infinity(), false);
     rtcIntersect8(mask, top_, &context, &rh);
     for (int i = 0; i < 8; ++i) {
         if (!valid[i] || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
@@ -275,32 +271,8 @@ bool EmbreeScene::Occluded(const vec3& origin, const vec3& dir, float tFar) cons
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     RTCRay ray;
     InitRay(ray, origin, dir, tFar);
-    if (log_) [[unlikely]] Log(origin, dir, tFar, true);
     rtcOccluded1(top_, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
-}
-
-void EmbreeScene::Log(const vec3& origin, const vec3& dir, float tFar, bool shadow) const {
-    std::lock_guard<std::mutex> lock(logMutex_);
-    log_->push_back(TracedRay{origin, dir, tFar, shadow});
-}
-
-bool EmbreeScene::TraceBare(const TracedRay& r) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    if (r.shadow) {
-        RTCRay ray;
-        InitRay(ray, r.origin, r.dir, r.tFar);
-        rtcOccluded1(top_, &context, &ray);
-        return ray.tfar == -std::numeric_limits<float>::infinity();
-    }
-    RTCRayHit rh;
-    InitRay(rh.ray, r.origin, r.dir, r.tFar);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(top_, &context, &rh);
-    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 vec3 EmbreeScene::ObjectPosition(const SurfaceSample& s) const {

@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cstdint>
-#include <mutex>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -53,10 +52,8 @@ public:
     // True when something blocks o + t d for t in (0, tFar).
     bool Occluded(const vec3& origin, const vec3& dir, float tFar) const;
 
-    // Appends every ray traced from now on to `log` (nullptr: stop); see Renderer::RecordRays.
-    void SetRayLog(std::vector<TracedRay>* log) { log_ = log; }
-    // rtcIntersect1 / rtcOccluded1 on one recorded ray, nothing else; true on a hit.
-    bool TraceBare(const TracedRay& ray) const;
+    // The top-level Embree scene (the bench probe's bare rtcIntersect1 / rtcOccluded1 calls).
+    RTCScene Handle() const { return top_; }
 
     SurfaceHit Surface(const SurfaceSample& s) const {
         SurfaceHit h;
@@ -122,10 +119,6 @@ private:
     std::vector<StaticRange> staticRanges_;  // per instance; first = kNotStatic for animated ones
     std::vector<StaticTriangle> staticTriangles_;
     std::vector<TriangleAttributes> staticAttributes_;
-    std::vector<TracedRay>* log_ = nullptr;
-    mutable std::mutex logMutex_;
-    // Out of line and cold, so the traced-ray paths keep their no-log code lean.
-    [[gnu::noinline, gnu::cold]] void Log(const vec3& origin, const vec3& dir, float tFar, bool shadow) const;
 };
 
 // Moves a ray origin off a surface along the geometric normal, by an amount that scales with the

@@ -1,5 +1,7 @@
-// Renderer: the stereo Embree path tracer behind one small interface (SPEC §2, issue "Foundation").
-// Layers (path_tracer.cpp): Advance / Land -> ShadePixel (n from the spp map) -> ShadeEntry -> RenderEye.
+// Renderer: the stereo Embree path tracer behind one small interface for rendering (SPEC §2).
+// Layers: Advance / Land -> ShadePixel (n from the spp map; render/integrator.h) -> ShadeEntry
+// (render/tiles.h) -> RenderEye (render/path_tracer.cpp, which lists the tracer's files). Probes
+// for tests and the bench (ray log, re-shading) are a separate interface: render/probes.h.
 #pragma once
 
 #include <cstdint>
@@ -41,15 +43,6 @@ struct RenderStats {
     uint64_t droppedSamples = 0;
     // Rays actually traced.
     uint64_t Rays() const { return primaryRays + shadowRays - shadowRaysReused + bounceRays; }
-};
-
-// One ray as the tracer handed it to Embree (fovrt bench's bare-traversal probe): closest hit
-// along origin + t dir for t in (0, tFar), or, for a shadow ray, any hit.
-struct TracedRay {
-    vec3 origin;
-    vec3 dir;
-    float tFar;
-    bool shadow;
 };
 
 // The surface sample a visibility-buffer entry names.
@@ -96,21 +89,6 @@ public:
     // frame), not the run seed: runs with different seeds are scored against the same reference.
     virtual void RenderReference(int eye, const EyeCamera& camera, int spp, uint32_t seed,
                                  Plane<vec3>& out) = 0;
-
-    // Re-shading API (A-SVGF): shades `sample` as seen from `camera` in the current frame with
-    // n samples whose seeds derive from `seed`, exactly as RenderPixel would. Returns the
-    // remodulated colour.
-    virtual vec3 Shade(const EyeCamera& camera, const SurfaceSample& sample, uint32_t seed,
-                       int sampleCount) const = 0;
-    // World position of a surface sample in the current frame (rigid motion applied).
-    virtual vec3 WorldPosition(const SurfaceSample& sample) const = 0;
-
-    // Bare-traversal probe (fovrt bench): while `log` is set, every ray traced is appended to it
-    // (slowly, under a lock: for one probe frame); nullptr stops. TraceBare traces `rays` again
-    // with nothing but rtcIntersect1 / rtcOccluded1, one ray at a time, on the renderer's
-    // threads, and returns how many hit (so the work cannot be skipped).
-    virtual void RecordRays(std::vector<TracedRay>* log) = 0;
-    virtual uint64_t TraceBare(const std::vector<TracedRay>& rays) const = 0;
 
     virtual RenderStats Stats() const = 0;
     virtual void ResetStats() = 0;
