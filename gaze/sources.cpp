@@ -156,6 +156,9 @@ std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::stri
 }
 
 std::vector<GazeTraceSample> LoadGazeTraceCsv(const std::filesystem::path& path) {
+    // An ifstream opens a directory and reads nothing, which would read as an empty trace.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) Fail("{}: is a directory, not a gaze trace (CSV)", path.string());
     std::ifstream in(path);
     if (!in) Fail("cannot open gaze trace '{}'", path.string());
     return ParseGazeTraceCsv(in, path.string());

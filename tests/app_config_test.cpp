@@ -241,16 +241,22 @@ TEST_CASE("Experiment files: ignored tables, overlay tables, and the shipped pre
     CHECK(c.run.frames == 2);
 
     // The experiment helper: same resolution, plus the raw [experiment] table.
-    toml::table experiment;
+    ExperimentTable experiment;
     ConfigOptions plain;
     plain.configPath = file.path.string();
     plain.sets = {"run.frames=3"};
     c = ResolveExperimentConfig(plain, true, experiment);
     CHECK(c.camera.width == 320);
     CHECK(c.run.frames == 3);
-    REQUIRE(experiment.get("scenes"));
-    CHECK(experiment.get("scenes")->as_array()->size() == 1);
-    CHECK(experiment.get("quick"));
+    REQUIRE(experiment.table.get("scenes"));
+    CHECK(experiment.table.get("scenes")->as_array()->size() == 1);
+    CHECK(experiment.table.get("quick"));
+    CHECK(experiment.Origin("scenes") == file.path.string() + ":5");
+    // --set experiment.KEY lands in the table, with its origin.
+    plain.sets = {"experiment.scenes=[\"room\", \"cornell\"]"};
+    ResolveExperimentConfig(plain, false, experiment);
+    CHECK(experiment.table.get("scenes")->as_array()->size() == 2);
+    CHECK(experiment.Origin("scenes") == "--set experiment.scenes=[\"room\", \"cornell\"]");
     CHECK(ResolveExperimentConfig(plain, false, experiment).camera.width == 1280);
 
     // Every shipped preset loads, with and without its quick overlay.
@@ -350,4 +356,14 @@ TEST_CASE("Denoiser parameter tables: each numeric key out of range fails naming
     CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.atrous_iterations=2", "denoise.svgf.feedback_iteration=3"}),
                       Catch::Contains("'denoise.svgf.feedback_iteration'") &&
                           Catch::Contains("denoise.svgf.atrous_iterations = 2"));
+}
+
+TEST_CASE("a --set value that is not UTF-8 is refused up front naming the key", "[config]") {
+    ConfigOptions options;
+    options.sets = {"output.dir=out-\xff\xfe"};
+    CHECK_THROWS_WITH(ResolveConfig(options),
+                      Catch::Equals("--set output.dir: the value is not valid UTF-8 (config values are written to JSON "
+                                    "manifests)"));
+    options.sets = {"output.dir=out-\xc3\xa9t\xc3\xa9"};  // valid UTF-8 ("été") is kept as given
+    CHECK(ResolveConfig(options).output.dir == "out-\xc3\xa9t\xc3\xa9");
 }

@@ -181,3 +181,44 @@ TEST_CASE("bad seeds and baselines are one line naming the option or key", "[app
           std::string::npos);
     CHECK(errorFor("").empty());
 }
+
+TEST_CASE("--set experiment.KEY acts exactly like the key in the file", "[app][config]") {
+    const fs::path dir = test::ScratchDir("fovrt_seeds_test") / "set";
+    fs::create_directories(dir);
+    const fs::path file = dir / "exp.toml";
+    std::ofstream(file) << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"asvgf\"]\n"
+                        << "[experiment.quick.run]\nframes = 2\n";
+    ConfigOptions options;
+    options.configPath = file.string();
+    options.sets = {"experiment.variants=[\"two-history\", \"svgf\"]", "experiment.seeds=[4, 9]",
+                    "experiment.scenes=[\"veach-ajar\"]", "experiment.baseline=\"svgf\"", "experiment.visual_frame=1"};
+    ExperimentSpec spec = LoadExperiment(options);
+    CHECK(spec.variants == std::vector<std::string>{"two-history", "svgf"});
+    CHECK(spec.config.denoise.denoisers == spec.variants);
+    CHECK(spec.seeds == std::vector<uint32_t>{4, 9});
+    CHECK(spec.scenes == std::vector<std::string>{"veach-ajar"});
+    CHECK(spec.baseline == "svgf");
+    CHECK(spec.visualFrame == 1);
+
+    // A key inside [experiment.quick] is merged by --quick like the file's own.
+    options.sets = {"experiment.quick.run.frames=3"};
+    ExperimentArgs quick;
+    quick.quick = true;
+    CHECK(LoadExperiment(options, quick).config.run.frames == 3);
+
+    // Unknown and bad keys are refused naming the --set they came from; file keys name file:line.
+    options.sets = {"experiment.bogus=1"};
+    const std::string unknown = ErrorOf([&] { LoadExperiment(options); });
+    CHECK(unknown.find("--set experiment.bogus=1: unknown key experiment.bogus (did you mean experiment.") == 0);
+    options.sets = {"experiment.seed=[1]"};
+    CHECK(ErrorOf([&] { LoadExperiment(options); }).find("did you mean experiment.seeds?") != std::string::npos);
+    options.sets = {"experiment.seeds=[2, 2]"};
+    CHECK(ErrorOf([&] { LoadExperiment(options); }).find("--set experiment.seeds=[2, 2]: experiment.seeds lists seed 2 twice") == 0);
+    options.sets = {"experiment.variants=[\"svgff\"]"};
+    CHECK(ErrorOf([&] { LoadExperiment(options); }).find("svgf") != std::string::npos);
+    options.sets = {"experiment.baseline=\"nope\""};
+    CHECK(ErrorOf([&] { LoadExperiment(options); }).find("--set experiment.baseline=\"nope\": experiment.baseline 'nope'") == 0);
+    options.sets = {};
+    std::ofstream(file, std::ios::app) << "[experiment.extra]\n";
+    CHECK(ErrorOf([&] { LoadExperiment(options); }).find(file.string() + ":6: unknown key experiment.extra") == 0);
+}

@@ -131,7 +131,7 @@ expect_error "bad --seeds" "^fovrt: error: --seeds abc: 'abc' is not a non-negat
 expect_error "zero --seeds" "^fovrt: error: --seeds 0: the count must be in \[1, 1000\]" experiment exp2.toml --seeds 0 --set output.dir=e20
 expect_error "repeated --seeds" "--seeds 1,1: seed 1 is listed twice" experiment exp2.toml --seeds 1,1 --set output.dir=e21
 sed 's/^variants = .*/&\nseeds = [1, "two"]/' exp2.toml > exp3.toml
-expect_error "bad experiment.seeds" "exp3.toml: experiment.seeds must hold only integers" experiment exp3.toml --set output.dir=e22
+expect_error "bad experiment.seeds" "exp3.toml:[0-9]*: experiment.seeds must hold only integers" experiment exp3.toml --set output.dir=e22
 sed 's/^variants = .*/&\nbaseline = "svgff"/' exp2.toml > exp4.toml
 expect_error "unknown experiment.baseline" "experiment.baseline 'svgff' is not in experiment.variants (did you mean 'svgf'?)" experiment exp4.toml --set output.dir=e23
 expect_error "--seeds with --replay" "--seeds and --replay exclude each other" experiment exp.toml --replay rec.jsonl --seeds 2 --set output.dir=e24
@@ -189,8 +189,58 @@ expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 
 # config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
+# A run renders the experiment's noisy inputs when it lists the same variants: A-SVGF's gradient
+# samples re-shade one pixel per 3×3 stratum with the previous frame's seed, so from frame 1 on the
+# inputs depend on whether a listed variant needs them. The experiment's denoised EXRs stand for
+# its inputs (it writes no FrameInputs): the C++ reference denoiser is deterministic.
+printf '[camera]\nwidth = 48\nheight = 32\n[run]\nframes = 3\n[denoise]\ndevice = "cpu"\n[reference]\nspp = 2\ncache_dir = "refcache"\n[output]\nwrite_exr = true\nreport = false\n[experiment]\nscenes = ["cornell"]\nvariants = ["svgf", "asvgf"]\n' > exp5.toml
+same_run=(--set camera.width=48 --set camera.height=32 --set run.frames=3 --set denoise.device=cpu
+          --set scene.name=cornell --set output.write_exr=true --set output.write_png=false)
+if "$fovrt" experiment exp5.toml --set output.dir=x-exp >/dev/null 2>err.txt &&
+   "$fovrt" run "${same_run[@]}" --set 'denoise.denoisers=["svgf", "asvgf"]' --set output.dir=x-both >/dev/null 2>>err.txt &&
+   "$fovrt" run "${same_run[@]}" --set 'denoise.denoisers=["svgf"]' --set output.dir=x-svgf >/dev/null 2>>err.txt; then
+  n=0; same=0
+  for v in svgf asvgf; do for f in 0 1 2; do for eye in left right; do
+    n=$((n + 1)); cmp -s x-exp/cornell/$v/f0000${f}_$eye.exr x-both/denoised/$v/f0000${f}_$eye.exr && same=$((same + 1))
+  done; done; done
+  [[ $n -eq 12 && $same -eq 12 ]] && ok "run with the experiment's variants reproduces its frames: $same of $n denoised EXRs identical" \
+    || bad "run with the experiment's variants: $same of $n denoised EXRs identical"
+  cmp -s x-svgf/inputs/f00000_left.exr x-both/inputs/f00000_left.exr && ok "frame 0 inputs equal without A-SVGF's gradient samples" \
+    || bad "frame 0 inputs differ with and without gradient samples"
+  if ! cmp -s x-svgf/inputs/f00001_left.exr x-both/inputs/f00001_left.exr &&
+     ! cmp -s x-svgf/denoised/svgf/f00001_left.exr x-exp/cornell/svgf/f00001_left.exr; then
+    ok "without asvgf listed, frame 1 inputs (and svgf's output) differ from the experiment's: the documented condition"
+  else bad "frame 1 inputs do not depend on the gradient samples: the documented condition is wrong"; fi
+else bad "run/experiment comparison failed: $(tail -2 err.txt)"; fi
+# --set experiment.KEY is read like the file's key; an unknown one is refused naming the --set.
+expect_error "--set experiment.bogus" "^fovrt: error: --set experiment.bogus=1: unknown key experiment.bogus (did you mean" experiment exp2.toml --set experiment.bogus=1 --set output.dir=e30
+expect_error "--set experiment.variants is read" "--set experiment.variants=\[\"svgff\"\]: experiment.variants: unknown denoiser 'svgff'" experiment exp2.toml --set 'experiment.variants=["svgff"]' --set output.dir=e31
+# A value that is not UTF-8 is refused before anything is rendered, naming the key.
+expect_error "non-UTF-8 --set value" "^fovrt: error: --set output.dir: the value is not valid UTF-8" run "${small[@]}" --set output.dir=$'e32-\xff'
+# A directory given as a gaze trace is named as one.
+mkdir -p traces
+expect_error "gaze trace is a directory" "traces: is a directory, not a gaze trace (CSV)" run "${small[@]}" --set gaze.source=trace --set gaze.trace_path=traces --set output.dir=e33
+# Budgets are checked before anything large is allocated, on the whole run's memory plan: under
+# a 1 GiB address-space limit, a 16384² run with a 2 GiB budget is refused by the budget (had it
+# allocated first, it would have died of the limit). Without a budget, running out of memory is
+# one line naming the resolution and the bytes the run asked for.
+printf '#!/usr/bin/env bash\nulimit -v 1048576\nexec "%s" "$@"\n' "$(realpath "$fovrt")" > limited-fovrt
+chmod +x limited-fovrt
+real_fovrt=$fovrt; fovrt=./limited-fovrt
+huge=(--set camera.width=16384 --set camera.height=16384 --set run.frames=1 --set denoise.device=cpu)
+expect_error "budget before allocation (run)" "^fovrt: error: --memory-budget 2147483648 bytes exceeded: run needs" run "${huge[@]}" --memory-budget 2GiB --set output.dir=e34
+expect_error "budget before allocation (experiment)" "^fovrt: error: --memory-budget 2147483648 bytes exceeded: experiment needs" experiment exp2.toml "${huge[@]}" --memory-budget 2GiB --set output.dir=e35
+expect_error "budget before allocation (reference)" "^fovrt: error: --memory-budget 1073741824 bytes exceeded: reference needs" reference "${huge[@]}" --memory-budget 1GiB --set reference.cache_dir=e36c
+# (the run's own start line comes first: the error is the one line after it)
+if "$fovrt" run "${huge[@]}" --set output.dir=e37 >stdout.txt 2>stderr.txt; then bad "out of memory (run): exited 0"
+elif [[ $(grep -c "error" stderr.txt) -eq 1 ]] &&
+     tail -1 stderr.txt | grep -q "^fovrt: error: out of memory: fovrt run at 16384x16384 per eye asked for [0-9]* bytes"; then
+  ok "out of memory (run): $(tail -1 stderr.txt)"
+else bad "out of memory (run): $(cat stderr.txt)"; fi
+fovrt=$real_fovrt
+[[ -e e37/manifest.json ]] && bad "e37 has a manifest after running out of memory"
 left=""
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19; do
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19 e30 e31 e32-$'\xff' e33 e34 e35 e36c; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
   [[ -e $d ]] && left="$left $d"
 done

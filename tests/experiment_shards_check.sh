@@ -41,9 +41,14 @@ grep -q '"merged_shards": true' sharded/manifest.json && ok "the manifest says i
 
 # A shard killed mid-run: nothing that looks finished; the merge names it; a rerun completes.
 rm -rf sharded/shards/shard-1-of-3 sharded/manifest.json
-"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=sharded --shard 1/3 >/dev/null 2>kill.err &
+# (killed once its first denoised frame is on disk: mid-run, whatever the machine's speed)
+rm -rf sharded/cornell
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=sharded --shard 1/3 --set output.write_exr=true \
+  >/dev/null 2>kill.err &
 pid=$!
-sleep 3; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+end=$((SECONDS + 600))
+until compgen -G "sharded/cornell/*/*.exr" >/dev/null || ! kill -0 $pid 2>/dev/null || ((SECONDS > end)); do sleep 0.1; done
+kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 [[ ! -e sharded/shards/shard-1-of-3 ]] && ok "killed shard left no part" || bad "killed shard left $(ls sharded/shards)"
 if "$fovrt" experiment "$preset" "${args[@]}" --set output.dir=sharded --merge >/dev/null 2>incomplete.err; then
   bad "merge of an incomplete set succeeded"
@@ -94,11 +99,9 @@ if out=$(bash "$src/tests/tools/slurm_cluster.sh" start "$cluster" 2>slurm.err);
   start=$(date +%s.%N)
   if "$fovrt" cluster "$preset" "${args[@]}" --set output.dir=viaslurm --shards 3 --reference-tasks 4 \
        --partition fovrt --time 00:30:00 --cpus-per-task 1 --jobs-dir slurmjobs --submit >submit.out 2>&1; then
-    for _ in $(seq 1 1800); do
-      [[ -f viaslurm/manifest.json ]] && break
-      [[ -z $(squeue -h 2>/dev/null) ]] && sleep 1 && break
-      sleep 0.5
-    done
+    # Until the merge job's manifest is there or the queue is empty (every job ended).
+    end=$((SECONDS + 1800))
+    until [[ -f viaslurm/manifest.json || -z $(squeue -h 2>/dev/null) ]] || ((SECONDS > end)); do sleep 0.5; done
     end=$(date +%s.%N)
     if cmp -s single/frames-cornell.csv viaslurm/frames-cornell.csv; then
       ok "Slurm: 3 job arrays chained by afterok ($(tail -1 submit.out)) merged to the single run's CSV in $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", b - a }') s"

@@ -168,6 +168,11 @@ TEST_CASE("Trace errors name the file and line", "[gaze]") {
     CHECK_THROWS_WITH(CreateGazeSource(p, Fov()), Catch::Contains("bad.csv:3"));
     p.tracePath = (dir / "missing.csv").string();
     CHECK_THROWS_WITH(CreateGazeSource(p, Fov()), Catch::Contains("missing.csv"));
+    // A directory opens as a stream that reads nothing: say what it is, not "empty gaze trace".
+    fs::create_directories(dir / "traces");
+    p.tracePath = (dir / "traces").string();
+    CHECK_THROWS_WITH(CreateGazeSource(p, Fov()), Catch::Equals((dir / "traces").string() +
+                                                                ": is a directory, not a gaze trace (CSV)"));
     {
         std::ofstream out(dir / "good.csv");
         out << "n,x,y\n100,0,0\n200,10,0\n";

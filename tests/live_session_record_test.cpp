@@ -273,6 +273,15 @@ TEST_CASE("a corrupt field names the file, the line, the frame and the key", "[l
     changed[6] = "";
     WriteLines(path, changed);
     CHECK(ReadAll(path) == path.string() + ": line 7 (after frame 4): empty line");
+    // Valid JSON syntax whose number no double holds: one line naming the file and line, not
+    // nlohmann's out_of_range exception.
+    std::string overflow = lines[6];
+    overflow.replace(overflow.find("\"time_s\":") + 9, 0, "1e400,\"x\":");
+    changed[6] = overflow;
+    WriteLines(path, changed);
+    CHECK(ReadAll(path).rfind(path.string() + ": line 7 (after frame 4): not readable JSON: number overflow", 0) == 0);
+    WriteLines(path, {R"({"format":"fovrt-session","version":1e400,"config":{}})"});
+    CHECK(ReadAll(path).rfind(path.string() + ": line 1: the header is not readable JSON: number overflow", 0) == 0);
 }
 
 TEST_CASE("a file that is not a version-1 recording is refused naming the file", "[live]") {

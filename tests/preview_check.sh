@@ -36,18 +36,32 @@ bad() { echo "FAIL: $1"; failed=$((failed + 1)); }
 # Small eyes in a small window: 160×90 per eye, letterboxed 320×180 into each half of 640×360.
 small=(--window 640x360 --no-panel --set camera.width=160 --set camera.height=90 --set scene.name=cornell
        --set run.seed=7)
-wait_for() {  # wait_for FILE PID: until FILE exists or PID is gone
-  for _ in $(seq 1 1200); do [[ -s $1 ]] && return 0; kill -0 "$2" 2>/dev/null || return 1; sleep 0.1; done
-  return 1
+# Every wait below ends on the event it checks (a file, a log line, a recorded pose, the X server's
+# pixels), polled; the deadline only bounds a hang, so a loaded machine takes longer, never fails.
+deadline_s=300
+until_ok() {  # until_ok CMD...: polls CMD until it succeeds; fails after deadline_s seconds
+  local end=$((SECONDS + deadline_s))
+  until "$@"; do ((SECONDS < end)) || return 1; sleep 0.1; done
 }
+alive() { kill -0 "$1" 2>/dev/null; }
+wait_for() {  # wait_for FILE PID: until FILE exists (0) or PID is gone (1)
+  until_ok eval "[[ -s $1 ]] || ! alive $2" && [[ -s $1 ]]
+}
+preview_window() { timeout "$deadline_s" xdotool search --sync --name "fovrt preview" | head -1; }
 screenshot_root() { xwd -root -silent | xwdtopnm 2>/dev/null | pnmtopng > "$1"; }
 
 # 1. Frames presented, validation clean; the X server's pixels = the app's swapchain readback.
+# (--linger keeps the last frame up until Escape, once the X server shows it.)
 FOVRT_VK_VALIDATION=1 "$fovrt" preview "${small[@]}" --set gaze.source=static --frames 5 \
-  --screenshot app.png --linger 3 2>err1.txt &
+  --screenshot app.png --linger $deadline_s 2>err1.txt &
 pid=$!
 if wait_for app.png $pid; then
-  sleep 0.5; screenshot_root root.png
+  shown() { screenshot_root root.png; [[ $("$probe" diff app.png root.png) == "max=0 "* ]] || ! alive $pid; }
+  until_ok shown
+  if alive $pid; then
+    win=$(preview_window)
+    timeout 30 xdotool windowfocus --sync "$win" key Escape || kill $pid
+  fi
   wait $pid; rc=$?
   [[ $rc -eq 0 ]] && ok "5 frames presented, exit 0" || bad "exit $rc: $(tail -3 err1.txt)"
   if grep -q "vulkan validation" err1.txt; then bad "validation messages: $(grep -m3 'vulkan validation' err1.txt)"
@@ -68,10 +82,8 @@ fi
 for pos in "160 180" "110 200"; do
   set -- $pos
   # (the first fake motion after the server starts can be lost: move until the pointer is there)
-  for _ in $(seq 1 50); do
-    xdotool mousemove "$1" "$2" sleep 0.05
-    [[ $(xdotool getmouselocation) == "x:$1 y:$2 "* ]] && break
-  done
+  pointer_at() { xdotool mousemove "$1" "$2"; [[ $(xdotool getmouselocation) == "x:$1 y:$2 "* ]]; }
+  until_ok pointer_at "$1" "$2" || bad "the pointer did not reach ($1, $2)"
   if "$fovrt" preview "${small[@]}" --set gaze.source=mouse --view spp --no-overlay --frames 3 \
        --screenshot spp.png 2>err2.txt; then
     c=$("$probe" centroid spp.png 0 90 320 270)
@@ -94,15 +106,20 @@ awk -v f="$frac" 'BEGIN { exit !(f > 0 && f < 0.05) }' && ok "overlay toggle cha
 "$fovrt" preview "${small[@]}" --set gaze.source=static --frames 100000 --record closed.jsonl \
   --stats stats.jsonl --capture-dir captures 2>err4.txt &
 pid=$!
-for _ in $(seq 1 600); do [[ $(grep -c . stats.jsonl 2>/dev/null) -ge 2 ]] && break; sleep 0.1; done
-win=$(timeout 60 xdotool search --sync --name "fovrt preview" | head -1)
+head_of() { grep -o '"head":{"position":\[[^]]*\]' closed.jsonl | sed -n "$1"; }
+until_ok eval '[[ $(grep -c . stats.jsonl 2>/dev/null) -ge 2 ]]'
+win=$(preview_window)
 timeout 30 xdotool windowfocus --sync "$win" key 4
-for _ in $(seq 1 600); do grep -q "denoiser svgf -> two-history" err4.txt && break; sleep 0.1; done
+until_ok grep -q "denoiser svgf -> two-history" err4.txt
+# A frame of the new denoiser has been shown: its passes are in the stats stream.
+until_ok eval 'tail -1 stats.jsonl | grep -q blend'
 timeout 30 xdotool windowfocus --sync "$win" key F12
-timeout 30 xdotool windowfocus --sync "$win" keydown w sleep 1 keyup w  # fly forward: leaves the path
-sleep 0.5
-for _ in $(seq 1 300); do grep -q "saved frame" err4.txt && break; sleep 0.1; done
-sleep 1
+until_ok grep -q "saved frame" err4.txt
+# Fly forward (leaves the camera path) with W held until a recorded frame has the moved head.
+first_head=$(head_of 1p)
+timeout 30 xdotool windowfocus --sync "$win" keydown w
+until_ok eval '[[ -n $(head_of \$p) && $(head_of \$p) != "$first_head" ]]'
+timeout 30 xdotool windowfocus --sync "$win" keyup w
 timeout 30 xdotool windowfocus --sync "$win" key Escape || kill $pid
 wait $pid; rc=$?
 [[ $rc -eq 0 ]] && ok "window closed mid-run: exit 0" || bad "closed mid-run: exit $rc: $(tail -2 err4.txt)"

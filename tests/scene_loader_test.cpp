@@ -388,6 +388,30 @@ TEST_CASE("bad scene files give one fovrt::Error naming file and key", "[scene][
         dir.Write("b.obj", "v 0 0 0\n");
         CheckMessage(ErrorOf(scene), scene, {"b.obj", "no faces"});
     }
+    SECTION("MTL colours: the same check as the scene file's material override, with file:line") {
+        auto scene = dir.Write("s.toml", "[[mesh]]\nfile = \"c.obj\"\n");
+        dir.Write("c.obj", "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n");
+        const std::vector<std::pair<std::string, std::string>> bad = {
+            {"Ke 3e38 3e38 3e38", "is above 1e+09"},  // finite, but its square is inf in float
+            {"Kd nan 0.5 0.5", "not a finite number"},  // tinyobjloader substitutes a value
+            {"Ks 0.1 -0.2 0.1", "must be >= 0"},
+            {"Ke inf 1 1", "not a finite number"},
+            {"Kd 0.5 x 0.5", "malformed number 'x'"},
+            {"Ns nan", "not a finite number"}};
+        for (const auto& [line, problem] : bad) {
+            INFO(line);
+            dir.Write("c.mtl", "# lamp\nnewmtl lamp\n" + line + "\n");
+            const std::string key = line.substr(0, 2);
+            CheckMessage(ErrorOf(scene), scene, {"c.mtl:3", "material 'lamp'", key + ": ", problem});
+        }
+        dir.Write("c.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nKe 300 300 300\n");
+        CHECK(LoadScene(scene).materials[0].emission == vec3(300.0f));
+        // The override refuses what the MTL refuses.
+        auto f = dir.Write("e.toml", std::string(kMinimalScene) + "[[material]]\nname = \"m\"\nemission = 2e9\n");
+        CheckMessage(ErrorOf(f), f, {"e.toml:6", "material.emission", "is above 1e+09"});
+        f = dir.Write("e.toml", std::string(kMinimalScene) + "[[material]]\nname = \"m\"\nbase_color = [1, -1, 1]\n");
+        CheckMessage(ErrorOf(f), f, {"material.base_color", "must be >= 0"});
+    }
     SECTION("textures: missing and corrupt") {
         auto scene = dir.Write("s.toml", "[[mesh]]\nfile = \"t.obj\"\n");
         dir.Write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl tex\nf 1 2 3\n");

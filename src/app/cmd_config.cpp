@@ -49,7 +49,7 @@ void RegisterConfigCommand(CLI::App& app) {
             PrintDenoiserKeys();
             return;
         }
-        toml::table experimentTable;
+        ExperimentTable experimentTable;
         RunConfig config = *experiment || *quick
                                ? ResolveExperimentConfig(*options, *quick, experimentTable)
                                : ResolveConfig(*options);

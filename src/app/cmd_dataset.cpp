@@ -26,6 +26,7 @@
 #include "app/commands.h"
 #include "app/config.h"
 #include "app/config_cli.h"
+#include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
@@ -53,6 +54,8 @@ void Append(NpyArray& array, const Tensor& t) {
 }
 
 void WriteDataset(RunConfig base, const DatasetOptions& o) {
+    // Before anything large is allocated (the same model as `fovrt run`; every listed variant counted).
+    EnforceRunBudget(base, "dataset");
     const std::filesystem::path dir(o.out);
     std::filesystem::create_directories(dir);
     nlohmann::json manifest;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <algorithm>
 #include <cstdio>
+#include <new>
 
 #include "app/commands.h"
 #include "app/config.h"
@@ -12,6 +13,7 @@
 #include "core/error.h"
 #include "core/nearest_name.h"
 #include "app/frame_pipeline.h"
+#include "app/denoiser_set.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
@@ -25,12 +27,8 @@ struct ReferenceSlice {
     int eye = -1;  // 0, 1, or -1 for both
 };
 
-void RenderReferences(const RunConfig& config, const ReferenceSlice& slice = {}) {
-    // The reference path holds one HDR image per eye in flight.
-    const size_t imageBytes = size_t(config.camera.width) * size_t(config.camera.height) * sizeof(vec3);
-    EnforceMemoryBudget({{"reference.image.eye0", imageBytes, false},
-                         {"reference.image.eye1", imageBytes, false}},
-                        config.memoryBudget, "reference");
+void RenderReferencesUnchecked(const RunConfig& config, const ReferenceSlice& slice) {
+    EnforceMemoryBudget(PlanReferenceMemory(config), config.memoryBudget, "reference");
     OutputDir cacheDir(config.reference.cacheDir, "reference.cache_dir");  // before any rendering
     FramePipeline pipeline(config);
     ReferenceCache cache(config.reference.cacheDir);
@@ -61,6 +59,15 @@ void RenderReferences(const RunConfig& config, const ReferenceSlice& slice = {})
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr, "fovrt reference: %d rendered, %d cached (%d spp) in %.1f s\n", rendered,
                  cached, config.reference.spp, seconds);
+}
+
+// RenderReferencesUnchecked with an allocation failure as one line naming the resolution and bytes.
+void RenderReferences(const RunConfig& config, const ReferenceSlice& slice = {}) {
+    try {
+        RenderReferencesUnchecked(config, slice);
+    } catch (const std::bad_alloc&) {
+        FailOutOfMemory(config, PlanReferenceMemory(config), "fovrt reference");
+    }
 }
 
 }  // namespace

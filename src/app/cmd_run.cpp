@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <new>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -47,28 +48,6 @@ double MsSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
-
-// Per-frame working memory: two eyes of FrameInputs plus the spp maps.
-size_t FrameInputsBytes(const RunConfig& config) {
-    FrameInputs probe;
-    probe.Allocate(config.camera.width, config.camera.height);
-    return 2 * (probe.Bytes() + size_t(config.camera.width) * config.camera.height * 2);
-}
-
-// The renderer's visibility buffers, one per eye (the A-SVGF history's second is not counted, as
-// before the buffers left FrameInputs).
-size_t VisibilityBytes(const RunConfig& config) {
-    VisibilityBuffer probe;
-    probe.Allocate(config.camera.width, config.camera.height);
-    return 2 * probe.Bytes();
-}
-
-void EnforceRunBudget(const RunConfig& config) {
-    std::vector<BufferPlan> plan = PlanRunMemory(config);
-    plan.push_back({"frame_inputs.both_eyes", FrameInputsBytes(config), false});
-    plan.push_back({"render.visibility.both_eyes", VisibilityBytes(config), false});
-    EnforceMemoryBudget(plan, config.memoryBudget, "run");
-}
 
 // Mean, min and max of one timing over a run: what the manifest keeps of the per-frame timings
 // (each frame's own are in frames.jsonl), so the manifest's size does not grow with the run.
@@ -135,9 +114,9 @@ struct RunOptions {
 };
 
 // `config` is the job's config; `replay` (optional) the recording it re-renders.
-void Run(const RunConfig& config, Replay* replay, const std::string& recordPath) {
+void RunFrames(const RunConfig& config, Replay* replay, const std::string& recordPath) {
     namespace fs = std::filesystem;
-    EnforceRunBudget(config);
+    EnforceRunBudget(config, "run");
     OutputDir out(config.output.dir, "output.dir");
     const fs::path outDir = out.Path();
     // A stale manifest from an earlier run would make this one look complete while it runs.
@@ -282,6 +261,15 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
     std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
                  framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
                  (outDir / "manifest.json").string().c_str());
+}
+
+// RunFrames with an allocation failure as one line naming the resolution and the planned bytes.
+void Run(const RunConfig& config, Replay* replay, const std::string& recordPath) {
+    try {
+        RunFrames(config, replay, recordPath);
+    } catch (const std::bad_alloc&) {
+        FailOutOfMemory(config, PlanRunMemory(config), "fovrt run");
+    }
 }
 
 void RunCommand(const RunOptions& options) {

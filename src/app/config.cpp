@@ -693,10 +693,49 @@ void AddConfigOptions(CLI::App* command, ConfigOptions& options) {
                         "Memory budget in bytes (e.g. 2GiB); 0 = none. Overrides memory_budget");
 }
 
-RunConfig ResolveConfig(const ConfigOptions& options) {
+namespace {
+
+// One --set: parses `section.key=value` (a TOML value, else a bare string) into `root`.
+void ApplySet(const std::string& set, toml::table& root, Origins& origins) {
+    std::string origin = "--set " + set;
+    size_t eq = set.find('=');
+    if (eq == std::string::npos || eq == 0) Fail("--set '{}': expected section.key=value", set);
+    std::string key = set.substr(0, eq);
+    std::string value = set.substr(eq + 1);
+    while (!key.empty() && std::isspace(static_cast<unsigned char>(key.back()))) key.pop_back();
+    // Every value ends up in a JSON manifest, which must be UTF-8: refuse it now, naming the key,
+    // rather than after the whole render when the manifest is written (nlohmann's own check).
+    for (const std::string* text : {&key, &value}) {
+        try {
+            (void)nlohmann::json(*text).dump();
+        } catch (const nlohmann::json::type_error&) {
+            std::string shown = nlohmann::json(key).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+            Fail("--set {}: the {} is not valid UTF-8 (config values are written to JSON manifests)",
+                 shown.substr(1, shown.size() - 2), text == &key ? "key" : "value");
+        }
+    }
+    try {
+        toml::table parsed = toml::parse("v = " + value);
+        SetPath(root, key, *parsed.get("v"), origin, origins);
+    } catch (const toml::parse_error&) {
+        // Not a TOML value: take it as a bare string (paths, scene names).
+        SetPath(root, key, toml::value<std::string>(value), origin, origins);
+    }
+}
+
+// True when `set` names a key inside one of `tables` (e.g. --set experiment.quick.run.frames=2).
+bool SetsInside(const std::string& set, const std::vector<std::string>& tables) {
+    for (const std::string& table : tables)
+        if (set.rfind(table + ".", 0) == 0) return true;
+    return false;
+}
+
+// Every source merged into one table (defaults are Build's): base, file, overlays, --set,
+// --memory-budget. A --set inside an overlay table edits that table before it is merged, so it
+// acts exactly like the same key in the file.
+toml::table ResolveTable(const ConfigOptions& options, Origins& origins, std::string& sources) {
     toml::table root;
-    Origins origins;
-    std::string sources = "defaults";
+    sources = "defaults";
     if (!options.base.is_null()) {
         if (!options.base.is_object()) Fail("{}: the config is not a JSON object", options.baseOrigin);
         JsonIntoTable(options.base, root, "");
@@ -713,33 +752,25 @@ RunConfig ResolveConfig(const ConfigOptions& options) {
         for (const auto& [key, origin] : fileOrigins) origins[key] = origin;  // file:line
         sources += " + " + options.configPath;
     }
+    for (const std::string& set : options.sets)
+        if (SetsInside(set, options.overlayTables)) ApplySet(set, root, origins);
     for (const std::string& overlay : options.overlayTables) {
         toml::node_view<toml::node> view = root.at_path(overlay);
         if (!view) continue;  // the file has no such table: nothing to merge
         if (!view.is_table()) Fail("config table '{}' is not a table ({})", overlay, sources);
-        // Origins of the overlay's keys point into the file (file:line; copies lose the source
-        // positions, so record them from the original), keyed by the merged path.
+        // Origins of the overlay's keys: where the table's own keys came from (file:line or
+        // --set), keyed by the merged path.
         Origins overlayOrigins;
-        RecordOrigins(*view.as_table(), "", options.configPath, overlayOrigins);
+        for (const auto& [key, origin] : origins)
+            if (key.rfind(overlay + ".", 0) == 0) overlayOrigins[key.substr(overlay.size() + 1)] = origin;
         toml::table copy = *view.as_table();
         Merge(root, copy, "", "[" + overlay + "]", origins);
         for (const auto& [key, origin] : overlayOrigins) origins[key] = origin + " [" + overlay + "]";
         sources += " + [" + overlay + "]";
     }
     for (const std::string& set : options.sets) {
-        std::string origin = "--set " + set;
-        size_t eq = set.find('=');
-        if (eq == std::string::npos || eq == 0) Fail("--set '{}': expected section.key=value", set);
-        std::string key = set.substr(0, eq);
-        std::string value = set.substr(eq + 1);
-        while (!key.empty() && std::isspace(static_cast<unsigned char>(key.back()))) key.pop_back();
-        try {
-            toml::table parsed = toml::parse("v = " + value);
-            SetPath(root, key, *parsed.get("v"), origin, origins);
-        } catch (const toml::parse_error&) {
-            // Not a TOML value: take it as a bare string (paths, scene names).
-            SetPath(root, key, toml::value<std::string>(value), origin, origins);
-        }
+        if (SetsInside(set, options.overlayTables)) continue;
+        ApplySet(set, root, origins);
         sources += " + --set";
     }
     if (!options.memoryBudget.empty()) {
@@ -748,23 +779,43 @@ RunConfig ResolveConfig(const ConfigOptions& options) {
         root.insert_or_assign("memory_budget", int64_t(bytes));
         origins["memory_budget"] = "--memory-budget";
     }
+    return root;
+}
+
+}  // namespace
+
+RunConfig ResolveConfig(const ConfigOptions& options) {
+    Origins origins;
+    std::string sources;
+    toml::table root = ResolveTable(options, origins, sources);
     return Build(root, origins, sources, options.ignoredTables);
 }
 
-RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, toml::table& experiment) {
+std::string ExperimentTable::Origin(const std::string& key) const {
+    auto it = origins.find(key);
+    return it != origins.end() ? it->second : file;
+}
+
+RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, ExperimentTable& experiment) {
     ConfigOptions resolved = options;
     resolved.ignoredTables.push_back("experiment");
     if (quick) resolved.overlayTables.push_back("experiment.quick");
-    RunConfig config = ResolveConfig(resolved);
-    experiment = toml::table{};
-    if (!options.configPath.empty()) {
-        Origins unused;
-        toml::table file = ParseTomlFile(options.configPath, unused);
-        if (toml::node* node = file.get("experiment")) {
-            if (!node->is_table()) Fail("{}: 'experiment' must be a table", options.configPath);
-            experiment = *node->as_table();
+    Origins origins;
+    std::string sources;
+    toml::table root = ResolveTable(resolved, origins, sources);
+    RunConfig config = Build(root, origins, sources, resolved.ignoredTables);
+    // [experiment] as merged from the file and every --set experiment.KEY, with each key's origin.
+    experiment = ExperimentTable{};
+    experiment.file = options.configPath;
+    if (toml::node* node = root.get("experiment")) {
+        if (!node->is_table()) {
+            auto it = origins.find("experiment");
+            Fail("{}: 'experiment' must be a table", it != origins.end() ? it->second : sources);
         }
+        experiment.table = *node->as_table();
     }
+    for (const auto& [key, origin] : origins)
+        if (key.rfind("experiment.", 0) == 0) experiment.origins[key.substr(11)] = origin;
     return config;
 }
 

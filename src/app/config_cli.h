@@ -2,6 +2,7 @@
 // resolved into a RunConfig (sources and their order: app/config.h).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,9 +35,19 @@ struct ConfigOptions {
 void AddConfigOptions(CLI::App* command, ConfigOptions& options);
 RunConfig ResolveConfig(const ConfigOptions& options);
 
+// An experiment file's [experiment] table after every --set experiment.KEY, and where each of its
+// keys came from ("exp.toml:4", "--set experiment.seeds=[1,2]").
+struct ExperimentTable {
+    toml::table table;
+    std::map<std::string, std::string> origins;  // key below experiment. → origin
+    std::string file;                            // the experiment file (origin of absent keys)
+    std::string Origin(const std::string& key) const;
+};
+
 // Experiment files (presets/*.toml): a RunConfig plus an [experiment] table. Resolves the config
 // with [experiment] skipped by the schema and, when `quick`, [experiment.quick] merged over the
-// file (before --set); returns the file's [experiment] table (empty if absent) in `experiment`.
-RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, toml::table& experiment);
+// file (before --set); returns the [experiment] table (the file's with the --set experiment.KEY
+// overrides; empty if neither has one) in `experiment`.
+RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, ExperimentTable& experiment);
 
 }  // namespace fovrt

@@ -2,7 +2,11 @@
 
 #include <cstdio>
 
+#include "core/error.h"
 #include "denoise/denoiser_factory.h"
+#include "denoise/memory_plan.h"
+#include "denoise/variants.h"
+#include "render/visibility_buffer.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
@@ -35,7 +39,19 @@ std::string DenoiserSet::DeviceDescription() const {
     return "cpu (C++ reference)";
 }
 
+namespace {
+
+// Bytes per pixel of a plane list (core/plane_list.h), from its rows' element types: what
+// allocating it at W×H takes, known without allocating it.
+#define FOVRT_PLANE_PIXEL_BYTES(member, Type, neutral, channels, doc) +sizeof(Type)
+constexpr size_t kFrameInputsPixelBytes = 0 FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_PIXEL_BYTES);
+constexpr size_t kVisibilityPixelBytes = 0 FOVRT_VISIBILITY_PLANES(FOVRT_PLANE_PIXEL_BYTES);
+#undef FOVRT_PLANE_PIXEL_BYTES
+
+}  // namespace
+
 std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
+    const size_t pixels = size_t(config.camera.width) * size_t(config.camera.height);
     std::vector<BufferPlan> plan;
     for (const std::string& name : config.denoise.denoisers) {
         for (int eye = 0; eye < 2; ++eye) {
@@ -47,7 +63,36 @@ std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
             }
         }
     }
+    // The frame pipeline's own planes, per eye: FrameInputs, the spp map, and the renderer's
+    // visibility buffer (two with A-SVGF gradient samples: their forward projection reads the
+    // previous frame's). Counted from the plane lists, so nothing is allocated to count them.
+    const RendererNeeds needs = RendererNeedsOf(config.denoise.denoisers, "denoise.denoisers");
+    const size_t visibilityBuffers = needs.gradientSamples ? 2 : 1;
+    for (int eye = 0; eye < 2; ++eye) {
+        const std::string prefix = "eye" + std::to_string(eye) + ".";
+        plan.push_back({prefix + "frame_inputs", pixels * kFrameInputsPixelBytes, false});
+        plan.push_back({prefix + "spp_map", pixels * sizeof(uint16_t), false});
+        plan.push_back({prefix + "render.visibility",
+                        visibilityBuffers * pixels * kVisibilityPixelBytes, false});
+    }
     return plan;
+}
+
+void EnforceRunBudget(const RunConfig& config, const std::string& what) {
+    EnforceMemoryBudget(PlanRunMemory(config), config.memoryBudget, what);
+}
+
+[[noreturn]] void FailOutOfMemory(const RunConfig& config, const std::vector<BufferPlan>& plan,
+                                  const std::string& what) {
+    const size_t total = TotalBytes(plan);
+    Fail("out of memory: {} at {}x{} per eye asked for {} bytes ({:.1f} MiB) and an allocation failed "
+         "(lower camera.width / camera.height, or give --memory-budget to refuse before rendering)",
+         what, config.camera.width, config.camera.height, total, double(total) / 1048576.0);
+}
+
+std::vector<BufferPlan> PlanReferenceMemory(const RunConfig& config) {
+    const size_t imageBytes = size_t(config.camera.width) * size_t(config.camera.height) * sizeof(vec3);
+    return {{"reference.image.eye0", imageBytes, false}, {"reference.image.eye1", imageBytes, false}};
 }
 
 }  // namespace fovrt

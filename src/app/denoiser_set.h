@@ -37,7 +37,20 @@ private:
     std::vector<Variant> variants_;
 };
 
-// Every buffer all variants allocate for two eyes at W×H (for --memory-budget and manifests).
+// Every large buffer a run allocates for two eyes at W×H, computed without allocating any: all
+// variants' denoiser buffers (their memory plans), FrameInputs, spp maps and the renderer's
+// visibility buffers (for --memory-budget, checked before anything is allocated).
 std::vector<BufferPlan> PlanRunMemory(const RunConfig& config);
+// Throws fovrt::Error when PlanRunMemory exceeds config.memoryBudget (0 = none), naming command
+// `what`: called by every command that renders before it allocates anything large.
+void EnforceRunBudget(const RunConfig& config, const std::string& what);
+// The reference images in flight, one HDR image per eye (`fovrt reference`; an experiment holds
+// them beside PlanRunMemory's buffers).
+std::vector<BufferPlan> PlanReferenceMemory(const RunConfig& config);
+
+// Turns a std::bad_alloc of command `what` into one line (fovrt::Error) naming the resolution
+// and the bytes its memory plan asks for.
+[[noreturn]] void FailOutOfMemory(const RunConfig& config, const std::vector<BufferPlan>& plan,
+                                  const std::string& what);
 
 }  // namespace fovrt

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <new>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -56,9 +57,9 @@ double MsSince(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
-std::vector<std::string> StringArray(const toml::table& table, const std::string& key,
-                                     const std::string& file) {
-    const toml::node* node = table.get(key);
+std::vector<std::string> StringArray(const ExperimentTable& experiment, const std::string& key) {
+    const std::string file = experiment.Origin(key);
+    const toml::node* node = experiment.table.get(key);
     if (!node) Fail("{}: experiment.{} is missing", file, key);
     const toml::array* array = node->as_array();
     if (!array || array->empty()) Fail("{}: experiment.{} must be a non-empty array of strings", file, key);
@@ -185,40 +186,39 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
     if (!args.shard.empty()) spec.shard = ParseShard(args.shard);
     spec.merge = args.merge;
     if (spec.merge && spec.shard.Sharded()) Fail("--merge and --shard exclude each other");
-    const std::string file = spec.file.string();
-    toml::table experiment;
+    ExperimentTable experiment;
     // The config with the variants as its denoisers (a replay checks the list it renders with).
     auto resolve = [&](const ConfigOptions& resolved) {
         RunConfig config = ResolveExperimentConfig(resolved, quick, experiment);
-        for (const auto& [key, node] : experiment) {
+        for (const auto& [key, node] : experiment.table) {
             std::string k(key.str());
             static const std::vector<std::string> known = {"scenes", "variants", "visual_frame", "quick",
                                                            "seeds", "baseline"};
             if (std::find(known.begin(), known.end(), k) == known.end())
-                Fail("{}: unknown key experiment.{} (did you mean experiment.{}?)", file, k, NearestName(k, known));
+                Fail("{}: unknown key experiment.{} (did you mean experiment.{}?)", experiment.Origin(k), k, NearestName(k, known));
         }
-        spec.variants = StringArray(experiment, "variants", file);
+        spec.variants = StringArray(experiment, "variants");
         for (const std::string& variant : spec.variants)
-            FindDenoiserVariant(variant, file + ": experiment.variants");
+            FindDenoiserVariant(variant, experiment.Origin("variants") + ": experiment.variants");
         config.denoise.denoisers = spec.variants;
         return config;
     };
     if (replayPath.empty()) {
         spec.config = resolve(options);
-        spec.scenes = scenes.empty() ? StringArray(experiment, "scenes", file) : scenes;
+        spec.scenes = scenes.empty() ? StringArray(experiment, "scenes") : scenes;
     } else {
         spec.replay = OpenReplay(replayPath, allowChanges);
         spec.config = ResolveReplayConfig(*spec.replay, options, resolve, "fovrt experiment");
         spec.scenes = {spec.config.scene.name};
-        if (experiment.contains("scenes"))
+        if (experiment.table.contains("scenes"))
             std::fprintf(stderr, "fovrt experiment: replay: experiment.scenes is ignored (the recording's scene '%s' "
                                  "is rendered)\n", spec.config.scene.name.c_str());
     }
-    if (const toml::node* baseline = experiment.get("baseline")) {
+    if (const toml::node* baseline = experiment.table.get("baseline")) {
         auto value = baseline->value<std::string>();
-        if (!value) Fail("{}: experiment.baseline must be a string (one of experiment.variants)", file);
+        if (!value) Fail("{}: experiment.baseline must be a string (one of experiment.variants)", experiment.Origin("baseline"));
         if (std::find(spec.variants.begin(), spec.variants.end(), *value) == spec.variants.end())
-            Fail("{}: experiment.baseline '{}' is not in experiment.variants (did you mean '{}'?)", file, *value,
+            Fail("{}: experiment.baseline '{}' is not in experiment.variants (did you mean '{}'?)", experiment.Origin("baseline"), *value,
                  NearestName(*value, spec.variants));
         spec.baseline = *value;
     } else {
@@ -226,27 +226,27 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
     }
     if (!args.seeds.empty()) {
         spec.seeds = ParseSeedsOption(args.seeds, spec.config.run.seed);
-    } else if (const toml::node* seeds = experiment.get("seeds"); seeds && !spec.replay) {
+    } else if (const toml::node* seeds = experiment.table.get("seeds"); seeds && !spec.replay) {
         const toml::array* array = seeds->as_array();
         if (!array || array->empty())
-            Fail("{}: experiment.seeds must be a non-empty array of integers in [0, 2^32), e.g. [1, 2, 3]", file);
+            Fail("{}: experiment.seeds must be a non-empty array of integers in [0, 2^32), e.g. [1, 2, 3]", experiment.Origin("seeds"));
         for (const toml::node& element : *array) {
             auto value = element.value<int64_t>();
             if (!element.is_integer() || !value || *value < 0 || *value > kMaxSeed)
-                Fail("{}: experiment.seeds must hold only integers in [0, 2^32), e.g. [1, 2, 3]", file);
+                Fail("{}: experiment.seeds must hold only integers in [0, 2^32), e.g. [1, 2, 3]", experiment.Origin("seeds"));
             if (std::find(spec.seeds.begin(), spec.seeds.end(), uint32_t(*value)) != spec.seeds.end())
-                Fail("{}: experiment.seeds lists seed {} twice", file, *value);
+                Fail("{}: experiment.seeds lists seed {} twice", experiment.Origin("seeds"), *value);
             spec.seeds.push_back(uint32_t(*value));
         }
     } else {
-        if (spec.replay && experiment.contains("seeds"))
+        if (spec.replay && experiment.table.contains("seeds"))
             std::fprintf(stderr, "fovrt experiment: replay: experiment.seeds is ignored (the recording's run.seed %u "
                                  "is rendered)\n", spec.config.run.seed);
         spec.seeds = {spec.config.run.seed};
     }
-    if (const toml::node* frame = experiment.get("visual_frame")) {
+    if (const toml::node* frame = experiment.table.get("visual_frame")) {
         auto value = frame->value<int64_t>();
-        if (!value || *value < -1) Fail("{}: experiment.visual_frame must be an integer ≥ -1", file);
+        if (!value || *value < -1) Fail("{}: experiment.visual_frame must be an integer ≥ -1", experiment.Origin("visual_frame"));
         spec.visualFrame = int(*value);
     }
     return spec;
@@ -281,8 +281,6 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
         const std::string& sceneName = spec.scenes[sceneIndex];
         RunConfig sceneConfig = base;
         sceneConfig.scene.name = sceneName;
-        std::vector<BufferPlan> plan = PlanRunMemory(sceneConfig);
-        EnforceMemoryBudget(plan, sceneConfig.memoryBudget, "experiment");
 
         SceneRecord record;
         record.index = sceneIndex;
@@ -530,15 +528,22 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     return results;
 }
 
+// Every large buffer of one scene's pass (the scene does not change it): the run's and the
+// references'.
+std::vector<BufferPlan> PlanExperimentMemory(const RunConfig& config) {
+    std::vector<BufferPlan> plan = PlanRunMemory(config);
+    for (BufferPlan& reference : PlanReferenceMemory(config)) plan.push_back(std::move(reference));
+    return plan;
+}
+
 std::string RerunCommand(const ExperimentSpec& spec) {
     return fmt::format("fovrt experiment {}{} --shard I/N (the same options as the others)", spec.file.string(),
                        spec.quick ? " --quick" : "");
 }
 
-}  // namespace
-
-Results RunExperiment(const ExperimentSpec& spec) {
+Results RunExperimentUnchecked(const ExperimentSpec& spec) {
     const RunConfig& base = spec.config;
+    if (!spec.merge) EnforceMemoryBudget(PlanExperimentMemory(base), base.memoryBudget, "experiment");
     OutputDir out(base.output.dir, "output.dir");
     OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
     const fs::path outDir = out.Path();
@@ -572,6 +577,16 @@ Results RunExperiment(const ExperimentSpec& spec) {
     out.Keep();
     cacheDir.Keep();
     return results;
+}
+
+}  // namespace
+
+Results RunExperiment(const ExperimentSpec& spec) {
+    try {
+        return RunExperimentUnchecked(spec);
+    } catch (const std::bad_alloc&) {
+        FailOutOfMemory(spec.config, PlanExperimentMemory(spec.config), "fovrt experiment");
+    }
 }
 
 }  // namespace fovrt

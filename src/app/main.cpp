@@ -1,6 +1,7 @@
 // fovrt: foveated VR path-tracing testbed. One executable, one subcommand per workflow.
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -28,6 +29,11 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const fovrt::Error& e) {
         std::fprintf(stderr, "fovrt: error: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        // An allocation outside the planes (those name their size: core/image.h).
+        std::fprintf(stderr, "fovrt: error: out of memory (an allocation failed; lower camera.width / "
+                             "camera.height, or give --memory-budget to refuse before rendering)\n");
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fovrt: error: %s\n", e.what());

@@ -364,6 +364,18 @@ void SessionRecorder::Close() {
 
 // ---- SessionReader ----------------------------------------------------------------------------
 
+namespace {
+
+// nlohmann's message without its "[json.exception.out_of_range.406] " prefix.
+std::string JsonProblem(const nlohmann::json::exception& e) {
+    std::string message = e.what();
+    if (message.rfind("[json.exception.", 0) == 0 && message.find("] ") != std::string::npos)
+        message = message.substr(message.find("] ") + 2);
+    return message;
+}
+
+}  // namespace
+
 SessionReader::SessionReader(const std::filesystem::path& path)
     : path_(path), file_(std::fopen(path.c_str(), "rb"), &std::fclose) {
     const std::string name = path_.string();
@@ -374,6 +386,9 @@ SessionReader::SessionReader(const std::filesystem::path& path)
         header_ = nlohmann::json::parse(line_);
     } catch (const nlohmann::json::parse_error&) {
         Fail("{}: line 1: not a fovrt session recording (the header is not JSON)", name);
+    } catch (const nlohmann::json::exception& e) {
+        // Valid syntax that JSON cannot hold (a number such as 1e400 overflows a double).
+        Fail("{}: line 1: the header is not readable JSON: {}", name, JsonProblem(e));
     }
     if (!header_.is_object() || !header_.contains("format") || header_["format"] != kSessionFormat)
         Fail("{}: not a fovrt session recording (line 1 lacks \"format\": \"{}\")", name, kSessionFormat);
@@ -432,6 +447,8 @@ bool SessionReader::Next(RecordedFrame& out) {
         json = nlohmann::json::parse(line_);
     } catch (const nlohmann::json::parse_error& e) {
         FailAtLine(before, fmt::format("not valid JSON (at byte {})", e.byte));
+    } catch (const nlohmann::json::exception& e) {
+        FailAtLine(before, fmt::format("not readable JSON: {}", JsonProblem(e)));
     }
     // The line's own frame index, when it has one, names the frame in every later message.
     std::string frame = before;

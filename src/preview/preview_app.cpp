@@ -13,6 +13,7 @@
 
 #include "app/build_info.h"
 #include "app/config_io.h"
+#include "app/denoiser_set.h"
 #include "core/error.h"
 #include "denoise/variants.h"
 #include "io/exr.h"
@@ -340,6 +341,8 @@ private:
 }  // namespace
 
 void RunPreview(const RunConfig& config, const PreviewOptions& options) {
+    // Before anything large is allocated (the same model as `fovrt run`; every listed variant counted).
+    EnforceRunBudget(config, "preview");
     PreviewSession session(config, options);
     session.Run();
 }

@@ -44,6 +44,17 @@ Texture PatternTexture(const std::string& name, bool hashed, int cellsX, int cel
 Texture TextureFromPixels(const std::string& path, int width, int height, int channels, int bits,
                           const unsigned char* data, bool srgb);
 
+// The largest colour component a material may have (base colour, Kd, Ks, emission, Ke): the
+// square of a radiance (SVGF's second moments, squared errors) must stay finite in 32-bit float
+// (max 3.4e38) even summed over a frame, which 1e9² = 1e18 leaves ~1e20 of room for. Real
+// emitters are far below it (the shipped scenes' brightest Ke is 300).
+inline constexpr double kMaxMaterialColour = 1e9;
+
+// The check every material colour passes, from an MTL line or a scene file's [[material]]
+// override: "" when each component is finite and in [0, kMaxMaterialColour], else what is wrong
+// (for "<file:line>: <key>: <problem>").
+std::string MaterialColourProblem(const std::vector<double>& components);
+
 // Validates and finishes a mesh: finite positions/normals/uvs, indices in range, one material
 // per triangle, unit normals (vertices whose normal is missing or zero get the area-weighted
 // average of their faces' normals). Throws fovrt::Error naming `file`.

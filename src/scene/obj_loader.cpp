@@ -124,6 +124,54 @@ ObjScan ScanObj(const std::string& text, const std::string& file) {
     return scan;
 }
 
+// Validates the colours of every MTL file the OBJ names, with file:line (tinyobjloader reads
+// "nan" as a number it substitutes, and 3e38 as a colour whose square is inf): Kd, Ks, Ke, Ka
+// pass the material colour check shared with the scene file's overrides; Ns must be finite.
+void ScanMtl(const std::filesystem::path& mtlFile) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(mtlFile, ec)) return;  // tinyobjloader reports it
+    const std::string file = mtlFile.lexically_normal().string();
+    const std::string text = ReadWholeFile(mtlFile, "MTL file");
+    std::string material;
+    size_t pos = 0;
+    int lineNumber = 0;
+    while (pos <= text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        line = line.substr(0, line.find('#'));  // a comment may follow the values
+        std::vector<std::string_view> tokens = Tokens(line);
+        pos = end + 1;
+        ++lineNumber;
+        if (tokens.empty()) continue;
+        const std::string_view key = tokens[0];
+        if (key == "newmtl") {
+            material = tokens.size() > 1 ? std::string(tokens[1]) : std::string();
+            continue;
+        }
+        const bool colour = key == "Kd" || key == "Ks" || key == "Ke" || key == "Ka";
+        if (!colour && key != "Ns") continue;
+        if (colour && tokens.size() > 1 && tokens[1] == "spectral") continue;  // a file, not numbers
+        if (colour && tokens.size() > 1 && tokens[1] == "xyz") tokens.erase(tokens.begin() + 1);
+        if (tokens.size() < 2) Fail("{}:{}: material '{}': {} needs a value", file, lineNumber, material, key);
+        std::vector<double> values;
+        for (size_t k = 1; k < tokens.size(); ++k) {
+            double v = 0.0;
+            char* stop = nullptr;
+            std::string token(tokens[k]);
+            v = std::strtod(token.c_str(), &stop);
+            if (stop != token.c_str() + token.size())
+                Fail("{}:{}: material '{}': {}: malformed number '{}'", file, lineNumber, material, key, token);
+            values.push_back(v);
+        }
+        std::string problem = colour ? MaterialColourProblem(values)
+                              : std::isfinite(values[0]) && std::fabs(values[0]) <= 1e30
+                                  ? std::string()
+                                  : fmt::format("{} is not a finite number", tokens[1]);
+        if (!problem.empty()) Fail("{}:{}: material '{}': {}: {}", file, lineNumber, material, key, problem);
+    }
+}
+
 std::vector<std::string> Lines(const std::string& text) {
     std::vector<std::string> out;
     std::istringstream ss(text);
@@ -186,6 +234,7 @@ std::vector<MeshPart> LoadObj(const std::filesystem::path& path, LoadContext& co
     const std::string file = path.lexically_normal().string();
     const std::string text = ReadWholeFile(path, "OBJ file");
     ObjScan scan = ScanObj(text, file);
+    for (std::string_view name : Tokens(scan.mtllibs)) ScanMtl(path.parent_path() / name);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

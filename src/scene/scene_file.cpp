@@ -374,8 +374,11 @@ struct SceneFileLoader {
                                               fmt::format("{}: {}", file, t.Key("base_color_texture")), context);
         const int roughnessMap = ReadScalarMap(t, "roughness_texture");
         const int metallicMap = ReadScalarMap(t, "metallic_texture");
-        if (baseColor && std::min({baseColor->x, baseColor->y, baseColor->z}) < 0.0f) t.FailAt("base_color", "must be >= 0");
-        if (emission && std::min({emission->x, emission->y, emission->z}) < 0.0f) t.FailAt("emission", "must be >= 0");
+        for (const auto& [key, colour] : {std::pair{"base_color", baseColor}, std::pair{"emission", emission}}) {
+            if (!colour) continue;
+            std::string problem = detail::MaterialColourProblem({colour->x, colour->y, colour->z});
+            if (!problem.empty()) t.FailAt(key, problem);
+        }
         t.Finish();
         for (Material* m : targets) {
             if (baseColor) m->baseColor = *baseColor;

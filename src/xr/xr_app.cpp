@@ -13,6 +13,7 @@
 
 #include "app/build_info.h"
 #include "app/config_io.h"
+#include "app/denoiser_set.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/exr.h"
@@ -429,6 +430,8 @@ private:
 }  // namespace
 
 void RunXr(const RunConfig& config, const XrOptions& options) {
+    // Before anything large is allocated (the same model as `fovrt run`; every listed variant counted).
+    EnforceRunBudget(config, "xr");
     XrApp app(config, options);
     app.Run();
 }
