@@ -33,17 +33,6 @@ BandGeometry MakeBandGeometry(const VdpGeometry& g, int w, int h, int imageW, in
     return b;
 }
 
-// Frame `f` of `frames` filtered by `taps` (tap k weights the frame k earlier, frame 0 repeating).
-Plane<float> FilterInTime(const std::vector<Plane<float>>& frames, int f, const std::vector<float>& taps) {
-    Plane<float> out(frames[0].width(), frames[0].height(), 0.0f);
-    for (size_t k = 0; k < taps.size(); ++k) {
-        const Plane<float>& src = frames[size_t(std::max(f - int(k), 0))];
-        const float g = taps[k];
-        for (size_t p = 0; p < out.size(); ++p) out[p] += g * src[p];
-    }
-    return out;
-}
-
 }  // namespace
 
 FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
@@ -119,10 +108,10 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
         // Images in the order test, reference per channel; the reference's sustained image adapts.
         std::vector<Plane<float>> images;
         if (video) {
-            images.push_back(FilterInTime(test, f, filters.sustained));
-            images.push_back(FilterInTime(reference, f, filters.sustained));
-            images.push_back(FilterInTime(test, f, filters.transient));
-            images.push_back(FilterInTime(reference, f, filters.transient));
+            images.push_back(VdpFilterFrame(test, f, filters.sustained));
+            images.push_back(VdpFilterFrame(reference, f, filters.sustained));
+            images.push_back(VdpFilterFrame(test, f, filters.transient));
+            images.push_back(VdpFilterFrame(reference, f, filters.transient));
         }
         std::vector<const Plane<float>*> inputs;
         if (video) {

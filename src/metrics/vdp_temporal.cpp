@@ -1,5 +1,6 @@
 #include "metrics/vdp_temporal.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fovrt {
@@ -23,6 +24,16 @@ VdpTemporalFilters MakeVdpTemporalFilters(double fps, const VdpParams& params) {
     for (int i = 0; i + 1 < n; ++i)
         f.transient[size_t(i)] = float(kVdpTransientGain * (s[size_t(i + 1)] - s[size_t(i)]) / sum / (t[1] - t[0]));
     return f;
+}
+
+Plane<float> VdpFilterFrame(const std::vector<Plane<float>>& frames, int frame, const std::vector<float>& taps) {
+    Plane<float> out(frames[0].width(), frames[0].height(), 0.0f);
+    for (size_t k = 0; k < taps.size(); ++k) {
+        const Plane<float>& src = frames[size_t(std::max(frame - int(k), 0))];
+        const float g = taps[k];
+        for (size_t p = 0; p < out.size(); ++p) out[p] += g * src[p];
+    }
+    return out;
 }
 
 }  // namespace fovrt

@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "core/image.h"
 #include "metrics/vdp_params.h"
 
 namespace fovrt {
@@ -19,5 +20,8 @@ struct VdpTemporalFilters {
 
 int VdpTemporalFilterLength(double fps);
 VdpTemporalFilters MakeVdpTemporalFilters(double fps, const VdpParams& params);
+// Frame `frame` of `frames` filtered by `taps` (tap k weights the frame k earlier; frame 0
+// repeats before the start, the reference's "replicate" padding).
+Plane<float> VdpFilterFrame(const std::vector<Plane<float>>& frames, int frame, const std::vector<float>& taps);
 
 }  // namespace fovrt
