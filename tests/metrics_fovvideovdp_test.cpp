@@ -12,6 +12,7 @@
 
 #include "metrics/fovvideovdp.h"
 #include "metrics/vdp_csf.h"
+#include "metrics/vdp_masking.h"
 #include "metrics/vdp_pyramid.h"
 #include "metrics/vdp_temporal.h"
 #include "vdp_golden_cases.h"
@@ -317,4 +318,18 @@ TEST_CASE("stage by stage on a still: band frequencies, contrasts, sensitivities
 
 TEST_CASE("stage by stage on a video frame with both temporal channels and a moving fixation", "[vdp]") {
     CheckStages(kVideoStages);
+}
+
+TEST_CASE("masking: the pooled log2 form equals D = |T-R|^p / (1 + (10^c min(|T|,|R|))^q), clamped at 1e4", "[vdp]") {
+    const VdpParams prm;
+    const float p = float(prm.maskP), q = float(prm.maskQSustained), gain = float(std::pow(10.0, prm.maskC));
+    const float log2Gain = float(prm.maskC * std::log2(10.0));
+    for (auto [t, r, s] : {std::tuple{0.3f, 0.25f, 40.0f}, {-0.01f, 0.02f, 300.0f}, {1.5f, -2.0f, 800.0f},
+                           {0.001f, 0.0f, 20.0f}}) {
+        const float d = VdpMaskedDifference(t, r, 1.0f / s, p, q, gain);
+        CHECK(std::exp2(VdpLog2MaskedDifference(t, r, s, p, q, log2Gain)) == Approx(d).epsilon(1e-5));
+    }
+    CHECK(VdpMaskedDifference(50.0f, 0.0f, 0.001f, p, q, gain) == 1e4f);
+    CHECK(std::exp2(VdpLog2MaskedDifference(50.0f, 0.0f, 1000.0f, p, q, log2Gain)) == Approx(1e4f));
+    CHECK(std::isinf(VdpLog2MaskedDifference(0.2f, 0.2f, 100.0f, p, q, log2Gain)));
 }

@@ -99,7 +99,7 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
         return glm::vec2(geometry_.ViewDirection(fix.x + 0.5, fix.y + 0.5, width, height, width, height));
     };
 
-    const float maskGain = float(std::pow(10.0, params_.maskC));
+    const float log2MaskGain = float(params_.maskC * std::log2(10.0));
     const float p = float(params_.maskP);
     const float beta = float(params_.beta);
     const float channelWeight[2] = {1.0f, float(params_.wTransient)};
@@ -146,9 +146,10 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
                         } else {
                             s = csf_[c].Sensitivity(slices[size_t(b) * 2 + size_t(c)], adapt[i]);
                         }
-                        const float d = VdpMaskedDifference(t[i], r[i], 1.0f / (s * sensitivityGain_), p, q, maskGain);
-                        sum += std::pow(double(d), double(beta));
-                        if (options.diffMaps) diffBands[size_t(b)][i] += channelWeight[c] * d / bandGain;
+                        const float log2D = VdpLog2MaskedDifference(t[i], r[i], s * sensitivityGain_, p, q, log2MaskGain);
+                        if (!(log2D > -126.0f)) continue;  // T = R: no difference
+                        sum += double(std::exp2(beta * log2D));
+                        if (options.diffMaps) diffBands[size_t(b)][i] += channelWeight[c] * std::exp2(log2D) / bandGain;
                     }
                     rowSums[size_t(y)] = sum;
                 });

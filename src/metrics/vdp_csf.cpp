@@ -118,10 +118,14 @@ VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm) : logS_(size_t(
 // The reference's interpolant: i1 = first grid point ≥ q, i0 = i1 − 1, fraction with a 1e-6
 // guard in the denominator, 0 at and below the first point.
 void VdpCsfTable::Axis::Locate(float q, int& i0, int& i1, float& f) const {
-    i1 = int(std::lower_bound(grid.begin(), grid.end(), q) - grid.begin());
-    i1 = std::min(i1, kSize - 1);
+    // The grid is uniform up to float rounding: start from the uniform guess, then step to the
+    // exact lower_bound (first point ≥ q).
+    const float step = (grid[kSize - 1] - grid[0]) / float(kSize - 1);
+    i1 = std::clamp(int(std::ceil((q - grid[0]) / step)), 0, kSize - 1);
+    while (i1 > 0 && grid[size_t(i1 - 1)] >= q) --i1;
+    while (i1 < kSize - 1 && grid[size_t(i1)] < q) ++i1;
     i0 = std::max(i1 - 1, 0);
-    f = i0 == i1 ? 0.0f : std::max((q - grid[i0]) / (grid[i1] - grid[i0] + 0.000001f), 0.0f);
+    f = i0 == i1 ? 0.0f : std::max((q - grid[size_t(i0)]) / (grid[size_t(i1)] - grid[size_t(i0)] + 0.000001f), 0.0f);
 }
 
 float VdpCsfTable::Sensitivity(float rho, float luminance, float eccentricity) const {

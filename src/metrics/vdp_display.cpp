@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "metrics/filter.h"
 
 namespace fovrt {
 
@@ -39,17 +40,21 @@ double VdpBlackLevel(double peak, double contrast, double ambientLux, double ref
 
 Plane<float> VdpLuminance(const Plane<float>& frame, const VdpPhotometry& photometry) {
     Plane<float> out(frame.width(), frame.height());
-    for (size_t i = 0; i < frame.size(); ++i) out[i] = photometry.Luminance(frame[i]);
+    metrics_detail::ParallelRows(frame.height(), [&](int y) {
+        for (int x = 0; x < frame.width(); ++x) out(x, y) = photometry.Luminance(frame(x, y));
+    });
     return out;
 }
 
 Plane<float> VdpLuminance(const Plane<vec3>& frame, const VdpPhotometry& photometry) {
     Plane<float> out(frame.width(), frame.height());
-    for (size_t i = 0; i < frame.size(); ++i) {
-        const vec3& c = frame[i];
-        out[i] = fovrt::Luminance(vec3(photometry.Luminance(c.r), photometry.Luminance(c.g),
-                                       photometry.Luminance(c.b)));
-    }
+    metrics_detail::ParallelRows(frame.height(), [&](int y) {
+        for (int x = 0; x < frame.width(); ++x) {
+            const vec3& c = frame(x, y);
+            out(x, y) = fovrt::Luminance(vec3(photometry.Luminance(c.r), photometry.Luminance(c.g),
+                                              photometry.Luminance(c.b)));
+        }
+    });
     return out;
 }
 
