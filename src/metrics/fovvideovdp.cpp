@@ -33,6 +33,42 @@ BandGeometry MakeBandGeometry(const VdpGeometry& g, int w, int h, int imageW, in
     return b;
 }
 
+// Equal counts of equal-size frames, a frame rate for video, one fixation or one per frame.
+void ValidateSequence(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference, double fps,
+                      const VdpOptions& options) {
+    if (test.empty() || test.size() != reference.size())
+        Fail("FovVideoVDP: {} test and {} reference frames (need equal, non-zero counts)", test.size(),
+             reference.size());
+    const int width = reference[0].width(), height = reference[0].height();
+    for (size_t f = 0; f < test.size(); ++f)
+        if (test[f].width() != width || test[f].height() != height || reference[f].width() != width ||
+            reference[f].height() != height)
+            Fail("FovVideoVDP: frame {} is not {}x{} in both sequences", f, width, height);
+    const int frames = int(test.size());
+    if (frames > 1 && !(fps > 0)) Fail("FovVideoVDP: {} frames need a frame rate > 0 (got {})", frames, fps);
+    const size_t fixCount = options.fixations.size();
+    if (options.foveated && fixCount > 1 && fixCount != size_t(frames))
+        Fail("FovVideoVDP: {} fixations for {} frames (need 1 or one per frame)", fixCount, frames);
+}
+
+// Pooling of the per band × channel × frame Q: bands (β_sch), channels (β_tch, transient
+// weighted), frames (β_t power mean), then JOD; a channel left out contributes nothing.
+double PoolToJod(const VdpResult& r, const VdpParams& params, bool useSustained, bool useTransient) {
+    const double channelWeight[2] = {1.0, params.wTransient};
+    double frameSum = 0.0;
+    for (int f = 0; f < r.frames; ++f) {
+        double chSum = 0.0;
+        for (int c = 0; c < r.channels; ++c) {
+            if ((c == 0 && !useSustained) || (c == 1 && !useTransient)) continue;
+            double bandSum = 0.0;
+            for (int b = 0; b < r.bands; ++b) bandSum += std::pow(r.Q(b, c, f) * channelWeight[c], params.betaSch);
+            chSum += std::pow(std::pow(bandSum, 1.0 / params.betaSch), params.betaTch);
+        }
+        frameSum += std::pow(std::pow(chSum, 1.0 / params.betaTch), params.betaT);
+    }
+    return VdpJod(std::pow(frameSum / r.frames, 1.0 / params.betaT), params);
+}
+
 }  // namespace
 
 FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
@@ -48,20 +84,11 @@ float FovVideoVdp::Sensitivity(int channel, float rho, float luminance, float ec
 
 VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference,
                              double fps, const VdpOptions& options) const {
-    if (test.empty() || test.size() != reference.size())
-        Fail("FovVideoVDP: {} test and {} reference frames (need equal, non-zero counts)", test.size(),
-             reference.size());
+    ValidateSequence(test, reference, fps, options);
     const int width = reference[0].width(), height = reference[0].height();
-    for (size_t f = 0; f < test.size(); ++f)
-        if (test[f].width() != width || test[f].height() != height || reference[f].width() != width ||
-            reference[f].height() != height)
-            Fail("FovVideoVDP: frame {} is not {}x{} in both sequences", f, width, height);
     const int frames = int(test.size());
     const bool video = frames > 1;
-    if (video && !(fps > 0)) Fail("FovVideoVDP: {} frames need a frame rate > 0 (got {})", frames, fps);
     const size_t fixCount = options.fixations.size();
-    if (options.foveated && fixCount > 1 && fixCount != size_t(frames))
-        Fail("FovVideoVDP: {} fixations for {} frames (need 1 or one per frame)", fixCount, frames);
 
     const double ppd = geometry_.PixelsPerDegree();
     const int bands = VdpBandCount(width, height, ppd);
@@ -168,25 +195,9 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
         }
     });
 
-    // Pooling: bands (β_sch), channels (β_tch, transient weighted), frames (β_t power mean).
-    auto pool = [&](bool useSustained, bool useTransient) {
-        double frameSum = 0.0;
-        for (int f = 0; f < frames; ++f) {
-            double chSum = 0.0;
-            for (int c = 0; c < channels; ++c) {
-                if ((c == 0 && !useSustained) || (c == 1 && !useTransient)) continue;
-                double bandSum = 0.0;
-                for (int b = 0; b < bands; ++b)
-                    bandSum += std::pow(result.Q(b, c, f) * channelWeight[c], params_.betaSch);
-                chSum += std::pow(std::pow(bandSum, 1.0 / params_.betaSch), params_.betaTch);
-            }
-            frameSum += std::pow(std::pow(chSum, 1.0 / params_.betaTch), params_.betaT);
-        }
-        return VdpJod(std::pow(frameSum / frames, 1.0 / params_.betaT), params_);
-    };
-    result.jod = pool(true, true);
-    result.jodSustained = pool(true, false);
-    result.jodTransient = video ? pool(false, true) : 10.0;
+    result.jod = PoolToJod(result, params_, true, true);
+    result.jodSustained = PoolToJod(result, params_, true, false);
+    result.jodTransient = video ? PoolToJod(result, params_, false, true) : 10.0;
     return result;
 }
 

@@ -57,7 +57,7 @@ struct VdpGeometry {
     // with fewer, larger pixels), centred on the image.
     glm::dvec2 ViewDirection(double x, double y, int width, int height, int imageWidth,
                             int imageHeight) const;
-    // Pixels per degree at `viewDirection` relative to the centre (≥ 1 on a flat screen).
+    // Pixels per degree at `angleFromCentreDegrees` relative to the centre (≥ 1 on a flat screen).
     double ResolutionMagnification(double angleFromCentreDegrees) const;
 };
 
