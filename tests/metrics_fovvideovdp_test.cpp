@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <tuple>
 #include <vector>
 
@@ -150,6 +151,21 @@ TEST_CASE("display geometry: pixels per degree from a FOV, a monitor or a profil
     const VdpGeometry g = VdpGeometry::FromPixelsPerDegree(20);
     const double c30 = std::cos(30 * kPiD / 180);
     CHECK(g.ResolutionMagnification(30) == Approx(1 / (c30 * c30)).epsilon(2e-3));
+}
+
+TEST_CASE("photometry: sRGB, linear and absolute values to cd/m², clamped to the display's range", "[vdp]") {
+    const VdpPhotometry srgb{100.0, 0.1, VdpEotf::Srgb}, linear{100.0, 0.1, VdpEotf::Linear},
+        absolute{1000.0, 0.005, VdpEotf::Absolute};
+    CHECK(srgb.Luminance(1.0f) == Approx(100.0));
+    CHECK(srgb.Luminance(0.0f) == Approx(0.1));
+    CHECK(srgb.Luminance(0.5f) == Approx(99.9 * std::pow((0.5 + 0.055) / 1.055, 2.4) + 0.1).epsilon(1e-6));
+    CHECK(linear.Luminance(0.25f) == Approx(99.9 * 0.25 + 0.1));
+    CHECK(linear.Luminance(3.0f) == Approx(100.0));
+    CHECK(absolute.Luminance(250.0f) == 250.0f);
+    CHECK(absolute.Luminance(5000.0f) == 1000.0f);
+    CHECK(absolute.Luminance(std::numeric_limits<float>::quiet_NaN()) == 0.005f);
+    CHECK(srgb.Luminance(std::numeric_limits<float>::infinity()) == Approx(100.0));
+    CHECK(VdpBlackLevel(200.0, 1000.0, 250.0) == Approx(0.2 + 250.0 / kPiD * 0.005));
 }
 
 TEST_CASE("the CSF table reproduces the model at its nodes and interpolates between", "[vdp]") {

@@ -23,6 +23,7 @@ float SrgbToLinear(float v) {
 }  // namespace
 
 float VdpPhotometry::Luminance(float v) const {
+    if (std::isnan(v)) v = 0.0f;  // a renderer's stray NaN shows as black (±inf clamp to the range)
     switch (eotf) {
     case VdpEotf::Srgb:
         return float(peak - black) * SrgbToLinear(std::clamp(v, 0.0f, 1.0f)) + float(black);
