@@ -17,5 +17,6 @@ void RegisterMemoryCommand(CLI::App& app);
 void RegisterPreviewCommand(CLI::App& app);  // src/preview
 void RegisterXrCommand(CLI::App& app);       // src/xr
 void RegisterClusterCommand(CLI::App& app);
+void RegisterVdpCommand(CLI::App& app);  // FovVideoVDP between two frame sequences
 
 }  // namespace fovrt

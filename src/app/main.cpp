@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     fovrt::RegisterConfigCommand(app);
     fovrt::RegisterBenchCommand(app);
     fovrt::RegisterMemoryCommand(app);
+    fovrt::RegisterVdpCommand(app);
     fovrt::RegisterPreviewCommand(app);
     fovrt::RegisterXrCommand(app);
     try {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 
+#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
 #include "core/atomic_file.h"
@@ -62,6 +63,18 @@ void WriteRgb8Png(const std::filesystem::path& path, int width, int height,
 
 void WritePng(const std::filesystem::path& path, const Plane<vec3>& hdr, float exposure, Tonemap tonemap) {
     WriteRgb8Png(path, hdr.width(), hdr.height(), TonemapToRgb8(hdr, exposure, tonemap));
+}
+
+Plane<vec3> ReadPngRgb(const std::filesystem::path& path) {
+    int width = 0, height = 0, channels = 0;
+    // 16-bit loading keeps 16-bit PNGs exact and widens 8-bit ones (v·257), so v/65535 = v8/255.
+    stbi_us* data = stbi_load_16(path.string().c_str(), &width, &height, &channels, 3);
+    if (!data) Fail("{}: cannot read PNG ({})", path.string(), stbi_failure_reason());
+    Plane<vec3> image(width, height);
+    for (size_t i = 0; i < image.size(); ++i)
+        image[i] = vec3(data[3 * i], data[3 * i + 1], data[3 * i + 2]) / 65535.0f;
+    stbi_image_free(data);
+    return image;
 }
 
 }  // namespace fovrt

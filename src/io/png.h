@@ -1,4 +1,4 @@
-// 8-bit PNG output for previews and HTML reports.
+// 8-bit PNG output for previews and HTML reports; PNG input (8 or 16 bit) for scoring images.
 //
 // Display transform: scale by 2^exposure (exposure in stops), then either clamp to [0,1]
 // (Tonemap::Clamp — the default, identical to src/metrics/tonemap.h's ToneMap at exposure 0) or
@@ -36,5 +36,9 @@ void WritePng(const std::filesystem::path& path, const Plane<vec3>& hdr, float e
               Tonemap tonemap = Tonemap::Clamp);
 void WriteRgb8Png(const std::filesystem::path& path, int width, int height,
                   const std::vector<uint8_t>& rgb);
+
+// Reads an 8- or 16-bit PNG (grey, grey+alpha, RGB or RGBA; alpha ignored) as its encoded values
+// in [0,1], no transfer function applied. fovrt::Error naming the file when it cannot be read.
+Plane<vec3> ReadPngRgb(const std::filesystem::path& path);
 
 }  // namespace fovrt

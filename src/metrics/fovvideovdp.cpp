@@ -1,0 +1,204 @@
+#include "metrics/fovvideovdp.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "metrics/filter.h"
+#include "metrics/vdp_masking.h"
+#include "metrics/vdp_pyramid.h"
+#include "metrics/vdp_temporal.h"
+
+namespace fovrt {
+
+namespace {
+
+// Where each pixel of a band looks (degrees from the screen centre) and its resolution
+// magnification; independent of the fixation, so computed once per band.
+struct BandGeometry {
+    Plane<glm::vec2> direction;
+    Plane<float> magnification;
+};
+
+BandGeometry MakeBandGeometry(const VdpGeometry& g, int w, int h, int imageW, int imageH) {
+    BandGeometry b{Plane<glm::vec2>(w, h), Plane<float>(w, h)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::dvec2 d = g.ViewDirection(x + 0.5, y + 0.5, w, h, imageW, imageH);
+            b.direction(x, y) = glm::vec2(d);
+            b.magnification(x, y) = float(g.ResolutionMagnification(glm::length(d)));
+        }
+    return b;
+}
+
+// Equal counts of equal-size frames, a frame rate for video, one fixation or one per frame.
+void ValidateSequence(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference, double fps,
+                      const VdpOptions& options) {
+    if (test.empty() || test.size() != reference.size())
+        Fail("FovVideoVDP: {} test and {} reference frames (need equal, non-zero counts)", test.size(),
+             reference.size());
+    const int width = reference[0].width(), height = reference[0].height();
+    for (size_t f = 0; f < test.size(); ++f)
+        if (test[f].width() != width || test[f].height() != height || reference[f].width() != width ||
+            reference[f].height() != height)
+            Fail("FovVideoVDP: frame {} is not {}x{} in both sequences", f, width, height);
+    const int frames = int(test.size());
+    if (frames > 1 && !(fps > 0)) Fail("FovVideoVDP: {} frames need a frame rate > 0 (got {})", frames, fps);
+    const size_t fixCount = options.fixations.size();
+    if (options.foveated && fixCount > 1 && fixCount != size_t(frames))
+        Fail("FovVideoVDP: {} fixations for {} frames (need 1 or one per frame)", fixCount, frames);
+}
+
+// Pooling of the per band × channel × frame Q: bands (β_sch), channels (β_tch, transient
+// weighted), frames (β_t power mean), then JOD; a channel left out contributes nothing.
+double PoolToJod(const VdpResult& r, const VdpParams& params, bool useSustained, bool useTransient) {
+    const double channelWeight[2] = {1.0, params.wTransient};
+    double frameSum = 0.0;
+    for (int f = 0; f < r.frames; ++f) {
+        double chSum = 0.0;
+        for (int c = 0; c < r.channels; ++c) {
+            if ((c == 0 && !useSustained) || (c == 1 && !useTransient)) continue;
+            double bandSum = 0.0;
+            for (int b = 0; b < r.bands; ++b) bandSum += std::pow(r.Q(b, c, f) * channelWeight[c], params.betaSch);
+            chSum += std::pow(std::pow(bandSum, 1.0 / params.betaSch), params.betaTch);
+        }
+        frameSum += std::pow(std::pow(chSum, 1.0 / params.betaTch), params.betaT);
+    }
+    return VdpJod(std::pow(frameSum / r.frames, 1.0 / params.betaT), params);
+}
+
+}  // namespace
+
+FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
+    : geometry_(geometry),
+      params_(params),
+      csf_{VdpCsfTable(kVdpChannelOmega[0], params.csfSigma, params.kCm),
+           VdpCsfTable(kVdpChannelOmega[1], params.csfSigma, params.kCm)},
+      sensitivityGain_(float(std::pow(10.0, params.sensitivityCorrection / 20.0))) {}
+
+float FovVideoVdp::Sensitivity(int channel, float rho, float luminance, float eccentricity) const {
+    return csf_[channel].Sensitivity(rho, luminance, eccentricity) * sensitivityGain_;
+}
+
+VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference,
+                             double fps, const VdpOptions& options) const {
+    ValidateSequence(test, reference, fps, options);
+    const int width = reference[0].width(), height = reference[0].height();
+    const int frames = int(test.size());
+    const bool video = frames > 1;
+    const size_t fixCount = options.fixations.size();
+
+    const double ppd = geometry_.PixelsPerDegree();
+    const int bands = VdpBandCount(width, height, ppd);
+    if (bands < 1) Fail("FovVideoVDP: a {}x{} image is too small for a contrast pyramid", width, height);
+    const int channels = video ? 2 : 1;
+
+    VdpResult result;
+    result.bands = bands;
+    result.channels = channels;
+    result.frames = frames;
+    result.bandFrequencies = VdpBandFrequencies(width, height, ppd);
+    result.bandFrequencies.resize(size_t(bands));
+    result.q.assign(size_t(frames) * size_t(channels) * size_t(bands), 0.0);
+    if (options.diffMaps) result.diffMaps.resize(size_t(frames));
+
+    VdpTemporalFilters filters;
+    if (video) filters = MakeVdpTemporalFilters(fps, params_);
+
+    // Per band: pixel geometry (foveated) or the CSF sliced at the band's frequency (not foveated).
+    std::vector<BandGeometry> bandGeometry;
+    std::vector<VdpCsfTable::LuminanceSlice> slices;  // [band * 2 + channel]
+    {
+        int w = width, h = height;
+        for (int b = 0; b < bands; ++b) {
+            if (options.foveated) bandGeometry.push_back(MakeBandGeometry(geometry_, w, h, width, height));
+            for (int c = 0; c < 2; ++c)
+                slices.push_back(csf_[c].Slice(float(result.bandFrequencies[size_t(b)]), 0.0f));
+            w = (w + 1) / 2, h = (h + 1) / 2;
+        }
+    }
+    auto gaze = [&](int f) {
+        const VdpFixation fix = fixCount == 0   ? VdpFixation{float(width / 2), float(height / 2)}
+                                : fixCount == 1 ? options.fixations[0]
+                                                : options.fixations[size_t(f)];
+        return glm::vec2(geometry_.ViewDirection(fix.x + 0.5, fix.y + 0.5, width, height, width, height));
+    };
+
+    const float log2MaskGain = float(params_.maskC * std::log2(10.0));
+    const float p = float(params_.maskP);
+    const float beta = float(params_.beta);
+    const float channelWeight[2] = {1.0f, float(params_.wTransient)};
+
+    tbb::parallel_for(0, frames, [&](int f) {
+        // Images in the order test, reference per channel; the reference's sustained image adapts.
+        std::vector<Plane<float>> images;
+        if (video) {
+            images.push_back(VdpFilterFrame(test, f, filters.sustained));
+            images.push_back(VdpFilterFrame(reference, f, filters.sustained));
+            images.push_back(VdpFilterFrame(test, f, filters.transient));
+            images.push_back(VdpFilterFrame(reference, f, filters.transient));
+        }
+        std::vector<const Plane<float>*> inputs;
+        if (video) {
+            for (const Plane<float>& i : images) inputs.push_back(&i);
+        } else {
+            inputs = {&test[size_t(f)], &reference[size_t(f)]};
+        }
+        const VdpContrastPyramid pyr = VdpDecompose(inputs, 1, bands);
+        const glm::vec2 gazeDir = options.foveated ? gaze(f) : glm::vec2(0.0f);
+
+        std::vector<Plane<float>> diffBands;
+        for (int b = 0; b < bands; ++b) {
+            const Plane<float>& adapt = pyr.adaptation[size_t(b)];
+            const float rhoBand = float(result.bandFrequencies[size_t(b)]);
+            const float bandGain = b == 0 ? 1.0f : 2.0f;
+            if (options.diffMaps) diffBands.emplace_back(adapt.width(), adapt.height(), 0.0f);
+            for (int c = 0; c < channels; ++c) {
+                const Plane<float>& t = pyr.contrast[size_t(b)][size_t(2 * c)];
+                const Plane<float>& r = pyr.contrast[size_t(b)][size_t(2 * c + 1)];
+                const float q = float(c == 0 ? params_.maskQSustained : params_.maskQTransient);
+                const int w = adapt.width();
+                std::vector<double> rowSums(size_t(adapt.height()), 0.0);
+                metrics_detail::ParallelRows(adapt.height(), [&](int y) {
+                    double sum = 0.0;
+                    for (int x = 0; x < w; ++x) {
+                        const size_t i = size_t(y) * size_t(w) + size_t(x);
+                        float s;
+                        if (options.foveated) {
+                            const BandGeometry& g = bandGeometry[size_t(b)];
+                            const float ecc = glm::length(g.direction[i] - gazeDir);
+                            s = csf_[c].Sensitivity(rhoBand * g.magnification[i], adapt[i], ecc);
+                        } else {
+                            s = csf_[c].Sensitivity(slices[size_t(b) * 2 + size_t(c)], adapt[i]);
+                        }
+                        const float log2D = VdpLog2MaskedDifference(t[i], r[i], s * sensitivityGain_, p, q, log2MaskGain);
+                        if (!(log2D > -126.0f)) continue;  // T = R: no difference
+                        sum += double(std::exp2(beta * log2D));
+                        if (options.diffMaps) diffBands[size_t(b)][i] += channelWeight[c] * std::exp2(log2D) / bandGain;
+                    }
+                    rowSums[size_t(y)] = sum;
+                });
+                double sum = 0.0;
+                for (double v : rowSums) sum += v;
+                result.q[(size_t(f) * size_t(channels) + size_t(c)) * size_t(bands) + size_t(b)] =
+                    std::pow(sum / double(adapt.size()), 1.0 / double(beta));
+            }
+        }
+        if (options.diffMaps) {
+            Plane<float> map = VdpReconstruct(diffBands);
+            const float bJod = float(std::pow(10.0, params_.logJodExp));
+            const float aJod = float(std::abs(params_.jodA));
+            for (float& v : map.vector()) v = std::pow(std::max(v, 0.0f), bJod) * aJod;
+            result.diffMaps[size_t(f)] = std::move(map);
+        }
+    });
+
+    result.jod = PoolToJod(result, params_, true, true);
+    result.jodSustained = PoolToJod(result, params_, true, false);
+    result.jodTransient = video ? PoolToJod(result, params_, false, true) : 10.0;
+    return result;
+}
+
+}  // namespace fovrt

@@ -1,0 +1,73 @@
+// FovVideoVDP 1.2 (Mantiuk et al. 2021): the visible difference between a test and a reference
+// frame sequence, in JOD (10 = no visible difference; 1 JOD less ≈ 75 % of observers prefer the
+// reference), foveated (eccentricity from a fixation per frame) or not. Per frame: two temporal
+// channels (vdp_temporal.h) → contrast pyramid with local adaptation (vdp_pyramid.h) → contrast
+// thresholds from the CSF at each pixel's frequency, luminance and eccentricity (vdp_csf.h) →
+// masking and pooling (vdp_masking.h). Frames run in parallel (TBB). Input is absolute luminance
+// (vdp_display.h turns pixel values into it); geometry is the pixel's, at the frames' own size.
+#pragma once
+
+#include <vector>
+
+#include "core/image.h"
+#include "metrics/vdp_csf.h"
+#include "metrics/vdp_display.h"
+#include "metrics/vdp_params.h"
+
+namespace fovrt {
+
+// A fixation point in pixel coordinates (x right, y down, pixel (i, j) spans [i, i+1) × [j, j+1)).
+// Like the reference, the eye looks at (x + 0.5, y + 0.5): (i, j) means the centre of pixel (i, j).
+struct VdpFixation {
+    float x = 0.0f;
+    float y = 0.0f;
+};
+
+struct VdpOptions {
+    bool foveated = false;
+    // Foveated only: one fixation for every frame or one per frame; none = the image centre
+    // (width/2, height/2 in whole pixels, the reference's default).
+    std::vector<VdpFixation> fixations;
+    bool diffMaps = false;  // per-frame difference maps (VdpResult::diffMaps)
+};
+
+struct VdpResult {
+    double jod = 10.0;
+    // JOD of each temporal channel alone (the other's differences removed); a single frame has
+    // only the sustained channel (transient = 10).
+    double jodSustained = 10.0;
+    double jodTransient = 10.0;
+    int bands = 0, channels = 0, frames = 0;
+    std::vector<double> bandFrequencies;  // peak frequency (cpd) of each band
+    std::vector<double> q;                // per band × channel × frame quality, see Q()
+    // Per frame: the difference map in the units of JOD lost per pixel (reference's "raw" map).
+    std::vector<Plane<float>> diffMaps;
+
+    double Q(int band, int channel, int frame) const {
+        return q[(size_t(frame) * size_t(channels) + size_t(channel)) * size_t(bands) + size_t(band)];
+    }
+};
+
+class FovVideoVdp {
+public:
+    explicit FovVideoVdp(VdpGeometry geometry, VdpParams params = {});
+
+    // `test` and `reference`: equal counts of equal-size frames in cd/m². `fps` is required for
+    // more than one frame (one frame is scored as an image, without temporal channels).
+    VdpResult Score(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference,
+                    double fps, const VdpOptions& options = {}) const;
+
+    const VdpGeometry& geometry() const { return geometry_; }
+    const VdpParams& params() const { return params_; }
+    // Contrast sensitivity after the metric's sensitivity correction, for channel 0 (sustained)
+    // or 1 (transient), as Score evaluates it.
+    float Sensitivity(int channel, float rho, float luminance, float eccentricity) const;
+
+private:
+    VdpGeometry geometry_;
+    VdpParams params_;
+    VdpCsfTable csf_[2];
+    float sensitivityGain_;
+};
+
+}  // namespace fovrt

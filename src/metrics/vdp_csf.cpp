@@ -1,0 +1,163 @@
+#include "metrics/vdp_csf.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fovrt {
+
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+
+// Luminance dependence of a CSF parameter: constant, one hyperbola, or a product of two.
+double LumDep(const std::vector<double>& p, double l) {
+    if (p.size() == 1) return p[0];
+    if (p.size() == 3) return p[0] * std::pow(1.0 + p[1] / l, -p[2]);
+    return p[0] * std::pow(1.0 + p[1] / l, -p[2]) * (1.0 - std::pow(1.0 + p[3] / l, -p[4]));
+}
+
+// One mechanism (achromatic, red-green, yellow-violet) of the cone-contrast CSF fitted 16/09/2020.
+struct Mechanism {
+    std::vector<double> sMax, fMax, bw, gamma;
+    double acPrime;
+};
+const Mechanism kMechanisms[3] = {
+    {{356404, 6.2726, 0.320031, 895943, 7.77919e-05}, {2.3021, 3317.45, 0.186215}, {1.07516}, {1.1107}, 52.9768},
+    {{423.978, 15.4032, 0.50343}, {0.122699}, {2.70669}, {1.72903}, 1.38437},
+    {{11811.9, 196.342, 0.339396}, {7.1099e-08}, {5.3416}, {1.47263}, 0.282573},
+};
+
+// Log-parabola in frequency (low-pass below the peak for chromatic mechanisms) times Rovamo's
+// area summation sqrt(A^γ ρ² / (A'_c + A f₀ + A^γ ρ²)), f₀ = 0.65.
+double MechanismSensitivity(int m, double rho, double area, double lum) {
+    const Mechanism& c = kMechanisms[m];
+    const double sMax = LumDep(c.sMax, lum), fMax = LumDep(c.fMax, lum);
+    const double bw = LumDep(c.bw, lum), gamma = LumDep(c.gamma, lum);
+    double sPeak = sMax / std::pow(10.0, std::pow(std::log10(rho) - std::log10(fMax), 2.0) / (0.5 * std::pow(2.0, bw)));
+    if (m > 0 && rho < fMax) sPeak = sMax;
+    const double k = c.acPrime + area * 0.65;
+    const double a = std::pow(area, gamma) * rho * rho;
+    return sPeak * std::sqrt(a / (k + a));
+}
+
+// Achromatic sensitivity on a D65 background of luminance `lum`: the detection contrast of the
+// achromatic cone-contrast direction, combined over the three mechanisms (exponent 2).
+double AchromaticSensitivity(double rho, double lum, double area) {
+    // CIE 1931 XYZ of D65 (0.95047, 1, 1.08883) to CIE 2006 LMS (matrix for an LED LCD).
+    static const double kXyzToLms[3][3] = {
+        {0.187596268556126, 0.585168649077728, -0.026384263306304},
+        {-0.133397430663221, 0.405505777260049, 0.034502127690364},
+        {0.000244379021663, -0.000542995890619, 0.019406849066323}};
+    static const double kD65[3] = {0.95047, 1.0, 1.08883};
+    // Cone contrast -> mechanism matrix (fitted colmat, with the mechanisms' signs).
+    static const double c[6] = {0.00130319, 0.256197, 0.933541, 1.1504, 6.42477e-07, 0.00373304};
+    static const double kLmsToAcc[3][3] = {{1, c[1], c[4]}, {1, -c[2], c[5]}, {-c[0], -c[3], 1}};
+    static const double kAchromaticDelta[3] = {0.698, 0.302, 0.019613};
+
+    double lms[3], coneContrast[3];
+    for (int i = 0; i < 3; ++i) {
+        lms[i] = lum * (kXyzToLms[i][0] * kD65[0] + kXyzToLms[i][1] * kD65[1] + kXyzToLms[i][2] * kD65[2]);
+        coneContrast[i] = kAchromaticDelta[i] / lms[i];
+    }
+    const double mechanismLum = lms[0] + lms[1];
+    double c2 = 0.0, norm2 = 0.0;
+    for (int m = 0; m < 3; ++m) {
+        const double acc = kLmsToAcc[m][0] * coneContrast[0] + kLmsToAcc[m][1] * coneContrast[1] +
+                           kLmsToAcc[m][2] * coneContrast[2];
+        const double cn = std::abs(acc) * MechanismSensitivity(m, rho, area, mechanismLum);
+        c2 += cn * cn;
+        norm2 += coneContrast[m] * coneContrast[m];
+    }
+    return std::sqrt(c2) * std::sqrt(3.0) / std::sqrt(norm2);
+}
+
+// Laird et al.'s fit of Daly's spatio-velocity CSF; velocity floored at 0.1 deg/s.
+double SpatioVelocityCsf(double rho, double velocity) {
+    const double c0 = 0.6329, c1 = 0.8404, c2 = 0.7986;
+    const double v = std::max(velocity, 0.1);
+    const double k = 6.1 + 7.3 * std::pow(std::abs(std::log10(c2 * v / 3.0)), 3.0);
+    const double rhoMax = 45.9 / (c2 * v + 2.0);
+    return k * c0 * c1 * c2 * v * std::pow(c1 * 2.0 * kPiD * rho, 2.0) * std::exp(-(c1 * 4.0 * kPiD * rho) / rhoMax);
+}
+
+}  // namespace
+
+double VdpCsfModel(double rho, double omega, double luminance, double ecc, double sigma, double kCm) {
+    if (sigma < 0) sigma = -sigma / rho;
+    const double mRel = std::pow(3.67 / (ecc + 3.67), kCm);  // M(e)/M(0), Dougherty's A cancels
+    const double area = kPiD * std::pow(sigma * mRel, 2.0);
+    const double rhoCm = rho / mRel;
+    const double temporal = SpatioVelocityCsf(rhoCm, omega / rhoCm) / (SpatioVelocityCsf(rhoCm, 0.0) + 1e-5);
+    return AchromaticSensitivity(rhoCm, luminance, area) * temporal;
+}
+
+VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm) : logS_(size_t(kSize) * kSize * kSize) {
+    // Grid: log-spaced L in [0.001, 10⁴] and ρ in [2⁻⁴, 64], e = (uniform in [0, √120])², each
+    // value rounded to float like the reference's single-precision table.
+    std::array<double, kSize> lum, rho, ecc;
+    for (int i = 0; i < kSize; ++i) {
+        const double t = double(i) / (kSize - 1);
+        lum[i] = float(std::pow(10.0, -3.0 + 7.0 * t));
+        rho[i] = float(std::pow(10.0, std::log10(0.0625) + (std::log10(64.0) - std::log10(0.0625)) * t));
+        ecc[i] = float(std::pow(std::sqrt(120.0) * t, 2.0));
+        lum_.grid[i] = float(std::log2(lum[i]));
+        rho_.grid[i] = float(std::log2(rho[i]));
+        ecc_.grid[i] = float(std::sqrt(ecc[i]));
+    }
+    lum_.lo = float(lum[0]), lum_.hi = float(lum[kSize - 1]);
+    rho_.lo = float(rho[0]), rho_.hi = float(rho[kSize - 1]);
+    ecc_.lo = float(ecc[0]), ecc_.hi = float(ecc[kSize - 1]);
+    for (int l = 0; l < kSize; ++l)
+        for (int r = 0; r < kSize; ++r)
+            for (int e = 0; e < kSize; ++e) {
+                const double s = std::max(VdpCsfModel(rho[r], omega, lum[l], ecc[e], sigma, kCm), 1e-4);
+                logS_[(size_t(l) * kSize + r) * kSize + e] = float(std::log2(s));
+            }
+}
+
+// The reference's interpolant: i1 = first grid point ≥ q, i0 = i1 − 1, fraction with a 1e-6
+// guard in the denominator, 0 at and below the first point.
+void VdpCsfTable::Axis::Locate(float q, int& i0, int& i1, float& f) const {
+    // The grid is uniform up to float rounding: start from the uniform guess, then step to the
+    // exact lower_bound (first point ≥ q).
+    const float step = (grid[kSize - 1] - grid[0]) / float(kSize - 1);
+    i1 = std::clamp(int(std::ceil((q - grid[0]) / step)), 0, kSize - 1);
+    while (i1 > 0 && grid[size_t(i1 - 1)] >= q) --i1;
+    while (i1 < kSize - 1 && grid[size_t(i1)] < q) ++i1;
+    i0 = std::max(i1 - 1, 0);
+    f = i0 == i1 ? 0.0f : std::max((q - grid[size_t(i0)]) / (grid[size_t(i1)] - grid[size_t(i0)] + 0.000001f), 0.0f);
+}
+
+float VdpCsfTable::Sensitivity(float rho, float luminance, float eccentricity) const {
+    int r0, r1, l0, l1, e0, e1;
+    float fr, fl, fe;
+    rho_.Locate(std::log2(std::clamp(rho, rho_.lo, rho_.hi)), r0, r1, fr);
+    lum_.Locate(std::log2(std::clamp(luminance, lum_.lo, lum_.hi)), l0, l1, fl);
+    ecc_.Locate(std::sqrt(std::clamp(eccentricity, ecc_.lo, ecc_.hi)), e0, e1, fe);
+    auto plane = [&](int e) {
+        return (At(l0, r0, e) * (1 - fr) + At(l0, r1, e) * fr) * (1 - fl) +
+               (At(l1, r0, e) * (1 - fr) + At(l1, r1, e) * fr) * fl;
+    };
+    return std::exp2(plane(e0) * (1 - fe) + plane(e1) * fe);
+}
+
+VdpCsfTable::LuminanceSlice VdpCsfTable::Slice(float rho, float eccentricity) const {
+    int r0, r1, e0, e1;
+    float fr, fe;
+    rho_.Locate(std::log2(std::clamp(rho, rho_.lo, rho_.hi)), r0, r1, fr);
+    ecc_.Locate(std::sqrt(std::clamp(eccentricity, ecc_.lo, ecc_.hi)), e0, e1, fe);
+    LuminanceSlice slice;
+    for (int l = 0; l < kSize; ++l)
+        slice.logS[size_t(l)] = (At(l, r0, e0) * (1 - fr) + At(l, r1, e0) * fr) * (1 - fe) +
+                                (At(l, r0, e1) * (1 - fr) + At(l, r1, e1) * fr) * fe;
+    return slice;
+}
+
+float VdpCsfTable::Sensitivity(const LuminanceSlice& slice, float luminance) const {
+    int l0, l1;
+    float fl;
+    lum_.Locate(std::log2(std::clamp(luminance, lum_.lo, lum_.hi)), l0, l1, fl);
+    return std::exp2(slice.logS[size_t(l0)] * (1 - fl) + slice.logS[size_t(l1)] * fl);
+}
+
+}  // namespace fovrt

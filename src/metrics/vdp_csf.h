@@ -1,0 +1,56 @@
+// Contrast sensitivity of FovVideoVDP 1.2: achromatic sensitivity as a function of spatial
+// frequency ρ (cpd), temporal frequency ω (Hz), background luminance L (cd/m²) and eccentricity
+// e (deg), derived here from the published model the reference tabulates (its
+// matlab/utils/CSF_st_fov.m; tables recomputed by this code, not copied):
+//   - cortical magnification (Dougherty et al. 2003) M(e) = 29.2/(e + 3.67) mm/deg; relative
+//     M_rel = (M(e)/M(0))^k_cm scales the frequency ρ_cm = ρ/M_rel and the stimulus area
+//     A = π (σ M_rel)², σ = 1.5/ρ degrees (1.5 cycles of the band);
+//   - spatial part: the achromatic direction of the cone-contrast spatio-chromatic CSF fitted on
+//     16/09/2020 (log-parabola in frequency with luminance-dependent peak, frequency and
+//     bandwidth, Rovamo's area summation, three mechanisms combined with exponent 2), on a D65
+//     background of luminance L in CIE 2006 LMS;
+//   - temporal part: Daly / Laird's spatio-velocity CSF at velocity ω/ρ_cm relative to its value
+//     at rest (velocity floor 0.1 deg/s).
+// Like the reference, the metric reads the model through a 32³ table over log2 ρ ∈ [−4, 6],
+// log2 L ∈ [log2 0.001, log2 10⁴] and √e ∈ [0, √120], trilinear, inputs clamped to the table.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace fovrt {
+
+// The model itself (double precision).
+double VdpCsfModel(double rho, double omega, double luminance, double eccentricity, double sigma,
+                   double kCm);
+
+class VdpCsfTable {
+public:
+    static constexpr int kSize = 32;
+
+    VdpCsfTable(double omega, double sigma, double kCm);
+
+    // Sensitivity (1/threshold Weber contrast), before the metric's sensitivity correction.
+    float Sensitivity(float rho, float luminance, float eccentricity) const;
+
+    // A 1D table over log2 L at fixed ρ and e (the non-foveated case: one per band); it gives the
+    // same values as Sensitivity with that ρ and e.
+    struct LuminanceSlice {
+        std::array<float, kSize> logS;
+    };
+    LuminanceSlice Slice(float rho, float eccentricity) const;
+    float Sensitivity(const LuminanceSlice& slice, float luminance) const;
+
+private:
+    struct Axis {
+        std::array<float, kSize> grid;  // in the interpolated domain (log2 or sqrt)
+        float lo, hi;                   // clamp range in the input domain
+        void Locate(float q, int& i0, int& i1, float& f) const;
+    };
+    Axis rho_, lum_, ecc_;
+    std::vector<float> logS_;  // [lum][rho][ecc]
+    float At(int l, int r, int e) const { return logS_[(std::size_t(l) * kSize + std::size_t(r)) * kSize + std::size_t(e)]; }
+};
+
+}  // namespace fovrt

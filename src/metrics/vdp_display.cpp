@@ -1,0 +1,121 @@
+#include "metrics/vdp_display.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "metrics/filter.h"
+
+namespace fovrt {
+
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+double DegToRad(double d) { return d * (kPiD / 180.0); }
+double RadToDeg(double r) { return r * (180.0 / kPiD); }
+
+float SrgbToLinear(float v) {
+    return v > 0.04045f ? std::pow((v + 0.055f) / 1.055f, 2.4f) : v / 12.92f;
+}
+
+}  // namespace
+
+float VdpPhotometry::Luminance(float v) const {
+    if (std::isnan(v)) v = 0.0f;  // a renderer's stray NaN shows as black (±inf clamp to the range)
+    switch (eotf) {
+    case VdpEotf::Srgb:
+        return float(peak - black) * SrgbToLinear(std::clamp(v, 0.0f, 1.0f)) + float(black);
+    case VdpEotf::Linear:
+        return float(peak - black) * std::clamp(v, 0.0f, 1.0f) + float(black);
+    case VdpEotf::Absolute:
+        return std::clamp(v, float(black), float(peak));
+    }
+    return v;
+}
+
+double VdpBlackLevel(double peak, double contrast, double ambientLux, double reflectivity) {
+    return peak / contrast + ambientLux / kPiD * reflectivity;
+}
+
+Plane<float> VdpLuminance(const Plane<float>& frame, const VdpPhotometry& photometry) {
+    Plane<float> out(frame.width(), frame.height());
+    metrics_detail::ParallelRows(frame.height(), [&](int y) {
+        for (int x = 0; x < frame.width(); ++x) out(x, y) = photometry.Luminance(frame(x, y));
+    });
+    return out;
+}
+
+Plane<float> VdpLuminance(const Plane<vec3>& frame, const VdpPhotometry& photometry) {
+    Plane<float> out(frame.width(), frame.height());
+    metrics_detail::ParallelRows(frame.height(), [&](int y) {
+        for (int x = 0; x < frame.width(); ++x) {
+            const vec3& c = frame(x, y);
+            out(x, y) = fovrt::Luminance(vec3(photometry.Luminance(c.r), photometry.Luminance(c.g),
+                                              photometry.Luminance(c.b)));
+        }
+    });
+    return out;
+}
+
+VdpGeometry VdpGeometry::FromPixelsPerDegree(double ppd) {
+    return {2.0 * std::tan(DegToRad(0.5 / ppd))};
+}
+
+VdpGeometry VdpGeometry::FromHorizontalFov(int widthPixels, double fovDegrees) {
+    return {2.0 * std::tan(DegToRad(fovDegrees / 2.0)) / widthPixels};
+}
+
+VdpGeometry VdpGeometry::FromMonitor(int displayWidth, int displayHeight, double diagonalInches,
+                                     double distanceMeters) {
+    const double aspect = double(displayWidth) / displayHeight;
+    const double heightM = std::sqrt(std::pow(diagonalInches * 25.4, 2.0) / (1.0 + aspect * aspect)) / 1000.0;
+    return {aspect * heightM / displayWidth / distanceMeters};
+}
+
+double VdpGeometry::PixelsPerDegree() const {
+    return 1.0 / (2.0 * RadToDeg(std::atan(0.5 * tanPerPixel)));
+}
+
+glm::dvec2 VdpGeometry::ViewDirection(double x, double y, int width, int height, int imageWidth,
+                                      int imageHeight) const {
+    // Pixel (x, y) of the grid lies (x − width/2)·(imageWidth/width) image pixels right of the centre.
+    const double xm = (x - width / 2.0) * (double(imageWidth) * tanPerPixel / width);
+    const double ym = -(y - height / 2.0) * (double(imageHeight) * tanPerPixel / height);
+    return {RadToDeg(std::atan(xm)), RadToDeg(std::atan(ym))};
+}
+
+double VdpGeometry::ResolutionMagnification(double angle) const {
+    // ppd(a) = ppd₀ (tan(a + δ) − tan a) / tan δ with δ half a central pixel (the reference's form).
+    const double a = std::min(angle, 89.9);
+    const double delta = 0.5 / PixelsPerDegree();
+    return (std::tan(DegToRad(a + delta)) - std::tan(DegToRad(a))) / std::tan(DegToRad(delta));
+}
+
+const std::vector<VdpDisplay>& VdpDisplayProfiles() {
+    // Headsets: ~100 cd/m² peak and 1000:1 (the reference's standard_hmd: 100 and 0.1 cd/m²).
+    static const std::vector<VdpDisplay> profiles = {
+        {"headset-15", "headset, 15 pixels per degree (a 1440-wide eye at ~100° FOV), 100 cd/m²",
+         {100.0, 0.1, VdpEotf::Srgb}, VdpGeometry::FromPixelsPerDegree(15.0)},
+        {"headset-25", "headset, 25 pixels per degree (Quest-class), 100 cd/m²",
+         {100.0, 0.1, VdpEotf::Srgb}, VdpGeometry::FromPixelsPerDegree(25.0)},
+        {"headset-35", "headset, 35 pixels per degree (Varjo-class focus area), 100 cd/m²",
+         {100.0, 0.1, VdpEotf::Srgb}, VdpGeometry::FromPixelsPerDegree(35.0)},
+        {"monitor-24-fhd", "24-inch 1920x1080 monitor at 0.6 m, 200 cd/m², 1000:1, 250 lux office",
+         {200.0, VdpBlackLevel(200.0, 1000.0, 250.0), VdpEotf::Srgb},
+         VdpGeometry::FromMonitor(1920, 1080, 24.0, 0.6)},
+    };
+    return profiles;
+}
+
+const VdpDisplay& FindVdpDisplay(const std::string& name) {
+    std::string known;
+    for (const VdpDisplay& d : VdpDisplayProfiles()) {
+        if (d.name == name) return d;
+        known += (known.empty() ? "" : ", ") + d.name;
+    }
+    Fail("unknown display profile '{}' (known: {})", name, known);
+}
+
+}  // namespace fovrt

@@ -1,0 +1,163 @@
+#include "metrics/vdp_pyramid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "metrics/filter.h"
+
+namespace fovrt {
+
+namespace {
+
+constexpr float kA = 0.4f;
+constexpr float kKernel[5] = {0.25f - kA / 2.0f, 0.25f, kA, 0.25f, 0.25f - kA / 2.0f};
+
+// 1D reduce of n samples (stride apart) into (n+1)/2: zero-padded 5-tap filter at even positions
+// plus the reference's mirror corrections at both ends; `oddRule` selects the end correction.
+void Reduce1D(const float* in, int n, size_t stride, float* out, size_t outStride, bool oddRule) {
+    const int m = (n + 1) / 2;
+    for (int i = 0; i < m; ++i) {
+        float s = 0.0f;
+        for (int k = 0; k < 5; ++k) {
+            const int j = 2 * i + k - 2;
+            if (j >= 0 && j < n) s += kKernel[k] * in[size_t(j) * stride];
+        }
+        out[size_t(i) * outStride] = s;
+    }
+    out[0] += in[0] * kKernel[1] + in[stride] * kKernel[0];
+    float& last = out[size_t(m - 1) * outStride];
+    if (oddRule) last += in[size_t(n - 1) * stride] * kKernel[3] + in[size_t(n - 2) * stride] * kKernel[4];
+    else last += in[size_t(n - 1) * stride] * kKernel[4];
+}
+
+// Source index of each of the n + 4 samples of the zero-interleaved, padded signal the reference
+// filters to expand `inCount` samples to n (−1 = zero).
+std::vector<int> ExpandSources(int n, int inCount) {
+    std::vector<int> src(size_t(n) + 4, -1);
+    for (int j = 0; 2 + 2 * j < n + 2 && j < inCount; ++j) src[size_t(2 + 2 * j)] = j;
+    src[0] = 0;
+    src[size_t(n + 4 - 2 + (n % 2))] = inCount - 1;
+    return src;
+}
+
+}  // namespace
+
+Plane<float> VdpGaussReduce(const Plane<float>& x) {
+    const int w = x.width(), h = x.height();
+    const int h2 = (h + 1) / 2, w2 = (w + 1) / 2;
+    const bool oddRule = (h % 2) == 1;  // the reference tests the height for both directions
+    Plane<float> rows(w, h2), out(w2, h2);
+    // Vertical pass row by row (the same sums as Reduce1D down each column).
+    metrics_detail::ParallelRows(h2, [&](int i) {
+        float* dst = &rows(0, i);
+        std::fill(dst, dst + w, 0.0f);
+        auto add = [&](int j, float g) {
+            const float* src = &x(0, j);
+            for (int c = 0; c < w; ++c) dst[c] += g * src[c];
+        };
+        for (int k = 0; k < 5; ++k) {
+            const int j = 2 * i + k - 2;
+            if (j >= 0 && j < h) add(j, kKernel[k]);
+        }
+        if (i == 0) add(0, kKernel[1]), add(1, kKernel[0]);
+        if (i == h2 - 1) {
+            if (oddRule) add(h - 1, kKernel[3]), add(h - 2, kKernel[4]);
+            else add(h - 1, kKernel[4]);
+        }
+    });
+    metrics_detail::ParallelRows(h2, [&](int r) { Reduce1D(&rows(0, r), w, 1, &out(0, r), 1, oddRule); });
+    return out;
+}
+
+Plane<float> VdpGaussExpand(const Plane<float>& x, int w, int h) {
+    const std::vector<int> srcRow = ExpandSources(h, x.height());
+    const std::vector<int> srcCol = ExpandSources(w, x.width());
+    Plane<float> rows(x.width(), h), out(w, h);
+    metrics_detail::ParallelRows(h, [&](int r) {
+        float* dst = &rows(0, r);
+        std::fill(dst, dst + x.width(), 0.0f);
+        for (int k = 0; k < 5; ++k) {
+            const int s = srcRow[size_t(r + k)];
+            if (s < 0) continue;
+            const float g = 2.0f * kKernel[k];
+            const float* src = &x(0, s);
+            for (int c = 0; c < x.width(); ++c) dst[c] += g * src[c];
+        }
+    });
+    metrics_detail::ParallelRows(h, [&](int r) {
+        const float* src = &rows(0, r);
+        float* dst = &out(0, r);
+        for (int c = 0; c < w; ++c) {
+            float s = 0.0f;
+            for (int k = 0; k < 5; ++k) {
+                const int j = srcCol[size_t(c + k)];
+                if (j >= 0) s += 2.0f * kKernel[k] * src[j];
+            }
+            dst[c] = s;
+        }
+    });
+    return out;
+}
+
+int VdpBandCount(int width, int height, double ppd) {
+    const int maxLevels = int(std::floor(std::log2(double(std::min(width, height))))) - 1;
+    // Candidate peak frequencies: ppd/2, then 0.3228·2^−k·ppd/2 for k = 0..13.
+    int firstInvalid = -1;
+    for (int i = 0; i < 15 && firstInvalid < 0; ++i) {
+        const double f = (i == 0 ? 1.0 : std::pow(2.0, -(i - 1)) * 0.3228) * ppd / 2.0;
+        if (f <= 0.5) firstInvalid = i;
+    }
+    const int count = firstInvalid < 0 ? maxLevels : firstInvalid + 1;
+    return std::clamp(count, 0, maxLevels);
+}
+
+std::vector<double> VdpBandFrequencies(int width, int height, double ppd) {
+    const int bands = VdpBandCount(width, height, ppd);
+    std::vector<double> f(size_t(bands) + 1);
+    for (int i = 0; i <= bands; ++i) f[size_t(i)] = (i == 0 ? 1.0 : 0.3228 * std::pow(2.0, -(i - 1))) * ppd / 2.0;
+    return f;
+}
+
+VdpContrastPyramid VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage, int bands) {
+    const size_t n = images.size();
+    VdpContrastPyramid pyr;
+    pyr.contrast.resize(size_t(bands));
+    pyr.adaptation.resize(size_t(bands));
+    std::vector<Plane<float>> level(n), next(n);
+    for (size_t i = 0; i < n; ++i) level[i] = *images[i];
+    for (int b = 0; b < bands; ++b) {
+        const int w = level[0].width(), h = level[0].height();
+        std::vector<Plane<float>> expanded(n);
+        for (size_t i = 0; i < n; ++i) {
+            next[i] = VdpGaussReduce(level[i]);
+            expanded[i] = VdpGaussExpand(next[i], w, h);
+        }
+        Plane<float>& adapt = pyr.adaptation[size_t(b)];
+        adapt = expanded[size_t(adaptingImage)];
+        for (float& v : adapt.vector()) v = std::max(v, 0.1f);
+        const float gain = b == 0 ? 1.0f : 2.0f;
+        pyr.contrast[size_t(b)].resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            Plane<float>& c = pyr.contrast[size_t(b)][i];
+            c.Resize(w, h);
+            for (size_t p = 0; p < c.size(); ++p)
+                c[p] = std::min((level[i][p] - expanded[i][p]) / adapt[p], 1000.0f) * gain;
+        }
+        level.swap(next);
+    }
+    return pyr;
+}
+
+Plane<float> VdpReconstruct(const std::vector<Plane<float>>& bands) {
+    // Base band of the zero image: zero, one level below the last band.
+    const Plane<float>& last = bands.back();
+    Plane<float> img((last.width() + 1) / 2, (last.height() + 1) / 2, 0.0f);
+    for (int b = int(bands.size()) - 1; b >= 0; --b) {
+        const Plane<float>& band = bands[size_t(b)];
+        img = VdpGaussExpand(img, band.width(), band.height());
+        for (size_t p = 0; p < img.size(); ++p) img[p] += band[p];
+    }
+    return img;
+}
+
+}  // namespace fovrt
