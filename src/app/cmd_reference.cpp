@@ -10,6 +10,7 @@
 #include "app/config_cli.h"
 #include "app/experiment.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/nearest_name.h"
 #include "app/frame_pipeline.h"
 #include "app/output_dir.h"
@@ -48,6 +49,7 @@ void RenderReferences(const RunConfig& config, const ReferenceSlice& slice = {})
                                                 pipeline.TimeOf(frame), eye, rig.Eye(eye),
                                                 config.reference.spp, config.run.maxDepth,
                                                 config.reference.seed);
+            ThrowIfInterrupted();
             bool hit = false;
             cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
             (hit ? cached : rendered)++;
@@ -84,6 +86,7 @@ void RegisterReferenceCommand(CLI::App& app) {
     cmd->add_option("--eye", *eye, "0, 1 or both")->check(CLI::IsMember({"0", "1", "both"}));
     cmd->add_option("--frames", *frames, "A-B: frames A to B inclusive (sets run.first_frame and run.frames)");
     cmd->callback([options, experimentFile, args, scene, eye, frames] {
+        InterruptScope interrupts;  // entries are written atomically: an interrupt leaves none half-written
         ReferenceSlice slice;
         slice.eye = *eye == "both" ? -1 : std::stoi(*eye);
         auto applyFrames = [&](RunConfig& config) {
