@@ -107,6 +107,7 @@ void OutputDir::Lock(const std::string& lockName) {
     if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, holder.data(), holder.size(), 0) < 0) {
     }
     lockFd_ = fd;
+    lockPath_ = lockPath;
     folderLocked_ = lockName == kFolderLock;
 }
 
@@ -153,8 +154,9 @@ void OutputDir::RemoveCreated() {
         // A new folder under this command's lock: everything in it is the command's.
         fs::remove_all(path_, ec);
     } else {
-        // Others may write here (a shard's neighbours): only empty subdirectories, deepest first
-        // (files, and the directories holding them, stay).
+        // Others may write here (a shard's neighbours): only this command's lock file and empty
+        // subdirectories, deepest first (files, and the directories holding them, stay).
+        if (lockFd_ >= 0) fs::remove(lockPath_, ec);
         std::vector<fs::path> subdirs;
         for (fs::recursive_directory_iterator it(path_, ec), end; !ec && it != end; it.increment(ec))
             if (it->is_directory(ec)) subdirs.push_back(it->path());

@@ -53,6 +53,7 @@ private:
     std::filesystem::path path_;
     std::string key_;
     std::vector<std::filesystem::path> created_;  // deepest first
+    std::filesystem::path lockPath_;
     int lockFd_ = -1;
     bool folderLocked_ = false;
 };
