@@ -159,6 +159,18 @@ for sig in INT TERM; do
   else bad "SIG$sig: exit $rc (want $want), $tmp temporaries, manifest $(ls int$sig/manifest.json 2>&1), stderr: $(cat int$sig.err)"; fi
 done
 
+# `reference` on an animated scene (a new entry every frame), interrupted after its first entry.
+"$fovrt" reference --set scene.name=pillars --set camera.width=48 --set camera.height=32 --set run.frames=100000 \
+  --set reference.spp=4 --set reference.cache_dir=\"refsINT\" >/dev/null 2>refsINT.err &
+pid=$!
+until compgen -G "refsINT/*.exr" >/dev/null || ! kill -0 $pid 2>/dev/null; do sleep 0.05; done
+kill -INT $pid; wait $pid; rc=$?
+last=$(tail -1 refsINT.err)
+if [[ $rc -eq 130 && $(find refsINT -name '*.tmp-*' | wc -l) -eq 0 && $(grep -c . refsINT.err) -eq 1 ]] \
+   && [[ $last =~ ^fovrt:\ interrupted\ by\ SIGINT:\ [0-9]+\ rendered,\ 0\ cached\ in\ refsINT\;\ every\ entry\ there\ is\ complete$ ]]; then
+  ok "reference, SIGINT: exit 130, no temporaries: $last"
+else bad "reference SIGINT: exit $rc, $(find refsINT -name '*.tmp-*' | wc -l) temporaries: $(cat refsINT.err)"; fi
+
 # --- Unwritable folders and a full disk ---
 if "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=/proc/x >/dev/null 2>proc.err; then bad "output.dir=/proc/x exited 0"
 elif one_line proc.err "cannot write to '/proc/x'" && ! grep -q Success proc.err; then ok "$(cat proc.err)"

@@ -39,23 +39,29 @@ void RenderReferences(const RunConfig& config, const ReferenceSlice& slice = {})
     Progress progress("reference", config.run.frames * (slice.eye < 0 ? 2 : 1));
     int rendered = 0, cached = 0;
     auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < config.run.frames; ++i) {
-        uint32_t frame = uint32_t(config.run.firstFrame + i);
-        pipeline.SetFrame(frame);
-        StereoRig rig = pipeline.RigAt(frame);
-        for (int eye = 0; eye < 2; ++eye) {
-            if (slice.eye >= 0 && eye != slice.eye) continue;
-            ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
-                                                pipeline.TimeOf(frame), eye, rig.Eye(eye),
-                                                config.reference.spp, config.run.maxDepth,
-                                                config.reference.seed);
-            ThrowIfInterrupted();
-            bool hit = false;
-            cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
-            (hit ? cached : rendered)++;
-            progress.Step();
-            std::printf("%s %s\n", hit ? "cached  " : "rendered", cache.PathOf(key).c_str());
+    try {
+        for (int i = 0; i < config.run.frames; ++i) {
+            uint32_t frame = uint32_t(config.run.firstFrame + i);
+            pipeline.SetFrame(frame);
+            StereoRig rig = pipeline.RigAt(frame);
+            for (int eye = 0; eye < 2; ++eye) {
+                if (slice.eye >= 0 && eye != slice.eye) continue;
+                ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
+                                                    pipeline.TimeOf(frame), eye, rig.Eye(eye),
+                                                    config.reference.spp, config.run.maxDepth,
+                                                    config.reference.seed);
+                ThrowIfInterrupted();
+                bool hit = false;
+                cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
+                (hit ? cached : rendered)++;
+                progress.Step();
+                std::printf("%s %s\n", hit ? "cached  " : "rendered", cache.PathOf(key).c_str());
+            }
         }
+    } catch (const Interrupted& e) {
+        cacheDir.Keep();
+        throw Interrupted(e.Signal(), fmt::format("{}: {} rendered, {} cached in {}; every entry there is complete",
+                                                  e.what(), rendered, cached, config.reference.cacheDir));
     }
     progress.Finish();
     cacheDir.Keep();
