@@ -1,7 +1,10 @@
 // Reference cache: keys change with everything that changes the image and nothing else, and a
 // cached entry reads back exactly what was rendered.
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -127,5 +130,56 @@ TEST_CASE("reference cache renders once, then reads back the same pixels", "[app
     Plane<vec3> third = later.GetOrRender(key, *renderer, &hit);
     CHECK(hit);
     for (size_t i = 0; i < first.size(); ++i) REQUIRE(third[i] == first[i]);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("reference cache never uses an entry made for another key or changed on disk", "[app]") {
+    Scene scene = LoadScene(ResolveSceneName("cornell"));
+    RenderSettings settings;
+    auto renderer = CreateRenderer(scene, settings);
+    renderer->SetFrame(0);
+    auto dir = std::filesystem::temp_directory_path() / "fovrt_reference_cache_integrity_test";
+    std::filesystem::remove_all(dir);
+    const uint64_t fp = SceneFingerprint(scene);
+    const auto eye0 = MakeReferenceKey(scene, fp, 0, 0.0, 0, Camera(), 4, 2, 1);
+    const auto eye1 = MakeReferenceKey(scene, fp, 0, 0.0, 1, Camera(0.1f), 4, 2, 1);
+    bool hit = true;
+    Plane<vec3> image0, image1;
+    {
+        ReferenceCache cache(dir);
+        image0 = cache.GetOrRender(eye0, *renderer, &hit);
+        image1 = cache.GetOrRender(eye1, *renderer, &hit);
+    }
+    auto samePixels = [](const Plane<vec3>& a, const Plane<vec3>& b) {
+        if (a.size() != b.size()) return false;
+        for (size_t i = 0; i < a.size(); ++i)
+            if (a[i] != b[i]) return false;
+        return true;
+    };
+    REQUIRE_FALSE(samePixels(image0, image1));
+
+    SECTION("eye 1's entry copied over eye 0's file is rendered again") {
+        std::filesystem::copy_file(ReferenceCache(dir).PathOf(eye1), ReferenceCache(dir).PathOf(eye0),
+                                   std::filesystem::copy_options::overwrite_existing);
+        ReferenceCache cache(dir);
+        CHECK_FALSE(cache.Find(eye0));  // the live error view shows nothing rather than a wrong image
+        CHECK(samePixels(cache.GetOrRender(eye0, *renderer, &hit), image0));
+        CHECK_FALSE(hit);
+        CHECK(samePixels(ReferenceCache(dir).GetOrRender(eye0, *renderer, &hit), image0));  // and stored again
+        CHECK(hit);
+    }
+    SECTION("an entry with flipped bytes is rendered again") {
+        const auto path = ReferenceCache(dir).PathOf(eye0);
+        std::string bytes;
+        {
+            std::ifstream in(path, std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        for (size_t i = bytes.size() / 2; i < bytes.size() / 2 + 8; ++i) bytes[i] = char(~bytes[i]);
+        std::ofstream(path, std::ios::binary) << bytes;
+        ReferenceCache cache(dir);
+        CHECK(samePixels(cache.GetOrRender(eye0, *renderer, &hit), image0));
+        CHECK_FALSE(hit);
+    }
     std::filesystem::remove_all(dir);
 }

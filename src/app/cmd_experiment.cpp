@@ -4,6 +4,7 @@
 #include "app/commands.h"
 #include "app/config_cli.h"
 #include "app/experiment.h"
+#include "core/interrupt.h"
 
 namespace fovrt {
 
@@ -28,7 +29,10 @@ void RegisterExperimentCommand(CLI::App& app) {
                   "Combine <output.dir>/shards into the CSV, summary, table and report a single run writes");
     cmd->add_flag("--allow-changes", args->allowChanges,
                   "With --replay: accept config changes that make the frames differ from the recording");
-    cmd->callback([options, args] { RunExperiment(LoadExperiment(*options, *args)); });
+    cmd->callback([options, args] {
+        InterruptScope interrupts;
+        RunExperiment(LoadExperiment(*options, *args));
+    });
 }
 
 }  // namespace fovrt

@@ -11,6 +11,7 @@
 #include "app/config_cli.h"
 #include "app/experiment.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/nearest_name.h"
 #include "app/frame_pipeline.h"
 #include "app/denoiser_set.h"
@@ -36,22 +37,29 @@ void RenderReferencesUnchecked(const RunConfig& config, const ReferenceSlice& sl
     Progress progress("reference", config.run.frames * (slice.eye < 0 ? 2 : 1));
     int rendered = 0, cached = 0;
     auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < config.run.frames; ++i) {
-        uint32_t frame = uint32_t(config.run.firstFrame + i);
-        pipeline.SetFrame(frame);
-        StereoRig rig = pipeline.RigAt(frame);
-        for (int eye = 0; eye < 2; ++eye) {
-            if (slice.eye >= 0 && eye != slice.eye) continue;
-            ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
-                                                pipeline.TimeOf(frame), eye, rig.Eye(eye),
-                                                config.reference.spp, config.run.maxDepth,
-                                                config.reference.seed);
-            bool hit = false;
-            cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
-            (hit ? cached : rendered)++;
-            progress.Step();
-            std::printf("%s %s\n", hit ? "cached  " : "rendered", cache.PathOf(key).c_str());
+    try {
+        for (int i = 0; i < config.run.frames; ++i) {
+            uint32_t frame = uint32_t(config.run.firstFrame + i);
+            pipeline.SetFrame(frame);
+            StereoRig rig = pipeline.RigAt(frame);
+            for (int eye = 0; eye < 2; ++eye) {
+                if (slice.eye >= 0 && eye != slice.eye) continue;
+                ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), fingerprint, frame,
+                                                    pipeline.TimeOf(frame), eye, rig.Eye(eye),
+                                                    config.reference.spp, config.run.maxDepth,
+                                                    config.reference.seed);
+                ThrowIfInterrupted();
+                bool hit = false;
+                cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
+                (hit ? cached : rendered)++;
+                progress.Step();
+                std::printf("%s %s\n", hit ? "cached  " : "rendered", cache.PathOf(key).c_str());
+            }
         }
+    } catch (const Interrupted& e) {
+        cacheDir.Keep();
+        throw Interrupted(e.Signal(), fmt::format("{}: {} rendered, {} cached in {}; every entry there is complete",
+                                                  e.what(), rendered, cached, config.reference.cacheDir));
     }
     progress.Finish();
     cacheDir.Keep();
@@ -91,6 +99,7 @@ void RegisterReferenceCommand(CLI::App& app) {
     cmd->add_option("--eye", *eye, "0, 1 or both")->check(CLI::IsMember({"0", "1", "both"}));
     cmd->add_option("--frames", *frames, "A-B: frames A to B inclusive (sets run.first_frame and run.frames)");
     cmd->callback([options, experimentFile, args, scene, eye, frames] {
+        InterruptScope interrupts;  // entries are written atomically: an interrupt leaves none half-written
         ReferenceSlice slice;
         slice.eye = *eye == "both" ? -1 : std::stoi(*eye);
         auto applyFrames = [&](RunConfig& config) {

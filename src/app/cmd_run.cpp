@@ -33,6 +33,7 @@
 #include "app/replay.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "denoise/memory_plan.h"
 #include "io/exr.h"
 #include "io/png.h"
@@ -118,9 +119,10 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
     namespace fs = std::filesystem;
     EnforceRunBudget(config, "run");
     OutputDir out(config.output.dir, "output.dir");
+    out.Lock();
+    // An earlier run's outputs (a stale manifest, frames beyond this run's) never sit beside this one's.
+    out.MoveAsideEarlierOutputs(false);
     const fs::path outDir = out.Path();
-    // A stale manifest from an earlier run would make this one look complete while it runs.
-    fs::remove(outDir / "manifest.json");
 
     auto totalStart = std::chrono::steady_clock::now();
     FramePipeline pipeline(replay ? ReplayPipelineConfig(config) : config);
@@ -145,122 +147,130 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
     int framesRendered = 0;
     int blinkFrames = 0;  // frames whose gaze sample was invalid (gaze.blink says how rendered)
     uint32_t firstIndex = 0, lastIndex = 0;
-    while (sequence.Next(request)) {
-        const uint32_t index = request.request.frame;
-        pipeline.Render(request.request, frame);
-        if (recorder) recorder->Append(request);
+    try {
+        while (sequence.Next(request)) {
+            ThrowIfInterrupted();
+            const uint32_t index = request.request.frame;
+            pipeline.Render(request.request, frame);
+            if (recorder) recorder->Append(request);
 
-        nlohmann::json record;
-        record["frame"] = index;
-        record["time_s"] = frame.timeSeconds;
-        record["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y,
-                               frame.gaze.direction.z};
-        if (!frame.gaze.valid) {
-            record["blink"] = config.gaze.blink;
-            ++blinkFrames;
-        }
-        for (int eye = 0; eye < 2; ++eye) {
-            EyeFrame& e = frame.eyes[size_t(eye)];
-            nlohmann::json eyeRecord;
-            eyeRecord["gaze_pixel"] = {e.gazePixel.x, e.gazePixel.y};
-            eyeRecord["spp_ms"] = e.sppMs;
-            eyeRecord["render_ms"] = e.renderMs;
-            timings.Add({"spp"}, e.sppMs);
-            timings.Add({"render"}, e.renderMs);
-            uint64_t samples = 0;
-            for (size_t p = 0; p < e.sppMap.size(); ++p) samples += e.sppMap[p];
-            totalSamples += samples;
-            for (size_t p = 0; p < e.inputs.sampleCount.size(); ++p) recordedSamples += e.inputs.sampleCount[p];
-            eyeRecord["samples"] = samples;
-
-            auto writeStart = std::chrono::steady_clock::now();
-            std::string stem = FrameOutputStem(index, eye);
-            if (config.output.writeInputs)
-                WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap,
-                                    PlaneLayers(pipeline.GetRenderer().Visibility(eye)));
-            if (config.output.writePng) {
-                WritePng(outDir / "noisy" / (stem + ".png"), e.inputs.NoisyImage(),
-                         config.output.exposure);
+            nlohmann::json record;
+            record["frame"] = index;
+            record["time_s"] = frame.timeSeconds;
+            record["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y,
+                                   frame.gaze.direction.z};
+            if (!frame.gaze.valid) {
+                record["blink"] = config.gaze.blink;
+                ++blinkFrames;
             }
-            eyeRecord["write_inputs_ms"] = MsSince(writeStart);
-            timings.Add({"write_inputs"}, eyeRecord["write_inputs_ms"].get<double>());
+            for (int eye = 0; eye < 2; ++eye) {
+                EyeFrame& e = frame.eyes[size_t(eye)];
+                nlohmann::json eyeRecord;
+                eyeRecord["gaze_pixel"] = {e.gazePixel.x, e.gazePixel.y};
+                eyeRecord["spp_ms"] = e.sppMs;
+                eyeRecord["render_ms"] = e.renderMs;
+                timings.Add({"spp"}, e.sppMs);
+                timings.Add({"render"}, e.renderMs);
+                uint64_t samples = 0;
+                for (size_t p = 0; p < e.sppMap.size(); ++p) samples += e.sppMap[p];
+                totalSamples += samples;
+                for (size_t p = 0; p < e.inputs.sampleCount.size(); ++p) recordedSamples += e.inputs.sampleCount[p];
+                eyeRecord["samples"] = samples;
 
-            nlohmann::json denoiseRecord = nlohmann::json::object();
-            for (size_t v = 0; v < denoisers.size(); ++v) {
-                Denoiser& denoiser = denoisers.At(v, eye);
-                auto start = std::chrono::steady_clock::now();
-                denoiser.Denoise(e.inputs, denoised);
-                const double wallMs = MsSince(start);
-                nlohmann::json passes = nlohmann::json::object();
-                for (const PassTiming& t : denoiser.LastTimings()) {
-                    passes[t.pass] = t.ms;
-                    timings.Add({"denoise", denoisers.Name(v), "passes", t.pass}, t.ms);
+                auto writeStart = std::chrono::steady_clock::now();
+                std::string stem = FrameOutputStem(index, eye);
+                if (config.output.writeInputs)
+                    WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap,
+                                        PlaneLayers(pipeline.GetRenderer().Visibility(eye)));
+                if (config.output.writePng) {
+                    WritePng(outDir / "noisy" / (stem + ".png"), e.inputs.NoisyImage(),
+                             config.output.exposure);
                 }
-                timings.Add({"denoise", denoisers.Name(v), "wall"}, wallMs);
-                denoiseRecord[denoisers.Name(v)] = {{"wall_ms", wallMs}, {"passes_ms", passes}};
-                fs::path dir = outDir / "denoised" / denoisers.Name(v);
-                if (config.output.writePng)
-                    WritePng(dir / (stem + ".png"), denoised, config.output.exposure);
-                if (config.output.writeExr) WriteRgbExr(dir / (stem + ".exr"), denoised);
-            }
-            eyeRecord["denoise"] = denoiseRecord;
-            record[kEyeNames[eye]] = eyeRecord;
-        }
-        frameLog.Write(record);
-        if (framesRendered++ == 0) firstIndex = index;
-        lastIndex = index;
-        progress.Step(fmt::format("frame {}", index));
-    }
-    progress.Finish();
-    frameLog.Close();
-    if (recorder) recorder->Close();
+                eyeRecord["write_inputs_ms"] = MsSince(writeStart);
+                timings.Add({"write_inputs"}, eyeRecord["write_inputs_ms"].get<double>());
 
-    RenderStats stats = pipeline.GetRenderer().Stats();
-    nlohmann::json manifest;
-    manifest["command"] = "run";
-    manifest["complete"] = true;
-    manifest["build"] = BuildInfoJson();
-    manifest["config"] = ConfigToJson(config);
-    manifest["seed"] = config.run.seed;
-    manifest["scene"] = {{"name", pipeline.GetScene().name},
-                         {"source", pipeline.GetScene().sourcePath.string()},
-                         {"frame_rate", pipeline.FramesPerSecond()}};
-    if (replay) manifest["replay"] = replay->ToJson();
-    if (recorder) manifest["recorded_to"] = recorder->Path().string();
-    manifest["denoise_device"] = denoisers.DeviceDescription();
-    manifest["counters"] = {{"samples", totalSamples},
-                            {"recorded_samples", recordedSamples},
-                            {"traced_samples", stats.samples},
-                            {"rays", stats.Rays()},
-                            {"primary_rays", stats.primaryRays},
-                            {"shadow_tests", stats.shadowRays},
-                            {"shadow_rays_reused", stats.shadowRaysReused},
-                            {"bounce_rays", stats.bounceRays},
-                            {"dropped_nonfinite_samples", stats.droppedSamples},
-                            {"blink_frames", blinkFrames}};
-    nlohmann::json replaced = nlohmann::json::object();
-    for (size_t v = 0; v < denoisers.size(); ++v) {
-        uint64_t nonFinite = 0, negative = 0;
-        for (int eye = 0; eye < 2; ++eye) {
-            nonFinite += denoisers.At(v, eye).Stats().nonFiniteSamples;
-            negative += denoisers.At(v, eye).Stats().negativeSamples;
+                nlohmann::json denoiseRecord = nlohmann::json::object();
+                for (size_t v = 0; v < denoisers.size(); ++v) {
+                    Denoiser& denoiser = denoisers.At(v, eye);
+                    auto start = std::chrono::steady_clock::now();
+                    denoiser.Denoise(e.inputs, denoised);
+                    const double wallMs = MsSince(start);
+                    nlohmann::json passes = nlohmann::json::object();
+                    for (const PassTiming& t : denoiser.LastTimings()) {
+                        passes[t.pass] = t.ms;
+                        timings.Add({"denoise", denoisers.Name(v), "passes", t.pass}, t.ms);
+                    }
+                    timings.Add({"denoise", denoisers.Name(v), "wall"}, wallMs);
+                    denoiseRecord[denoisers.Name(v)] = {{"wall_ms", wallMs}, {"passes_ms", passes}};
+                    fs::path dir = outDir / "denoised" / denoisers.Name(v);
+                    if (config.output.writePng)
+                        WritePng(dir / (stem + ".png"), denoised, config.output.exposure);
+                    if (config.output.writeExr) WriteRgbExr(dir / (stem + ".exr"), denoised);
+                }
+                eyeRecord["denoise"] = denoiseRecord;
+                record[kEyeNames[eye]] = eyeRecord;
+            }
+            frameLog.Write(record);
+            if (framesRendered++ == 0) firstIndex = index;
+            lastIndex = index;
+            progress.Step(fmt::format("frame {}", index));
         }
-        replaced[denoisers.Name(v)] = {{"nonfinite", nonFinite}, {"negative", negative}};
+        ThrowIfInterrupted();
+        progress.Finish();
+        frameLog.Close();
+        if (recorder) recorder->Close();
+
+        RenderStats stats = pipeline.GetRenderer().Stats();
+        nlohmann::json manifest;
+        manifest["command"] = "run";
+        manifest["complete"] = true;
+        manifest["build"] = BuildInfoJson();
+        manifest["config"] = ConfigToJson(config);
+        manifest["seed"] = config.run.seed;
+        manifest["scene"] = {{"name", pipeline.GetScene().name},
+                             {"source", pipeline.GetScene().sourcePath.string()},
+                             {"frame_rate", pipeline.FramesPerSecond()}};
+        if (replay) manifest["replay"] = replay->ToJson();
+        if (recorder) manifest["recorded_to"] = recorder->Path().string();
+        manifest["denoise_device"] = denoisers.DeviceDescription();
+        manifest["counters"] = {{"samples", totalSamples},
+                                {"recorded_samples", recordedSamples},
+                                {"traced_samples", stats.samples},
+                                {"rays", stats.Rays()},
+                                {"primary_rays", stats.primaryRays},
+                                {"shadow_tests", stats.shadowRays},
+                                {"shadow_rays_reused", stats.shadowRaysReused},
+                                {"bounce_rays", stats.bounceRays},
+                                {"dropped_nonfinite_samples", stats.droppedSamples},
+                                {"blink_frames", blinkFrames}};
+        nlohmann::json replaced = nlohmann::json::object();
+        for (size_t v = 0; v < denoisers.size(); ++v) {
+            uint64_t nonFinite = 0, negative = 0;
+            for (int eye = 0; eye < 2; ++eye) {
+                nonFinite += denoisers.At(v, eye).Stats().nonFiniteSamples;
+                negative += denoisers.At(v, eye).Stats().negativeSamples;
+            }
+            replaced[denoisers.Name(v)] = {{"nonfinite", nonFinite}, {"negative", negative}};
+        }
+        manifest["counters"]["denoiser_replaced_samples"] = replaced;
+        // Per-frame records are frames.jsonl's lines; the manifest keeps their count and the timings'
+        // aggregates (per eye and frame), so it stays the same size however long the run.
+        manifest["frames"] = {{"count", framesRendered},
+                              {"first", firstIndex},
+                              {"last", lastIndex},
+                              {"records", "frames.jsonl"}};
+        manifest["timings_ms"] = timings.ToJson();
+        manifest["total_s"] = MsSince(totalStart) / 1000.0;
+        WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+        out.Keep();
+        std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
+                     framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
+                     (outDir / "manifest.json").string().c_str());
+    } catch (const Interrupted& e) {
+        out.Keep();  // the frames written so far stay, and the message says so
+        throw Interrupted(e.Signal(), fmt::format("{}: {} of {} frames written in {}; no manifest", e.what(),
+                                                  framesRendered, sequence.Count(), outDir.string()));
     }
-    manifest["counters"]["denoiser_replaced_samples"] = replaced;
-    // Per-frame records are frames.jsonl's lines; the manifest keeps their count and the timings'
-    // aggregates (per eye and frame), so it stays the same size however long the run.
-    manifest["frames"] = {{"count", framesRendered},
-                          {"first", firstIndex},
-                          {"last", lastIndex},
-                          {"records", "frames.jsonl"}};
-    manifest["timings_ms"] = timings.ToJson();
-    manifest["total_s"] = MsSince(totalStart) / 1000.0;
-    WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
-    out.Keep();
-    std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
-                 framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
-                 (outDir / "manifest.json").string().c_str());
 }
 
 // RunFrames with an allocation failure as one line naming the resolution and the planned bytes.
@@ -273,6 +283,7 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
 }
 
 void RunCommand(const RunOptions& options) {
+    InterruptScope interrupts;
     if (options.allowChanges && options.replay.empty()) Fail("--allow-changes needs --replay FILE");
     if (options.replay.empty()) {
         Run(ResolveConfig(options.config), nullptr, options.record);

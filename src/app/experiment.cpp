@@ -25,6 +25,7 @@
 #include "app/report_summary.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/nearest_name.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
@@ -353,6 +354,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
             std::optional<GazeSample> previousGaze;
             std::vector<Plane<vec3>> outputs(denoisers.size());
             while (sequence.Next(request)) {
+                ThrowIfInterrupted();
                 const uint32_t index = request.request.frame;
                 pipeline.Render(request.request, frame);
                 if (firstSeed) {
@@ -541,22 +543,20 @@ std::string RerunCommand(const ExperimentSpec& spec) {
                        spec.quick ? " --quick" : "");
 }
 
-Results RunExperimentUnchecked(const ExperimentSpec& spec) {
+}  // namespace
+
+namespace {
+
+Results RunOrMerge(const ExperimentSpec& spec, OutputDir& out) {
     const RunConfig& base = spec.config;
-    if (!spec.merge) EnforceMemoryBudget(PlanExperimentMemory(base), base.memoryBudget, "experiment");
-    OutputDir out(base.output.dir, "output.dir");
-    OutputDir cacheDir(base.reference.cacheDir, "reference.cache_dir");  // before any rendering
     const fs::path outDir = out.Path();
     const fs::path shardsDir = outDir / "shards";
     auto totalStart = std::chrono::steady_clock::now();
     const std::string fingerprint = ExperimentFingerprint(spec);
     if (spec.merge) {
         ExperimentPart part = MergeShardParts(shardsDir, fingerprint, RerunCommand(spec));
-        fs::remove(outDir / "manifest.json");  // present only once the merged outputs are complete
-        Results results = WriteExperimentOutputs(spec, part, outDir, totalStart);
-        out.Keep();
-        cacheDir.Keep();
-        return results;
+        out.MoveAsideEarlierOutputs(false);  // the shards' scene folders stay: they are this merge's
+        return WriteExperimentOutputs(spec, part, outDir, totalStart);
     }
     const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
     const std::vector<RunUnit> all = ExperimentUnits(spec.scenes.size(), seeds.size(), spec.variants.size());
@@ -564,26 +564,35 @@ Results RunExperimentUnchecked(const ExperimentSpec& spec) {
         const std::vector<RunUnit> units = ShardUnits(all, spec.shard);
         ExperimentPart part = ComputeRuns(spec, units, outDir);
         WriteShardPart(shardsDir, spec.shard, fingerprint, part);
-        out.Keep();
-        cacheDir.Keep();
         std::fprintf(stderr, "fovrt experiment: %s (%zu of %zu runs) done in %.1f s -> %s\n", spec.shard.Name().c_str(),
                      units.size(), all.size(), MsSince(totalStart) / 1000.0,
                      (shardsDir / spec.shard.Name()).string().c_str());
         return part.results;
     }
-    fs::remove(outDir / "manifest.json");  // present only once this run is complete
+    out.MoveAsideEarlierOutputs(true);
     ExperimentPart part = ComputeRuns(spec, all, outDir);
-    Results results = WriteExperimentOutputs(spec, part, outDir, totalStart);
-    out.Keep();
-    cacheDir.Keep();
-    return results;
+    return WriteExperimentOutputs(spec, part, outDir, totalStart);
 }
 
 }  // namespace
 
 Results RunExperiment(const ExperimentSpec& spec) {
+    if (!spec.merge) EnforceMemoryBudget(PlanExperimentMemory(spec.config), spec.config.memoryBudget, "experiment");
+    OutputDir out(spec.config.output.dir, "output.dir");
+    // One writer per folder; the shards of one experiment write disjoint parts side by side.
+    out.Lock(spec.shard.Sharded() ? fmt::format(".fovrt-{}.lock", spec.shard.Name()) : OutputDir::kFolderLock);
+    OutputDir cacheDir(spec.config.reference.cacheDir, "reference.cache_dir");  // before any rendering
     try {
-        return RunExperimentUnchecked(spec);
+        Results results = RunOrMerge(spec, out);
+        out.Keep();
+        cacheDir.Keep();
+        return results;
+    } catch (const Interrupted& e) {
+        out.Keep();
+        cacheDir.Keep();
+        throw Interrupted(e.Signal(), fmt::format("{}: {} {} not written (no manifest)", e.what(), out.Path().string(),
+                                                  spec.shard.Sharded() ? "shard part " + spec.shard.Name()
+                                                                       : std::string("outputs")));
     } catch (const std::bad_alloc&) {
         FailOutOfMemory(spec.config, PlanExperimentMemory(spec.config), "fovrt experiment");
     }

@@ -13,7 +13,9 @@
 
 #include "app/config_io.h"
 #include "app/experiment.h"
+#include "core/content_hash.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "io/exr.h"
 
 namespace fovrt {
@@ -22,16 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kPartVersion = 1;
-
-// FNV-1a, as a hex string: enough to tell experiments apart, stable across machines.
-std::string Hash(const std::string& text) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return fmt::format("{:016x}", h);
-}
 
 nlohmann::json Vec2Json(const vec2& v) { return {v.x, v.y}; }
 vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(1).get<float>()); }
@@ -128,26 +120,62 @@ SceneRecord RecordFrom(const nlohmann::json& j) {
     return r;
 }
 
-// Rows as text that reads back bit-identical (%.17g); fields never contain tabs or newlines.
-void WriteRows(const fs::path& path, const Results& results) {
-    std::ofstream out(path);
+// rows.tsv: a header line with the key the rows were made for (experiment fingerprint, shard) and
+// the checksum of every line after it, then the rows as text that reads back bit-identical
+// (%.17g); fields never contain tabs or newlines.
+constexpr const char* kRowsHeader = "# fovrt-rows";
+
+std::string RowsHeader(const std::string& fingerprint, const std::string& shard, size_t rows,
+                       const std::string& checksum) {
+    return fmt::format("{} experiment={} shard={} rows={} checksum={}", kRowsHeader, fingerprint, shard, rows,
+                       checksum);
+}
+
+void WriteRows(const fs::path& path, const Results& results, const std::string& fingerprint,
+               const std::string& shard) {
+    std::string body;
     for (const ResultRow& r : results.rows())
-        out << r.scene << '\t' << r.seed << '\t' << r.frame << '\t' << r.eye << '\t' << r.variant << '\t' << r.region
-            << '\t' << r.metric << '\t' << fmt::format("{:.17g}", r.value) << '\n';
+        body += fmt::format("{}\t{}\t{}\t{}\t{}\t{}\t{}\t{:.17g}\n", r.scene, r.seed, r.frame, r.eye, r.variant,
+                            r.region, r.metric, r.value);
+    std::ofstream out(path, std::ios::binary);
+    out << RowsHeader(fingerprint, shard, results.rows().size(), HashHex(body)) << '\n' << body;
+    out.close();
     if (!out) Fail("cannot write {}", path.string());
 }
 
-void ReadRows(const fs::path& path, Results& results) {
-    std::ifstream in(path);
-    if (!in) Fail("{}: cannot read", path.string());
-    std::string line;
-    size_t number = 0;
-    while (std::getline(in, line)) {
+std::string ReadWholeFile(const fs::path& path, const char* what) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) Fail("missing {}", what);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) Fail("{}: cannot read", what);
+    return text.str();
+}
+
+// Reads rows.tsv after checking that it was made for this experiment and shard and is unchanged.
+void ReadRows(const fs::path& path, const std::string& fingerprint, const std::string& shard, Results& results) {
+    const std::string text = ReadWholeFile(path, "rows.tsv");
+    const size_t headerEnd = text.find('\n');
+    const std::string header = text.substr(0, headerEnd == std::string::npos ? text.size() : headerEnd);
+    const std::string body = headerEnd == std::string::npos ? "" : text.substr(headerEnd + 1);
+    if (header.rfind(kRowsHeader, 0) != 0) Fail("rows.tsv: no '{}' header line (not written by this fovrt)", kRowsHeader);
+    std::map<std::string, std::string> fields;
+    std::stringstream words(header.substr(std::string(kRowsHeader).size()));
+    for (std::string word; words >> word;)
+        if (size_t eq = word.find('='); eq != std::string::npos) fields[word.substr(0, eq)] = word.substr(eq + 1);
+    if (fields["experiment"] != fingerprint || fields["shard"] != shard)
+        Fail("rows.tsv was made for experiment {} {}, not {} {}", fields["experiment"], fields["shard"], fingerprint,
+             shard);
+    if (fields["checksum"] != HashHex(body))
+        Fail("rows.tsv: checksum mismatch (the file changed after it was written)");
+    size_t number = 1;
+    std::stringstream lines(body);
+    for (std::string line; std::getline(lines, line);) {
         ++number;
         std::vector<std::string> f;
-        std::stringstream fields(line);
-        for (std::string field; std::getline(fields, field, '\t');) f.push_back(field);
-        if (f.size() != 8) Fail("{}: line {}: {} fields, expected 8", path.string(), number, f.size());
+        std::stringstream row(line);
+        for (std::string field; std::getline(row, field, '\t');) f.push_back(field);
+        if (f.size() != 8) Fail("rows.tsv: line {}: {} fields, expected 8", number, f.size());
         ResultRow r;
         r.scene = f[0];
         r.seed = uint32_t(std::stoul(f[1]));
@@ -156,9 +184,26 @@ void ReadRows(const fs::path& path, Results& results) {
         r.variant = f[4];
         r.region = f[5];
         r.metric = f[6];
-        r.value = std::strtod(f[7].c_str(), nullptr);
+        char* end = nullptr;
+        r.value = std::strtod(f[7].c_str(), &end);
+        if (f[7].empty() || *end) Fail("rows.tsv: line {}: value '{}' is not a number", number, f[7]);
         results.Add(std::move(r));
     }
+    if (std::to_string(results.rows().size()) != fields["rows"])
+        Fail("rows.tsv holds {} rows, its header says {}", results.rows().size(), fields["rows"]);
+}
+
+// part.json is sealed the same way: "checksum" is the hash of the rest of the document as dumped
+// (object keys sorted, numbers round-trip), and "files" the hash of each visuals file.
+constexpr const char* kPartChecksum = "checksum";
+
+std::string PartChecksum(nlohmann::json meta) {
+    meta.erase(kPartChecksum);
+    return HashHex(meta.dump());
+}
+
+std::string FileChecksum(const fs::path& path, const std::string& name) {
+    return HashHex(ReadWholeFile(path, name.c_str()));
 }
 
 }  // namespace
@@ -260,7 +305,7 @@ std::string ExperimentFingerprint(const ExperimentSpec& spec) {
     j["config"].erase("output");
     j["config"]["reference"].erase("cache_dir");
     j["config"]["run"].erase("threads");
-    return Hash(j.dump());
+    return HashHex(j.dump());
 }
 
 void WriteShardPart(const fs::path& shardsDir, const ShardSelection& selection, const std::string& fingerprint,
@@ -273,23 +318,35 @@ void WriteShardPart(const fs::path& shardsDir, const ShardSelection& selection, 
     fs::remove_all(temp);
     fs::create_directories(temp);
     try {
-        WriteRows(temp / "rows.tsv", part.results);
+        WriteRows(temp / "rows.tsv", part.results, fingerprint, selection.Name());
         nlohmann::json scenes = nlohmann::json::array();
+        nlohmann::json files = nlohmann::json::object();
         for (const SceneRecord& r : part.scenes) {
             scenes.push_back(RecordJson(r));
-            if (r.hasVisuals) WriteVisuals(temp / fmt::format("visuals-{}", r.index), r.visuals);
+            if (!r.hasVisuals) continue;
+            const std::string dir = fmt::format("visuals-{}", r.index);
+            WriteVisuals(temp / dir, r.visuals);
+            for (const char* file : {"visuals.json", "visuals.exr"})
+                if (fs::exists(temp / dir / file)) files[dir + "/" + file] = FileChecksum(temp / dir / file, file);
         }
-        const nlohmann::json meta = {{"format", "fovrt-experiment-part"},
-                                     {"version", kPartVersion},
-                                     {"index", selection.index},
-                                     {"count", selection.count},
-                                     {"experiment", fingerprint},
-                                     {"scenes", scenes},
-                                     {"timings", part.timings.ToJson()},
-                                     {"device", part.deviceDescription},
-                                     {"replay", part.replayRecord},
-                                     {"rows", part.results.rows().size()}};
-        std::ofstream(temp / "part.json") << meta.dump(1) << "\n";
+        nlohmann::json meta = {{"format", "fovrt-experiment-part"},
+                               {"version", kPartVersion},
+                               {"index", selection.index},
+                               {"count", selection.count},
+                               {"experiment", fingerprint},
+                               {"scenes", scenes},
+                               {"timings", part.timings.ToJson()},
+                               {"device", part.deviceDescription},
+                               {"replay", part.replayRecord},
+                               {"rows", part.results.rows().size()},
+                               {"files", files}};
+        meta[kPartChecksum] = PartChecksum(meta);
+        std::ofstream json(temp / "part.json");
+        json << meta.dump(1) << "\n";
+        json.close();
+        if (!json) Fail("cannot write {}", (temp / "part.json").string());
+        // The part is complete on disk before it gets its final name.
+        ThrowIfInterrupted();
         // A rerun replaces an earlier part whole: the old one goes only once the new one is complete.
         const fs::path old = shardsDir / fmt::format(".{}.old-{}-{}", selection.Name(), host, ::getpid());
         if (fs::exists(final)) fs::rename(final, old);
@@ -301,6 +358,49 @@ void WriteShardPart(const fs::path& shardsDir, const ShardSelection& selection, 
         throw;
     }
 }
+
+namespace {
+
+// One shard's part read back and verified (nothing of it is used before every part verified).
+struct LoadedPart {
+    nlohmann::json meta;
+    Results results;
+    std::vector<SceneRecord> scenes;
+};
+
+LoadedPart LoadPart(const fs::path& dir, const ShardSelection& selection, const std::string& fingerprint) {
+    LoadedPart part;
+    const std::string text = ReadWholeFile(dir / "part.json", "part.json");
+    try {
+        part.meta = nlohmann::json::parse(text);
+    } catch (const std::exception& e) {
+        Fail("part.json: not valid JSON ({})", e.what());
+    }
+    const nlohmann::json& meta = part.meta;
+    if (!meta.is_object() || meta.value("format", "") != "fovrt-experiment-part" ||
+        meta.value("version", 0) != kPartVersion)
+        Fail("part.json: not a fovrt experiment part of version {}", kPartVersion);
+    if (meta.value(kPartChecksum, "") != PartChecksum(meta))
+        Fail("part.json: checksum mismatch (the file changed after it was written)");
+    if (meta.at("experiment") != fingerprint)
+        Fail("was computed for another experiment (config, scenes, variants or seeds differ)");
+    if (meta.at("index") != selection.index || meta.at("count") != selection.count)
+        Fail("part.json was made for shard {}/{}", meta.at("index").dump(), meta.at("count").dump());
+    ReadRows(dir / "rows.tsv", fingerprint, selection.Name(), part.results);
+    if (part.results.rows().size() != meta.at("rows").get<size_t>())
+        Fail("rows.tsv holds {} rows, part.json says {}", part.results.rows().size(), meta.at("rows").get<size_t>());
+    for (const auto& [file, checksum] : meta.at("files").items())
+        if (FileChecksum(dir / file, file) != checksum)
+            Fail("{}: checksum mismatch (the file changed after it was written)", file);
+    for (const auto& j : meta.at("scenes")) {
+        SceneRecord r = RecordFrom(j);
+        if (r.hasVisuals) r.visuals = ReadVisuals(dir / fmt::format("visuals-{}", r.index));
+        part.scenes.push_back(std::move(r));
+    }
+    return part;
+}
+
+}  // namespace
 
 ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fingerprint,
                                const std::string& rerunCommand) {
@@ -320,40 +420,36 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
         parts[i] = entry.path();
     }
     if (!count) Fail("--merge: {} holds no shards (run the shards first: {})", shardsDir.string(), rerunCommand);
-    std::vector<std::string> missing;
-    for (int i = 0; i < count; ++i)
-        if (!parts.count(i)) missing.push_back(fmt::format("{}/{}", i, count));
-    if (!missing.empty())
-        Fail("--merge: incomplete shard set in {}: missing {} (run: {})", shardsDir.string(),
-             fmt::format("{}", fmt::join(missing, ", ")), rerunCommand);
+    // Every part is checked before any is used, and every problem is reported at once.
+    std::vector<std::string> missing, bad;
+    std::vector<LoadedPart> loaded;
+    for (int i = 0; i < count; ++i) {
+        if (!parts.count(i)) {
+            missing.push_back(fmt::format("{}/{}", i, count));
+            continue;
+        }
+        try {
+            loaded.push_back(LoadPart(parts[i], ShardSelection{i, count}, fingerprint));
+        } catch (const std::exception& e) {
+            bad.push_back(fmt::format("{}: {}", parts[i].string(), e.what()));
+        }
+    }
+    if (!missing.empty() || !bad.empty()) {
+        std::string problems;
+        if (!missing.empty()) problems = fmt::format("missing {}", fmt::join(missing, ", "));
+        for (const std::string& b : bad) problems += (problems.empty() ? "" : "; ") + b;
+        Fail("--merge: cannot merge {}: {} (rerun those shards: {})", shardsDir.string(), problems, rerunCommand);
+    }
 
     ExperimentPart merged;
     std::map<size_t, SceneRecord> scenes;
-    for (const auto& [i, dir] : parts) {
-        nlohmann::json meta;
-        try {
-            std::ifstream in(dir / "part.json");
-            meta = nlohmann::json::parse(in);
-        } catch (const std::exception& e) {
-            Fail("--merge: {}: unreadable part.json ({})", dir.string(), e.what());
-        }
-        if (meta.value("format", "") != "fovrt-experiment-part" || meta.value("version", 0) != kPartVersion)
-            Fail("--merge: {}: not a fovrt experiment part of version {}", dir.string(), kPartVersion);
-        if (meta.at("experiment") != fingerprint)
-            Fail("--merge: {} was computed for another experiment (config, scenes, variants or seeds differ): "
-                 "rerun it ({})",
-                 dir.string(), rerunCommand);
-        const size_t before = merged.results.rows().size();
-        ReadRows(dir / "rows.tsv", merged.results);
-        if (merged.results.rows().size() - before != meta.at("rows").get<size_t>())
-            Fail("--merge: {}: rows.tsv holds {} rows, part.json says {}", dir.string(),
-                 merged.results.rows().size() - before, meta.at("rows").get<size_t>());
+    for (LoadedPart& part : loaded) {
+        const nlohmann::json& meta = part.meta;
+        for (const ResultRow& row : part.results.rows()) merged.results.Add(row);
         merged.timings.Merge(PassTimings::FromJson(meta.at("timings")));
         if (merged.deviceDescription.empty()) merged.deviceDescription = meta.at("device");
         if (merged.replayRecord.is_null()) merged.replayRecord = meta.at("replay");
-        for (const auto& j : meta.at("scenes")) {
-            SceneRecord r = RecordFrom(j);
-            if (r.hasVisuals) r.visuals = ReadVisuals(dir / fmt::format("visuals-{}", r.index));
+        for (SceneRecord& r : part.scenes) {
             auto it = scenes.find(r.index);
             if (it == scenes.end()) {
                 scenes.emplace(r.index, std::move(r));

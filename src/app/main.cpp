@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"fovrt: foveated VR path-tracing testbed (stereo Embree tracer, foveated spp maps, "
@@ -28,6 +29,9 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    } catch (const fovrt::Interrupted& e) {
+        std::fprintf(stderr, "fovrt: %s\n", e.what());
+        return e.ExitCode();
     } catch (const fovrt::Error& e) {
         std::fprintf(stderr, "fovrt: error: %s\n", e.what());
         return 1;

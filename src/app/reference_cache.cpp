@@ -1,45 +1,19 @@
 #include "app/reference_cache.h"
 
-#include <cstring>
+#include <cstdio>
 
 #include <fmt/format.h>
 
+#include "core/content_hash.h"
+#include "core/error.h"
 #include "core/rng.h"
 #include "io/exr.h"
 #include "scene/scene_serialize.h"
 
 namespace fovrt {
-namespace {
-
-// FNV-1a, 64 bit: stable across runs and platforms (unlike std::hash).
-class Fnv1a {
-public:
-    void Bytes(const void* data, size_t size) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < size; ++i) {
-            hash_ ^= p[i];
-            hash_ *= 1099511628211ull;
-        }
-    }
-    template <typename T>
-    void Value(const T& v) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        Bytes(&v, sizeof(T));
-    }
-    void String(const std::string& s) {
-        Value(s.size());
-        Bytes(s.data(), s.size());
-    }
-    uint64_t Digest() const { return hash_; }
-
-private:
-    uint64_t hash_ = 1469598103934665603ull;
-};
-
-}  // namespace
 
 uint64_t SceneFingerprint(const Scene& scene) {
-    Fnv1a h;
+    ContentHash h;
     SerializeScene(scene, [&](const void* data, size_t size) { h.Bytes(data, size); });
     return h.Digest();
 }
@@ -53,7 +27,7 @@ ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t
 }
 
 std::string ReferenceKey::Hex() const {
-    Fnv1a h;
+    ContentHash h;
     // v3: sampled with the key's seed and frame, not the run's; v4: area lights one-sided by default.
     h.String("fovrt-reference-v4");
     h.Value(sceneFingerprint);
@@ -68,32 +42,94 @@ std::string ReferenceKey::Hex() const {
     h.Value(spp);
     h.Value(maxDepth);
     h.Value(seed);
-    return fmt::format("{:016x}", h.Digest());
+    return h.Hex();
 }
 
 std::filesystem::path ReferenceCache::PathOf(const ReferenceKey& key) const {
     return dir_ / fmt::format("f{:05d}-e{}-{}spp-{}.exr", key.frame, key.eye, key.spp, key.Hex());
 }
 
-std::optional<Plane<vec3>> ReferenceCache::Find(const ReferenceKey& key) {
+namespace {
+
+// Every entry carries the key it was rendered for and a checksum of its pixels (EXR header
+// attributes), so an entry copied over another's file, edited or damaged is never used.
+constexpr const char* kKeyAttribute = "fovrt.reference_key";
+constexpr const char* kChecksumAttribute = "fovrt.pixel_checksum";
+
+std::string PixelChecksum(const Plane<vec3>& image) {
+    ContentHash h;
+    h.Bytes(image.data(), image.size() * sizeof(vec3));
+    return h.Hex();
+}
+
+void WriteEntry(const std::filesystem::path& path, const std::string& hex, const Plane<vec3>& image) {
+    ExrAttributes attributes;
+    attributes.strings[kKeyAttribute] = hex;
+    attributes.strings[kChecksumAttribute] = PixelChecksum(image);
+    WriteExrLayers(path, image.width(), image.height(), {ExrLayer::FromPlane("", image)}, attributes);
+}
+
+// The entry's image, or the reason it cannot be trusted.
+struct LoadedEntry {
+    Plane<vec3> image;
+    std::string problem;
+};
+
+LoadedEntry ReadEntry(const std::filesystem::path& path, const std::string& hex) {
+    LoadedEntry entry;
+    try {
+        const ExrImage exr = ReadExr(path);
+        const auto& strings = exr.attributes.strings;
+        const auto key = strings.find(kKeyAttribute), checksum = strings.find(kChecksumAttribute);
+        if (key == strings.end() || checksum == strings.end()) {
+            entry.problem = "has no key and checksum (written by an older fovrt)";
+            return entry;
+        }
+        if (key->second != hex) {
+            entry.problem = fmt::format("holds the entry of key {}, not {}", key->second, hex);
+            return entry;
+        }
+        entry.image = Plane<vec3>(exr.width, exr.height);
+        const auto &r = exr.Floats("R"), &g = exr.Floats("G"), &b = exr.Floats("B");
+        for (size_t i = 0; i < entry.image.size(); ++i) entry.image[i] = vec3(r[i], g[i], b[i]);
+        if (PixelChecksum(entry.image) != checksum->second)
+            entry.problem = "pixel checksum mismatch (the file changed after it was written)";
+    } catch (const Error& e) {
+        entry.problem = fmt::format("unreadable ({})", e.what());
+    }
+    return entry;
+}
+
+}  // namespace
+
+std::optional<Plane<vec3>> ReferenceCache::Load(const ReferenceKey& key, const char* remedy) {
     const std::string hex = key.Hex();
     for (const auto& [recentHex, image] : recent_)
         if (recentHex == hex) return image;
     const std::filesystem::path path = PathOf(key);
     if (!std::filesystem::exists(path)) return std::nullopt;
-    Remember(hex, ReadRgbExr(path));
+    LoadedEntry entry = ReadEntry(path, hex);
+    if (!entry.problem.empty()) {
+        std::fprintf(stderr, "fovrt: reference cache entry %s %s; %s\n", path.c_str(), entry.problem.c_str(), remedy);
+        return std::nullopt;
+    }
+    Remember(hex, std::move(entry.image));
     return recent_.back().second;
 }
 
+std::optional<Plane<vec3>> ReferenceCache::Find(const ReferenceKey& key) {
+    return Load(key, fmt::format("ignored (remove it: rm '{}')", PathOf(key).string()).c_str());
+}
+
 Plane<vec3> ReferenceCache::GetOrRender(const ReferenceKey& key, Renderer& renderer, bool* hit) {
-    if (std::optional<Plane<vec3>> cached = Find(key)) {
+    if (std::optional<Plane<vec3>> cached = Load(key, "rendering it again")) {
         if (hit) *hit = true;
         return std::move(*cached);
     }
     if (hit) *hit = false;
     Plane<vec3> image;
     renderer.RenderReference(key.eye, key.camera, key.spp, HashCombine(key.seed, key.frame), image);
-    WriteRgbExr(PathOf(key), image);
+    WriteEntry(PathOf(key), key.Hex(), image);
     Remember(key.Hex(), image);
     return image;
 }

@@ -3,6 +3,9 @@
 // repeated experiments never re-render a reference. Entries are RGB EXRs written atomically. The
 // image is sampled with HashCombine(seed, frame) of the key (frame 0 for a static scene), so it
 // is a function of the key alone: which frame rendered it first, and the run seed, do not matter.
+// Each entry carries its key and a checksum of its pixels; an entry that fails either check (copied
+// over another's file, edited, damaged, or written before entries carried them) is never used: one
+// line on stderr names the file, and GetOrRender renders it again.
 #pragma once
 
 #include <cstdint>
@@ -56,6 +59,8 @@ public:
     std::optional<Plane<vec3>> Find(const ReferenceKey& key);
 
 private:
+    // The verified entry (memory first, then disk); a bad one is reported with `remedy` and skipped.
+    std::optional<Plane<vec3>> Load(const ReferenceKey& key, const char* remedy);
     void Remember(const std::string& hex, Plane<vec3> image);
 
     static constexpr size_t kInMemoryEntries = 2;  // one per eye

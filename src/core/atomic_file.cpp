@@ -7,6 +7,7 @@
 #include <string>
 
 #include "error.h"
+#include "interrupt.h"
 
 namespace fovrt {
 
@@ -24,6 +25,7 @@ void WriteAtomically(const std::filesystem::path& path,
     temp += ".tmp-" + std::string(host) + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     try {
         write(temp);
+        ThrowIfInterrupted();  // an interrupted command renames nothing into place
         fs::rename(temp, path);
     } catch (...) {
         std::error_code ignored;

@@ -9,7 +9,8 @@
 namespace fovrt {
 
 // Calls write(tempPath) and renames the temp file to `path` if it returns without throwing.
-// On any exception the temp file is removed and the exception propagates.
+// On any exception the temp file is removed and the exception propagates; so it is when a
+// SIGINT / SIGTERM arrived meanwhile (core/interrupt.h): Interrupted is thrown, nothing renamed.
 void WriteAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tempPath)>& write);
 
