@@ -38,9 +38,24 @@ vec3 GazeInEye(const EyeCamera& eye, const vec3& gazeHead);
 // behind the eye plane is pushed just in front of it.
 vec2 GazePixel(const EyeCamera& eye, const vec3& gazeHead);
 
+// The eye tracker between the true gaze and the renderer (gaze/tracker.h). Defaults: an ideal
+// tracker, the renderer sees the true gaze at the frame's time.
+struct TrackerParams {
+    double rateHz = 0.0;     // samples per second; 0 = ideal: sampled at every frame's time
+    double phaseMs = 0.0;    // time of sample 0 (rate > 0)
+    double latencyMs = 0.0;  // eye-to-render delay: a sample is first used latencyMs after capture
+    float noiseDeg = 0.0f;   // RMS angular error of a sample (isotropic Gaussian), seeded
+    vec2 biasDeg = vec2(0.0f);  // constant (yaw, pitch) offset
+    double dropout = 0.0;    // probability that a sample is lost (the true gaze's invalid samples always are)
+    double blinkMs = 0.0;    // an invalid run this long is reported as a blink; shorter runs hold (rate > 0)
+    uint32_t seed = 1;       // noise and dropouts
+    std::string prediction = "none";  // none | cv (constant velocity) | landing (saccade landing point)
+    float saccadeDegPerS = 100.0f;    // saccade onset: angular speed between samples above this
+};
+
 // Parameters of every source, as loaded from the [gaze] config table (defaults = thesis).
 struct GazeParams {
-    std::string source = "lissajous";  // lissajous | trace | static | mouse (live windows only)
+    std::string source = "lissajous";  // lissajous | trace | recording | static | mouse (live windows only)
 
     // lissajous: p(t) = centre + offset + amplitude ⊙ sin(2π t frequency + phase).
     // units = "px": positions on a referenceWidth × referenceHeight image with the eye's FOV,
@@ -57,7 +72,10 @@ struct GazeParams {
 
     // trace: CSV with a header row naming columns n (time, ms), x (yaw, deg), y (pitch, deg);
     // sample time = first row's time + startMs + t·1000.
+    // recording: a headset recording (gaze/recording.h: time in s, dir_x/y/z head-frame unit
+    // vectors); played like a trace, from its first row + traceStartMs.
     std::string tracePath;
+    std::string recordingPath;
     double traceStartMs = 0.0;
 
     // static: fixed angles.
@@ -69,6 +87,8 @@ struct GazeParams {
     // mean (the same rays, spread evenly), since a closed eye has no fovea. The gaze pixel the
     // metrics use stays the held direction either way.
     std::string blink = "hold";
+
+    TrackerParams tracker;
 };
 
 // Throws fovrt::Error naming the first bad gaze.* key.

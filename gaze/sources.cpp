@@ -1,12 +1,14 @@
 #include "gaze/sources.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "gaze/csv_fields.h"
+#include "gaze/recording.h"
+#include "gaze/tracker.h"
 
 namespace fovrt {
 
@@ -53,46 +55,10 @@ GazeSample LissajousGaze::At(double t) const {
 
 // ---- Trace -----------------------------------------------------------------------------------
 
-namespace {
-
-std::string_view Trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-    return s;
-}
-
-std::vector<std::string_view> SplitCsv(std::string_view line) {
-    std::vector<std::string_view> fields;
-    size_t start = 0;
-    while (true) {
-        size_t comma = line.find(',', start);
-        fields.push_back(Trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-        if (comma == std::string_view::npos) break;
-        start = comma + 1;
-    }
-    return fields;
-}
-
-std::string Lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
-
-bool IsNanToken(std::string_view s) {
-    std::string l = Lower(s);
-    return l.empty() || l == "nan" || l == "-nan" || l == "+nan";
-}
-
-// Parses the whole field as a double; false on garbage (trailing characters included).
-bool ParseDouble(std::string_view s, double& value) {
-    if (s.empty()) return false;
-    if (s.front() == '+') s.remove_prefix(1);
-    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-    return ec == std::errc() && ptr == s.data() + s.size();
-}
-
-}  // namespace
+using csv::IsNanToken;
+using csv::Lower;
+using csv::ParseDouble;
+using csv::Trim;
 
 std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::string& name) {
     std::vector<GazeTraceSample> samples;
@@ -105,7 +71,7 @@ std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::stri
         ++lineNumber;
         std::string_view view = Trim(line);
         if (view.empty() || view.front() == '#') continue;
-        std::vector<std::string_view> fields = SplitCsv(view);
+        std::vector<std::string_view> fields = csv::Split(view);
         if (!haveHeader) {
             for (size_t i = 0; i < fields.size(); ++i) {
                 std::string f = Lower(fields[i]);
@@ -210,8 +176,9 @@ GazeSample TraceGaze::At(double timeSeconds) const {
 // ---- Factory ---------------------------------------------------------------------------------
 
 void ValidateGazeParams(const GazeParams& p) {
-    if (p.source != "lissajous" && p.source != "trace" && p.source != "static" && p.source != "mouse")
-        Fail("gaze.source = '{}' is not one of lissajous, trace, static, mouse", p.source);
+    if (p.source != "lissajous" && p.source != "trace" && p.source != "recording" && p.source != "static" &&
+        p.source != "mouse")
+        Fail("gaze.source = '{}' is not one of lissajous, trace, recording, static, mouse", p.source);
     if (p.blink != "hold" && p.blink != "uniform") Fail("gaze.blink = '{}' is not one of hold, uniform", p.blink);
     if (p.units != "px" && p.units != "deg") Fail("gaze.units = '{}' is not one of px, deg", p.units);
     if (p.referenceWidth <= 0) Fail("gaze.reference_width = {} must be > 0", p.referenceWidth);
@@ -226,18 +193,23 @@ void ValidateGazeParams(const GazeParams& p) {
                              std::abs(p.offset.y) + std::abs(p.amplitude.y) >= 90.0f))
         Fail("gaze.offset + gaze.amplitude must stay below 90 degrees");
     if (p.source == "trace" && p.tracePath.empty()) Fail("gaze.trace_path must be set when gaze.source = 'trace'");
+    if (p.source == "recording" && p.recordingPath.empty())
+        Fail("gaze.recording_path must be set when gaze.source = 'recording'");
     if (!std::isfinite(p.traceStartMs)) Fail("gaze.trace_start_ms must be finite");
     if (!(std::abs(p.yawDeg) < 90.0f)) Fail("gaze.yaw_deg = {} must be in (-90, 90)", p.yawDeg);
     if (!(std::abs(p.pitchDeg) < 90.0f)) Fail("gaze.pitch_deg = {} must be in (-90, 90)", p.pitchDeg);
+    ValidateTrackerParams(p.tracker);
 }
 
 std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov& referenceFov) {
     ValidateGazeParams(params);
     if (params.source == "mouse")
         Fail("gaze.source = 'mouse' needs a window: use `fovrt preview` (headless runs take lissajous, "
-             "trace or static, or replay a recorded session with --replay)");
+             "trace, recording or static, or replay a recorded session with --replay)");
     if (params.source == "lissajous") return std::make_unique<LissajousGaze>(params, referenceFov);
     if (params.source == "static") return std::make_unique<StaticGaze>(params.yawDeg, params.pitchDeg);
+    if (params.source == "recording")
+        return std::make_unique<TraceGaze>(LoadGazeRecordingCsv(params.recordingPath), params.traceStartMs);
     return std::make_unique<TraceGaze>(LoadGazeTraceCsv(params.tracePath), params.traceStartMs);
 }
 

@@ -105,6 +105,20 @@ else
 fi
 expect_error "unknown gaze.blink" "gaze.blink.*did you mean 'hold'" run --set gaze.blink=hld --set output.dir=e19
 
+# A headset recording's "no sample" rows (dir (0,0,1), ori (0,0,0); 55-66 ms: frame 2 at 30 fps) are
+# blinks in frames.jsonl; a 100 ms tracker records the true gaze beside the tracked one.
+printf 'time,ori_x,ori_y,ori_z,dir_x,dir_y,dir_z\n5.000,0.01,0,0,0.1,0,0.994987\n5.044,0.01,0,0,0.1,0,0.994987\n5.055,0,0,0,0,0,1\n5.066,0,0,0,0,0,1\n5.077,0.01,0,0,0.1,0,0.994987\n5.2,0.01,0,0,0.1,0,0.994987\n' > rec.csv
+if "$fovrt" run "${small[@]}" --set run.frames=4 --set run.fps=30 --set gaze.source=recording --set gaze.recording_path=rec.csv \
+    --set gaze.tracker_latency_ms=100 --set output.dir=rec1 --set denoise.device=cpu >/dev/null 2>err.txt; then
+  [[ $(grep -c '"true_blink":true' rec1/frames.jsonl) -eq 1 && $(grep -c '"true_gaze_head"' rec1/frames.jsonl) -eq 4 ]] &&
+    ok "recording: frames.jsonl marks its blink and the true gaze" || bad "recording: frames.jsonl"
+else
+  bad "recording run failed: $(cat err.txt)"
+fi
+printf 'time,dir_x,dir_y,dir_z\n0,0,0,1\n0.011,0.5,0,0.5\n' > bad_rec.csv
+expect_error "non-unit recording row" "bad_rec.csv:3" run --set gaze.source=recording --set gaze.recording_path=bad_rec.csv --set output.dir=e20
+expect_error "prediction without a tracker rate" "gaze.prediction" run --set gaze.prediction=cv --set output.dir=e21
+
 echo 'name = "broken"' > broken.toml
 echo '[camera]' >> broken.toml
 echo 'position = [0, 1, "x"]' >> broken.toml

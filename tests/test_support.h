@@ -25,6 +25,12 @@ inline std::filesystem::path SharedScenes() {
     return std::filesystem::exists(dir) ? dir : std::filesystem::path();
 }
 
+// ../shared/gaze beside the checkout (headset recordings, see its README), empty when absent.
+inline std::filesystem::path SharedGaze() {
+    auto dir = SourceDir().parent_path() / "shared" / "gaze";
+    return std::filesystem::exists(dir) ? dir : std::filesystem::path();
+}
+
 // This process's scratch directory under the system temp dir, "<prefix>-<pid>", created on first
 // use and removed when the test executable ends (one per executable: prefix is fixed per file).
 inline std::filesystem::path ScratchDir(const std::string& prefix) {

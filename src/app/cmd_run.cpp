@@ -159,10 +159,17 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
             record["blink"] = config.gaze.blink;
             ++blinkFrames;
         }
+        const bool tracked = request.request.trueGaze.has_value();  // a modelled tracker: where the eye was
+        if (tracked) {
+            record["true_gaze_head"] = {frame.trueGaze.direction.x, frame.trueGaze.direction.y,
+                                        frame.trueGaze.direction.z};
+            if (!frame.trueGaze.valid) record["true_blink"] = true;
+        }
         for (int eye = 0; eye < 2; ++eye) {
             EyeFrame& e = frame.eyes[size_t(eye)];
             nlohmann::json eyeRecord;
             eyeRecord["gaze_pixel"] = {e.gazePixel.x, e.gazePixel.y};
+            if (tracked) eyeRecord["true_gaze_pixel"] = {e.trueGazePixel.x, e.trueGazePixel.y};
             eyeRecord["spp_ms"] = e.sppMs;
             eyeRecord["render_ms"] = e.renderMs;
             timings.Add({"spp"}, e.sppMs);

@@ -356,7 +356,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
               fmt::format("{} must be > foveation.foveal_deg = {}", f.peripheralDeg, f.fovealDeg));
 
     GazeConfig& g = c.gaze;
-    r.String("gaze.source", g.source, {"lissajous", "trace", "static", "mouse"});
+    r.String("gaze.source", g.source, {"lissajous", "trace", "recording", "static", "mouse"});
     r.String("gaze.units", g.units, {"px", "deg"});
     r.Vec2("gaze.amplitude", g.amplitude);
     r.Vec2("gaze.frequency_hz", g.frequencyHz);
@@ -369,6 +369,20 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.String("gaze.blink", g.blink, {"hold", "uniform"});
     r.Float("gaze.yaw_deg", g.yawDeg, -89.999, 89.999);
     r.Float("gaze.pitch_deg", g.pitchDeg, -89.999, 89.999);
+    r.String("gaze.recording_path", g.recordingPath);
+    TrackerParams& t = g.tracker;  // ranges: ValidateTrackerParams (gaze/tracker.cpp)
+    r.Double("gaze.tracker_rate_hz", t.rateHz);
+    r.Double("gaze.tracker_phase_ms", t.phaseMs);
+    r.Double("gaze.tracker_latency_ms", t.latencyMs);
+    r.Float("gaze.tracker_noise_deg", t.noiseDeg, 0.0, 45.0);
+    r.Vec2("gaze.tracker_bias_deg", t.biasDeg);
+    r.Double("gaze.tracker_dropout", t.dropout);
+    r.Double("gaze.tracker_blink_ms", t.blinkMs);
+    int64_t trackerSeed = t.seed;
+    r.Int64("gaze.tracker_seed", trackerSeed, 0, std::numeric_limits<uint32_t>::max());
+    t.seed = uint32_t(trackerSeed);
+    r.String("gaze.prediction", t.prediction, {"none", "cv", "landing"});
+    r.Float("gaze.saccade_deg_s", t.saccadeDegPerS, 0.0, 2000.0, true);
     if (g.source == "trace" && g.tracePath.empty())
         r.Bad("gaze.trace_path", "must be set when gaze.source = \"trace\"");
     if (g.frequencyHz.x < 0 || g.frequencyHz.y < 0) r.Bad("gaze.frequency_hz", "must be >= 0");
@@ -512,7 +526,18 @@ toml::table ToTable(const RunConfig& c) {
                              {"trace_start_ms", g.traceStartMs},
                              {"blink", g.blink},
                              {"yaw_deg", CleanFloat(g.yawDeg)},
-                             {"pitch_deg", CleanFloat(g.pitchDeg)}}},
+                             {"pitch_deg", CleanFloat(g.pitchDeg)},
+                             {"recording_path", g.recordingPath},
+                             {"tracker_rate_hz", g.tracker.rateHz},
+                             {"tracker_phase_ms", g.tracker.phaseMs},
+                             {"tracker_latency_ms", g.tracker.latencyMs},
+                             {"tracker_noise_deg", CleanFloat(g.tracker.noiseDeg)},
+                             {"tracker_bias_deg", TomlArray({g.tracker.biasDeg.x, g.tracker.biasDeg.y})},
+                             {"tracker_dropout", g.tracker.dropout},
+                             {"tracker_blink_ms", g.tracker.blinkMs},
+                             {"tracker_seed", int64_t(g.tracker.seed)},
+                             {"prediction", g.tracker.prediction},
+                             {"saccade_deg_s", CleanFloat(g.tracker.saccadeDegPerS)}}},
         {"denoise", toml::table{{"denoisers", denoisers}, {"device", c.denoise.device}}},
         {"output", toml::table{{"dir", c.output.dir},
                                {"write_exr", c.output.writeExr},

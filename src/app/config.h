@@ -25,12 +25,17 @@
 //                radius_px = 200, radius_reference_width = 1280, radius_deg = 0, spp_max = 8,
 //                spp_min = 1, foveal_deg = 5, peripheral_deg = 30, omega0_deg = 1/48,
 //                mar_slope = 0.022, uniform_spp = 1, ray_budget = 0 (samples per eye per frame)
-//   [gaze]       source = "lissajous"|"trace"|"static"|"mouse" (preview only), units = "px"|"deg",
+//   [gaze]       source = "lissajous"|"trace"|"recording"|"static"|"mouse" (preview only), units = "px"|"deg",
 //                amplitude = [640, 360], frequency_hz = [0.4, 0.5], phase_deg = [90, 0],
 //                offset = [0, 0], reference_width = 1280, reference_height = 720,
 //                trace_path = "", trace_start_ms = 0, yaw_deg = 0, pitch_deg = 0,
 //                blink = "hold"|"uniform" (an invalid sample: hold = foveate on the last valid
-//                direction; uniform = a uniform spp map at the foveated map's mean, rounded)
+//                direction; uniform = a uniform spp map at the foveated map's mean, rounded),
+//                recording_path = "" (headset recording, gaze/recording.h), the eye tracker
+//                (gaze/tracker.h; defaults = ideal): tracker_rate_hz = 0, tracker_phase_ms = 0,
+//                tracker_latency_ms = 0, tracker_noise_deg = 0, tracker_bias_deg = [0, 0],
+//                tracker_dropout = 0, tracker_blink_ms = 0, tracker_seed = 1,
+//                prediction = "none"|"cv"|"landing", saccade_deg_s = 100
 //   [denoise]    denoisers = ["svgf"], device = "auto"|"vulkan"|"cpu"|"<index>" (vk/device_choice.h)
 //   denoise.precision and [denoise.svgf], [denoise.asvgf], [denoise.two_history]: the parameter
 //                tables in denoise/params.cpp (key, default, range, doc; `fovrt config --keys`)

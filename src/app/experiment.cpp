@@ -17,6 +17,7 @@
 #include "app/experiment_shards.h"
 #include "app/experiment_stats.h"
 #include "app/frame_pipeline.h"
+#include "app/gaze_tracking_report.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/reference_cache.h"
@@ -28,6 +29,7 @@
 #include "core/nearest_name.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
+#include "gaze/tracker.h"
 #include "io/exr.h"
 
 namespace fovrt {
@@ -193,7 +195,7 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
         for (const auto& [key, node] : experiment.table) {
             std::string k(key.str());
             static const std::vector<std::string> known = {"scenes", "variants", "visual_frame", "quick",
-                                                           "seeds", "baseline"};
+                                                           "seeds", "baseline", "suppress_saccades"};
             if (std::find(known.begin(), known.end(), k) == known.end())
                 Fail("{}: unknown key experiment.{} (did you mean experiment.{}?)", experiment.Origin(k), k, NearestName(k, known));
         }
@@ -243,6 +245,12 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
             std::fprintf(stderr, "fovrt experiment: replay: experiment.seeds is ignored (the recording's run.seed %u "
                                  "is rendered)\n", spec.config.run.seed);
         spec.seeds = {spec.config.run.seed};
+    }
+    if (const toml::node* suppress = experiment.table.get("suppress_saccades")) {
+        auto value = suppress->value<bool>();
+        if (!suppress->is_boolean() || !value)
+            Fail("{}: experiment.suppress_saccades must be true or false", experiment.Origin("suppress_saccades"));
+        spec.suppressSaccades = *value;
     }
     if (const toml::node* frame = experiment.table.get("visual_frame")) {
         auto value = frame->value<int64_t>();
@@ -357,8 +365,18 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 pipeline.Render(request.request, frame);
                 if (firstSeed) {
                     record.blinkFrames += frame.gaze.valid ? 0 : 1;
-                    if (visualsHere) visuals.gazeMarks.push_back(GazeMarkOf(int(index), frame.gaze, previousGaze));
-                    previousGaze = frame.gaze;
+                    if (visualsHere) {
+                        GazeMark mark = GazeMarkOf(int(index), frame.trueGaze, previousGaze);
+                        // The rendered fovea (tracked gaze) against the true gaze, on the report's eye;
+                        // a blink rendered uniform has no fovea.
+                        const EyeFrame& shown = frame.eyes[size_t(visuals.eye)];
+                        mark.timeSeconds = frame.timeSeconds;
+                        mark.foveaDistanceDeg = AngleBetweenDeg(frame.gaze.direction, frame.trueGaze.direction);
+                        mark.outsideFovea = shown.uniformForBlink || glm::length(shown.gazePixel - shown.trueGazePixel) >
+                                                                         visuals.foveaRadiusPixels;
+                        visuals.gazeMarks.push_back(mark);
+                    }
+                    previousGaze = frame.trueGaze;
                 }
                 for (int eye = 0; eye < 2; ++eye) {
                     if (!eyes[size_t(eye)]) continue;
@@ -384,7 +402,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     images.frame = int(index);
                     images.eye = eye;
                     images.camera = camera;
-                    images.gazeEye = e.gazeEye;
+                    images.gazeEye = e.trueGazeEye;  // errors are scored where the eye was
                     images.fovea = fovea;
                     images.cameraCut = e.inputs.cameraCut;
                     images.reference = &reference;
@@ -414,10 +432,10 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     collector.Add(images);
 
                     if (visualsHere && eye == visuals.eye) {
-                        visuals.gazePath.push_back(e.gazePixel);
+                        visuals.gazePath.push_back(e.trueGazePixel);
                         if (int(index) == visualFrame) {
                             visuals.frame = int(index);
-                            visuals.gazePixel = e.gazePixel;
+                            visuals.gazePixel = e.trueGazePixel;
                             visuals.sppMap = e.sppMap;
                             visuals.reference = reference;
                             visuals.noisy = e.inputs.NoisyImage();
@@ -479,9 +497,28 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                                 {"blink_frames", r.blinkFrames}});
     }
 
-    const ExperimentStats stats(results, spec.baseline);
-    WriteSummaryJson(outDir / "summary.json", results, stats);
-    std::printf("%s", SummaryTable(results, stats).c_str());
+    // The eye tracker beside the errors; with experiment.suppress_saccades the statistics leave
+    // out the saccade frames (the per-frame CSV keeps every row).
+    nlohmann::json gazeTracking = nlohmann::json::object();
+    std::map<std::string, std::vector<int>> saccadeFrames;
+    for (const SceneVisuals& v : report.scenes) {
+        if (v.gazeMarks.empty()) continue;
+        WriteTextAtomically(outDir / fmt::format("gaze-{}.csv", v.scene), GazeTrackingCsv(v.gazeMarks));
+        gazeTracking[v.scene] = GazeTrackingJson(SummarizeGazeTracking(v.gazeMarks), results, v.scene, v.gazeMarks);
+        saccadeFrames[v.scene] = SaccadeFrames(v.gazeMarks);
+    }
+    Results suppressed;
+    if (spec.suppressSaccades) suppressed = WithoutFrames(results, saccadeFrames);
+    const Results& scored = spec.suppressSaccades ? suppressed : results;
+    report.results = &scored;
+    const ExperimentStats stats(scored, spec.baseline);
+    nlohmann::json summary = SummaryJson(scored, stats);
+    summary["gaze_tracking"] = gazeTracking;
+    summary["saccade_frames_suppressed"] = spec.suppressSaccades;
+    WriteTextAtomically(outDir / "summary.json", summary.dump(2) + "\n");
+    std::printf("%s", SummaryTable(scored, stats).c_str());
+    if (!IsIdealTracker(base.gaze.tracker) || spec.suppressSaccades)
+        for (const auto& [scene, json] : gazeTracking.items()) std::printf("%s", GazeTrackingTable(json, scene).c_str());
 
     report.manifest = {{"experiment", spec.file.string()},
                        {"quick", spec.quick ? "yes" : "no"},

@@ -37,6 +37,7 @@ struct ExperimentSpec {
     std::string baseline;               // experiment.baseline, else the first variant
     std::vector<uint32_t> seeds;        // run seeds, each a full pass (--seeds / experiment.seeds; else run.seed)
     int visualFrame = -1;               // frame shown in the report's images; -1 = the last
+    bool suppressSaccades = false;      // experiment.suppress_saccades: statistics without saccade frames
     bool quick = false;
     ShardSelection shard;               // --shard I/N: compute one block of the runs (experiment_shards.h)
     bool merge = false;                 // --merge: combine the shards' parts into the outputs

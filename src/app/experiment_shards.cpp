@@ -39,7 +39,7 @@ vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(
 void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
     fs::create_directories(dir);
     nlohmann::json marks = nlohmann::json::array();
-    for (const GazeMark& m : v.gazeMarks) marks.push_back({m.frame, m.blink, m.speedDegPerSecond});
+    for (const GazeMark& m : v.gazeMarks) marks.push_back({m.frame, m.blink, m.speedDegPerSecond, m.timeSeconds, m.foveaDistanceDeg, m.outsideFovea});
     nlohmann::json path = nlohmann::json::array();
     for (const vec2& p : v.gazePath) path.push_back(Vec2Json(p));
     nlohmann::json variants = nlohmann::json::array();
@@ -73,7 +73,7 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
     v.frame = meta.at("frame");
     v.eye = meta.at("eye");
     v.seed = meta.at("seed");
-    for (const auto& m : meta.at("gaze_marks")) v.gazeMarks.push_back({m.at(0), m.at(1), m.at(2)});
+    for (const auto& m : meta.at("gaze_marks")) v.gazeMarks.push_back({m.at(0), m.at(1), m.at(2), m.at(3), m.at(4), m.at(5)});
     for (const auto& p : meta.at("gaze_path")) v.gazePath.push_back(Vec2From(p));
     v.foveaRadiusPixels = meta.at("fovea_radius_px");
     v.gazePixel = Vec2From(meta.at("gaze_pixel"));

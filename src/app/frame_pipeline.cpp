@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "denoise/variants.h"
+#include "gaze/tracker.h"
 
 namespace fovrt {
 namespace {
@@ -58,6 +59,7 @@ FramePipeline::FramePipeline(const RunConfig& config)
     renderer_ = CreateRenderer(scene_, settings);
     sppModel_ = CreateSppModel(config.foveation);
     gaze_ = CreateGazeSource(config.gaze, ResolveFov(config, scene_));
+    tracked_ = std::make_unique<TrackedGaze>(*gaze_, config.gaze.tracker);
 }
 
 void FramePipeline::SetFoveation(const FoveationParams& params) {
@@ -86,7 +88,8 @@ FrameRequest FramePipeline::RequestAt(uint32_t frame) const {
     request.timeSeconds = TimeOf(frame);
     const StereoRig rig = RigAt(frame);
     for (int eye = 0; eye < 2; ++eye) request.eyes[size_t(eye)] = rig.Eye(eye);
-    request.gaze = gaze_->At(request.timeSeconds);
+    request.gaze = tracked_->At(request.timeSeconds);
+    if (!IsIdealTracker(config_.gaze.tracker)) request.trueGaze = gaze_->At(request.timeSeconds);
     return request;
 }
 
@@ -97,6 +100,7 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
     out.frame = frame;
     out.timeSeconds = request.timeSeconds;
     out.gaze = request.gaze;
+    out.trueGaze = request.EyeGaze();
 
     for (int eye = 0; eye < 2; ++eye) {
         EyeFrame& eyeFrame = out.eyes[size_t(eye)];
@@ -107,6 +111,8 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         auto start = std::chrono::steady_clock::now();
         eyeFrame.gazeEye = GazeInEye(camera, out.gaze.direction);
         eyeFrame.gazePixel = GazePixel(camera, out.gaze.direction);
+        eyeFrame.trueGazeEye = GazeInEye(camera, out.trueGaze.direction);
+        eyeFrame.trueGazePixel = GazePixel(camera, out.trueGaze.direction);
         sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap);
         eyeFrame.uniformForBlink = !out.gaze.valid && config_.gaze.blink == "uniform";
         if (eyeFrame.uniformForBlink) MakeUniform(eyeFrame.sppMap);

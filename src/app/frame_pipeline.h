@@ -23,8 +23,10 @@ struct EyeFrame {
     EyeCamera camera;
     FrameInputs inputs;
     Plane<uint16_t> sppMap;
-    vec3 gazeEye = vec3(0, 0, -1);  // gaze direction in this eye's space
+    vec3 gazeEye = vec3(0, 0, -1);  // gaze direction in this eye's space: the spp map's centre
     vec2 gazePixel = vec2(0.0f);    // where the gaze lands on this eye's image
+    vec3 trueGazeEye = vec3(0, 0, -1);  // where the eye really looked (the metrics' centre)
+    vec2 trueGazePixel = vec2(0.0f);
     double sppMs = 0.0;             // building the spp map
     double renderMs = 0.0;          // path tracing this eye
     bool uniformForBlink = false;   // gaze.blink = "uniform" replaced the map during a blink
@@ -33,7 +35,8 @@ struct EyeFrame {
 struct StereoFrame {
     uint32_t frame = 0;
     double timeSeconds = 0.0;
-    GazeSample gaze;  // gaze.valid false: a blink (gaze.blink says what the spp maps did)
+    GazeSample gaze;  // the tracked gaze; valid false: a blink (gaze.blink says what the spp maps did)
+    GazeSample trueGaze;  // where the eye really was (= gaze with an ideal tracker)
     std::array<EyeFrame, 2> eyes;
 };
 
@@ -44,7 +47,7 @@ public:
     const Scene& GetScene() const { return scene_; }
     Renderer& GetRenderer() { return *renderer_; }
     const SppModel& GetSppModel() const { return *sppModel_; }
-    const GazeSource& GetGazeSource() const { return *gaze_; }
+    const GazeSource& GetGazeSource() const { return *gaze_; }  // the true gaze
     const RunConfig& Config() const { return config_; }
     float FramesPerSecond() const { return scene_.frameRate; }
     double TimeOf(uint32_t frame) const { return double(frame) / double(scene_.frameRate); }
@@ -53,7 +56,8 @@ public:
     StereoRig RigAt(uint32_t frame) const { return RigAtTime(TimeOf(frame)); }
     StereoRig RigAtTime(double timeSeconds) const;
 
-    // The headless request for `frame`: time frame / fps, eyes from RigAt, the gaze source.
+    // The headless request for `frame`: time frame / fps, eyes from RigAt, the tracked gaze and
+    // (with a non-ideal tracker) the true gaze of the gaze source.
     FrameRequest RequestAt(uint32_t frame) const;
 
     // Renders both eyes of `request` into `out`. Frames are rendered in the order asked; the
@@ -78,7 +82,8 @@ private:
     Scene scene_;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<SppModel> sppModel_;
-    std::unique_ptr<GazeSource> gaze_;
+    std::unique_ptr<GazeSource> gaze_;     // the true gaze
+    std::unique_ptr<GazeSource> tracked_;  // what the tracker reports of it (gaze/tracker.h)
     bool hasPrevious_ = false;
     uint32_t previousFrame_ = 0;
     std::array<EyeCamera, 2> previousCameras_;

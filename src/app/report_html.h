@@ -43,6 +43,11 @@ struct GazeMark {
     int frame = 0;
     bool blink = false;
     double speedDegPerSecond = 0.0;
+    double timeSeconds = 0.0;
+    // The rendered fovea (the tracked gaze's spp disc) against the true gaze: their angle, and
+    // whether the true gaze fell outside the disc (app/gaze_tracking_report.h).
+    double foveaDistanceDeg = 0.0;
+    bool outsideFovea = false;
     bool Saccade() const { return !blink && speedDegPerSecond > kSaccadeDegPerSecond; }
 };
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "core/camera.h"
 #include "gaze/gaze_source.h"
@@ -18,7 +19,11 @@ struct FrameRequest {
     uint32_t frame = 0;        // sequential index: seeds the sampler; not frame+1 = camera cut
     double timeSeconds = 0.0;  // scene time (animation)
     std::array<EyeCamera, 2> eyes;
-    GazeSample gaze;           // head space
+    GazeSample gaze;           // head space: the gaze the spp maps follow (the tracker's)
+    // Where the eye really was (head space), when it differs from `gaze` (a modelled tracker,
+    // gaze/tracker.h); the metrics follow it. Unset: the eye was where `gaze` says.
+    std::optional<GazeSample> trueGaze;
+    const GazeSample& EyeGaze() const { return trueGaze ? *trueGaze : gaze; }
 };
 
 }  // namespace fovrt
