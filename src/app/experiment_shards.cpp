@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kPartVersion = 1;
+constexpr int kPartVersion = 2;  // 2: FovVideoVDP scores
 
 // FNV-1a, as a hex string: enough to tell experiments apart, stable across machines.
 std::string Hash(const std::string& text) {
@@ -129,6 +129,14 @@ SceneRecord RecordFrom(const nlohmann::json& j) {
 }
 
 // Rows as text that reads back bit-identical (%.17g); fields never contain tabs or newlines.
+nlohmann::json VdpScoresJson(const std::vector<VdpScore>& scores) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const VdpScore& s : scores)
+        out.push_back({{"scene", s.scene}, {"seed", s.seed}, {"eye", s.eye}, {"variant", s.variant},
+                       {"jod", s.jod}, {"jod_sustained", s.jodSustained}, {"jod_transient", s.jodTransient}});
+    return out;
+}
+
 void WriteRows(const fs::path& path, const Results& results) {
     std::ofstream out(path);
     for (const ResultRow& r : results.rows())
@@ -288,7 +296,9 @@ void WriteShardPart(const fs::path& shardsDir, const ShardSelection& selection, 
                                      {"timings", part.timings.ToJson()},
                                      {"device", part.deviceDescription},
                                      {"replay", part.replayRecord},
-                                     {"rows", part.results.rows().size()}};
+                                     {"rows", part.results.rows().size()},
+                                     {"vdp_display", part.vdpDisplay},
+                                     {"vdp", VdpScoresJson(part.vdp)}};
         std::ofstream(temp / "part.json") << meta.dump(1) << "\n";
         // A rerun replaces an earlier part whole: the old one goes only once the new one is complete.
         const fs::path old = shardsDir / fmt::format(".{}.old-{}-{}", selection.Name(), host, ::getpid());
@@ -351,6 +361,10 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
         merged.timings.Merge(PassTimings::FromJson(meta.at("timings")));
         if (merged.deviceDescription.empty()) merged.deviceDescription = meta.at("device");
         if (merged.replayRecord.is_null()) merged.replayRecord = meta.at("replay");
+        if (merged.vdpDisplay.empty()) merged.vdpDisplay = meta.at("vdp_display").get<std::string>();
+        for (const auto& j : meta.at("vdp"))
+            merged.vdp.push_back({j.at("scene"), j.at("seed"), j.at("eye"), j.at("variant"), j.at("jod"),
+                                  j.at("jod_sustained"), j.at("jod_transient")});
         for (const auto& j : meta.at("scenes")) {
             SceneRecord r = RecordFrom(j);
             if (r.hasVisuals) r.visuals = ReadVisuals(dir / fmt::format("visuals-{}", r.index));
