@@ -161,5 +161,7 @@ TEST_CASE("experiment FovVideoVDP: JOD per sequence in jod.csv and summary.json"
     CHECK(vs.at("pairs") == 2);
     CHECK(vs.at("lower").get<double>() <= vs.at("difference").get<double>());
     CHECK(vs.at("difference").get<double>() <= vs.at("upper").get<double>());
-    CHECK(ReadFile(dir / "out" / "report.html").find("FovVideoVDP JOD") != std::string::npos);
+    const std::string html = ReadFile(dir / "out" / "report.html");
+    CHECK(html.find("FovVideoVDP JOD") != std::string::npos);
+    CHECK(html.find("two-history FovVideoVDP map") != std::string::npos);
 }

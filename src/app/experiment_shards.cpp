@@ -51,6 +51,11 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
         variants.push_back(v.variants[i].first);
         layers.push_back(ExrLayer::FromPlane(fmt::format("variant{}", i), v.variants[i].second));
     }
+    nlohmann::json vdpMaps = nlohmann::json::array();
+    for (const auto& [name, map] : v.vdpMaps) {
+        layers.push_back(ExrLayer::FromPlane(fmt::format("vdp{}", vdpMaps.size()), map));
+        vdpMaps.push_back(name);
+    }
     const nlohmann::json meta = {{"scene", v.scene},   {"width", v.width},
                                  {"height", v.height}, {"frame", v.frame},
                                  {"eye", v.eye},       {"seed", v.seed},
@@ -58,6 +63,7 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
                                  {"fovea_radius_px", v.foveaRadiusPixels},
                                  {"gaze_pixel", Vec2Json(v.gazePixel)},
                                  {"variants", variants},
+                                 {"vdp_maps", vdpMaps},
                                  {"has_images", !layers.empty()}};
     std::ofstream(dir / "visuals.json") << meta.dump() << "\n";
     if (!layers.empty()) WriteExrLayers(dir / "visuals.exr", v.width, v.height, layers);
@@ -89,6 +95,12 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
     const auto& names = meta.at("variants");
     for (size_t i = 0; i < names.size(); ++i)
         v.variants.emplace_back(names[i].get<std::string>(), ReadRgbExr(dir / "visuals.exr", fmt::format("variant{}", i)));
+    const auto& maps = meta.at("vdp_maps");
+    for (size_t i = 0; i < maps.size(); ++i) {
+        const std::vector<float>& values = image.Floats(fmt::format("vdp{}", i));
+        Plane<float>& map = v.vdpMaps[maps[i].get<std::string>()] = Plane<float>(image.width, image.height);
+        std::copy(values.begin(), values.end(), &map[0]);
+    }
     return v;
 }
 
@@ -385,11 +397,14 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
             if (r.hasVisuals) {
                 if (!m.hasVisuals) {
                     auto variants = std::move(m.visuals.variants);
+                    auto maps = std::move(m.visuals.vdpMaps);
                     m.visuals = std::move(r.visuals);
                     for (auto& v : variants) m.visuals.variants.push_back(std::move(v));
+                    for (auto& [name, map] : maps) m.visuals.vdpMaps[name] = std::move(map);
                     m.hasVisuals = true;
                 } else {
                     for (auto& v : r.visuals.variants) m.visuals.variants.push_back(std::move(v));
+                    for (auto& [name, map] : r.visuals.vdpMaps) m.visuals.vdpMaps[name] = std::move(map);
                 }
             }
         }
