@@ -24,6 +24,7 @@
 #include "core/nearest_name.h"
 #include "denoise/params.h"
 #include "denoise/variants.h"
+#include "metrics/vdp_display.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
@@ -37,7 +38,7 @@ using Origins = std::map<std::string, std::string>;
 const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
         std::set<std::string> names = {"scene", "camera",  "run",    "render",   "foveation",
-                                       "gaze",  "denoise", "output", "reference"};
+                                       "gaze",  "denoise", "output", "reference", "metric"};
         names.insert("denoise.rae");  // RaeParams: string keys, outside the numeric tables
         const DenoiserParams defaults;
         ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
@@ -430,6 +431,13 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     c.reference.seed = uint32_t(referenceSeed);
     r.String("reference.cache_dir", c.reference.cacheDir);
 
+    r.Bool("metric.vdp", c.metric.vdp);
+    std::vector<std::string> displays = {"camera"};
+    for (const VdpDisplay& d : VdpDisplayProfiles()) displays.push_back(d.name);
+    r.String("metric.display", c.metric.display, displays);
+    r.Float("metric.ppd", c.metric.ppd, 0.0, 1000.0);
+    r.Float("metric.peak", c.metric.peak, 0.0, 100000.0);
+
     toml::table checked = root;
     for (const std::string& name : ignoredTables) checked.erase(name);
     r.CheckUnknown(checked, "");
@@ -548,6 +556,10 @@ toml::table ToTable(const RunConfig& c) {
         {"reference", toml::table{{"spp", c.reference.spp},
                                   {"seed", int64_t(c.reference.seed)},
                                   {"cache_dir", c.reference.cacheDir}}},
+        {"metric", toml::table{{"vdp", c.metric.vdp},
+                               {"display", c.metric.display},
+                               {"ppd", CleanFloat(c.metric.ppd)},
+                               {"peak", CleanFloat(c.metric.peak)}}},
     };
     InsertDenoiserParams(root, c.denoise.params);
     return root;

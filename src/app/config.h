@@ -42,6 +42,10 @@
 //   [output]     dir = "out", write_exr = false, write_png = true, write_inputs = true,
 //                exposure = 0 (stops, PNG only), report = true
 //   [reference]  spp = 1024, seed = 1 (the reference's own; independent of run.seed), cache_dir = "cache/reference"
+//   [metric]     FovVideoVDP in `fovrt experiment` (app/experiment_vdp.h): vdp = true,
+//                display = "camera" (the eye camera's own pixels per degree, 100 cd/m²) or a
+//                profile of metrics/vdp_display.h ("headset-25", ...), ppd = 0 and peak = 0
+//                (> 0: override the display's pixels per degree / peak cd/m²)
 #pragma once
 
 #include <array>
@@ -108,6 +112,13 @@ struct ReferenceConfig {
     std::string cacheDir = "cache/reference";
 };
 
+struct MetricConfig {
+    bool vdp = true;                  // score every variant with FovVideoVDP
+    std::string display = "camera";   // "camera" or a VdpDisplayProfiles() name
+    float ppd = 0.0f;                 // > 0: pixels per degree instead of the display's
+    float peak = 0.0f;                // > 0: peak luminance (cd/m²) instead of the display's
+};
+
 struct RunConfig {
     SceneConfig scene;
     CameraConfig camera;
@@ -118,6 +129,7 @@ struct RunConfig {
     DenoiseConfig denoise;
     OutputConfig output;
     ReferenceConfig reference;
+    MetricConfig metric;
     uint64_t memoryBudget = 0;  // bytes, 0 = none
 };
 

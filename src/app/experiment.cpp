@@ -16,6 +16,7 @@
 #include "app/denoiser_set.h"
 #include "app/experiment_shards.h"
 #include "app/experiment_stats.h"
+#include "app/experiment_vdp.h"
 #include "app/frame_pipeline.h"
 #include "app/gaze_tracking_report.h"
 #include "app/output_dir.h"
@@ -356,6 +357,8 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 visuals.seed = config.run.seed;
                 visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
             }
+            std::optional<VdpExperimentScorer> vdp;
+            if (config.metric.vdp) vdp.emplace(config, pipeline.FramesPerSecond(), visualsHere ? visualFrame : -1);
 
             RecordedFrame request;
             StereoFrame frame;
@@ -397,6 +400,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     ++record.referenceLookups;
                     ++record.eyeFrames;
                     record.referenceMs += MsSince(start);
+                    if (vdp) vdp->AddReference(eye, int(index), camera, reference, e.trueGazePixel);
 
                     EyeFrameImages images;
                     images.scene = label;
@@ -424,6 +428,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                         for (const PassTiming& t : denoiser.LastTimings())
                             part.timings.Add(denoisers.Name(v), t.pass, t.ms);
                         images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
+                        if (vdp) vdp->AddOutput(eye, denoisers.Name(v), outputs[v]);
                         if (config.output.writeExr)
                             WriteRgbExr(outDir / label / denoisers.Name(v) /
                                             fmt::format("{}f{:05d}_{}.exr",
@@ -448,6 +453,11 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 }
                 progress.Step(seeds.size() > 1 ? fmt::format("{} seed {} frame {}", label, config.run.seed, index)
                                                : fmt::format("{} frame {}", label, index));
+            }
+            if (vdp) {
+                for (VdpScore& score : vdp->Score(label, config.run.seed)) part.vdp.push_back(std::move(score));
+                part.vdpDisplay = VdpDisplayText(vdp->Display());
+                if (visualsHere) visuals.vdpMaps = vdp->DiffMaps(visuals.eye);
             }
             RenderStats stats = pipeline.GetRenderer().Stats();
             record.rays += stats.Rays();
@@ -517,8 +527,11 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     nlohmann::json summary = SummaryJson(scored, stats);
     summary["gaze_tracking"] = gazeTracking;
     summary["saccade_frames_suppressed"] = spec.suppressSaccades;
+    const std::string vdpTable = base.metric.vdp ? AddVdpResults(part.vdp, spec.variants, spec.baseline,
+                                                                  part.vdpDisplay, outDir, summary, report)
+                                                 : "";
     WriteTextAtomically(outDir / "summary.json", summary.dump(2) + "\n");
-    std::printf("%s", SummaryTable(scored, stats).c_str());
+    std::printf("%s%s", SummaryTable(scored, stats).c_str(), vdpTable.c_str());
     if (!IsIdealTracker(base.gaze.tracker) || spec.suppressSaccades)
         for (const auto& [scene, json] : gazeTracking.items()) std::printf("%s", GazeTrackingTable(json, scene).c_str());
 

@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kPartVersion = 1;
+constexpr int kPartVersion = 2;  // 2: FovVideoVDP scores
 
 nlohmann::json Vec2Json(const vec2& v) { return {v.x, v.y}; }
 vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(1).get<float>()); }
@@ -43,6 +43,11 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
         variants.push_back(v.variants[i].first);
         layers.push_back(ExrLayer::FromPlane(fmt::format("variant{}", i), v.variants[i].second));
     }
+    nlohmann::json vdpMaps = nlohmann::json::array();
+    for (const auto& [name, map] : v.vdpMaps) {
+        layers.push_back(ExrLayer::FromPlane(fmt::format("vdp{}", vdpMaps.size()), map));
+        vdpMaps.push_back(name);
+    }
     const nlohmann::json meta = {{"scene", v.scene},   {"width", v.width},
                                  {"height", v.height}, {"frame", v.frame},
                                  {"eye", v.eye},       {"seed", v.seed},
@@ -50,6 +55,7 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
                                  {"fovea_radius_px", v.foveaRadiusPixels},
                                  {"gaze_pixel", Vec2Json(v.gazePixel)},
                                  {"variants", variants},
+                                 {"vdp_maps", vdpMaps},
                                  {"has_images", !layers.empty()}};
     std::ofstream(dir / "visuals.json") << meta.dump() << "\n";
     if (!layers.empty()) WriteExrLayers(dir / "visuals.exr", v.width, v.height, layers);
@@ -81,6 +87,12 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
     const auto& names = meta.at("variants");
     for (size_t i = 0; i < names.size(); ++i)
         v.variants.emplace_back(names[i].get<std::string>(), ReadRgbExr(dir / "visuals.exr", fmt::format("variant{}", i)));
+    const auto& maps = meta.at("vdp_maps");
+    for (size_t i = 0; i < maps.size(); ++i) {
+        const std::vector<float>& values = image.Floats(fmt::format("vdp{}", i));
+        Plane<float>& map = v.vdpMaps[maps[i].get<std::string>()] = Plane<float>(image.width, image.height);
+        std::copy(values.begin(), values.end(), &map[0]);
+    }
     return v;
 }
 
@@ -118,6 +130,14 @@ SceneRecord RecordFrom(const nlohmann::json& j) {
     r.droppedSamples = j.at("dropped_samples");
     r.hasVisuals = j.at("has_visuals");
     return r;
+}
+
+nlohmann::json VdpScoresJson(const std::vector<VdpScore>& scores) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const VdpScore& s : scores)
+        out.push_back({{"scene", s.scene}, {"seed", s.seed}, {"eye", s.eye}, {"variant", s.variant},
+                       {"jod", s.jod}, {"jod_sustained", s.jodSustained}, {"jod_transient", s.jodTransient}});
+    return out;
 }
 
 // rows.tsv: a header line with the key the rows were made for (experiment fingerprint, shard) and
@@ -339,7 +359,9 @@ void WriteShardPart(const fs::path& shardsDir, const ShardSelection& selection, 
                                {"device", part.deviceDescription},
                                {"replay", part.replayRecord},
                                {"rows", part.results.rows().size()},
-                               {"files", files}};
+                               {"files", files},
+                               {"vdp_display", part.vdpDisplay},
+                               {"vdp", VdpScoresJson(part.vdp)}};
         meta[kPartChecksum] = PartChecksum(meta);
         std::ofstream json(temp / "part.json");
         json << meta.dump(1) << "\n";
@@ -449,6 +471,10 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
         merged.timings.Merge(PassTimings::FromJson(meta.at("timings")));
         if (merged.deviceDescription.empty()) merged.deviceDescription = meta.at("device");
         if (merged.replayRecord.is_null()) merged.replayRecord = meta.at("replay");
+        if (merged.vdpDisplay.empty()) merged.vdpDisplay = meta.at("vdp_display").get<std::string>();
+        for (const auto& j : meta.at("vdp"))
+            merged.vdp.push_back({j.at("scene"), j.at("seed"), j.at("eye"), j.at("variant"), j.at("jod"),
+                                  j.at("jod_sustained"), j.at("jod_transient")});
         for (SceneRecord& r : part.scenes) {
             auto it = scenes.find(r.index);
             if (it == scenes.end()) {
@@ -467,11 +493,14 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
             if (r.hasVisuals) {
                 if (!m.hasVisuals) {
                     auto variants = std::move(m.visuals.variants);
+                    auto maps = std::move(m.visuals.vdpMaps);
                     m.visuals = std::move(r.visuals);
                     for (auto& v : variants) m.visuals.variants.push_back(std::move(v));
+                    for (auto& [name, map] : maps) m.visuals.vdpMaps[name] = std::move(map);
                     m.hasVisuals = true;
                 } else {
                     for (auto& v : r.visuals.variants) m.visuals.variants.push_back(std::move(v));
+                    for (auto& [name, map] : r.visuals.vdpMaps) m.visuals.vdpMaps[name] = std::move(map);
                 }
             }
         }

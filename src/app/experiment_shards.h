@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/experiment_vdp.h"
 #include "app/report.h"
 #include "app/report_html.h"
 
@@ -83,6 +84,8 @@ struct ExperimentPart {
     PassTimings timings;
     std::string deviceDescription;
     nlohmann::json replayRecord;
+    std::vector<VdpScore> vdp;  // FovVideoVDP per sequence (app/experiment_vdp.h)
+    std::string vdpDisplay;     // the display they were scored on, in words
 };
 
 // Sorts the rows into single-machine order (scene, seed, frame, eye, variant; the order of rows

@@ -278,6 +278,19 @@ std::string SceneSection(const HtmlReport& report, const ExperimentStats* stats,
             for (const auto& [name, img] : v.variants)
                 out += Figure(PngImg(errorMap(img), name + " error", 320) + RelMseColorBar(), name);
             out += "</div>";
+            // The perceptual metric's difference maps of the same frame, on one scale for all variants.
+            if (!v.vdpMaps.empty()) {
+                float top = 1e-6f;
+                for (const auto& [name, map] : v.vdpMaps)
+                    for (size_t i = 0; i < map.size(); ++i) top = std::max(top, map[i]);
+                out += fmt::format("<h3>FovVideoVDP difference map (JOD loss per pixel, viridis over 0 … {:.3g}; "
+                                   "foveated at the true gaze)</h3><div class=\"row\">", top);
+                for (const auto& [name, img] : v.variants)
+                    if (auto it = v.vdpMaps.find(name); it != v.vdpMaps.end())
+                        out += Figure(PngImg(FalseColorPng(Shrink(it->second, kMapWidth), 0.0f, top),
+                                             name + " FovVideoVDP map", 320), name);
+                out += "</div>";
+            }
             // Fovea crops.
             const int radius = std::max(8, int(std::lround(v.foveaRadiusPixels)));
             // The rectangle in the heading: a crop can be cut again from the full frames.

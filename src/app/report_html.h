@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -67,6 +68,7 @@ struct SceneVisuals {
     Plane<vec3> reference;           // optional; needed for error maps and crops
     Plane<vec3> noisy;               // optional
     std::vector<std::pair<std::string, Plane<vec3>>> variants;  // denoised outputs by variant
+    std::map<std::string, Plane<float>> vdpMaps;  // FovVideoVDP difference map at `frame` by variant
 };
 
 struct HtmlReport {

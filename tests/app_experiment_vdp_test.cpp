@@ -1,0 +1,167 @@
+// FovVideoVDP in `fovrt experiment` (app/experiment_vdp.h): every variant scored per (seed, eye)
+// sequence at the true gaze, with its outputs (jod.csv, summary.json, the stdout block).
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/config_cli.h"
+#include "app/experiment.h"
+#include "app/experiment_vdp.h"
+#include "app_test_configs.h"
+#include "core/error.h"
+#include "test_support.h"
+
+using namespace fovrt;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string ReadFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// A 64×36 grey-ramp sequence of 4 frames, and the same with a patch of ±noise centred on `patch`.
+struct Sequences {
+    std::vector<Plane<vec3>> reference, noisy;
+};
+Sequences MakeSequences(vec2 patch) {
+    Sequences s;
+    uint32_t state = 12345u;
+    for (int f = 0; f < 4; ++f) {
+        Plane<vec3> ref(64, 36), noisy(64, 36);
+        for (int y = 0; y < 36; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const float v = 0.2f + 0.3f * float(x) / 64.0f;
+                ref(x, y) = vec3(v);
+                state = state * 1664525u + 1013904223u;
+                const float n = (float(state >> 8) / float(1u << 24) - 0.5f) * 0.4f;
+                const bool inPatch = std::abs(float(x) + 0.5f - patch.x) < 6.0f && std::abs(float(y) + 0.5f - patch.y) < 6.0f;
+                noisy(x, y) = vec3(inPatch ? v + n : v);
+            }
+        s.reference.push_back(ref);
+        s.noisy.push_back(noisy);
+    }
+    return s;
+}
+
+// Scores "same" (the reference itself) and "noisy" for eye 0 with the gaze at `gaze` every frame.
+std::vector<VdpScore> ScoreAt(const Sequences& s, vec2 gaze) {
+    RunConfig config = test::SmallCornellConfig();
+    config.camera.width = 64;
+    config.camera.height = 36;
+    const EyeCamera camera(Pose{}, Fov::FromHorizontal(Radians(90.0f), 64.0f / 36.0f), 64, 36);
+    VdpExperimentScorer scorer(config, 30.0, 3);
+    for (int f = 0; f < 4; ++f) {
+        scorer.AddReference(0, f, camera, s.reference[size_t(f)], gaze);
+        scorer.AddOutput(0, "same", s.reference[size_t(f)]);
+        scorer.AddOutput(0, "noisy", s.noisy[size_t(f)]);
+    }
+    std::vector<VdpScore> scores = scorer.Score("ramp", 1);
+    REQUIRE(scores.size() == 2u);
+    CHECK(scorer.DiffMaps(0).count("noisy") == 1u);
+    return scores;
+}
+
+}  // namespace
+
+TEST_CASE("experiment FovVideoVDP: identical is 10, noise is below, the fixation matters", "[app][vdp]") {
+    const Sequences s = MakeSequences(vec2(10.0f, 18.0f));
+    const std::vector<VdpScore> onNoise = ScoreAt(s, vec2(10.0f, 18.0f));
+    CHECK(onNoise[0].variant == "same");
+    CHECK(onNoise[0].jod == 10.0);
+    CHECK(onNoise[0].jodSustained == 10.0);
+    CHECK(onNoise[0].jodTransient == 10.0);
+    CHECK(onNoise[1].jod < 10.0);
+    // The same noise 50 px (over 40° here) from the fixation is less visible.
+    const std::vector<VdpScore> away = ScoreAt(s, vec2(60.0f, 18.0f));
+    CHECK(away[1].jod > onNoise[1].jod);
+    CHECK(away[0].jod == 10.0);
+}
+
+TEST_CASE("experiment FovVideoVDP: the display comes from the camera, a profile or overrides", "[app][vdp]") {
+    RunConfig config = test::SmallCornellConfig();
+    const EyeCamera camera(Pose{}, Fov::FromHorizontal(Radians(90.0f), 2.0f), 200, 100);
+    VdpExperimentDisplay d = ExperimentVdpDisplay(config, camera);
+    // 200 px over tan 45° × 2: the centre pixel subtends atan(0.01) → 1.745 px/deg.
+    CHECK(d.geometry.tanPerPixel == Approx(0.01));
+    CHECK(d.photometry.peak == 100.0);
+    CHECK(d.photometry.eotf == VdpEotf::Linear);
+    config.metric.display = "headset-25";
+    d = ExperimentVdpDisplay(config, camera);
+    CHECK(d.geometry.PixelsPerDegree() == Approx(25.0).epsilon(1e-3));
+    config.metric.ppd = 40.0f;
+    config.metric.peak = 250.0f;
+    d = ExperimentVdpDisplay(config, camera);
+    CHECK(d.geometry.PixelsPerDegree() == Approx(40.0).epsilon(1e-3));
+    CHECK(d.photometry.peak == 250.0);
+    // The fixation is the gaze pixel less the half pixel the metric adds.
+    CHECK(VdpFixationAt(vec2(10.5f, 3.5f)).x == 10.0f);
+    CHECK(VdpFixationAt(vec2(10.5f, 3.5f)).y == 3.0f);
+}
+
+TEST_CASE("experiment FovVideoVDP: a bad metric.display names the key and the nearest profile", "[app][vdp]") {
+    const fs::path dir = test::ScratchDir("fovrt_experiment_vdp_test") / "bad";
+    fs::create_directories(dir);
+    const fs::path file = dir / "exp.toml";
+    std::ofstream(file) << "[metric]\ndisplay = \"headset-24\"\n"
+                        << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\"]\n";
+    ConfigOptions options;
+    options.configPath = file.string();
+    std::string error;
+    try {
+        LoadExperiment(options);
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    CHECK(error.find("metric.display") != std::string::npos);
+    CHECK(error.find("did you mean 'headset-25'") != std::string::npos);
+}
+
+TEST_CASE("experiment FovVideoVDP: JOD per sequence in jod.csv and summary.json", "[app][vdp]") {
+    const fs::path dir = test::ScratchDir("fovrt_experiment_vdp_test") / "experiment";
+    fs::create_directories(dir);
+    const fs::path file = dir / "exp.toml";
+    std::ofstream(file) << "[camera]\nwidth = 64\nheight = 36\n"
+                        << "[run]\nframes = 4\n"
+                        << "[foveation]\nradius_px = 80\nradius_reference_width = 320\n"
+                        << "[denoise]\ndevice = \"cpu\"\n"
+                        << "[reference]\nspp = 16\ncache_dir = \"" << (dir / "cache").string() << "\"\n"
+                        << "[output]\ndir = \"" << (dir / "out").string() << "\"\nreport = true\n"
+                        << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"two-history\"]\n"
+                        << "seeds = [1]\n";
+    ConfigOptions options;
+    options.configPath = file.string();
+    RunExperiment(LoadExperiment(options));
+
+    // One row per (seed, eye, variant) sequence.
+    const std::string csv = ReadFile(dir / "out" / "jod.csv");
+    CHECK(csv.rfind("scene,seed,eye,variant,jod,jod_sustained,jod_transient\n", 0) == 0);
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 5);
+    CHECK(csv.find("\ncornell,1,1,two-history,") != std::string::npos);
+
+    const nlohmann::json summary = nlohmann::json::parse(ReadFile(dir / "out" / "summary.json"));
+    const nlohmann::json& vdp = summary.at("fovvideovdp");
+    CHECK(vdp.at("display").get<std::string>().rfind("camera, ", 0) == 0);
+    for (const char* variant : {"svgf", "two-history"}) {
+        const nlohmann::json& v = vdp.at("scenes").at("cornell").at(variant);
+        // A denoised low-spp frame differs visibly from the 16-spp reference, but is not garbage.
+        CHECK(v.at("jod").get<double>() < 10.0);
+        CHECK(v.at("jod").get<double>() > 3.0);
+        CHECK(v.at("sequences") == 2);
+        CHECK(v.contains("jod_sustained"));
+        CHECK(v.contains("jod_transient"));
+    }
+    CHECK_FALSE(vdp["scenes"]["cornell"]["svgf"].contains("vs_baseline"));
+    const nlohmann::json& vs = vdp["scenes"]["cornell"]["two-history"]["vs_baseline"];
+    CHECK(vs.at("pairs") == 2);
+    CHECK(vs.at("lower").get<double>() <= vs.at("difference").get<double>());
+    CHECK(vs.at("difference").get<double>() <= vs.at("upper").get<double>());
+    const std::string html = ReadFile(dir / "out" / "report.html");
+    CHECK(html.find("FovVideoVDP JOD") != std::string::npos);
+    CHECK(html.find("two-history FovVideoVDP map") != std::string::npos);
+}
