@@ -16,6 +16,7 @@
 
 using namespace fovrt;
 namespace fs = std::filesystem;
+using fovrt::test::ReadFile;
 
 namespace {
 
@@ -24,13 +25,6 @@ bool SamePixels(const Plane<vec3>& a, const Plane<vec3>& b) {
     for (size_t i = 0; i < a.size(); ++i)
         if (a[i] != b[i]) return false;
     return true;
-}
-
-std::string ReadFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
 }
 
 std::string ErrorOf(const std::function<void()>& f) {

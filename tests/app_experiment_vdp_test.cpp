@@ -15,15 +15,9 @@
 
 using namespace fovrt;
 namespace fs = std::filesystem;
+using fovrt::test::ReadFile;
 
 namespace {
-
-std::string ReadFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // A 64×36 grey-ramp sequence of 4 frames, and the same with a patch of ±noise centred on `patch`.
 struct Sequences {

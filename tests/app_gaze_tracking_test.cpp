@@ -15,15 +15,9 @@
 
 using namespace fovrt;
 namespace fs = std::filesystem;
+using fovrt::test::ReadFile;
 
 namespace {
-
-std::string ReadFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // A saccade of 30° (yaw −15° -> +15°) at 100 ms: frame 3 at 30 fps is the first after it.
 fs::path WriteStepTrace(const fs::path& dir) {

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <unistd.h>
@@ -17,6 +19,14 @@
 namespace fovrt::test {
 
 inline std::filesystem::path SourceDir() { return FOVRT_SOURCE_DIR; }
+
+// A whole file's bytes (empty when it cannot be read: the test's own checks then fail on it).
+inline std::string ReadFile(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
 
 // ../shared/scenes beside the checkout (or $FOVRT_SHARED_SCENES), empty when absent.
 inline std::filesystem::path SharedScenes() {

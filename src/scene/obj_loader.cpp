@@ -56,23 +56,29 @@ struct ObjScan {
     std::string mtllibs;  // the MTL file names, for messages about materials
 };
 
-// Validates what tinyobjloader would accept silently or mis-read: coordinates that are not
-// finite, faces with < 3 corners, indices that are zero, malformed or out of range.
-ObjScan ScanObj(const std::string& text, const std::string& file) {
-    ObjScan scan;
-    long long counts[3] = {0, 0, 0};  // v, vt, vn declared so far
+// Calls visit(lineNumber, line) for every line of `text` (numbered from 1, without the newline).
+template <typename Visit>
+void ForEachLine(const std::string& text, Visit&& visit) {
     size_t pos = 0;
     int lineNumber = 0;
     while (pos <= text.size()) {
         size_t end = text.find('\n', pos);
         if (end == std::string::npos) end = text.size();
-        std::string_view line(text.data() + pos, end - pos);
+        visit(++lineNumber, std::string_view(text.data() + pos, end - pos));
         pos = end + 1;
-        ++lineNumber;
+    }
+}
+
+// Validates what tinyobjloader would accept silently or mis-read: coordinates that are not
+// finite, faces with < 3 corners, indices that are zero, malformed or out of range.
+ObjScan ScanObj(const std::string& text, const std::string& file) {
+    ObjScan scan;
+    long long counts[3] = {0, 0, 0};  // v, vt, vn declared so far
+    ForEachLine(text, [&](int lineNumber, std::string_view line) {
         size_t first = 0;
         while (first < line.size() && IsSpace(line[first])) ++first;
         line.remove_prefix(first);
-        if (line.empty() || line[0] == '#') continue;
+        if (line.empty() || line[0] == '#') return;
         std::vector<std::string_view> tokens = Tokens(line);
         std::string_view kind = tokens[0];
         if (kind == "v" || kind == "vn" || kind == "vt") {
@@ -120,7 +126,7 @@ ObjScan ScanObj(const std::string& text, const std::string& file) {
             std::string name = tokens.size() > 1 ? std::string(tokens[1]) : std::string();
             scan.usemtlLine.emplace(name, lineNumber);
         }
-    }
+    });
     return scan;
 }
 
@@ -133,25 +139,18 @@ void ScanMtl(const std::filesystem::path& mtlFile) {
     const std::string file = mtlFile.lexically_normal().string();
     const std::string text = ReadWholeFile(mtlFile, "MTL file");
     std::string material;
-    size_t pos = 0;
-    int lineNumber = 0;
-    while (pos <= text.size()) {
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::string_view line(text.data() + pos, end - pos);
+    ForEachLine(text, [&](int lineNumber, std::string_view line) {
         line = line.substr(0, line.find('#'));  // a comment may follow the values
         std::vector<std::string_view> tokens = Tokens(line);
-        pos = end + 1;
-        ++lineNumber;
-        if (tokens.empty()) continue;
+        if (tokens.empty()) return;
         const std::string_view key = tokens[0];
         if (key == "newmtl") {
             material = tokens.size() > 1 ? std::string(tokens[1]) : std::string();
-            continue;
+            return;
         }
         const bool colour = key == "Kd" || key == "Ks" || key == "Ke" || key == "Ka";
-        if (!colour && key != "Ns") continue;
-        if (colour && tokens.size() > 1 && tokens[1] == "spectral") continue;  // a file, not numbers
+        if (!colour && key != "Ns") return;
+        if (colour && tokens.size() > 1 && tokens[1] == "spectral") return;  // a file, not numbers
         if (colour && tokens.size() > 1 && tokens[1] == "xyz") tokens.erase(tokens.begin() + 1);
         if (tokens.size() < 2) Fail("{}:{}: material '{}': {} needs a value", file, lineNumber, material, key);
         std::vector<double> values;
@@ -169,7 +168,7 @@ void ScanMtl(const std::filesystem::path& mtlFile) {
                                   ? std::string()
                                   : fmt::format("{} is not a finite number", tokens[1]);
         if (!problem.empty()) Fail("{}:{}: material '{}': {}: {}", file, lineNumber, material, key, problem);
-    }
+    });
 }
 
 std::vector<std::string> Lines(const std::string& text) {
