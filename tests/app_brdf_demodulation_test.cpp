@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "denoise/demodulation.h"
 #include "denoise/denoiser_factory.h"

@@ -6,9 +6,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/config.h"
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "core/error.h"
 #include "test_support.h"
 

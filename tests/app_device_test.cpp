@@ -1,8 +1,8 @@
 // denoise.device through the commands' paths (config, DenoiserSet, the denoiser factory): every
 // path resolves auto and vulkan to the same device, cpu to the C++ reference, and rejects a bad
 // value with one line naming denoise.device.
-#include "app/config.h"
-#include "app/config_cli.h"
+#include "config/config.h"
+#include "config/config_cli.h"
 #include "app/denoiser_set.h"
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/config_cli.h"
+#include "config/config_cli.h"
 #include "app/experiment.h"
 #include "app/frame_pipeline.h"
 #include "app/reference_cache.h"

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/config_cli.h"
+#include "config/config_cli.h"
 #include "app/experiment.h"
 #include "app/experiment_vdp.h"
 #include "app_test_configs.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "core/error.h"
 #include "app_test_configs.h"

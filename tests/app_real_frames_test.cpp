@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/variants.h"

@@ -5,9 +5,9 @@
 
 #include <cstring>
 
-#include "app/config.h"
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "app/frame_pipeline.h"
 #include "app/replay.h"
 #include "core/error.h"

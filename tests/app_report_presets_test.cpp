@@ -6,8 +6,8 @@
 
 #include <toml++/toml.h>
 
-#include "app/config.h"
-#include "app/config_io.h"
+#include "config/config.h"
+#include "config/config_io.h"
 #include "denoise/denoiser.h"
 #include "scene/scene.h"
 #include "test_support.h"

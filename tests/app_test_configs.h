@@ -1,7 +1,7 @@
 // Small configurations the app-level tests render (header only: app_ and live_ tests link the app).
 #pragma once
 
-#include "app/config.h"
+#include "config/config.h"
 
 namespace fovrt::test {
 

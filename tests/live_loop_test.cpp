@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "denoise/denoiser_factory.h"
 #include "live/live_loop.h"

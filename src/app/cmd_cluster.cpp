@@ -10,7 +10,7 @@
 
 #include "app/cluster_jobs.h"
 #include "app/commands.h"
-#include "app/config_cli.h"
+#include "config/config_cli.h"
 #include "app/experiment.h"
 #include "core/error.h"
 

@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "commands.h"
 
 namespace fovrt {

@@ -24,8 +24,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "app/config.h"
-#include "app/config_cli.h"
+#include "config/config.h"
+#include "config/config_cli.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
 #include "app/progress.h"

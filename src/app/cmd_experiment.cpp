@@ -2,7 +2,7 @@
 // metrics per region against a cached reference, over several run seeds; CSV, summary JSON with
 // bootstrap intervals, stdout table and an HTML report (experiment.h).
 #include "app/commands.h"
-#include "app/config_cli.h"
+#include "config/config_cli.h"
 #include "app/experiment.h"
 #include "core/interrupt.h"
 

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "commands.h"
 #include "core/error.h"
 #include "denoise/denoiser.h"

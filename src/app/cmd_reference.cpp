@@ -7,8 +7,8 @@
 #include <new>
 
 #include "app/commands.h"
-#include "app/config.h"
-#include "app/config_cli.h"
+#include "config/config.h"
+#include "config/config_cli.h"
 #include "app/experiment.h"
 #include "core/error.h"
 #include "core/interrupt.h"

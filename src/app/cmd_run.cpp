@@ -23,9 +23,9 @@
 
 #include "app/build_info.h"
 #include "app/commands.h"
-#include "app/config.h"
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/frame_pipeline.h"
 #include "app/output_dir.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "denoise/denoiser.h"
 #include "vk/context.h"
 

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/build_info.h"
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "app/denoiser_set.h"
 #include "app/experiment_shards.h"
 #include "app/experiment_stats.h"

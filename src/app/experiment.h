@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/replay.h"
 #include "app/experiment_shards.h"
 #include "app/report.h"
@@ -22,7 +22,7 @@
 
 namespace fovrt {
 
-struct ConfigOptions;  // app/config_cli.h
+struct ConfigOptions;  // config/config_cli.h
 
 // The fovea the metrics use (and the live preview outlines): the disc model's spp disc, the
 // linear model's full-rate angle, else the first eccentricity band (5°).

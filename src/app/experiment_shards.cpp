@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "app/config_io.h"
+#include "config/config_io.h"
 #include "app/experiment.h"
 #include "core/content_hash.h"
 #include "core/error.h"

@@ -2,7 +2,7 @@
 // against the reference, one JOD per (scene, seed, eye, variant) sequence, foveated at the true
 // gaze of each frame (where the eye looked; the same centre as the other metrics' fovea).
 //
-// Display ([metric] in app/config.h):
+// Display ([metric] in config/config.h):
 //   - geometry: the eye camera's own pixel (its horizontal FOV over its width, so pixels per
 //     degree follow the headset's optics), or a named profile's / metric.ppd;
 //   - photometry: the frames as the PNGs show them: linear radiance × 2^output.exposure,
@@ -22,7 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/report_html.h"
 #include "core/camera.h"
 #include "core/image.h"

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "core/frame_inputs.h"
 #include "denoise/variants.h"
 #include "foveation/spp_model.h"

@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 
 #include "app/build_info.h"
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "app/reference_cache.h"
 #include "core/error.h"
 #include "denoise/variants.h"

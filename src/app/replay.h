@@ -29,13 +29,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "live/session_record.h"
 
 namespace fovrt {
 
-struct ConfigOptions;  // app/config_cli.h
+struct ConfigOptions;  // config/config_cli.h
 
 // A recording checked end to end (every frame read and validated before anything is written).
 struct Replay {

@@ -18,7 +18,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "denoise/denoiser.h"
 #include "live/frame_source.h"

@@ -12,7 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "app/build_info.h"
-#include "app/config_io.h"
+#include "config/config_io.h"
 #include "app/denoiser_set.h"
 #include "core/error.h"
 #include "denoise/variants.h"

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "live/display_compose.h"
 #include "preview/vulkan_window.h"
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <string>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "preview/vulkan_window.h"
 
 namespace fovrt {

@@ -17,7 +17,7 @@
 #include <optional>
 #include <string>
 
-#include "app/config.h"
+#include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "live/frame_source.h"
 #include "xr/xr_session.h"

@@ -1,5 +1,5 @@
 // RunConfig: the typed configuration every fovrt command uses. Plain structs only: reading and
-// writing TOML/JSON is in app/config_io.h, the command-line options in app/config_cli.h.
+// writing TOML/JSON is in config/config_io.h, the command-line options in config/config_cli.h.
 //
 // Sources, applied to one TOML table before validation: built-in defaults (the default job runs
 // with no file at all; a replay starts from the recording's config instead) <- `-c FILE` (TOML) <- each `--set section.key=value` in order (value in

@@ -1,5 +1,5 @@
 // Command-line plumbing shared by every subcommand: -c FILE, --set key=value, --memory-budget,
-// resolved into a RunConfig (sources and their order: app/config.h).
+// resolved into a RunConfig (sources and their order: config/config.h).
 #pragma once
 
 #include <map>
@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
-#include "app/config.h"
+#include "config/config.h"
 
 namespace CLI {
 class App;

@@ -1,6 +1,6 @@
-#include "app/config.h"
-#include "app/config_cli.h"
-#include "app/config_io.h"
+#include "config/config.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 
 #include <algorithm>
 #include <cctype>

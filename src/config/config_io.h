@@ -6,7 +6,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "app/config.h"
+#include "config/config.h"
 
 namespace fovrt {
 
