@@ -106,11 +106,7 @@ void DestroyActionObject(Action* action) {
 }
 
 XrResult XRAPI_CALL DestroyActionSet(XrActionSet handle) {
-    auto lock = LockApi();
-    ActionSet* set = Find(TheRuntime().actionSets, handle);
-    if (!set) return XR_ERROR_HANDLE_INVALID;
-    DestroyActionSetObject(set);
-    return XR_SUCCESS;
+    return DestroyHandle(TheRuntime().actionSets, handle, DestroyActionSetObject);
 }
 
 XrResult XRAPI_CALL CreateAction(XrActionSet handle, const XrActionCreateInfo* info,
@@ -160,11 +156,7 @@ XrResult XRAPI_CALL CreateAction(XrActionSet handle, const XrActionCreateInfo* i
 }
 
 XrResult XRAPI_CALL DestroyAction(XrAction handle) {
-    auto lock = LockApi();
-    Action* action = Find(TheRuntime().actions, handle);
-    if (!action) return XR_ERROR_HANDLE_INVALID;
-    DestroyActionObject(action);
-    return XR_SUCCESS;
+    return DestroyHandle(TheRuntime().actions, handle, DestroyActionObject);
 }
 
 XrResult XRAPI_CALL SuggestInteractionProfileBindings(
@@ -206,8 +198,7 @@ XrResult XRAPI_CALL AttachSessionActionSets(XrSession handle,
                                             const XrSessionActionSetsAttachInfo* info) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!info || info->type != XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO ||
         info->countActionSets == 0 || !info->actionSets)
@@ -231,8 +222,7 @@ XrResult XRAPI_CALL GetCurrentInteractionProfile(XrSession handle, XrPath topLev
                                                  XrInteractionProfileState* state) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!state || state->type != XR_TYPE_INTERACTION_PROFILE_STATE)
         return XR_ERROR_VALIDATION_FAILURE;
@@ -252,8 +242,7 @@ XrResult XRAPI_CALL GetCurrentInteractionProfile(XrSession handle, XrPath topLev
 XrResult XRAPI_CALL SyncActions(XrSession handle, const XrActionsSyncInfo* info) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!info || info->type != XR_TYPE_ACTIONS_SYNC_INFO ||
         (info->countActiveActionSets > 0 && !info->activeActionSets))
@@ -299,8 +288,7 @@ XrResult GetActionState(XrSession handle, const XrActionStateGetInfo* info, XrAc
                         XrStructureType stateType, State* state, Fill fill) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     Action* action = nullptr;
     if (XrResult r = CheckActionInfo(s, info, type, &action); XR_FAILED(r)) return r;
@@ -419,22 +407,15 @@ void DestroyActionSetObject(ActionSet* set) {
 }
 
 void AddActionFunctions(ApiTable& t) {
-    t.push_back({"xrCreateActionSet", Fn(&CreateActionSet), nullptr});
-    t.push_back({"xrDestroyActionSet", Fn(&DestroyActionSet), nullptr});
-    t.push_back({"xrCreateAction", Fn(&CreateAction), nullptr});
-    t.push_back({"xrDestroyAction", Fn(&DestroyAction), nullptr});
-    t.push_back({"xrSuggestInteractionProfileBindings", Fn(&SuggestInteractionProfileBindings), nullptr});
-    t.push_back({"xrAttachSessionActionSets", Fn(&AttachSessionActionSets), nullptr});
-    t.push_back({"xrGetCurrentInteractionProfile", Fn(&GetCurrentInteractionProfile), nullptr});
-    t.push_back({"xrSyncActions", Fn(&SyncActions), nullptr});
-    t.push_back({"xrGetActionStateBoolean", Fn(&GetActionStateBoolean), nullptr});
-    t.push_back({"xrGetActionStateFloat", Fn(&GetActionStateFloat), nullptr});
-    t.push_back({"xrGetActionStateVector2f", Fn(&GetActionStateVector2f), nullptr});
-    t.push_back({"xrGetActionStatePose", Fn(&GetActionStatePose), nullptr});
-    t.push_back({"xrEnumerateBoundSourcesForAction", Fn(&EnumerateBoundSourcesForAction), nullptr});
-    t.push_back({"xrGetInputSourceLocalizedName", Fn(&GetInputSourceLocalizedName), nullptr});
-    t.push_back({"xrApplyHapticFeedback", Fn(&ApplyHapticFeedback), nullptr});
-    t.push_back({"xrStopHapticFeedback", Fn(&StopHapticFeedback), nullptr});
+    t.insert(t.end(), {
+        XRRT_CORE(CreateActionSet), XRRT_CORE(DestroyActionSet), XRRT_CORE(CreateAction),
+        XRRT_CORE(DestroyAction), XRRT_CORE(SuggestInteractionProfileBindings),
+        XRRT_CORE(AttachSessionActionSets), XRRT_CORE(GetCurrentInteractionProfile),
+        XRRT_CORE(SyncActions), XRRT_CORE(GetActionStateBoolean), XRRT_CORE(GetActionStateFloat),
+        XRRT_CORE(GetActionStateVector2f), XRRT_CORE(GetActionStatePose),
+        XRRT_CORE(EnumerateBoundSourcesForAction), XRRT_CORE(GetInputSourceLocalizedName),
+        XRRT_CORE(ApplyHapticFeedback), XRRT_CORE(StopHapticFeedback)
+    });
 }
 
 }  // namespace fovrt::xrrt

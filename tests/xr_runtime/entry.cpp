@@ -31,6 +31,11 @@ XrResult CheckSession(XrSession handle, Session** out) {
     return XR_SUCCESS;
 }
 
+XrResult CheckSessionAndGate(XrSession handle, Session** out) {
+    if (XrResult r = CheckSession(handle, out); XR_FAILED(r)) return r;
+    return SessionGate(**out);
+}
+
 XrTime Now() {
     timespec ts{};
     clock_gettime(CLOCK_MONOTONIC, &ts);

@@ -199,14 +199,12 @@ XrResult XRAPI_CALL CreateInstance(const XrInstanceCreateInfo* info, XrInstance*
 }
 
 XrResult XRAPI_CALL DestroyInstance(XrInstance handle) {
-    auto lock = LockApi();
-    Instance* instance = Find(TheRuntime().instances, handle);
-    if (!instance) return XR_ERROR_HANDLE_INVALID;
-    if (instance->session) DestroySessionObject(instance->session);
-    while (!instance->actionSets.empty()) DestroyActionSetObject(instance->actionSets.back());
-    TheRuntime().instances.erase(instance);
-    delete instance;
-    return XR_SUCCESS;
+    return DestroyHandle(TheRuntime().instances, handle, [](Instance* instance) {
+        if (instance->session) DestroySessionObject(instance->session);
+        while (!instance->actionSets.empty()) DestroyActionSetObject(instance->actionSets.back());
+        TheRuntime().instances.erase(instance);
+        delete instance;
+    });
 }
 
 XrResult XRAPI_CALL GetInstanceProperties(XrInstance handle, XrInstanceProperties* properties) {
@@ -241,47 +239,40 @@ XrResult XRAPI_CALL PollEvent(XrInstance handle, XrEventDataBuffer* buffer) {
     return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL ResultToString(XrInstance handle, XrResult value, char buffer[]) {
+#define XRRT_ENUM_NAME_CASE(n, v) \
+    case n:                       \
+        return #n;
+const char* ResultName(XrResult value) {
+    switch (value) {
+        XR_LIST_ENUM_XrResult(XRRT_ENUM_NAME_CASE) default : return nullptr;
+    }
+}
+const char* StructureTypeName(XrStructureType value) {
+    switch (value) {
+        XR_LIST_ENUM_XrStructureType(XRRT_ENUM_NAME_CASE) default : return nullptr;
+    }
+}
+#undef XRRT_ENUM_NAME_CASE
+
+// xrResultToString / xrStructureTypeToString: the enum's name, or `fallback` for an unknown value.
+XrResult WriteEnumName(XrInstance handle, const char* name, const std::string& fallback, char* buffer,
+                       size_t size) {
     auto lock = LockApi();
     Instance* instance = nullptr;
     if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    const char* name = nullptr;
-    switch (value) {
-#define FOVRT_XR_RESULT_CASE(n, v) \
-    case n:                        \
-        name = #n;                 \
-        break;
-        XR_LIST_ENUM_XrResult(FOVRT_XR_RESULT_CASE)
-#undef FOVRT_XR_RESULT_CASE
-        default:
-            break;
-    }
-    if (name) std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "%s", name);
-    else
-        std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_UNKNOWN_%s_%d",
-                      XR_SUCCEEDED(value) ? "SUCCESS" : "FAILURE", int(value));
+    std::snprintf(buffer, size, "%s", name ? name : fallback.c_str());
     return XR_SUCCESS;
 }
 
-XrResult XRAPI_CALL StructureTypeToString(XrInstance handle, XrStructureType value,
-                                          char buffer[]) {
-    auto lock = LockApi();
-    Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    const char* name = nullptr;
-    switch (value) {
-#define FOVRT_XR_TYPE_CASE(n, v) \
-    case n:                      \
-        name = #n;               \
-        break;
-        XR_LIST_ENUM_XrStructureType(FOVRT_XR_TYPE_CASE)
-#undef FOVRT_XR_TYPE_CASE
-        default:
-            break;
-    }
-    if (name) std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "%s", name);
-    else std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "XR_UNKNOWN_STRUCTURE_TYPE_%d", int(value));
-    return XR_SUCCESS;
+XrResult XRAPI_CALL ResultToString(XrInstance handle, XrResult value, char buffer[]) {
+    const std::string fallback = std::string("XR_UNKNOWN_") + (XR_SUCCEEDED(value) ? "SUCCESS" : "FAILURE") +
+                                 "_" + std::to_string(int(value));
+    return WriteEnumName(handle, ResultName(value), fallback, buffer, XR_MAX_RESULT_STRING_SIZE);
+}
+
+XrResult XRAPI_CALL StructureTypeToString(XrInstance handle, XrStructureType value, char buffer[]) {
+    return WriteEnumName(handle, StructureTypeName(value), "XR_UNKNOWN_STRUCTURE_TYPE_" + std::to_string(int(value)),
+                         buffer, XR_MAX_STRUCTURE_NAME_SIZE);
 }
 
 // OpenXR path syntax: "/seg/seg", segments of [a-z0-9-_.] that are not all dots.
@@ -347,8 +338,7 @@ XrResult XRAPI_CALL GetSystemProperties(XrInstance handle, XrSystemId id,
                                         XrSystemProperties* properties) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    if (XrResult r = CheckSystem(*instance, id); XR_FAILED(r)) return r;
+    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
     if (!properties || properties->type != XR_TYPE_SYSTEM_PROPERTIES)
         return XR_ERROR_VALIDATION_FAILURE;
     properties->systemId = id;
@@ -371,8 +361,7 @@ XrResult XRAPI_CALL EnumerateViewConfigurations(XrInstance handle, XrSystemId id
                                                 XrViewConfigurationType* types) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    if (XrResult r = CheckSystem(*instance, id); XR_FAILED(r)) return r;
+    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
     return TwoCall(capacity, count, types, 1, [](XrViewConfigurationType& t, uint32_t) {
         t = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
     });
@@ -383,8 +372,7 @@ XrResult XRAPI_CALL GetViewConfigurationProperties(XrInstance handle, XrSystemId
                                                    XrViewConfigurationProperties* properties) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    if (XrResult r = CheckSystem(*instance, id); XR_FAILED(r)) return r;
+    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
     if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
         return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
     if (!properties || properties->type != XR_TYPE_VIEW_CONFIGURATION_PROPERTIES)
@@ -400,8 +388,7 @@ XrResult XRAPI_CALL EnumerateViewConfigurationViews(XrInstance handle, XrSystemI
                                                     XrViewConfigurationView* views) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    if (XrResult r = CheckSystem(*instance, id); XR_FAILED(r)) return r;
+    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
     if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
         return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
     const Config& c = instance->config;
@@ -421,8 +408,7 @@ XrResult XRAPI_CALL EnumerateEnvironmentBlendModes(XrInstance handle, XrSystemId
                                                    XrEnvironmentBlendMode* modes) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    if (XrResult r = CheckSystem(*instance, id); XR_FAILED(r)) return r;
+    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
     if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
         return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
     return TwoCall(capacity, count, modes, 1, [](XrEnvironmentBlendMode& m, uint32_t) {
@@ -456,23 +442,21 @@ XrResult CheckSystem(const Instance& instance, XrSystemId id) {
     return id == kSystemId && instance.systemQueried ? XR_SUCCESS : XR_ERROR_SYSTEM_INVALID;
 }
 
+XrResult CheckInstanceSystem(XrInstance handle, XrSystemId id, Instance** out) {
+    if (XrResult r = CheckInstance(handle, out); XR_FAILED(r)) return r;
+    return CheckSystem(**out, id);
+}
+
 void AddInstanceFunctions(ApiTable& t) {
-    t.push_back({"xrEnumerateInstanceExtensionProperties", Fn(&EnumerateInstanceExtensionProperties), nullptr});
-    t.push_back({"xrEnumerateApiLayerProperties", Fn(&EnumerateApiLayerProperties), nullptr});
-    t.push_back({"xrCreateInstance", Fn(&CreateInstance), nullptr});
-    t.push_back({"xrDestroyInstance", Fn(&DestroyInstance), nullptr});
-    t.push_back({"xrGetInstanceProperties", Fn(&GetInstanceProperties), nullptr});
-    t.push_back({"xrPollEvent", Fn(&PollEvent), nullptr});
-    t.push_back({"xrResultToString", Fn(&ResultToString), nullptr});
-    t.push_back({"xrStructureTypeToString", Fn(&StructureTypeToString), nullptr});
-    t.push_back({"xrStringToPath", Fn(&StringToPath), nullptr});
-    t.push_back({"xrPathToString", Fn(&PathToString), nullptr});
-    t.push_back({"xrGetSystem", Fn(&GetSystem), nullptr});
-    t.push_back({"xrGetSystemProperties", Fn(&GetSystemProperties), nullptr});
-    t.push_back({"xrEnumerateViewConfigurations", Fn(&EnumerateViewConfigurations), nullptr});
-    t.push_back({"xrGetViewConfigurationProperties", Fn(&GetViewConfigurationProperties), nullptr});
-    t.push_back({"xrEnumerateViewConfigurationViews", Fn(&EnumerateViewConfigurationViews), nullptr});
-    t.push_back({"xrEnumerateEnvironmentBlendModes", Fn(&EnumerateEnvironmentBlendModes), nullptr});
+    t.insert(t.end(), {
+        XRRT_CORE(EnumerateInstanceExtensionProperties), XRRT_CORE(EnumerateApiLayerProperties),
+        XRRT_CORE(CreateInstance), XRRT_CORE(DestroyInstance), XRRT_CORE(GetInstanceProperties),
+        XRRT_CORE(PollEvent), XRRT_CORE(ResultToString), XRRT_CORE(StructureTypeToString),
+        XRRT_CORE(StringToPath), XRRT_CORE(PathToString), XRRT_CORE(GetSystem),
+        XRRT_CORE(GetSystemProperties), XRRT_CORE(EnumerateViewConfigurations),
+        XRRT_CORE(GetViewConfigurationProperties), XRRT_CORE(EnumerateViewConfigurationViews),
+        XRRT_CORE(EnumerateEnvironmentBlendModes)
+    });
     t.push_back({"xrConvertTimespecTimeToTimeKHR", Fn(&ConvertTimespecTimeToTime),
                  XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME});
     t.push_back({"xrConvertTimeToTimespecTimeKHR", Fn(&ConvertTimeToTimespecTime),

@@ -180,6 +180,16 @@ Object* Find(const std::set<Object*>& live, Handle handle) {
     auto* object = reinterpret_cast<Object*>(handle);
     return live.count(object) ? object : nullptr;
 }
+// An xrDestroy* call: under the API lock, the handle looked up among the live objects of its
+// type (XR_ERROR_HANDLE_INVALID when it is not one), then `destroy` frees it.
+template <typename Object, typename Handle, typename Destroy>
+XrResult DestroyHandle(std::set<Object*>& live, Handle handle, Destroy destroy) {
+    auto lock = LockApi();
+    Object* object = Find(live, handle);
+    if (!object) return XR_ERROR_HANDLE_INVALID;
+    destroy(object);
+    return XR_SUCCESS;
+}
 template <typename Handle, typename Object>
 Handle ToHandle(Object* object) {
     return reinterpret_cast<Handle>(object);
@@ -188,9 +198,14 @@ Handle ToHandle(Object* object) {
 // Handle checks shared by the entry points: XR_ERROR_HANDLE_INVALID, then XR_ERROR_INSTANCE_LOST.
 XrResult CheckInstance(XrInstance handle, Instance** out);
 XrResult CheckSession(XrSession handle, Session** out);
+// CheckSession, then SessionGate: the prologue of every call on a running session (a failure, or
+// the result the call returns when it otherwise succeeds).
+XrResult CheckSessionAndGate(XrSession handle, Session** out);
 
 // XR_ERROR_SYSTEM_INVALID unless id is the system xrGetSystem returned.
 XrResult CheckSystem(const Instance& instance, XrSystemId id);
+// CheckInstance, then CheckSystem: the prologue of the calls that name a system.
+XrResult CheckInstanceSystem(XrInstance handle, XrSystemId id, Instance** out);
 // Teardown used by the destroy calls of the owning objects.
 void DestroySessionObject(Session* session);
 void DestroyActionSetObject(ActionSet* set);
@@ -288,6 +303,8 @@ template <typename F>
 PFN_xrVoidFunction Fn(F function) {
     return reinterpret_cast<PFN_xrVoidFunction>(function);
 }
+// A core entry point xr<Name> implemented by the function <Name>.
+#define XRRT_CORE(name) ::fovrt::xrrt::ApiFunction{"xr" #name, ::fovrt::xrrt::Fn(&name), nullptr}
 
 }  // namespace fovrt::xrrt
 

@@ -121,11 +121,7 @@ XrResult XRAPI_CALL CreateSession(XrInstance handle, const XrSessionCreateInfo* 
 }
 
 XrResult XRAPI_CALL DestroySession(XrSession handle) {
-    auto lock = LockApi();
-    Session* session = Find(TheRuntime().sessions, handle);
-    if (!session) return XR_ERROR_HANDLE_INVALID;
-    DestroySessionObject(session);
-    return XR_SUCCESS;
+    return DestroyHandle(TheRuntime().sessions, handle, DestroySessionObject);
 }
 
 XrDuration Period(const Session& s) { return XrDuration(std::llround(1e9 / s.instance->config.hz)); }
@@ -158,8 +154,7 @@ void ScriptedEvents(Session& s) {
 XrResult XRAPI_CALL BeginSession(XrSession handle, const XrSessionBeginInfo* info) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!info || info->type != XR_TYPE_SESSION_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
     if (info->primaryViewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
@@ -178,8 +173,7 @@ XrResult XRAPI_CALL BeginSession(XrSession handle, const XrSessionBeginInfo* inf
 XrResult XRAPI_CALL EndSession(XrSession handle) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
     if (s->state != XR_SESSION_STATE_STOPPING) return XR_ERROR_SESSION_NOT_STOPPING;
@@ -194,8 +188,7 @@ XrResult XRAPI_CALL EndSession(XrSession handle) {
 XrResult XRAPI_CALL RequestExitSession(XrSession handle) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
     if (!s->exiting) BeginExit(*s);
@@ -235,8 +228,7 @@ XrResult XRAPI_CALL WaitFrame(XrSession handle, const XrFrameWaitInfo* info, XrF
 XrResult XRAPI_CALL BeginFrame(XrSession handle, const XrFrameBeginInfo* info) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (info && info->type != XR_TYPE_FRAME_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
     if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
@@ -288,8 +280,7 @@ XrResult CheckLayer(const Session& s, const XrCompositionLayerBaseHeader* layer)
 XrResult XRAPI_CALL EndFrame(XrSession handle, const XrFrameEndInfo* info) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!info || info->type != XR_TYPE_FRAME_END_INFO) return XR_ERROR_VALIDATION_FAILURE;
     if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
@@ -318,14 +309,11 @@ XrResult XRAPI_CALL EndFrame(XrSession handle, const XrFrameEndInfo* info) {
 }  // namespace
 
 void AddSessionFunctions(ApiTable& t) {
-    t.push_back({"xrCreateSession", Fn(&CreateSession), nullptr});
-    t.push_back({"xrDestroySession", Fn(&DestroySession), nullptr});
-    t.push_back({"xrBeginSession", Fn(&BeginSession), nullptr});
-    t.push_back({"xrEndSession", Fn(&EndSession), nullptr});
-    t.push_back({"xrRequestExitSession", Fn(&RequestExitSession), nullptr});
-    t.push_back({"xrWaitFrame", Fn(&WaitFrame), nullptr});
-    t.push_back({"xrBeginFrame", Fn(&BeginFrame), nullptr});
-    t.push_back({"xrEndFrame", Fn(&EndFrame), nullptr});
+    t.insert(t.end(), {
+        XRRT_CORE(CreateSession), XRRT_CORE(DestroySession), XRRT_CORE(BeginSession),
+        XRRT_CORE(EndSession), XRRT_CORE(RequestExitSession), XRRT_CORE(WaitFrame),
+        XRRT_CORE(BeginFrame), XRRT_CORE(EndFrame)
+    });
 }
 
 }  // namespace fovrt::xrrt

@@ -118,14 +118,12 @@ XrResult XRAPI_CALL CreateActionSpace(XrSession handle, const XrActionSpaceCreat
 }
 
 XrResult XRAPI_CALL DestroySpace(XrSpace handle) {
-    auto lock = LockApi();
-    Space* space = Find(TheRuntime().spaces, handle);
-    if (!space) return XR_ERROR_HANDLE_INVALID;
-    auto& list = space->session->spaces;
-    list.erase(std::remove(list.begin(), list.end(), space), list.end());
-    TheRuntime().spaces.erase(space);
-    delete space;
-    return XR_SUCCESS;
+    return DestroyHandle(TheRuntime().spaces, handle, [](Space* space) {
+        auto& list = space->session->spaces;
+        list.erase(std::remove(list.begin(), list.end(), space), list.end());
+        TheRuntime().spaces.erase(space);
+        delete space;
+    });
 }
 
 constexpr XrSpaceLocationFlags kAllLocationFlags =
@@ -163,8 +161,7 @@ XrResult XRAPI_CALL LocateViews(XrSession handle, const XrViewLocateInfo* info, 
                                 uint32_t capacity, uint32_t* count, XrView* views) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!info || info->type != XR_TYPE_VIEW_LOCATE_INFO || !state ||
         state->type != XR_TYPE_VIEW_STATE)
@@ -193,13 +190,11 @@ XrResult XRAPI_CALL LocateViews(XrSession handle, const XrViewLocateInfo* info, 
 }  // namespace
 
 void AddSpaceFunctions(ApiTable& t) {
-    t.push_back({"xrEnumerateReferenceSpaces", Fn(&EnumerateReferenceSpaces), nullptr});
-    t.push_back({"xrCreateReferenceSpace", Fn(&CreateReferenceSpace), nullptr});
-    t.push_back({"xrGetReferenceSpaceBoundsRect", Fn(&GetReferenceSpaceBoundsRect), nullptr});
-    t.push_back({"xrCreateActionSpace", Fn(&CreateActionSpace), nullptr});
-    t.push_back({"xrDestroySpace", Fn(&DestroySpace), nullptr});
-    t.push_back({"xrLocateSpace", Fn(&LocateSpace), nullptr});
-    t.push_back({"xrLocateViews", Fn(&LocateViews), nullptr});
+    t.insert(t.end(), {
+        XRRT_CORE(EnumerateReferenceSpaces), XRRT_CORE(CreateReferenceSpace),
+        XRRT_CORE(GetReferenceSpaceBoundsRect), XRRT_CORE(CreateActionSpace), XRRT_CORE(DestroySpace),
+        XRRT_CORE(LocateSpace), XRRT_CORE(LocateViews)
+    });
 }
 
 }  // namespace fovrt::xrrt

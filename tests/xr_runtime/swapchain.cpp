@@ -36,8 +36,7 @@ XrResult XRAPI_CALL EnumerateSwapchainFormats(XrSession handle, uint32_t capacit
                                               uint32_t* count, int64_t* formats) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     std::vector<VkFormat> list = SupportedFormats(s->physicalDevice);
     XrResult r = TwoCall(capacity, count, formats, uint32_t(list.size()),
@@ -94,8 +93,7 @@ XrResult XRAPI_CALL CreateSwapchain(XrSession handle, const XrSwapchainCreateInf
                                     XrSwapchain* out) {
     auto lock = LockApi();
     Session* s = nullptr;
-    if (XrResult r = CheckSession(handle, &s); XR_FAILED(r)) return r;
-    XrResult gate = SessionGate(*s);
+    XrResult gate = CheckSessionAndGate(handle, &s);
     if (XR_FAILED(gate)) return gate;
     if (!info || !out || info->type != XR_TYPE_SWAPCHAIN_CREATE_INFO)
         return XR_ERROR_VALIDATION_FAILURE;
@@ -147,11 +145,7 @@ XrResult XRAPI_CALL CreateSwapchain(XrSession handle, const XrSwapchainCreateInf
 }
 
 XrResult XRAPI_CALL DestroySwapchain(XrSwapchain handle) {
-    auto lock = LockApi();
-    Swapchain* sc = Find(TheRuntime().swapchains, handle);
-    if (!sc) return XR_ERROR_HANDLE_INVALID;
-    DestroySwapchainObject(sc);
-    return XR_SUCCESS;
+    return DestroyHandle(TheRuntime().swapchains, handle, DestroySwapchainObject);
 }
 
 XrResult CheckSwapchain(XrSwapchain handle, Swapchain** out, XrResult* gate) {
@@ -285,13 +279,11 @@ const char* VkFormatName(VkFormat format) {
 }
 
 void AddSwapchainFunctions(ApiTable& t) {
-    t.push_back({"xrEnumerateSwapchainFormats", Fn(&EnumerateSwapchainFormats), nullptr});
-    t.push_back({"xrCreateSwapchain", Fn(&CreateSwapchain), nullptr});
-    t.push_back({"xrDestroySwapchain", Fn(&DestroySwapchain), nullptr});
-    t.push_back({"xrEnumerateSwapchainImages", Fn(&EnumerateSwapchainImages), nullptr});
-    t.push_back({"xrAcquireSwapchainImage", Fn(&AcquireSwapchainImage), nullptr});
-    t.push_back({"xrWaitSwapchainImage", Fn(&WaitSwapchainImage), nullptr});
-    t.push_back({"xrReleaseSwapchainImage", Fn(&ReleaseSwapchainImage), nullptr});
+    t.insert(t.end(), {
+        XRRT_CORE(EnumerateSwapchainFormats), XRRT_CORE(CreateSwapchain), XRRT_CORE(DestroySwapchain),
+        XRRT_CORE(EnumerateSwapchainImages), XRRT_CORE(AcquireSwapchainImage),
+        XRRT_CORE(WaitSwapchainImage), XRRT_CORE(ReleaseSwapchainImage)
+    });
 }
 
 }  // namespace fovrt::xrrt

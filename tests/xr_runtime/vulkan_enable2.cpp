@@ -12,8 +12,7 @@ XrResult XRAPI_CALL GetVulkanGraphicsRequirements2(XrInstance handle, XrSystemId
                                                    XrGraphicsRequirementsVulkanKHR* requirements) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstance(handle, &instance); XR_FAILED(r)) return r;
-    if (XrResult r = CheckSystem(*instance, id); XR_FAILED(r)) return r;
+    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
     if (!requirements || requirements->type != XR_TYPE_GRAPHICS_REQUIREMENTS_VULKAN2_KHR)
         return XR_ERROR_VALIDATION_FAILURE;
     requirements->minApiVersionSupported = XR_MAKE_VERSION(1, 0, 0);
