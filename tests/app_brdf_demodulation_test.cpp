@@ -11,13 +11,13 @@
 #include "config/config.h"
 #include "app/frame_pipeline.h"
 #include "denoise/demodulation.h"
+#include "denoiser_match_support.h"
 #include "denoise/denoiser_factory.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "vk/context.h"
-#include "vk_test_support.h"
 
 using namespace fovrt;
 
@@ -133,32 +133,11 @@ TEST_CASE("vulkan +brdf denoisers match the C++ reference on real frames", "[vul
     std::vector<StereoFrame> frames(kFrames);
     for (int f = 0; f < kFrames; ++f) pipeline.Render(uint32_t(f), frames[size_t(f)]);
     REQUIRE(frames[1].eyes[0].inputs.gradientSamples.size() > 0);
-    VulkanContext& context = *test::TestContext();
-    for (const std::string base : {"svgf", "asvgf", "two-history"}) {
-        const std::string name = base + "+brdf";
-        DYNAMIC_SECTION(name) {
-            DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});
-            auto cpu = CreateDenoiser(name, "cpu", params);
-            auto gpu = CreateDenoiser(name, "auto", params, &context);
-            REQUIRE(gpu->Backend() == "vulkan");
-            Plane<vec3> cpuOut, gpuOut;
-            for (int f = 0; f < kFrames; ++f) {
-                const FrameInputs& in = frames[size_t(f)].eyes[0].inputs;
-                cpu->Denoise(in, cpuOut);
-                gpu->Denoise(in, gpuOut);
-                double maxRel = 0.0;
-                for (size_t i = 0; i < cpuOut.size(); ++i)
-                    for (int c = 0; c < 3; ++c) {
-                        REQUIRE(std::isfinite(gpuOut[i][c]));
-                        double ref = cpuOut[i][c], got = gpuOut[i][c];
-                        maxRel = std::max(maxRel, std::fabs(got - ref) / (1.0 + std::fabs(ref)));
-                    }
-                INFO(name << " frame " << f << ": max rel error " << maxRel);
-                CHECK(maxRel < 2e-3);
-            }
-        }
-    }
-    CHECK(context.validationErrors() == 0);
+    std::vector<const FrameInputs*> leftEye;
+    for (const StereoFrame& frame : frames) leftEye.push_back(&frame.eyes[0].inputs);
+    for (const std::string base : {"svgf", "asvgf", "two-history"})
+        DYNAMIC_SECTION(base + "+brdf") { test::CheckVulkanMatchesReference(base + "+brdf", leftEye); }
+    CHECK(test::TestContext()->validationErrors() == 0);
 }
 
 namespace {

@@ -12,7 +12,7 @@
 #include "denoise/variants.h"
 #include "test_support.h"
 #include "vk/context.h"
-#include "vk_test_support.h"
+#include "denoiser_match_support.h"
 
 using namespace fovrt;
 
@@ -40,34 +40,11 @@ TEST_CASE("vulkan denoisers match the C++ reference on real rendered frames", "[
     for (int f = 0; f < kFrames; ++f) pipeline.Render(uint32_t(f), frames[size_t(f)]);
     REQUIRE(frames[1].eyes[0].inputs.gradientSamples.size() > 0);
 
-    VulkanContext& context = *test::TestContext();
-    for (const std::string& name : DenoiserNames()) {
-        DYNAMIC_SECTION(name) {
-            DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});
-            auto cpu = CreateDenoiser(name, "cpu", params);
-            auto gpu = CreateDenoiser(name, "auto", params, &context);
-            REQUIRE(gpu->Backend() == "vulkan");
-            Plane<vec3> cpuOut, gpuOut;
-            for (int f = 0; f < kFrames; ++f) {
-                const FrameInputs& in = frames[size_t(f)].eyes[0].inputs;
-                cpu->Denoise(in, cpuOut);
-                gpu->Denoise(in, gpuOut);
-                double maxRel = 0.0;
-                size_t nonFinite = 0;
-                for (size_t i = 0; i < cpuOut.size(); ++i) {
-                    if (!IsFinite(gpuOut[i])) ++nonFinite;
-                    for (int c = 0; c < 3; ++c) {
-                        double ref = cpuOut[i][c], got = gpuOut[i][c];
-                        maxRel = std::max(maxRel, std::fabs(got - ref) / (1.0 + std::fabs(ref)));
-                    }
-                }
-                INFO(name << " frame " << f << ": max rel error " << maxRel);
-                CHECK(nonFinite == 0);
-                CHECK(maxRel < 2e-3);
-            }
-        }
-    }
-    CHECK(context.validationErrors() == 0);
+    std::vector<const FrameInputs*> leftEye;
+    for (const StereoFrame& frame : frames) leftEye.push_back(&frame.eyes[0].inputs);
+    for (const std::string& name : DenoiserNames())
+        DYNAMIC_SECTION(name) { test::CheckVulkanMatchesReference(name, leftEye); }
+    CHECK(test::TestContext()->validationErrors() == 0);
 }
 
 TEST_CASE("reference denoisers keep real frames finite and close to the noisy mean", "[app]") {

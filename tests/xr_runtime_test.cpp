@@ -422,6 +422,20 @@ struct Client {
         REQUIRE(vkResetFences(device, 1, &fence) == VK_SUCCESS);
     }
 
+    // xrSyncActions on the action set, then the gaze action's pose state.
+    XrActionStatePose SyncGazePose() {
+        XrActiveActionSet active{actionSet, XR_NULL_PATH};
+        auto sync = XrInit<XrActionsSyncInfo>(XR_TYPE_ACTIONS_SYNC_INFO);
+        sync.countActiveActionSets = 1;
+        sync.activeActionSets = &active;
+        REQUIRE_XR(xrSyncActions(session, &sync));
+        auto gi = XrInit<XrActionStateGetInfo>(XR_TYPE_ACTION_STATE_GET_INFO);
+        gi.action = gazeAction;
+        auto pose = XrInit<XrActionStatePose>(XR_TYPE_ACTION_STATE_POSE);
+        REQUIRE_XR(xrGetActionStatePose(session, &gi, &pose));
+        return pose;
+    }
+
     // One frame: wait, begin, (when shouldRender) clear each eye and submit a projection layer.
     XrFrameState Frame() {
         auto frame = XrInit<XrFrameState>(XR_TYPE_FRAME_STATE);
@@ -719,15 +733,7 @@ TEST_CASE("a session runs IDLE to EXITING and the runtime reads back each eye's 
         XrFrameState frame = c.Frame();
         CHECK(frame.shouldRender);
         // Gaze "off" (the default): supported but never active; its space is not located.
-        XrActiveActionSet active{c.actionSet, XR_NULL_PATH};
-        auto sync = XrInit<XrActionsSyncInfo>(XR_TYPE_ACTIONS_SYNC_INFO);
-        sync.countActiveActionSets = 1;
-        sync.activeActionSets = &active;
-        REQUIRE_XR(xrSyncActions(c.session, &sync));
-        auto gi = XrInit<XrActionStateGetInfo>(XR_TYPE_ACTION_STATE_GET_INFO);
-        gi.action = c.gazeAction;
-        auto pose = XrInit<XrActionStatePose>(XR_TYPE_ACTION_STATE_POSE);
-        REQUIRE_XR(xrGetActionStatePose(c.session, &gi, &pose));
+        const XrActionStatePose pose = c.SyncGazePose();
         CHECK(pose.isActive == XR_FALSE);
         auto location = XrInit<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
         REQUIRE_XR(xrLocateSpace(c.gazeSpace, c.view, frame.predictedDisplayTime, &location));
@@ -818,15 +824,7 @@ void CheckGazeSession(const std::map<std::string, std::string>& variables,
     CHECK(profile.interactionProfile == c.Path("/interaction_profiles/ext/eye_gaze_interaction"));
     for (int i = 0; i < 4; ++i) {
         XrFrameState frame = c.Frame();
-        XrActiveActionSet active{c.actionSet, XR_NULL_PATH};
-        auto sync = XrInit<XrActionsSyncInfo>(XR_TYPE_ACTIONS_SYNC_INFO);
-        sync.countActiveActionSets = 1;
-        sync.activeActionSets = &active;
-        REQUIRE_XR(xrSyncActions(c.session, &sync));
-        auto gi = XrInit<XrActionStateGetInfo>(XR_TYPE_ACTION_STATE_GET_INFO);
-        gi.action = c.gazeAction;
-        auto pose = XrInit<XrActionStatePose>(XR_TYPE_ACTION_STATE_POSE);
-        REQUIRE_XR(xrGetActionStatePose(c.session, &gi, &pose));
+        const XrActionStatePose pose = c.SyncGazePose();
         REQUIRE(pose.isActive == XR_TRUE);
         auto sample = XrInit<XrEyeGazeSampleTimeEXT>(XR_TYPE_EYE_GAZE_SAMPLE_TIME_EXT);
         auto location = XrInit<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);

@@ -356,6 +356,14 @@ XrResult XRAPI_CALL GetSystemProperties(XrInstance handle, XrSystemId id,
     return XR_SUCCESS;
 }
 
+// The view-configuration calls: a known instance and system, and the one configuration there is.
+XrResult CheckStereoViewConfiguration(XrInstance handle, XrSystemId id, XrViewConfigurationType type,
+                                      Instance** out) {
+    if (XrResult r = CheckInstanceSystem(handle, id, out); XR_FAILED(r)) return r;
+    return type == XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO ? XR_SUCCESS
+                                                             : XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+}
+
 XrResult XRAPI_CALL EnumerateViewConfigurations(XrInstance handle, XrSystemId id,
                                                 uint32_t capacity, uint32_t* count,
                                                 XrViewConfigurationType* types) {
@@ -372,9 +380,7 @@ XrResult XRAPI_CALL GetViewConfigurationProperties(XrInstance handle, XrSystemId
                                                    XrViewConfigurationProperties* properties) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
-    if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
-        return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+    if (XrResult r = CheckStereoViewConfiguration(handle, id, type, &instance); XR_FAILED(r)) return r;
     if (!properties || properties->type != XR_TYPE_VIEW_CONFIGURATION_PROPERTIES)
         return XR_ERROR_VALIDATION_FAILURE;
     properties->viewConfigurationType = type;
@@ -388,9 +394,7 @@ XrResult XRAPI_CALL EnumerateViewConfigurationViews(XrInstance handle, XrSystemI
                                                     XrViewConfigurationView* views) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
-    if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
-        return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+    if (XrResult r = CheckStereoViewConfiguration(handle, id, type, &instance); XR_FAILED(r)) return r;
     const Config& c = instance->config;
     return TwoCall(capacity, count, views, kViewCount, [&](XrViewConfigurationView& v, uint32_t) {
         v.recommendedImageRectWidth = c.width;
@@ -408,9 +412,7 @@ XrResult XRAPI_CALL EnumerateEnvironmentBlendModes(XrInstance handle, XrSystemId
                                                    XrEnvironmentBlendMode* modes) {
     auto lock = LockApi();
     Instance* instance = nullptr;
-    if (XrResult r = CheckInstanceSystem(handle, id, &instance); XR_FAILED(r)) return r;
-    if (type != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
-        return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+    if (XrResult r = CheckStereoViewConfiguration(handle, id, type, &instance); XR_FAILED(r)) return r;
     return TwoCall(capacity, count, modes, 1, [](XrEnvironmentBlendMode& m, uint32_t) {
         m = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
     });
