@@ -4,9 +4,14 @@
 
 namespace fovrt {
 
-KeyQueue::KeyQueue(GLFWwindow* window) {
+KeyQueue::KeyQueue(GLFWwindow* window) : window_(window) {
     glfwSetWindowUserPointer(window, this);
     glfwSetKeyCallback(window, OnKey);
+}
+
+KeyQueue::~KeyQueue() {
+    glfwSetKeyCallback(window_, nullptr);
+    glfwSetWindowUserPointer(window_, nullptr);
 }
 
 std::optional<int> KeyQueue::Pop() {

@@ -13,8 +13,10 @@ namespace fovrt {
 
 class KeyQueue {
 public:
-    // Installs the key callback (and the window's user pointer, which points here).
+    // Installs the key callback (and the window's user pointer, which points here); the
+    // destructor removes both, so a window that outlives the queue never calls into it.
     explicit KeyQueue(GLFWwindow* window);
+    ~KeyQueue();
     KeyQueue(const KeyQueue&) = delete;
     KeyQueue& operator=(const KeyQueue&) = delete;
 
@@ -24,6 +26,7 @@ public:
 
 private:
     static void OnKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+    GLFWwindow* window_;
     std::deque<int> keys_;
 };
 
