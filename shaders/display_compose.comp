@@ -10,7 +10,7 @@
 // Writes: uint[outW·outH], one pixel per invocation: bytes R,G,B,A or B,G,R,A (DISPLAY_FLAG_BGRA).
 // Sampling is nearest-neighbour: an output pixel shows the eye pixel that holds its centre (a
 // preview; no filtering, so what is shown is what was rendered). The C++ reference is
-// ComposeDisplayReference (src/live/display_compose.cpp).
+// ComposeDisplayReference (src/display/display_compose.cpp).
 // Speed (lavapipe, 2 cores, 1280×720 from 640×720 eyes, `live_display_pass_test "[.bench]"`):
 // 8.4 ms; 11.0 ms with an exact integer division per pixel and a buffer per eye (a select
 // between two fetches gathers from both).

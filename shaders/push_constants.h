@@ -38,7 +38,7 @@
 // bandwidth_copy: elements as rows × columns.
 #define FOVRT_PUSH_BANDWIDTH(F) F(ivec2, size)
 // display_compose (shaders/common/display_constants.glsl; filled by MakeDisplayComposePush in
-// src/live/display_compose.h). out_size: output pixels; eye_size: each eye's pixels; extent: the
+// src/display/display_compose.h). out_size: output pixels; eye_size: each eye's pixels; extent: the
 // letterboxed viewport of every slot shown (0: none); origin0/origin1: where slot 0 (the left eye,
 // or the one eye shown) and slot 1 (the right eye, side by side only) start; gaze_s = the gaze
 // point and radius_s = the fovea radius, in output pixels × FOVRT_DISPLAY_SUBPIXELS (radius ≤ 0:

@@ -9,12 +9,12 @@
 #include <utility>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
 #include "denoise/demodulation.h"
 #include "denoiser_match_support.h"
 #include "denoise/denoiser_factory.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
+#include "pipeline/frame_pipeline.h"
 #include "render/renderer.h"
 #include "test_support.h"
 #include "vk/context.h"

@@ -1,8 +1,8 @@
-// The CPU line that benchmark headers print (app/build_info.h): parsed from a /proc/cpuinfo text
+// The CPU line that benchmark headers print (pipeline/build_info.h): parsed from a /proc/cpuinfo text
 // with known answers, and read on this machine.
 #include <catch2/catch.hpp>
 
-#include "app/build_info.h"
+#include "pipeline/build_info.h"
 
 namespace fovrt {
 namespace {

@@ -3,10 +3,10 @@
 // value with one line naming denoise.device.
 #include "config/config.h"
 #include "config/config_cli.h"
-#include "app/denoiser_set.h"
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/vulkan/svgf_family_vk.h"
+#include "pipeline/denoiser_set.h"
 #include "test_support.h"
 #include "vk/device_choice.h"
 

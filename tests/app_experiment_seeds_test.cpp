@@ -6,12 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "config/config_cli.h"
 #include "app/experiment.h"
-#include "app/frame_pipeline.h"
-#include "app/reference_cache.h"
 #include "app_test_configs.h"
+#include "config/config_cli.h"
 #include "core/error.h"
+#include "pipeline/frame_pipeline.h"
+#include "pipeline/reference_cache.h"
 #include "test_support.h"
 
 using namespace fovrt;

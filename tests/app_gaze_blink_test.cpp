@@ -4,10 +4,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "config/config.h"
-#include "app/frame_pipeline.h"
-#include "core/error.h"
 #include "app_test_configs.h"
+#include "config/config.h"
+#include "core/error.h"
+#include "pipeline/frame_pipeline.h"
 #include "test_support.h"
 
 using namespace fovrt;

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/experiment.h"
-#include "app/frame_pipeline.h"
 #include "app_test_configs.h"
+#include "pipeline/frame_pipeline.h"
 #include "test_support.h"
 
 using namespace fovrt;

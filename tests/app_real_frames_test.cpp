@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/variants.h"
+#include "pipeline/frame_pipeline.h"
 #include "test_support.h"
 #include "vk/context.h"
 #include "denoiser_match_support.h"

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/reference_cache.h"
+#include "pipeline/reference_cache.h"
 #include "scene/scene.h"
 #include "test_support.h"
 

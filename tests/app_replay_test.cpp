@@ -5,15 +5,15 @@
 
 #include <cstring>
 
+#include "app/replay.h"
+#include "app_test_configs.h"
 #include "config/config.h"
 #include "config/config_cli.h"
 #include "config/config_io.h"
-#include "app/frame_pipeline.h"
-#include "app/replay.h"
 #include "core/error.h"
 #include "core/rng.h"
-#include "live/session_record.h"
-#include "app_test_configs.h"
+#include "pipeline/frame_pipeline.h"
+#include "session/session_record.h"
 #include "test_support.h"
 
 using namespace fovrt;

@@ -1,4 +1,4 @@
-// The display pass (src/live/display_pass.h, shaders/display_compose.comp) and its C++ reference:
+// The display pass (src/display/display_pass.h, shaders/display_compose.comp) and its C++ reference:
 // closed forms first (the transform's bytes, letterbox geometry, which half each eye lands in,
 // exactly which pixels the overlay changes), then the device against the reference over layouts,
 // modes, overlay, byte orders and odd sizes, and the copy into a swapchain-format image.
@@ -10,13 +10,13 @@
 #include <utility>
 #include <vector>
 
+#include "display/display_compose.h"
+#include "display/display_pass.h"
 #include "io/png.h"
-#include "live/display_compose.h"
-#include "live/display_pass.h"
-#include "vk/recorder.h"
 #include "shaders/common/display_constants.glsl"
 #include "test_support.h"
 #include "vk/context.h"
+#include "vk/recorder.h"
 #include "vk/recorder.h"
 #include "vk/vk_check.h"
 #include "vk_test_support.h"

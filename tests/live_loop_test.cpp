@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
 #include "denoise/denoiser_factory.h"
 #include "live/live_loop.h"
+#include "pipeline/frame_pipeline.h"
 
 using namespace fovrt;
 

@@ -1,4 +1,4 @@
-// Session recordings (live/session_record.h): a written recording reads back bit-identical (free
+// Session recordings (session/session_record.h): a written recording reads back bit-identical (free
 // poses, asymmetric FOVs, gaze samples, any finite float), stays readable after every line (a
 // killed session), and a truncated or corrupt one is refused with one line naming the file, the
 // line and the frame.
@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
-#include "live/session_record.h"
+#include "session/session_record.h"
 #include "test_support.h"
 
 using namespace fovrt;

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "app/frame_pipeline.h"
 #include "app_test_configs.h"
 #include "denoise/reference/rae_cpu.h"
 #include "metrics/image_metrics.h"
+#include "pipeline/frame_pipeline.h"
 
 namespace fovrt::test {
 

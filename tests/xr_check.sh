@@ -206,10 +206,12 @@ for kind in LOSS INSTANCE_LOSS; do
 done
 
 # 7. Bad input: one line, non-zero exit, no recording.
+bad_args=()  # fovrt xr options of the next check_bad
 check_bad() {  # check_bad NAME EXPECTED_SUBSTRING ENV...
   local name=$1 want=$2; shift 2
   rm -f badrec.jsonl
-  env "$@" "$fovrt" xr "${small[@]}" --set output.dir=s7 --frames 1 --record badrec.jsonl >/dev/null 2>err7.txt
+  env "$@" "$fovrt" xr "${small[@]}" --set output.dir=s7 --frames 1 --record badrec.jsonl "${bad_args[@]}" \
+    >/dev/null 2>err7.txt
   local rc=$?
   # (the core validation layer announces itself on stderr when an instance is created: not fovrt's)
   sed -i '/^Core Validation output type/d' err7.txt
@@ -224,6 +226,10 @@ check_bad "corrupt XR_RUNTIME_JSON" "not valid JSON" XR_RUNTIME_JSON=$work/broke
 check_bad "no enable2" "XR_KHR_vulkan_enable2" FOVRT_TEST_XR_NO_ENABLE2=1
 check_bad "no HMD" "no head-mounted display" FOVRT_TEST_XR_NO_HMD=1
 check_bad "form factor" "does not support the head-mounted display" FOVRT_TEST_XR_FORM_FACTOR_UNSUPPORTED=1
+# A view the denoiser does not offer: refused with the views it does offer, as `fovrt preview` does.
+bad_args=(--view lambda)
+check_bad "unknown --view" "--view lambda: not a view of denoiser svgf (views: denoised, noisy, spp,"
+bad_args=()
 
 # 8. --mirror: the window shows the headset's frames (Xvfb).
 if command -v xvfb-run >/dev/null; then

@@ -1,5 +1,5 @@
-// Constants of the display pass (shaders/display_compose.comp, src/live/display_pass.h and its C++
-// reference src/live/display_compose.h). Macros only: included by GLSL and by C++.
+// Constants of the display pass (shaders/display_compose.comp, src/display/display_pass.h and its C++
+// reference src/display/display_compose.h). Macros only: included by GLSL and by C++.
 #ifndef FOVRT_DISPLAY_CONSTANTS_GLSL
 #define FOVRT_DISPLAY_CONSTANTS_GLSL
 

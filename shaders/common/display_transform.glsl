@@ -2,7 +2,7 @@
 // it in namespace fovrt::glsl, with std::pow and std::min brought in). Every 8-bit image fovrt
 // shows or writes goes through it: PNG output (src/io/png.cpp), the LDR metrics' ToneMap
 // (src/metrics/tonemap.h) and the live preview's display pass (shaders/display_compose.comp and
-// its C++ reference, src/live/display_compose.cpp).
+// its C++ reference, src/display/display_compose.cpp).
 //
 //   linear  = hdr · scale            scale = 2^exposure (stops; output.exposure), 1 for display data
 //   linear  = 0 when not finite or negative

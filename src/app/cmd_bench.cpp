@@ -16,16 +16,16 @@
 #include <sys/resource.h>
 #include <tbb/info.h>
 
-#include "app/build_info.h"
 #include "commands.h"
 #include "core/camera.h"
 #include "core/error.h"
 #include "core/frame_inputs.h"
+#include "denoise/bench/denoise_bench.h"
+#include "denoise/denoiser_factory.h"
+#include "pipeline/build_info.h"
 #include "render/probes.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
-#include "denoise/bench/denoise_bench.h"
-#include "denoise/denoiser_factory.h"
 
 namespace fovrt {
 namespace {

@@ -24,16 +24,16 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/progress.h"
 #include "config/config.h"
 #include "config/config_cli.h"
-#include "app/denoiser_set.h"
-#include "app/frame_pipeline.h"
-#include "app/progress.h"
-#include "app/reference_cache.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "denoise/reference/rae_features.h"
 #include "io/npy.h"
+#include "pipeline/denoiser_set.h"
+#include "pipeline/frame_pipeline.h"
+#include "pipeline/reference_cache.h"
 
 namespace fovrt {
 namespace {

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <thread>
 
-#include "app/build_info.h"
 #include "app/commands.h"
 #include "denoise/variants.h"
+#include "pipeline/build_info.h"
 #include "vk/context.h"
 
 namespace fovrt {

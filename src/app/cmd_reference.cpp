@@ -7,18 +7,18 @@
 #include <new>
 
 #include "app/commands.h"
+#include "app/experiment.h"
+#include "app/output_dir.h"
+#include "app/progress.h"
 #include "config/config.h"
 #include "config/config_cli.h"
-#include "app/experiment.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/nearest_name.h"
-#include "app/frame_pipeline.h"
-#include "app/denoiser_set.h"
-#include "app/output_dir.h"
-#include "app/progress.h"
-#include "app/reference_cache.h"
 #include "denoise/memory_plan.h"
+#include "pipeline/denoiser_set.h"
+#include "pipeline/frame_pipeline.h"
+#include "pipeline/reference_cache.h"
 
 namespace fovrt {
 namespace {

@@ -21,22 +21,22 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "app/build_info.h"
 #include "app/commands.h"
-#include "config/config.h"
-#include "config/config_cli.h"
-#include "config/config_io.h"
-#include "app/denoiser_set.h"
-#include "app/frame_pipeline.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/replay.h"
+#include "config/config.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "denoise/memory_plan.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include "pipeline/build_info.h"
+#include "pipeline/denoiser_set.h"
+#include "pipeline/frame_pipeline.h"
 #include "render/visibility_buffer.h"
 
 namespace fovrt {

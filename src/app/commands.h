@@ -14,8 +14,8 @@ void RegisterReferenceCommand(CLI::App& app);
 void RegisterDatasetCommand(CLI::App& app);  // RAE training data (training/)
 void RegisterBenchCommand(CLI::App& app);
 void RegisterMemoryCommand(CLI::App& app);
-void RegisterPreviewCommand(CLI::App& app);  // src/preview
-void RegisterXrCommand(CLI::App& app);       // src/xr
+void RegisterPreviewCommand(CLI::App& app);  // runs src/preview
+void RegisterXrCommand(CLI::App& app);       // runs src/xr
 void RegisterClusterCommand(CLI::App& app);
 void RegisterVdpCommand(CLI::App& app);  // FovVideoVDP between two frame sequences
 

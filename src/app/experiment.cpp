@@ -10,21 +10,17 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "app/build_info.h"
-#include "config/config_cli.h"
-#include "config/config_io.h"
-#include "app/denoiser_set.h"
 #include "app/experiment_shards.h"
 #include "app/experiment_stats.h"
 #include "app/experiment_vdp.h"
-#include "app/frame_pipeline.h"
 #include "app/gaze_tracking_report.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
-#include "app/reference_cache.h"
 #include "app/report_collect.h"
 #include "app/report_html.h"
 #include "app/report_summary.h"
+#include "config/config_cli.h"
+#include "config/config_io.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -33,6 +29,11 @@
 #include "denoise/memory_plan.h"
 #include "gaze/tracker.h"
 #include "io/exr.h"
+#include "pipeline/build_info.h"
+#include "pipeline/denoiser_set.h"
+#include "pipeline/frame_pipeline.h"
+#include "pipeline/metric_fovea.h"
+#include "pipeline/reference_cache.h"
 
 namespace fovrt {
 namespace {
@@ -132,15 +133,6 @@ ReportTable MemoryTable(const RunConfig& config) {
 }
 
 }  // namespace
-
-FoveaRadius MetricFovea(const FoveationParams& f, int imageWidth) {
-    if (f.model == "disc") {
-        if (f.radiusDeg > 0.0f) return FoveaRadius::Degrees(f.radiusDeg);
-        return FoveaRadius::Pixels(f.radiusPx * float(imageWidth) / float(f.radiusReferenceWidth));
-    }
-    if (f.model == "linear") return FoveaRadius::Degrees(f.fovealDeg);
-    return FoveaRadius::Degrees(5.0f);  // the first eccentricity band
-}
 
 std::vector<uint32_t> ParseSeedsOption(const std::string& text, uint32_t first) {
     auto bad = [&](const std::string& why) -> std::vector<uint32_t> {

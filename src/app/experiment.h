@@ -24,10 +24,6 @@ namespace fovrt {
 
 struct ConfigOptions;  // config/config_cli.h
 
-// The fovea the metrics use (and the live preview outlines): the disc model's spp disc, the
-// linear model's full-rate angle, else the first eccentricity band (5°).
-FoveaRadius MetricFovea(const FoveationParams& foveation, int imageWidth);
-
 // An experiment file: a RunConfig plus an [experiment] table (scenes, variants, quick overrides).
 struct ExperimentSpec {
     std::filesystem::path file;

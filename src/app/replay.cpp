@@ -5,12 +5,12 @@
 
 #include <fmt/format.h>
 
-#include "app/build_info.h"
 #include "config/config_cli.h"
 #include "config/config_io.h"
-#include "app/reference_cache.h"
 #include "core/error.h"
 #include "denoise/variants.h"
+#include "pipeline/build_info.h"
+#include "pipeline/reference_cache.h"
 
 namespace fovrt {
 namespace {

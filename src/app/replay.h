@@ -1,4 +1,4 @@
-// Replaying session recordings (live/session_record.h) headless, and recording headless runs:
+// Replaying session recordings (session/session_record.h) headless, and recording headless runs:
 // `fovrt run --replay FILE`, `fovrt experiment FILE --replay REC`, `fovrt run --record FILE`.
 //
 // The config of a replay is the recording's (its header), with the command's -c FILE and --set on
@@ -30,8 +30,8 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
-#include "live/session_record.h"
+#include "pipeline/frame_pipeline.h"
+#include "session/session_record.h"
 
 namespace fovrt {
 

@@ -4,7 +4,7 @@
 // (Tonemap::Clamp — the default, identical to src/metrics/tonemap.h's ToneMap at exposure 0) or
 // Reinhard x/(1+x) per channel (Tonemap::Reinhard), then the sRGB OETF, then round to 8 bits —
 // written once for C++ and GLSL in shaders/common/display_transform.glsl, so the live preview's
-// display pass (src/live/display_pass.h) shows the bytes a PNG holds.
+// display pass (src/display/display_pass.h) shows the bytes a PNG holds.
 // Non-finite and negative values display as 0. PNGs are encoded by stb_image_write, whose
 // implementation Debian compiles once into libstb (we link it; nobody defines
 // STB_IMAGE_WRITE_IMPLEMENTATION).

@@ -7,11 +7,16 @@
 #include <chrono>
 #include <vector>
 
-#include "live/frame_request.h"
+#include "pipeline/frame_request.h"
 
 namespace fovrt {
 
 using LiveClock = std::chrono::steady_clock;
+
+// Milliseconds from a to b (the loop's stage times, the apps' latencies).
+inline double MsBetween(LiveClock::time_point a, LiveClock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 // A gaze sample with the wall-clock moment it was taken: gaze-to-photon latency runs from here.
 // GazeSample::timeSeconds is the source's own clock: scene time for synthetic sources, seconds

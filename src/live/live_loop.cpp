@@ -2,18 +2,14 @@
 
 #include <cstdio>
 
-#include "app/reference_cache.h"
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/variants.h"
-#include "app/experiment.h"
+#include "pipeline/metric_fovea.h"
+#include "pipeline/reference_cache.h"
 
 namespace fovrt {
 namespace {
-
-double MsBetween(LiveClock::time_point a, LiveClock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 void AddTimings(const std::vector<PassTiming>& eye, std::vector<PassTiming>& sum) {
     for (const PassTiming& t : eye) {

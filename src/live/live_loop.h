@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
 #include "denoise/denoiser.h"
 #include "live/frame_source.h"
 #include "live/views.h"
+#include "pipeline/frame_pipeline.h"
 
 namespace fovrt {
 

@@ -3,48 +3,30 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <optional>
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
-#include "app/build_info.h"
-#include "config/config_io.h"
-#include "app/denoiser_set.h"
 #include "core/error.h"
-#include "denoise/variants.h"
 #include "io/exr.h"
 #include "io/png.h"
-#include "live/display_pass.h"
 #include "live/live_loop.h"
+#include "live/live_session.h"
 #include "live/live_stats.h"
-#include "live/session_record.h"
-#include "preview/imgui_layer.h"
-#include "preview/preview_panel.h"
-#include "preview/preview_source.h"
-#include "preview/vulkan_window.h"
+#include "pipeline/denoiser_set.h"
+#include "ui/imgui_layer.h"
+#include "ui/key_queue.h"
+#include "ui/live_display.h"
+#include "ui/preview_panel.h"
+#include "ui/preview_source.h"
+#include "ui/vulkan_window.h"
 
 namespace fovrt {
 namespace {
 
 namespace fs = std::filesystem;
-
-double MsBetween(LiveClock::time_point a, LiveClock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-// Key presses arrive through a callback (a press shorter than one poll would be missed by
-// polling); the window loop handles them in order.
-std::deque<int>& PendingKeys(GLFWwindow* window) {
-    return *static_cast<std::deque<int>*>(glfwGetWindowUserPointer(window));
-}
-
-void OnKey(GLFWwindow* window, int key, int, int action, int) {
-    if (action == GLFW_PRESS) PendingKeys(window).push_back(key);
-}
 
 // F12: the shown window image, and per eye the frame's FrameInputs, spp map and denoised output
 // in one multi-layer EXR.
@@ -91,10 +73,8 @@ class PreviewSession {
 public:
     PreviewSession(const RunConfig& config, const PreviewOptions& options)
         : config_(config), options_(options), window_(options.window),
-          context_(VulkanContext::Create(window_.ContextOptions(ResolveDenoiseDevice(config)))),
-          attachment_(window_, context_), source_(config), stats_(options.stats) {
-        glfwSetWindowUserPointer(window_.handle(), &keys_);
-        glfwSetKeyCallback(window_.handle(), OnKey);  // before ImGui, which chains to it
+          context_(VulkanContext::Create(window_.ContextOptions(LiveDisplayDevice(config)))),
+          attachment_(window_, context_), keys_(window_.handle()), source_(config), stats_(options.stats) {
         display_.emplace(context_);
         imgui_.emplace(window_, context_);
         panelShown_ = options.panel;
@@ -104,29 +84,7 @@ public:
         panel_.display.byteOrder = window_.ByteOrder();
         loop_.emplace(config, &context_, source_);
         source_.Bind(loop_->Pipeline());
-        const std::vector<std::string> views = loop_->ViewNames();
-        if (std::find(views.begin(), views.end(), options.view) == views.end())
-            Fail("--view {}: not a view of denoiser {} (views: {})", options.view, loop_->Controls().denoiser,
-                 fmt::format("{}", fmt::join(views, ", ")));
-        loop_->SetView(options.view);
-        if (options.writeInputs) {
-            const fs::path dir = fs::path(config.output.dir) / "inputs";
-            fs::create_directories(dir);
-            loop_->OnFrameDone([dir](const LiveFrame& f) {
-                for (int eye = 0; eye < 2; ++eye) {
-                    const EyeFrame& e = f.stereo.eyes[size_t(eye)];
-                    WriteFrameInputsExr(dir / (FrameOutputStem(f.stereo.frame, eye) + ".exr"), e.inputs, e.sppMap);
-                }
-            });
-        }
-        if (!options.record.empty()) {
-            recorder_.emplace(options.record, ConfigToJson(config), nlohmann::json{{"build", BuildInfoJson()}});
-            loop_->OnFrameStart([this](const SourcedFrame& f) {
-                std::vector<GazeSample> samples;
-                for (const TimedGaze& g : f.gazeSamples) samples.push_back(g.gaze);
-                recorder_->Append(f.request, f.head, samples);
-            });
-        }
+        wiring_.emplace(*loop_, options.session);
     }
 
     // Members die in reverse order, also when the constructor throws: the render thread first,
@@ -167,7 +125,7 @@ public:
         }
         loop_->Stop();
         window_.WaitIdle();
-        if (recorder_) recorder_->Close();
+        wiring_->Close();
         if (auto error = loop_->Error()) Fail("render thread: {}", *error);
         std::fprintf(stderr, "fovrt preview: %s (%llu frames rendered)\n", stats_.Summary().c_str(),
                      (unsigned long long)loop_->FramesRendered());
@@ -180,22 +138,13 @@ public:
     }
 
 private:
-    static std::string ResolveDenoiseDevice(const RunConfig& config) {
-        // The window needs a Vulkan device even when the denoiser runs as the C++ reference.
-        return config.denoise.device == "cpu" ? "auto" : config.denoise.device;
-    }
-
     // Returns whether there was input this iteration.
     bool HandleInput(double dt) {
         GLFWwindow* w = window_.handle();
-        bool input = !keys_.empty();
+        bool input = !keys_.Empty();
         const bool keyboard = !imgui_->WantsKeyboard();
-        while (!keys_.empty()) {
-            const int key = keys_.front();
-            keys_.pop_front();
-            if (!keyboard && key != GLFW_KEY_F12) continue;
-            HandleKey(key);
-        }
+        while (std::optional<int> key = keys_.Pop())
+            if (keyboard || *key == GLFW_KEY_F12) HandleKey(*key);
         // Fly camera: WASD + Q/E move, right-drag turns; the first move leaves the camera path.
         if (keyboard) {
             vec3 move(0.0f);
@@ -269,20 +218,7 @@ private:
             capture = true;
             panel_.requestCapture = false;
         }
-        if (latest) {
-            std::array<FoveaMark, 2> marks;
-            for (int eye = 0; eye < 2; ++eye)
-                marks[size_t(eye)] = {latest->gazePixel[size_t(eye)], latest->foveaRadiusPixels[size_t(eye)]};
-            if (latest->number != uploadedNumber_) {
-                display_->SetEyes(latest->shown[0].rgb, latest->shown[1].rgb, marks);
-                uploadedNumber_ = latest->number;
-            }
-            panel_.display.mode = latest->shown[0].hdr ? DisplayMode::Hdr : DisplayMode::Display;
-        }
-        display_->Record(frame->cmd, panel_.display, int(frame->extent.width), int(frame->extent.height));
-        const VkBufferImageCopy region = display_->OutputCopyRegion();
-        vkCmdCopyBufferToImage(frame->cmd, display_->Output().handle(), frame->image,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        display_->Record(latest, panel_.display, *frame);
         imgui_->Render(*frame, window_.OverlayRenderPass());
         window_.EndFrame(*frame, capture);
         const auto presented = LiveClock::now();
@@ -322,19 +258,18 @@ private:
     PreviewWindow window_;
     VulkanContext context_;
     Attachment attachment_;
+    KeyQueue keys_;  // before ImGui, which chains to its key callback
     PreviewFrameSource source_;
     LiveStats stats_;
-    std::optional<DisplayPass> display_;
+    std::optional<LiveFrameDisplay> display_;
     std::optional<ImGuiLayer> imgui_;
-    std::optional<SessionRecorder> recorder_;
+    std::optional<LiveSessionWiring> wiring_;  // its hooks run on the render thread: outlives the loop
     std::optional<LiveLoop> loop_;
     PanelState panel_;
-    std::deque<int> keys_;
     bool panelShown_ = true;
     bool captureRequested_ = false;
     bool dragging_ = false;
     double dragX_ = 0, dragY_ = 0;
-    uint64_t uploadedNumber_ = 0;
     uint64_t presentedNumber_ = 0;
 };
 

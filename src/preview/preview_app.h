@@ -7,8 +7,9 @@
 #include <string>
 
 #include "config/config.h"
-#include "live/display_compose.h"
-#include "preview/vulkan_window.h"
+#include "display/display_compose.h"
+#include "live/live_session.h"
+#include "ui/vulkan_window.h"
 
 namespace fovrt {
 
@@ -16,13 +17,11 @@ struct PreviewOptions {
     WindowOptions window;
     uint64_t frames = 0;          // render this many frames, show the last, exit (0: until closed)
     std::string screenshot;       // PNG of the last presented window image (the swapchain's pixels)
-    std::string record;           // session recording (live/session_record.h)
     std::string stats;            // per-frame stats, JSON Lines
     std::string captureDir;       // where F12 writes (default: <output.dir>/captures)
-    bool writeInputs = false;     // every frame's FrameInputs + spp map EXRs in <output.dir>/inputs
+    LiveSessionOptions session;   // --view, --write-inputs, --record (as `fovrt xr`)
     double lingerSeconds = 0.0;   // with frames: keep the last frame on screen this long
     DisplayLayout layout = DisplayLayout::SideBySide;
-    std::string view = "denoised";
     bool overlay = true;
     bool panel = true;
     float flySpeed = 1.0f;        // metres per second

@@ -1,7 +1,7 @@
 // SerializeScene: one canonical byte stream of everything in a loaded Scene that can change its
 // rendered image (geometry, materials, textures, lights, camera path, animation, background).
 // Used by nothing but hashing: the reference cache keys its entries on a hash of this stream
-// (app/reference_cache.h), so a field missing here would let a changed scene hit a stale entry.
+// (pipeline/reference_cache.h), so a field missing here would let a changed scene hit a stale entry.
 // Every field of every scene struct is bound by name in scene_serialize.cpp, so adding a field
 // stops that file compiling until it is either written or named there as not changing the image.
 #pragma once

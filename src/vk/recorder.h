@@ -107,7 +107,7 @@ public:
     void BeginPass(const std::string& name);
     void EndPass();
     // The command buffer being recorded (recording begins if needed), for a pass that records its
-    // own commands into a caller's command buffer (live/display_pass.h's Record) to run on this one.
+    // own commands into a caller's command buffer (display/display_pass.h's Record) to run on this one.
     VkCommandBuffer commandBuffer() { return Cmd(); }
     // Ends recording, submits, waits on a fence. Recording again starts a new command buffer
     // (and resets the timestamp pool, so read its Results() before that).

@@ -11,16 +11,15 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "app/build_info.h"
 #include "config/config_io.h"
-#include "app/denoiser_set.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "io/exr.h"
 #include "io/png.h"
 #include "live/live_loop.h"
+#include "live/live_session.h"
 #include "live/live_stats.h"
-#include "live/session_record.h"
+#include "pipeline/build_info.h"
+#include "pipeline/denoiser_set.h"
 #include "vk/context.h"
 #include "xr/xr_connection.h"
 #include "xr/xr_eye_gaze.h"
@@ -55,10 +54,6 @@ private:
     void (*previousTerm_)(int);
 };
 
-double MsBetween(LiveClock::time_point a, LiveClock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
 nlohmann::json PoseJson(const Pose& pose) {
     return {{"position", {pose.position.x, pose.position.y, pose.position.z}},
             {"orientation_xyzw", {pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w}}};
@@ -74,7 +69,6 @@ RunConfig HeadsetConfig(RunConfig config, const XrConnection& connection) {
         std::fprintf(stderr, "fovrt xr: warning: the eyes' recommended sizes differ (%ux%u, %ux%u): both use the left's\n",
                      views[0].recommendedImageRectWidth, views[0].recommendedImageRectHeight,
                      views[1].recommendedImageRectWidth, views[1].recommendedImageRectHeight);
-    // The display pass needs a Vulkan device even when the denoiser is the C++ reference.
     return config;
 }
 
@@ -84,7 +78,7 @@ public:
         connection_ = std::make_unique<XrConnection>();
         config_ = HeadsetConfig(config, *connection_);
         VulkanContextOptions vkOptions;
-        const std::string device = config_.denoise.device == "cpu" ? "auto" : config_.denoise.device;
+        const std::string device = LiveDisplayDevice(config_);
         if (options.mirror) {
             try {
                 window_.emplace(options.window);
@@ -110,10 +104,10 @@ public:
         source_.emplace(config_, options.followPath);
         loop_.emplace(config_, &*context_, *source_);
         source_->Bind(loop_->Pipeline());
-        const std::vector<std::string> views = loop_->ViewNames();
-        if (std::find(views.begin(), views.end(), options.view) == views.end())
-            Fail("--view {}: not a view of denoiser {}", options.view, loop_->Controls().denoiser);
-        loop_->SetView(options.view);
+        wiring_.emplace(*loop_, options.session,
+                        nlohmann::json{{"source", "openxr"},
+                                       {"runtime", connection_->runtimeName()},
+                                       {"system", connection_->systemName()}});
         stats_.emplace(options.stats);
 
         outDir_ = fs::path(config_.output.dir) / "xr";
@@ -122,29 +116,6 @@ public:
         frameLog_ = std::fopen((outDir_ / "frames.jsonl").c_str(), "w");
         if (!frameLog_) Fail("output.dir: cannot write {}", (outDir_ / "frames.jsonl").string());
         if (options.writeFrames) fs::create_directories(outDir_ / "frames");
-        if (options.writeInputs) {
-            const fs::path dir = fs::path(config_.output.dir) / "inputs";
-            fs::create_directories(dir);
-            loop_->OnFrameDone([dir](const LiveFrame& f) {
-                for (int eye = 0; eye < 2; ++eye) {
-                    const EyeFrame& e = f.stereo.eyes[size_t(eye)];
-                    WriteFrameInputsExr(dir / (FrameOutputStem(f.stereo.frame, eye) + ".exr"), e.inputs, e.sppMap);
-                }
-            });
-        }
-        loop_->OnFrameStart([this](const SourcedFrame& f) {
-            // Opened at the first rendered frame: a session that never renders leaves no recording.
-            if (options_.record.empty()) return;
-            if (!recorder_)
-                recorder_.emplace(options_.record, ConfigToJson(config_),
-                                  nlohmann::json{{"build", BuildInfoJson()},
-                                                 {"source", "openxr"},
-                                                 {"runtime", connection_->runtimeName()},
-                                                 {"system", connection_->systemName()}});
-            std::vector<GazeSample> samples;
-            for (const TimedGaze& g : f.gazeSamples) samples.push_back(g.gaze);
-            recorder_->Append(f.request, f.head, samples);
-        });
     }
 
     ~XrApp() {
@@ -338,7 +309,7 @@ private:
 
     void Finish() {
         loop_->Stop();  // --async: the render thread (the recorder's writer) first
-        if (recorder_) recorder_->Close();
+        wiring_->Close();
         const XrSessionEnd end = session_->Ended();
         const char* outcome = end == XrSessionEnd::Exited         ? "exited"
                               : end == XrSessionEnd::SessionLost  ? "session lost"
@@ -374,7 +345,7 @@ private:
                                   {"vulkan_enabled", context_->validationEnabled()},
                                   {"vulkan_errors", context_->validationErrors()}};
         manifest["timing"] = stats_->SummaryJson();
-        if (recorder_) manifest["recorded_to"] = recorder_->Path().string();
+        if (auto recording = wiring_->RecordedTo()) manifest["recorded_to"] = recording->string();
         WriteTextAtomically(outDir_ / "manifest.json", manifest.dump(2) + "\n");
 
         std::string gazeLine;
@@ -413,7 +384,7 @@ private:
     std::optional<XrEyeImageWriter> writer_;
     std::optional<XrFrameSource> source_;
     std::optional<LiveStats> stats_;
-    std::optional<SessionRecorder> recorder_;
+    std::optional<LiveSessionWiring> wiring_;  // its hooks run on the render thread: outlives the loop
     std::optional<LiveLoop> loop_;
     fs::path outDir_;
     std::FILE* frameLog_ = nullptr;

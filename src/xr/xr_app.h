@@ -12,19 +12,18 @@
 #include <string>
 
 #include "config/config.h"
-#include "preview/vulkan_window.h"
+#include "live/live_session.h"
+#include "ui/vulkan_window.h"
 
 namespace fovrt {
 
 struct XrOptions {
     uint64_t frames = 0;         // frames rendered and submitted, then xrRequestExitSession (0: until Ctrl-C or the runtime stops)
-    std::string record;          // session recording (live/session_record.h), as `fovrt preview --record`
+    LiveSessionOptions session;  // --view, --write-inputs, --record (as `fovrt preview`)
     std::string stats;           // per-frame timings and latency, JSON Lines
-    bool writeInputs = false;    // FrameInputs + spp map EXRs per frame and eye in <output.dir>/inputs
     bool writeFrames = false;    // what each eye was sent, as PNG, in <output.dir>/xr/frames
     bool followPath = false;     // the scene camera's path carries the headset's origin along
     float speed = 1.0f;          // scene seconds per second of display time
-    std::string view = "denoised";
     // Render on the live loop's own thread and submit the newest finished frame at every display
     // slot (with the poses it was traced from, for the compositor to reproject); otherwise each
     // frame is rendered between xrBeginFrame and xrEndFrame.

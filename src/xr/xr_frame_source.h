@@ -18,8 +18,8 @@
 #include <string>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
 #include "live/frame_source.h"
+#include "pipeline/frame_pipeline.h"
 #include "xr/xr_session.h"
 
 namespace fovrt {

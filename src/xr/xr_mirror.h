@@ -1,21 +1,21 @@
-// XrMirror: `fovrt xr --mirror`, the desktop preview window (src/preview) showing what the headset
+// XrMirror: `fovrt xr --mirror`, the desktop window (src/ui, as the preview's) showing what the headset
 // gets — both eyes as submitted, the gaze marker and fovea outline, and the preview's panel with
 // the headset's state in place of the mouse and fly-camera controls. It presents on the Vulkan
 // device the runtime created, from the session's thread, after each xrEndFrame.
 #pragma once
 
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "live/display_pass.h"
 #include "live/live_loop.h"
 #include "live/live_stats.h"
-#include "preview/imgui_layer.h"
-#include "preview/preview_panel.h"
-#include "preview/vulkan_window.h"
+#include "ui/imgui_layer.h"
+#include "ui/key_queue.h"
+#include "ui/live_display.h"
+#include "ui/preview_panel.h"
+#include "ui/vulkan_window.h"
 
 namespace fovrt {
 
@@ -36,12 +36,11 @@ public:
 
 private:
     PreviewWindow& window_;
-    std::optional<DisplayPass> display_;
+    KeyQueue keys_;  // before ImGui, which chains to its key callback
+    std::optional<LiveFrameDisplay> display_;
     std::optional<ImGuiLayer> imgui_;
     PanelState panel_;
-    std::deque<int> keys_;
     bool panelShown_ = true;
-    uint64_t uploaded_ = 0;
     LiveClock::time_point lastPresent_{};
     std::string screenshot_;  // --screenshot: the window as presented with the last of --frames
     uint64_t frames_ = 0;

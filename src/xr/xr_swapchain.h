@@ -1,6 +1,6 @@
 // XrEyeSwapchain: one eye's OpenXR swapchain at the runtime's recommended size, and
 // XrEyeImageWriter, which fills the acquired images on the device: the display pass
-// (live/display_pass.h: exposure, tone curve, sRGB encode in the shader, 8 bits) composes the eye
+// (display/display_pass.h: exposure, tone curve, sRGB encode in the shader, 8 bits) composes the eye
 // 1:1 into a buffer that is copied into the swapchain image (SPEC §11: images come and go in
 // COLOR_ATTACHMENT_OPTIMAL). The bytes are sRGB-encoded for UNORM and SRGB formats alike (copies
 // do not convert), so either shows the same picture; `--write-frames` writes these bytes as PNGs.
@@ -11,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "live/display_pass.h"
+#include "display/display_pass.h"
 #include "xr/xr_api.h"
 
 namespace fovrt {

@@ -1,4 +1,4 @@
-#include "preview/preview_panel.h"
+#include "ui/preview_panel.h"
 
 #include <GLFW/glfw3.h>
 

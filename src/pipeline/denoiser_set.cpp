@@ -1,4 +1,4 @@
-#include "app/denoiser_set.h"
+#include "pipeline/denoiser_set.h"
 
 #include <cstdio>
 

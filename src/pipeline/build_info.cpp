@@ -1,4 +1,4 @@
-#include "app/build_info.h"
+#include "pipeline/build_info.h"
 
 #include <OpenEXR/OpenEXRConfig.h>
 #include <embree3/rtcore.h>

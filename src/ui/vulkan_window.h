@@ -14,7 +14,7 @@
 #include <vulkan/vulkan.h>
 
 #include "core/image.h"
-#include "live/display_compose.h"
+#include "display/display_compose.h"
 #include "vk/allocator.h"
 #include "vk/context.h"
 

@@ -13,7 +13,7 @@
 #include "denoise/variants.h"
 #include "foveation/spp_model.h"
 #include "gaze/gaze_source.h"
-#include "live/frame_request.h"
+#include "pipeline/frame_request.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/live_options.h"
 #include "config/config_cli.h"
 #include "core/error.h"
 #include "preview/preview_app.h"
@@ -22,22 +23,17 @@ void RegisterPreviewCommand(CLI::App& app) {
     auto noOverlay = std::make_shared<bool>(false);
     auto noPanel = std::make_shared<bool>(false);
     AddConfigOptions(cmd, *config);
+    AddLiveSessionOptions(cmd, options->session);
     cmd->add_option("--frames", options->frames,
                     "render N frames, show the last, exit (0: until the window closes)");
     cmd->add_option("--screenshot", options->screenshot,
                     "with --frames: write the last presented window image (PNG, the swapchain's pixels)");
-    cmd->add_option("--record", options->record,
-                    "record the session (cameras, gaze samples, config; JSON Lines) for `run --replay`");
     cmd->add_option("--stats", options->stats, "per-frame timings and latency, JSON Lines");
-    cmd->add_flag("--write-inputs", options->writeInputs,
-                  "write every frame's FrameInputs + spp map EXRs to <output.dir>/inputs (as `run`)");
     cmd->add_option("--linger", options->lingerSeconds,
                     "with --frames: keep showing the last frame this many seconds before exiting");
     cmd->add_option("--capture-dir", options->captureDir, "where F12 saves (default <output.dir>/captures)");
     cmd->add_option("--layout", *layout, "both | left | right (one eye enlarged)")
         ->check(CLI::IsMember({"both", "left", "right"}));
-    cmd->add_option("--view", options->view,
-                    "denoised | noisy | spp | albedo | normal | depth | error | a denoiser's own view");
     cmd->add_option("--window", *window, "window size WxH");
     cmd->add_flag("--no-overlay", *noOverlay, "start without the gaze marker and fovea outline");
     cmd->add_flag("--no-panel", *noPanel, "start without the control panel (Tab shows it)");

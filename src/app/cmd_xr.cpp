@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/live_options.h"
 #include "config/config_cli.h"
 #include "core/error.h"
 #include "xr/xr_app.h"
@@ -19,21 +20,17 @@ void RegisterXrCommand(CLI::App& app) {
     auto options = std::make_shared<XrOptions>();
     auto window = std::make_shared<std::string>("960x540");
     AddConfigOptions(cmd, *config);
+    AddLiveSessionOptions(cmd, options->session);
     cmd->add_option("--frames", options->frames,
                     "render N frames, then end the session through xrRequestExitSession (0: until Ctrl-C or "
                     "the runtime stops)");
-    cmd->add_option("--record", options->record,
-                    "record the session (head poses, views, FOVs, gaze samples; JSON Lines) for `run --replay`");
     cmd->add_option("--stats", options->stats, "per-frame timings and latency, JSON Lines");
-    cmd->add_flag("--write-inputs", options->writeInputs,
-                  "write every frame's FrameInputs + spp map EXRs to <output.dir>/inputs (as `run`)");
     cmd->add_flag("--write-frames", options->writeFrames,
                   "write what each eye was sent, as PNG, to <output.dir>/xr/frames");
     cmd->add_flag("--follow-path", options->followPath,
                   "the scene camera's path carries the headset's origin (default: its start pose)");
     cmd->add_option("--speed", options->speed, "scene seconds per second of display time")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--view", options->view, "what the headset shows: denoised | noisy | spp | ... (as preview)");
     cmd->add_flag("--async", options->async,
                   "render on a thread of its own and submit the newest frame at every display slot (the "
                   "compositor reprojects it); default: one frame rendered per xrBeginFrame/xrEndFrame");

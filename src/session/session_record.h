@@ -52,7 +52,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/camera.h"
-#include "live/frame_request.h"
+#include "pipeline/frame_request.h"
 
 namespace fovrt {
 

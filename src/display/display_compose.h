@@ -8,7 +8,7 @@
 // This header is the description every reader shares: the settings, the slot viewports, the push
 // constants built from them (MakeDisplayComposePush, the one place the geometry is computed) and
 // the C++ reference of the shader (ComposeDisplayReference). The Vulkan host is DisplayPass
-// (live/display_pass.h). No Vulkan header here.
+// (display/display_pass.h). No Vulkan header here.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // DisplayPass: the Vulkan host of shaders/display_compose.comp (see display_pass.h).
-#include "live/display_pass.h"
+#include "display/display_pass.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,5 +1,5 @@
 // Geometry and the C++ reference of the display pass (see display_compose.h).
-#include "live/display_compose.h"
+#include "display/display_compose.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "app/frame_pipeline.h"
+#include "pipeline/frame_pipeline.h"
 
 #include <algorithm>
 #include <chrono>

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "config/config.h"
-#include "app/frame_pipeline.h"
 #include "live/frame_source.h"
+#include "pipeline/frame_pipeline.h"
 
 namespace fovrt {
 

@@ -1,4 +1,4 @@
-// DisplayPass: the display composition (live/display_compose.h) on the Vulkan device, recorded into
+// DisplayPass: the display composition (display/display_compose.h) on the Vulkan device, recorded into
 // the caller's command buffer so that a window thread can follow it with the copy into its
 // swapchain image and submit both together:
 //
@@ -31,7 +31,7 @@
 
 #include "core/image.h"
 #include "core/math.h"
-#include "live/display_compose.h"
+#include "display/display_compose.h"
 #include "vk/allocator.h"
 #include "vk/pipeline.h"
 

@@ -1,4 +1,4 @@
-#include "app/reference_cache.h"
+#include "pipeline/reference_cache.h"
 
 #include <cstdio>
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "live/display_compose.h"
+#include "display/display_compose.h"
 #include "live/live_loop.h"
 #include "live/live_stats.h"
-#include "preview/preview_source.h"
+#include "ui/preview_source.h"
 
 struct GLFWwindow;
 

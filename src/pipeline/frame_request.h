@@ -1,5 +1,5 @@
 // FrameRequest: what one stereo frame is rendered from. Its own header so that session
-// recordings (live/session_record.h) and the frame pipeline share it without depending on each
+// recordings (session/session_record.h) and the frame pipeline share it without depending on each
 // other.
 #pragma once
 
@@ -14,7 +14,7 @@ namespace fovrt {
 
 // What one stereo frame is rendered from. Headless runs take it from the scene's camera path and
 // the configured gaze source (FramePipeline::RequestAt); a live session builds it from the window
-// or headset, and a recording replays it (src/live/session_record.h).
+// or headset, and a recording replays it (src/session/session_record.h).
 struct FrameRequest {
     uint32_t frame = 0;        // sequential index: seeds the sampler; not frame+1 = camera cut
     double timeSeconds = 0.0;  // scene time (animation)

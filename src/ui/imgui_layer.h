@@ -4,7 +4,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "preview/vulkan_window.h"
+#include "ui/vulkan_window.h"
 
 namespace fovrt {
 

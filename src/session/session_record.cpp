@@ -6,7 +6,7 @@
 // knows its dotted key, so a missing or mistyped field names itself ("eyes[1].fov.left"); the
 // value checks (finite, unit quaternion, FOV order, sizes, order of frames and gaze samples) are
 // one function, CheckFrame, that the writer runs before writing and the reader after parsing.
-#include "live/session_record.h"
+#include "session/session_record.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "preview/vulkan_window.h"
+#include "ui/vulkan_window.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,8 +8,8 @@
 #include <GLFW/glfw3.h>
 
 #include "core/error.h"
+#include "display/display_compose.h"
 #include "io/png.h"
-#include "live/display_compose.h"
 #include "vk/recorder.h"
 #include "vk/vk_check.h"
 

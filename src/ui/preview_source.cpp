@@ -1,4 +1,4 @@
-#include "preview/preview_source.h"
+#include "ui/preview_source.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "preview/imgui_layer.h"
+#include "ui/imgui_layer.h"
 
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>

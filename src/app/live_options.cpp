@@ -1,0 +1,16 @@
+#include "app/live_options.h"
+
+namespace fovrt {
+
+void AddLiveSessionOptions(CLI::App* command, LiveSessionOptions& options) {
+    command->add_option("--view", options.view,
+                        "the view shown first: denoised | noisy | spp | albedo | normal | depth | error | a "
+                        "denoiser's own view");
+    command->add_flag("--write-inputs", options.writeInputs,
+                      "write every frame's FrameInputs + spp map EXRs to <output.dir>/inputs (as `run`)");
+    command->add_option("--record", options.record,
+                        "record the session (head pose, both eyes' cameras, gaze samples, config; JSON Lines) "
+                        "for `run --replay`");
+}
+
+}  // namespace fovrt
