@@ -154,7 +154,9 @@ TEST_CASE("C++ reference debug views: valid ranges, refusals, A-SVGF's alpha and
             const auto [lo, hi] = std::minmax_element(plane.vector().begin(), plane.vector().end());
             INFO(view << " in [" << *lo << ", " << *hi << "]");
             CHECK(*lo < *hi);
-            if (view == "historyLength") CHECK(*hi > 2.5f);
+            // Random gradient samples are large changes everywhere: the anti-lag variants restart
+            // their histories on them (what they are for), so only the others grow them.
+            if (view == "historyLength" && !v.antilag) CHECK(*hi > 2.5f);
         }
         d->Reset();
         CheckRefusals(*d, true);
