@@ -5,7 +5,7 @@ namespace fovrt::plan {
 
 // A-SVGF's temporal gradient at stratum resolution (Schied 2018 §3): claim a slot per stratum
 // (first sample wins), gather (δ, Δ) and the stratum guide, σ_l·std of the guide, à-trous
-// iterations; then the per-pixel α and λ. Without a previous frame neither runs: the reset left
+// iterations; then the per-pixel α (the anti-lag variants: their factor a) and λ. Without a previous frame neither runs: the reset left
 // α = λ = 1 (ClearValue).
 void AsvgfGradient(Writer& w, const Family& f) {
     const int iterations = f.params.asvgf.gradientIterations;
@@ -72,8 +72,10 @@ void AsvgfGradient(Writer& w, const Family& f) {
     al.Read(ASVGF_ALPHA_B_GRAD, Shared(reconstructed.kind))
         .Write(ASVGF_ALPHA_B_ALPHA, Shared(PlaneKind::AsvgfAlpha))
         .Write(ASVGF_ALPHA_B_LAMBDA, Shared(PlaneKind::AsvgfLambda));
-    w.Dispatch(OverPixels(f.Pipeline(StageShader::AsvgfAlpha), std::move(al),
-                          PushBlock::Of(AsvgfAlphaPush{f.size, f.grid, f.params.asvgf.alpha})));
+    const Specialization antilag = Specialization::Of({{FOVRT_SPEC_ASVGF_ANTILAG, f.v.antilag ? 1 : 0}});
+    w.Dispatch(OverPixels(f.Pipeline(StageShader::AsvgfAlpha, antilag), std::move(al),
+                          PushBlock::Of(AsvgfAlphaPush{f.size, f.grid, f.params.asvgf.alpha,
+                                                       f.params.asvgf.antilagGain})));
     w.Barrier();
 }
 

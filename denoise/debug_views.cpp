@@ -29,7 +29,12 @@ const std::vector<DebugView>& DebugViewTable() {
          .name = "alpha",
          .meaning = "A-SVGF's temporal alpha_i = (1 - lambda) alpha + lambda of colour and "
                     "moments (1 on a frame without a previous one)",
-         .offeredBy = [](const V& v) { return v.asvgfGradient; }},
+         .offeredBy = [](const V& v) { return v.asvgfGradient && !v.antilag; }},
+        {.id = DebugViewId::Antilag,
+         .name = "antilag",
+         .meaning = "anti-lag factor a = clamp(gain lambda, 0, 1): the history length shrinks by "
+                    "(1 - a)^power and alpha = lerp(warm-up alpha, 1, a) (1 on a frame without a previous one)",
+         .offeredBy = [](const V& v) { return v.antilag; }},
         {.id = DebugViewId::Lambda,
          .name = "lambda",
          .meaning = "A-SVGF's lambda = min(1, |delta|/Delta) of the reconstructed temporal "

@@ -24,6 +24,7 @@ enum class DebugViewId {
     HistoryLength,   // frames in the (unweighted) temporal history
     HistorySamples,  // sample-count-weighted total weight of the weighted history
     Alpha,           // A-SVGF's temporal α_i(p)
+    Antilag,         // the anti-lag variants' factor a(p)
     Lambda,          // A-SVGF's λ̂(p)
     P,               // two-history's variance-optimal blend factor
     Q,               // two-history's gradient-guided blend factor

@@ -40,10 +40,19 @@ constexpr std::array<ParamRow<SvgfParams>, 10> kSvgfRows{{
      &S::weightBySampleCount},
 }};
 
-constexpr std::array<ParamRow<AsvgfParams>, 2> kAsvgfRows{{
-    {{"denoise.asvgf.alpha", OpenMin(0, 1), "base temporal weight α (paper 0.1)"}, &AsvgfParams::alpha},
+constexpr std::array<ParamRow<AsvgfParams>, 4> kAsvgfRows{{
+    {{"denoise.asvgf.alpha", OpenMin(0, 1),
+      "base temporal weight α of asvgf, two-history-asvgf (paper 0.1); the anti-lag variants use SVGF's"},
+     &AsvgfParams::alpha},
     {{"denoise.asvgf.gradient_iterations", kIterations, "à-trous iterations at stratum resolution"},
      &AsvgfParams::gradientIterations},
+    // The anti-lag variants' (asvgf-antilag, two-history-asvgf-antilag) reaction to λ.
+    {{"denoise.asvgf.antilag_gain", Closed(0, 64),
+      "anti-lag strength: a = clamp(gain·λ, 0, 1); 0 = SVGF (Q2RTX 1)"},
+     &AsvgfParams::antilagGain},
+    {{"denoise.asvgf.antilag_power", Closed(0, 64),
+      "anti-lag history reduction: length × (1 − a)^power; 0 keeps the length (Q2RTX 10)"},
+     &AsvgfParams::antilagPower},
 }};
 
 constexpr std::array<ParamRow<TwoHistoryParams>, 2> kTwoHistoryRows{{

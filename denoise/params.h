@@ -29,6 +29,8 @@ struct SvgfParams {
 struct AsvgfParams {
     float alpha = 0.1f;            // paper 0.1
     int gradientIterations = 5;
+    float antilagGain = 1.0f;      // anti-lag variants: a = clamp(gain·λ, 0, 1) (Q2RTX flt_antilag_hf 1)
+    float antilagPower = 10.0f;    // anti-lag variants: history length × (1 − a)^power (Q2RTX 10)
 };
 
 struct TwoHistoryParams {

@@ -245,8 +245,9 @@ std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& v, const DenoiserP
             if (v.weightBySampleCount) return PlaneRef{{PlaneKind::Weight, first}, HistorySide::This};
             if (v.twoHistory) return PlaneRef{{PlaneKind::WWeight, Channel::None}, HistorySide::This};
             return std::nullopt;
-        case DebugViewId::Alpha:
-            if (v.asvgfGradient) return PlaneRef{{PlaneKind::AsvgfAlpha, Channel::None}, HistorySide::None};
+        case DebugViewId::Alpha:  // A-SVGF's α; the anti-lag variants keep their factor a in its plane
+        case DebugViewId::Antilag:
+            if (v.asvgfGradient && v.antilag == (view == DebugViewId::Antilag)) return PlaneRef{{PlaneKind::AsvgfAlpha, Channel::None}, HistorySide::None};
             return std::nullopt;
         case DebugViewId::Lambda:
             if (v.asvgfGradient) return PlaneRef{{PlaneKind::AsvgfLambda, Channel::None}, HistorySide::None};

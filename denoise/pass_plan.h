@@ -85,7 +85,7 @@ struct Binding {
 
 // Int specialization constants by constant_id (ids a shader does not declare are ignored).
 struct Specialization {
-    std::array<int32_t, 5> values{};
+    std::array<int32_t, 6> values{};  // ids 0..5 (shaders/shared_constants.h)
     uint8_t count = 0;
     // values[id] = value for each pair, −1 for the ids in between.
     static Specialization Of(std::initializer_list<std::pair<int, int32_t>> idValues);

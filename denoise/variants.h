@@ -34,6 +34,9 @@ struct DenoiserVariant {
     bool twoHistory = false;     // keeps the weighted history I_w, W_w, S_k and blends (Tu 2024)
     bool emaGradient = false;    // two-history's EMA luminance gradient g → q
     bool asvgfGradient = false;  // A-SVGF temporal gradient → per-pixel α (Schied 2018)
+    // Anti-lag (with asvgfGradient): a = clamp(gain·λ, 0, 1) shrinks the history length by
+    // (1 − a)^power before SVGF's warm-up, then α = lerp(α, 1, a) (Q2RTX); base α is SVGF's.
+    bool antilag = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device

@@ -4,8 +4,10 @@
 // asvgf_alpha — per-pixel temporal weight from the reconstructed gradient (SPEC §4).
 // Mirrors AsvgfAlphaRef.
 // Purpose: λ(s) = min(1, |δ̂|/Δ̂) (0 where Δ̂ = 0); per pixel λ = max over the 3×3 strata around
-//   its stratum; α = (1 − λ)α_base + λ.
-// Reads:  (δ̂, Δ̂) per stratum.  Writes: α and λ per pixel.
+//   its stratum; α = (1 − λ)α_base + λ. FOVRT_SPEC_ASVGF_ANTILAG (the anti-lag variants): the α
+//   plane holds the anti-lag factor a = clamp(gain·λ, 0, 1), which two_history_reproject turns
+//   into α together with the history length.
+// Reads:  (δ̂, Δ̂) per stratum.  Writes: α (or a) and λ per pixel.
 #include "shared_constants.h"
 #include "push_constants.h"
 #include "common/two_history_constants.glsl"
@@ -13,6 +15,7 @@
 #include "common/access.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+layout(constant_id = FOVRT_SPEC_ASVGF_ANTILAG) const bool kAntilag = false;
 
 FOVRT_DECLARE_BINDINGS(ASVGF_ALPHA_BINDING_LIST)  // shaders/bindings/asvgf_alpha.h
 
@@ -32,5 +35,5 @@ void main() {
         }
     int i = p.y * pc.size.x + p.x;
     lambda_out[i] = lambda;
-    alpha_out[i] = (1.0 - lambda) * pc.alpha + lambda;
+    alpha_out[i] = kAntilag ? clamp(pc.antilag_gain * lambda, 0.0, 1.0) : (1.0 - lambda) * pc.alpha + lambda;
 }

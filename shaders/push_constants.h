@@ -20,9 +20,11 @@
 // svgf_atrous: step = 2^iteration.
 #define FOVRT_PUSH_SVGF_ATROUS(F) \
     F(ivec2, size) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance)
-// two_history_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS).
-#define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F) \
-    F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev)
+// two_history_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS);
+// antilag_power: the ANTILAG flag's history reduction (1 − a)^power.
+#define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F)                                                          \
+    F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev) \
+    F(float, antilag_power)
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
@@ -33,8 +35,9 @@
     F(ivec2, size) F(ivec2, grid) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance)
 // asvgf_stratum_sigma
 #define FOVRT_PUSH_ASVGF_SIGMA(F) F(ivec2, grid) F(float, sigma_luminance)
-// asvgf_alpha: alpha = the base temporal weight.
-#define FOVRT_PUSH_ASVGF_ALPHA(F) F(ivec2, size) F(ivec2, grid) F(float, alpha)
+// asvgf_alpha: alpha = the base temporal weight; antilag_gain: a = clamp(gain·λ, 0, 1) with
+// FOVRT_SPEC_ASVGF_ANTILAG.
+#define FOVRT_PUSH_ASVGF_ALPHA(F) F(ivec2, size) F(ivec2, grid) F(float, alpha) F(float, antilag_gain)
 // bandwidth_copy: elements as rows × columns.
 #define FOVRT_PUSH_BANDWIDTH(F) F(ivec2, size)
 // display_compose (shaders/common/display_constants.glsl; filled by MakeDisplayComposePush in
@@ -97,9 +100,9 @@ FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 // 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
 static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
               sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
-              sizeof(TwoHistoryReprojectPush) == 24 && sizeof(TwoHistoryGradientPush) == 24 &&
+              sizeof(TwoHistoryReprojectPush) == 28 && sizeof(TwoHistoryGradientPush) == 24 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
-              sizeof(AsvgfAlphaPush) == 20 && sizeof(BandwidthPush) == 8);
+              sizeof(AsvgfAlphaPush) == 24 && sizeof(BandwidthPush) == 8);
 // Seven ivec2 first, then the scalars: 80 bytes, within the 128 every device allows.
 static_assert(sizeof(DisplayComposePush) == 80);
 static_assert(sizeof(RaeConvPush) == 48 && sizeof(RaePoolPush) == 24);

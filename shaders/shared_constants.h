@@ -40,6 +40,9 @@
 // (denoise/bench/atrous_probe.h): every edge-stopping weight is 1, so the dispatch keeps its fetches and
 // sums and loses the weight arithmetic. Never set by a denoiser.
 #define FOVRT_SPEC_ATROUS_UNIT_WEIGHTS 4
+// Specialization constant (constant_id, bool) of asvgf_alpha: the anti-lag variants' output, the
+// anti-lag factor a = clamp(gain·λ, 0, 1) instead of A-SVGF's α.
+#define FOVRT_SPEC_ASVGF_ANTILAG 5
 // 7×7 spatial variance estimate radius.
 #define FOVRT_MOMENTS_RADIUS 3
 // Maximum à-trous iterations (SvgfParams::atrousIterations range).

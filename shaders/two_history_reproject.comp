@@ -4,7 +4,8 @@
 // histories (SPEC §5; A-SVGF's per-pixel α, SPEC §4). Mirrors TwoHistoryReprojectRef.
 // Purpose: sanitise the illumination (NaN/Inf → 0, negative → 0, counted); back-project every
 //   history with SVGF's tested taps (common/reprojection.glsl); β = min(1, (1/α − 1)/W_u,prev)
-//   (0 on disocclusion); W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
+//   (0 on disocclusion; ANTILAG: α = antilag_alpha of the map's a, W_u,prev and the base α);
+//   W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
 //   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)·lum(Σx − ΣI_u,prev)
 //   over the channels (GRADIENT flag; g is one float, the signed luminance of the gradient).
 // Channels: FOVRT_CHANNELS (1: "two_history_reproject", one channel = direct + indirect summed
@@ -45,6 +46,7 @@ const bool kCombined = (kFlags & TH_REPROJECT_FLAG_COMBINED) != 0u;
 const bool kAlphaMap = (kFlags & TH_REPROJECT_FLAG_ALPHA_MAP) != 0u;
 const bool kWriteColor = (kFlags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 const bool kGradient = (kFlags & TH_REPROJECT_FLAG_GRADIENT) != 0u;
+const bool kAntilag = (kFlags & TH_REPROJECT_FLAG_ANTILAG) != 0u;
 
 FOVRT_DECLARE_BINDINGS(TH_REPROJECT_BINDING_LIST)  // shaders/bindings/two_history_reproject.h
 #if NCH == 2
@@ -128,8 +130,6 @@ bool reproject_pixel(int i) {
     }
     bool success = taps.count > 0;
     float n = float(max(LOAD_U16(sample_count, i), 1u));
-    float alpha = kAlphaMap ? alpha_map[i] : pc.alpha;
-    float alpha_m = kAlphaMap ? alpha_map[i] : pc.alpha_moments;
 
     // Per-pixel state, once for all channels (W_u from channel 0's length: both channels hold the same).
     float wu_prev = 0.0, ww_prev = 0.0;
@@ -140,6 +140,13 @@ bool reproject_pixel(int i) {
             GATHER1(prev_ww, taps, ww_prev);
             GATHER3(prev_s, taps, s_prev);
         }
+    }
+    float alpha = kAlphaMap ? alpha_map[i] : pc.alpha;
+    float alpha_m = kAlphaMap ? alpha_map[i] : pc.alpha_moments;
+    if (kAntilag) {  // the map holds a; pc.alpha, pc.alpha_moments are the base weights
+        float a = alpha_map[i];
+        alpha = antilag_alpha(a, pc.alpha, wu_prev, pc.antilag_power);
+        alpha_m = mix(pc.alpha_moments, 1.0, a);
     }
     float beta = success ? two_history_decay(alpha, wu_prev) : 0.0;
     float wu = beta * wu_prev + 1.0;

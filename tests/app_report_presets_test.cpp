@@ -98,11 +98,11 @@ TEST_CASE("svgf-paper preset: uniform 1 spp, 5 iterations, α = 0.2", "[app][pre
     CHECK(p.config.denoise.params.svgf.alphaColor == Approx(0.2f));
 }
 
-TEST_CASE("asvgf-lag preset: room and pillars, svgf vs asvgf", "[app][presets]") {
+TEST_CASE("asvgf-lag preset: room and pillars, svgf vs asvgf vs asvgf-antilag", "[app][presets]") {
     Preset p = LoadPreset("asvgf-lag.toml");
     CheckCommon(p);
     CHECK(p.scenes == std::vector<std::string>{"room", "pillars"});
-    CHECK(p.variants == std::vector<std::string>{"svgf", "asvgf"});
+    CHECK(p.variants == std::vector<std::string>{"svgf", "asvgf", "asvgf-antilag"});
     CHECK(p.config.denoise.params.asvgf.alpha == Approx(0.1f));
 }
 

@@ -1,6 +1,7 @@
 // Temporal lag (SPEC §4, A-SVGF paper §1): a light switches off at frame k. The renderer's
 // gradient samples re-shade last frame's sample with last frame's noise, so they show the drop
-// exactly; A-SVGF must reach the new value within a few frames while SVGF (α = 0.2) lags.
+// exactly; A-SVGF must reach the new value within a few frames while SVGF (α = 0.2) lags, and the
+// anti-lag variants within 3 frames.
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -72,6 +73,14 @@ std::vector<double> RegionMeans(
     return means;
 }
 
+// Region means of a denoiser over the lag sequence.
+std::vector<double> RunLag(Denoiser& d) {
+    return RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { d.Denoise(f, o); });
+}
+
+// Within 10 % of the step (settling time), within 10 % of the new value.
+constexpr double kStepTolerance = 0.1 * (kLitBefore - kLitAfter), kValueTolerance = 0.1 * kLitAfter;
+
 // Frames after the switch until the region mean stays within `tolerance` of the new value.
 int FramesToSettle(const std::vector<double>& means, double tolerance) {
     int last = kSwitch - 1;
@@ -88,14 +97,11 @@ TEST_CASE("A-SVGF follows a light switched off; SVGF lags", "[asvgf][lag]") {
     auto asvgf = CreateDenoiser("asvgf", "cpu", params);
     auto thAsvgf = CreateDenoiser("two-history-asvgf", "cpu", params);
     auto th = CreateDenoiser("two-history", "cpu", params);
-    auto run = [](Denoiser& d) {
-        return RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { d.Denoise(f, o); });
-    };
     const auto mSvgf =
         RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { svgf.Denoise(f, o); });
-    const auto mAsvgf = run(*asvgf);
-    const auto mThAsvgf = run(*thAsvgf);
-    const auto mTh = run(*th);
+    const auto mAsvgf = RunLag(*asvgf);
+    const auto mThAsvgf = RunLag(*thAsvgf);
+    const auto mTh = RunLag(*th);
     std::printf("light off at frame %d (%.2f -> %.2f); region mean per frame after the switch:\n",
                 kSwitch, kLitBefore, kLitAfter);
     std::printf("  t   svgf    asvgf   2h-asvgf two-history\n");
@@ -106,11 +112,10 @@ TEST_CASE("A-SVGF follows a light switched off; SVGF lags", "[asvgf][lag]") {
     // A 10× drop gives λ = 0.9, α = 0.91: 9 % of the old value (90 % of the new one) survives the
     // first frame by the paper's own formula, and only the base α (plus the restarted history's
     // 1/W_u) removes it afterwards — so the second criterion takes longer for every method.
-    const double step = 0.1 * (kLitBefore - kLitAfter), value = 0.1 * kLitAfter;
-    const int sSvgf = FramesToSettle(mSvgf, step), sAsvgf = FramesToSettle(mAsvgf, step);
-    const int sThAsvgf = FramesToSettle(mThAsvgf, step), sTh = FramesToSettle(mTh, step);
-    const int vSvgf = FramesToSettle(mSvgf, value), vAsvgf = FramesToSettle(mAsvgf, value);
-    const int vThAsvgf = FramesToSettle(mThAsvgf, value), vTh = FramesToSettle(mTh, value);
+    const int sSvgf = FramesToSettle(mSvgf, kStepTolerance), sAsvgf = FramesToSettle(mAsvgf, kStepTolerance);
+    const int sThAsvgf = FramesToSettle(mThAsvgf, kStepTolerance), sTh = FramesToSettle(mTh, kStepTolerance);
+    const int vSvgf = FramesToSettle(mSvgf, kValueTolerance), vAsvgf = FramesToSettle(mAsvgf, kValueTolerance);
+    const int vThAsvgf = FramesToSettle(mThAsvgf, kValueTolerance), vTh = FramesToSettle(mTh, kValueTolerance);
     std::printf(
         "frames until within 10%% of the step: svgf %d, asvgf %d, two-history-asvgf %d, "
         "two-history %d\n",
@@ -128,4 +133,40 @@ TEST_CASE("A-SVGF follows a light switched off; SVGF lags", "[asvgf][lag]") {
     CHECK(sSvgf >= 8);
     CHECK(vAsvgf < vSvgf);
     CHECK(vThAsvgf < vSvgf);
+    // The paper-faithful rows as measured before the anti-lag variants existed (this test's output
+    // then): they keep their formulas.
+    CHECK(vSvgf == 20);
+    CHECK(vAsvgf == 11);
+}
+
+// The anti-lag variants at SVGF's base α (their own: denoise.svgf.alpha_color), the paper's 0.2
+// and the thesis's 0.05: a = clamp(λ, 0, 1) = 0.9 shrinks the history to W·0.1^10 ≈ 0, so the
+// switch frame keeps nothing of the lit value and the next ones average fresh samples (1/2, 1/3, …).
+TEST_CASE("anti-lag A-SVGF follows a light switched off within 3 frames", "[asvgf][lag][antilag]") {
+    for (float alpha : {0.2f, 0.05f}) {
+        DenoiserParams params;
+        params.svgf.alphaColor = params.svgf.alphaMoments = alpha;
+        auto svgf = test::MakeSvgf(params.svgf);
+        auto antilag = CreateDenoiser("asvgf-antilag", "cpu", params);
+        auto thAntilag = CreateDenoiser("two-history-asvgf-antilag", "cpu", params);
+        const auto mSvgf = RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { svgf.Denoise(f, o); });
+        const auto mAntilag = RunLag(*antilag);
+        const auto mThAntilag = RunLag(*thAntilag);
+        std::printf("base alpha %.2f; region mean per frame after the switch:\n", alpha);
+        std::printf("  t   svgf    asvgf-antilag  2h-asvgf-antilag\n");
+        for (int t = kSwitch - 1; t < kSwitch + 6; ++t)
+            std::printf("  %2d  %.4f  %.4f         %.4f\n", t, mSvgf[size_t(t)], mAntilag[size_t(t)],
+                        mThAntilag[size_t(t)]);
+        const int vSvgf = FramesToSettle(mSvgf, kValueTolerance);
+        const int vAntilag = FramesToSettle(mAntilag, kValueTolerance);
+        const int vThAntilag = FramesToSettle(mThAntilag, kValueTolerance);
+        std::printf("base alpha %.2f: frames until within 10%% of the new value: svgf %d, asvgf-antilag %d, "
+                    "two-history-asvgf-antilag %d\n",
+                    alpha, vSvgf, vAntilag, vThAntilag);
+        INFO("base alpha " << alpha);
+        CHECK(mAntilag[kSwitch - 1] == Approx(kLitBefore).epsilon(0.05));
+        CHECK(mThAntilag[kSwitch - 1] == Approx(kLitBefore).epsilon(0.05));
+        CHECK(vAntilag <= 3);
+        CHECK(vThAntilag <= 3);
+    }
 }

@@ -105,6 +105,7 @@ TEST_CASE("variant rows are consistent: sample counts where a history weighs by 
         if (v.twoHistory)
             CHECK(v.emaGradient != v.asvgfGradient);  // q comes from exactly one of them
         CHECK(!(v.emaGradient && !v.twoHistory));     // g feeds only the blend's q
+        CHECK(!(v.antilag && !v.asvgfGradient));      // anti-lag acts on A-SVGF's λ
         CHECK((v.family == DenoiserFamily::Svgf) == !(v.twoHistory || v.asvgfGradient));
     }
 }

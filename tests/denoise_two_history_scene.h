@@ -29,6 +29,15 @@ inline void MakeStaticPlane(FrameInputs& f, int w, int h, uint32_t frameIndex) {
         }
 }
 
+// The thesis's Lissajous gaze scaled to 64×64 (amplitude 20 px, 30 frames per second) and its
+// fovea, a disc of radius 12 px.
+inline bool InMovingFovea(int frame, int x, int y) {
+    const float t = float(frame) / 30.0f;
+    const vec2 gaze(32.0f + 20.0f * std::sin(2.0f * kPi * 0.4f * t + kPi / 2),
+                    32.0f + 20.0f * std::sin(2.0f * kPi * 0.5f * t));
+    return glm::length(vec2(float(x) + 0.5f, float(y) + 0.5f) - gaze) < 12.0f;
+}
+
 // The project's plain SVGF (C++ reference backend, denoise/reference/svgf_family_ref.h).
 inline SvgfFamilyReferenceDenoiser MakeSvgf(const SvgfParams& svgf) {
     DenoiserParams params;

@@ -83,15 +83,7 @@ struct FoveaResult {
 };
 
 constexpr int kFoveaW = 64, kFoveaH = 64, kFoveaFrames = 120, kFoveaWarmup = 30;
-
-// The thesis's Lissajous gaze scaled to 64×64 (amplitude 20 px, 30 frames per second) and its
-// fovea, a disc of radius 12 px.
-bool InMovingFovea(int frame, int x, int y) {
-    const float t = float(frame) / 30.0f;
-    const vec2 gaze(32.0f + 20.0f * std::sin(2.0f * kPi * 0.4f * t + kPi / 2),
-                    32.0f + 20.0f * std::sin(2.0f * kPi * 0.5f * t));
-    return glm::length(vec2(float(x) + 0.5f, float(y) + 0.5f) - gaze) < 12.0f;
-}
+using test::InMovingFovea;
 
 // Moving-fovea run (thesis protocol scaled to 64×64): n = 8 in the fovea, n = 1 outside.
 // relMSE (ε = 0.01) against the truth, averaged over frames 30..119.

@@ -1,8 +1,8 @@
-// two-history, asvgf and two-history-asvgf on Vulkan vs the C++ reference, pass by pass, on random
+// two-history, asvgf, two-history-asvgf and the anti-lag variants on Vulkan vs the C++ reference, pass by pass, on random
 // FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random sample counts, random
 // gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
 // luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
-// two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α, λ), and the final output
+// two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α or the anti-lag factor, λ), and the final output
 // (blend + remaining iterations + modulation); fp32 and fp16 histories; zero validation errors.
 // Also: with constant n the Vulkan two-history equals the Vulkan SVGF.
 // Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) for ≥ 99.5 % of values (lavapipe's exp/pow differ from
@@ -138,7 +138,7 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
           "[vulkan][two_history][asvgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     DenoiserParams params;
-    for (const char* name : {"two-history", "asvgf", "two-history-asvgf"}) {
+    for (const char* name : {"two-history", "asvgf", "two-history-asvgf", "asvgf-antilag", "two-history-asvgf-antilag"}) {
         const DenoiserVariant& v = FindDenoiserVariant(name);
         SECTION(std::string("fp32 separate channels: ") + std::string(v.name)) {
             RunPair(v, params, 4);
@@ -193,7 +193,7 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
     }
     // Every patch-edge column through the 3×3 fallback (the Vulkan reprojection's box pass):
     // a broken box pass changes ~6 % of the pixels, beyond the 0.5 % tolerated above.
-    for (const char* name : {"two-history", "asvgf", "two-history-asvgf"}) {
+    for (const char* name : {"two-history", "asvgf", "two-history-asvgf", "asvgf-antilag"}) {
         const DenoiserVariant& v = FindDenoiserVariant(name);
         SECTION(std::string("fp32, 3x3 reprojection fallback: ") + std::string(v.name)) {
             const int boxPixels = test::CountBoxFallbackPixels(RandomTwoHistoryFrame(64, 64, 1, true),
@@ -209,11 +209,12 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.svgf.atrousIterations = 1;
         RunPair(FindDenoiserVariant("two-history"), params, 4, 64, 64, true);
     }
-    SECTION("fp16 histories: two-history and asvgf") {
+    SECTION("fp16 histories: two-history, asvgf and asvgf-antilag") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
         params.precision = Precision::Fp16;
         RunPair(FindDenoiserVariant("two-history"), params, 3);
         RunPair(FindDenoiserVariant("asvgf"), params, 3);
+        RunPair(FindDenoiserVariant("asvgf-antilag"), params, 3);
     }
 }
 

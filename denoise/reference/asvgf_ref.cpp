@@ -102,7 +102,7 @@ void AsvgfGradientAtrousRef(const Plane<vec2>& in, const Plane<StratumGuide>& gu
 }
 
 void AsvgfAlphaRef(const Plane<vec2>& reconstructed, int width, int height, float alpha,
-                   Plane<float>& alphaOut, Plane<float>& lambdaOut) {
+                   Plane<float>& alphaOut, Plane<float>& lambdaOut, std::optional<float> antilagGain) {
     const int gw = reconstructed.width(), gh = reconstructed.height();
     Plane<float> lambdaS(gw, gh, 0.0f);
     tbb::parallel_for(0, gh, [&](int sy) {
@@ -123,7 +123,8 @@ void AsvgfAlphaRef(const Plane<vec2>& reconstructed, int width, int height, floa
                         lambda = std::max(lambda, lambdaS(sx + dx, sy + dy));
             // α is monotonic in λ, so the max of α is the α of the max λ.
             lambdaOut(x, y) = lambda;
-            alphaOut(x, y) = (1.0f - lambda) * alpha + lambda;
+            alphaOut(x, y) = antilagGain ? std::clamp(*antilagGain * lambda, 0.0f, 1.0f)
+                                         : (1.0f - lambda) * alpha + lambda;
         }
     });
 }

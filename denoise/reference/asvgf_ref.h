@@ -3,9 +3,12 @@
 //   asvgf_gradient_scatter  gradient samples → per 3×3 stratum (δ, Δ) + stratum guide
 //   asvgf_gradient_atrous   5 iterations of a joint-bilateral 3×3-box à-trous on (δ, Δ)
 //   asvgf_alpha             λ = min(1, |δ̂|/Δ̂), α_s = (1−λ)α + λ, per pixel max over 3×3 strata
+//                           (anti-lag variants: a = clamp(gain·λ, 0, 1) in α's place)
 // The per-pixel α drives the temporal accumulation of colour and moments (asvgf and
 // two-history-asvgf, denoise/reference/two_history_ref.h).
 #pragma once
+
+#include <optional>
 
 #include "core/frame_inputs.h"
 #include "core/image.h"
@@ -37,9 +40,12 @@ int AsvgfScatterGradientsRef(const FrameInputs& frame, Plane<vec2>& gradient,
 void AsvgfGradientAtrousRef(const Plane<vec2>& in, const Plane<StratumGuide>& guide, int iteration,
                             Plane<vec2>& out, const SvgfParams& svgf);
 
-// Stage asvgf_alpha: per-pixel temporal α (and λ, the same max over 3×3 strata) for W×H.
+// Stage asvgf_alpha: per-pixel temporal α (and λ, the same max over 3×3 strata) for W×H. With
+// `antilagGain` (the anti-lag variants) alphaOut holds the anti-lag factor a = clamp(gain·λ, 0, 1)
+// instead; two_history_reproject turns it into α with the history length (AntilagAlpha).
 void AsvgfAlphaRef(const Plane<vec2>& reconstructed, int width, int height, float alpha,
-                   Plane<float>& alphaOut, Plane<float>& lambdaOut);
+                   Plane<float>& alphaOut, Plane<float>& lambdaOut,
+                   std::optional<float> antilagGain = std::nullopt);
 
 // The three stages in order (gradientIterations à-trous iterations). `reconstructed` receives
 // (δ̂, Δ̂) per stratum.

@@ -130,6 +130,8 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     ro.twoHistory = variant_.twoHistory;
     ro.gradient = variant_.emaGradient;
     ro.writeColorHistory = writeColor;
+    ro.antilag = variant_.antilag;
+    ro.antilagPower = params_.asvgf.antilagPower;
     ro.precision = params_.precision;
     const std::array<const Plane<vec3>*, 2> colors = {&in.direct, &in.indirect};
     TwoHistoryReprojectRef(colors, int(channels_.size()), combined ? &in.indirect : nullptr, in, prevGeometry_.View(),
@@ -182,7 +184,8 @@ void SvgfFamilyReferenceDenoiser::Run(const AsvgfGradientStage& s, const FrameIn
 
 void SvgfFamilyReferenceDenoiser::Run(const AsvgfAlphaStage& s, const FrameInputs& in, Plane<vec3>&) {
     reconstructed_ = s.reconstructed;
-    AsvgfAlphaRef(Gradient(s.reconstructed), in.width(), in.height(), params_.asvgf.alpha, alpha_, lambda_);
+    AsvgfAlphaRef(Gradient(s.reconstructed), in.width(), in.height(), params_.asvgf.alpha, alpha_, lambda_,
+                  variant_.antilag ? std::optional(params_.asvgf.antilagGain) : std::nullopt);
 }
 
 size_t SvgfFamilyReferenceDenoiser::ChannelIndex(Channel channel) const {

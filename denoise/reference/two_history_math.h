@@ -43,6 +43,18 @@ inline float TwoHistoryDecay(float alpha, float wuPrev) {
     return std::min(1.0f, (1.0f / alpha - 1.0f) / wuPrev);
 }
 
+// The anti-lag variants' α (Q2RTX's history-length reduction in weight form): the anti-lag factor
+// a shrinks the history length W_u,prev to W_u,prev·(1 − a)^power, SVGF's warm-up max(α, 1/(length
+// + 1)) runs on the shrunk length, and a pulls the weight to 1: α' = lerp(warm-up α, 1, a). As
+// α' ≥ max(α, 1/(W_u,prev + 1)), TwoHistoryDecay(α', W_u,prev) gives W_u = 1/α': the history keeps
+// counting from the shrunk length, so the frames after a change average as 1/2, 1/3, … and not
+// with the base α. a = 0 is SVGF's warm-up; power = 0 keeps the length (Schied's α = lerp(α, 1, a)).
+inline float AntilagAlpha(float a, float alpha, float wuPrev, float power) {
+    const float keep = power > 0.0f ? std::pow(std::max(1.0f - a, 0.0f), power) : 1.0f;
+    const float warm = std::max(alpha, 1.0f / (wuPrev * keep + 1.0f));
+    return warm + (1.0f - warm) * a;
+}
+
 // W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k.
 inline TwoHistoryWeights AccumulateWeights(const TwoHistoryWeights& prev, float beta, float n) {
     TwoHistoryWeights w;

@@ -52,8 +52,6 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                 hasPrev ? FindReprojectionTaps(frame, prevGeometry, x, y) : ReprojectionTaps{};
             const bool success = taps.count > 0;
             const float n = float(std::max<uint16_t>(frame.sampleCount[i], 1));
-            const float alpha = alphaMap ? (*alphaMap)[i] : options.alpha;
-            const float alphaM = alphaMap ? (*alphaMap)[i] : options.alphaMoments;
 
             TwoHistoryWeights wPrev;
             if (success) {
@@ -63,6 +61,13 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                     const vec3 s = GatherTaps(prev.powerSums, taps);
                     wPrev.sMinus1 = s.x, wPrev.s0 = s.y, wPrev.s1 = s.z;
                 }
+            }
+            float alpha = alphaMap ? (*alphaMap)[i] : options.alpha;
+            float alphaM = alphaMap ? (*alphaMap)[i] : options.alphaMoments;
+            if (options.antilag) {
+                const float a = (*alphaMap)[i];
+                alpha = AntilagAlpha(a, options.alpha, wPrev.wu, options.antilagPower);
+                alphaM = glm::mix(options.alphaMoments, 1.0f, a);
             }
             // β = 0 on disocclusion: every sum restarts from this frame's sample.
             const float beta = success ? TwoHistoryDecay(alpha, wPrev.wu) : 0.0f;

@@ -27,6 +27,9 @@
 //   both histories and their moments, and q = λ̂(p) (the same 3×3-strata max that gives α_i):
 //   a measured temporal change pushes the blend to the unweighted history in proportion to its
 //   relative size, the role the EMA gradient plays in two-history.
+// - The anti-lag variants (asvgf-antilag, two-history-asvgf-antilag) take SVGF's base α and turn
+//   λ into a history-length reduction (AntilagAlpha, after Q2RTX's asvgf_temporal): both
+//   histories decay with the same β, so I_w, W_w and S_k shrink with W_u.
 // - Feedback after à-trous iteration k > 1 is impossible for the two-history variants (the blend
 //   would feed back); they feed back iteration 1 (or the unfiltered accumulation for k = 0).
 #pragma once
@@ -63,6 +66,10 @@ struct TwoHistoryReprojectOptions {
     bool twoHistory = true;          // also accumulate I_w, W_w and S_k
     bool gradient = true;            // and g (two-history only)
     bool writeColorHistory = false;  // feed back the unfiltered accumulation (no à-trous feedback)
+    // Anti-lag variants: alphaMap holds the anti-lag factor a; α = AntilagAlpha(a, alpha, W_u,prev,
+    // antilagPower) and α of moments lerp(alphaMoments, 1, a) (two_history_math.h).
+    bool antilag = false;
+    float antilagPower = 10.0f;
     Precision precision = Precision::Fp32;
 };
 

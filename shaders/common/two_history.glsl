@@ -1,5 +1,5 @@
 // Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/reference/two_history_math.h line by
-// line (TwoHistoryDecay, AccumulateWeights, TwoHistoryOptimalBlend, TwoHistoryGradientBlend).
+// line (TwoHistoryDecay, AntilagAlpha, AccumulateWeights, TwoHistoryOptimalBlend, TwoHistoryGradientBlend).
 // Weights are packed as (W_u, W_w) and power sums as (S_{-1}, S_0, S_1).
 #ifndef FOVRT_TWO_HISTORY_GLSL
 #define FOVRT_TWO_HISTORY_GLSL
@@ -10,6 +10,14 @@ float two_history_decay(float alpha, float wu_prev) {
     alpha = clamp(alpha, 1e-4, 1.0);
     if (wu_prev <= 0.0) return 0.0;
     return min(1.0, (1.0 / alpha - 1.0) / wu_prev);
+}
+
+// Anti-lag: the history length shrinks by (1 − a)^power, SVGF's warm-up runs on the shrunk length,
+// and a pulls the weight to 1 (AntilagAlpha).
+float antilag_alpha(float a, float alpha, float wu_prev, float power) {
+    float keep = power > 0.0 ? pow(max(1.0 - a, 0.0), power) : 1.0;
+    float warm = max(alpha, 1.0 / (wu_prev * keep + 1.0));
+    return warm + (1.0 - warm) * a;
 }
 
 // p = clamp((a − b)/(a − 2b + c), 0, 1) with a = S_1/W_w², b = S_0/(W_w W_u), c = S_{-1}/W_u².

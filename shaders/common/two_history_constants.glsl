@@ -21,6 +21,7 @@
 #define TH_REPROJECT_FLAG_ALPHA_MAP 4u     // α from the per-pixel map
 #define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
 #define TH_REPROJECT_FLAG_GRADIENT 16u     // accumulate g (two-history; not two-history-asvgf)
+#define TH_REPROJECT_FLAG_ANTILAG 32u      // the map holds the anti-lag factor a (ALPHA_MAP too)
 
 
 // ---- Bindings declared once (shaders/bindings.h) of the two-history and A-SVGF passes.
