@@ -3,7 +3,8 @@
 # entries are refused or re-rendered by content, never used; a merge names every bad or missing
 # shard at once; one writer per output folder; an earlier run's outputs are moved aside, never
 # left beside a new manifest; SIGINT / SIGTERM stop with one line, no temporaries and no manifest;
-# an unwritable output.dir gives the system's reason; a full disk at the first write leaves nothing.
+# an unwritable output.dir gives the system's reason; a full disk (a file-size limit, a small tmpfs)
+# leaves nothing of the failed command's.
 # Every wait is for an event (a line in frames.jsonl, a process's exit), never a fixed time.
 # Usage: integrity_check.sh FOVRT WORK_DIR
 set -uo pipefail
@@ -183,6 +184,36 @@ if [[ $rc -eq 0 ]]; then bad "a run with no space exited 0"
 elif [[ ! -e full && $(grep -c "error" <<<"$err") -eq 1 ]] && tail -1 <<<"$err" | grep -q "File too large"; then
   ok "no space: nothing left ($(tail -1 <<<"$err" | cut -c1-100)...)"
 else bad "no space: exit $rc, left $(find full 2>&1 | head -5); $err"; fi
+
+# A real full disk: a small tmpfs, mounted in a private mount namespace (unshare: as root, or as a
+# user where user namespaces are allowed; skipped with a message where neither works). Each case
+# leaves the folder's listing (disk.ls), stderr (disk.err) and exit status (disk.rc) outside it.
+# on_full_disk SIZE SETUP COMMAND: SETUP, then COMMAND, run in $work with the tmpfs at disk/.
+on_full_disk() {
+  rm -rf disk disk.ls disk.err disk.rc; mkdir disk
+  unshare -rm bash -c 'mount -t tmpfs -o size=$1 tmpfs disk || exit 99; eval "$2"; eval "$3" >/dev/null 2>disk.err
+                       echo $? >disk.rc; (cd disk && find . -mindepth 1 | sort) >disk.ls' _ "$@" 2>/dev/null
+}
+if ! on_full_disk 64k true true; then
+  echo "skipped: full-disk probes (cannot mount a tmpfs in a private mount namespace: not root, no user namespaces)"
+else
+  # 64 KiB: the first frame's second EXR finds the disk full.
+  on_full_disk 64k true "'$fovrt' run ${small[*]} --set run.frames=1 --set output.dir=disk/out"
+  if [[ $(cat disk.rc) -eq 0 ]]; then bad "a run on a full disk exited 0"
+  elif [[ ! -s disk.ls && $(grep -c "error" disk.err) -eq 1 ]] && tail -1 disk.err | grep -q "No space left on device"; then
+    ok "full disk, new folder: nothing left ($(tail -1 disk.err | cut -c1-90)...)"
+  else bad "full disk, new folder: exit $(cat disk.rc), left $(head -5 disk.ls | tr '\n' ' '); $(cat disk.err)"; fi
+  # A folder holding an earlier complete run and a file of the user's: the new run's frames fill
+  # the disk; the earlier run stays whole in previous-run/, the new run leaves nothing at the top.
+  on_full_disk 300k "'$fovrt' run ${small[*]} --set run.frames=1 --set output.dir=disk >/dev/null 2>&1; echo mine >disk/notes.txt" \
+    "'$fovrt' run ${small[*]} --set run.frames=8 --set output.dir=disk"
+  top=$(grep -v '^\./previous-run/' disk.ls | tr '\n' ' ')
+  if [[ $(cat disk.rc) -eq 0 ]]; then bad "a run filling the disk exited 0"
+  elif [[ $top == "./.fovrt.lock ./notes.txt ./previous-run " ]] && grep -q '^\./previous-run/manifest.json$' disk.ls &&
+       [[ $(grep -c "error" disk.err) -eq 1 ]] && tail -1 disk.err | grep -q "No space left on device"; then
+    ok "disk full during a run in a folder that existed: only the lock, the user's file and previous-run/ left ($(tail -1 disk.err | cut -c1-80)...)"
+  else bad "disk full in an existing folder: exit $(cat disk.rc), top: $top; $(cat disk.err)"; fi
+fi
 
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -411,6 +412,46 @@ TEST_CASE("bad scene files give one fovrt::Error naming file and key", "[scene][
         CheckMessage(ErrorOf(f), f, {"e.toml:6", "material.emission", "is above 1e+09"});
         f = dir.Write("e.toml", std::string(kMinimalScene) + "[[material]]\nname = \"m\"\nbase_color = [1, -1, 1]\n");
         CheckMessage(ErrorOf(f), f, {"material.base_color", "must be >= 0"});
+    }
+    SECTION("glTF material colours: the MTL's rule, naming the file and the material") {
+        std::ifstream in(test::SourceDir() / "tests/data/scene/quad.gltf");
+        const std::string quad((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string authored = "\"emissiveFactor\": [\n    1,\n    0.5,\n    0.25\n   ]";
+        REQUIRE(quad.find(authored) != std::string::npos);
+        auto scene = dir.Write("s.toml", "[[mesh]]\nfile = \"q.gltf\"\n");
+        // The quad's material 'glow' with its emission (and, once, its base colour) replaced.
+        const std::string authoredBase = "\"baseColorFactor\": [\n     0.5,\n     0.25,\n     1,\n     1\n    ]";
+        REQUIRE(quad.find(authoredBase) != std::string::npos);
+        auto withEmission = [&](const std::string& emission, const std::string& baseColor = "") {
+            std::string text = quad;
+            text.replace(text.find(authored), authored.size(), emission);
+            if (!baseColor.empty()) text.replace(text.find(authoredBase), authoredBase.size(), baseColor);
+            dir.Write("q.gltf", text);
+        };
+        auto strength = [](const std::string& value) {
+            return "\"emissiveFactor\": [1, 1, 1], \"extensions\": "
+                   "{\"KHR_materials_emissive_strength\": {\"emissiveStrength\": " + value + "}}";
+        };
+        const std::vector<std::tuple<std::string, std::string, std::string, std::string>> bad = {
+            {"\"emissiveFactor\": [3e38, 3e38, 3e38]", "", "emissiveFactor: ", "is above 1e+09"},
+            {"\"emissiveFactor\": [1, -0.5, 1]", "", "emissiveFactor: ", "must be >= 0"},
+            {"\"emissiveFactor\": [0, 0, 0]", "\"baseColorFactor\": [0.5, -1, 0.5, 1]",
+             "pbrMetallicRoughness.baseColorFactor: ", "must be >= 0"},
+            {"\"emissiveFactor\": [0, 0, 0]", "\"baseColorFactor\": [2e9, 0.5, 0.5, 1]",
+             "pbrMetallicRoughness.baseColorFactor: ", "is above 1e+09"},
+            {strength("-2"), "", "KHR_materials_emissive_strength.emissiveStrength: ", "must be >= 0"},
+            {strength("\"bright\""), "", "KHR_materials_emissive_strength.emissiveStrength: ", "not a number"},
+            // Each factor within the rule, their product (the radiance rendered) not.
+            {"\"emissiveFactor\": [1, 1e5, 1], \"extensions\": "
+             "{\"KHR_materials_emissive_strength\": {\"emissiveStrength\": 1e5}}",
+             "", "emissiveFactor * KHR_materials_emissive_strength.emissiveStrength: ", "10000000000 is above 1e+09"}};
+        for (const auto& [emission, baseColor, key, problem] : bad) {
+            INFO(emission << " " << baseColor);
+            withEmission(emission, baseColor);
+            CheckMessage(ErrorOf(scene), scene, {"q.gltf", "material 'glow'", key, problem});
+        }
+        withEmission(strength("300"));
+        CHECK(LoadScene(scene).materials[0].emission == vec3(300.0f));
     }
     SECTION("textures: missing and corrupt") {
         auto scene = dir.Write("s.toml", "[[mesh]]\nfile = \"t.obj\"\n");

@@ -13,6 +13,7 @@
 
 #include "config/config_io.h"
 #include "app/experiment.h"
+#include "core/atomic_file.h"
 #include "core/content_hash.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -57,7 +58,7 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
                                  {"variants", variants},
                                  {"vdp_maps", vdpMaps},
                                  {"has_images", !layers.empty()}};
-    std::ofstream(dir / "visuals.json") << meta.dump() << "\n";
+    WriteTextAtomically(dir / "visuals.json", meta.dump() + "\n");  // a full disk is an error, not a cut-off file
     if (!layers.empty()) WriteExrLayers(dir / "visuals.exr", v.width, v.height, layers);
 }
 

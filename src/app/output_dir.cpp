@@ -82,6 +82,7 @@ OutputDir::OutputDir(fs::path path, std::string key) : path_(std::move(path)), k
 
 OutputDir::~OutputDir() {
     RemoveCreated();
+    RemoveAdded();
     if (lockFd_ >= 0) ::close(lockFd_);  // releases the lock
 }
 
@@ -145,6 +146,20 @@ void OutputDir::MoveAsideEarlierOutputs(bool sceneDirs) {
     if (!moved.empty())
         std::fprintf(stderr, "fovrt: moved the earlier outputs in %s (%s) to %s/\n", path_.c_str(),
                      fmt::format("{}", fmt::join(moved, ", ")).c_str(), previous.c_str());
+    if (folderLocked_ && created_.empty()) {  // a new folder goes whole on failure (RemoveCreated)
+        kept_.emplace();
+        for (const auto& entry : fs::directory_iterator(path_, ec)) kept_->insert(entry.path().filename().string());
+    }
+}
+
+void OutputDir::RemoveAdded() {
+    if (!kept_) return;
+    std::error_code ec;
+    std::vector<fs::path> added;
+    for (const auto& entry : fs::directory_iterator(path_, ec))
+        if (!kept_->count(entry.path().filename().string())) added.push_back(entry.path());
+    for (const fs::path& p : added) fs::remove_all(p, ec);
+    kept_.reset();
 }
 
 void OutputDir::RemoveCreated() {

@@ -10,12 +10,16 @@
 // experiment still run side by side (they write disjoint parts).
 //
 // A command that fails leaves no trace of its own: when this object created the folder and holds
-// its folder lock, the folder goes whole (nobody else can have written into it); otherwise only the
-// directories it created, and only while empty. Keep() (success, or an interrupt whose outputs the
-// command reports) keeps everything.
+// its folder lock, the folder goes whole (nobody else can have written into it); in a folder that
+// existed, under its folder lock, what the command added at its top once the earlier outputs were
+// moved aside (a frames.jsonl, half a frame's images) goes; otherwise only the directories it
+// created, and only while empty. Keep() (success, or an interrupt whose outputs the command
+// reports) keeps everything.
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -45,10 +49,14 @@ public:
     // outputs. Files fovrt does not write are left alone. Says what it moved on stderr.
     void MoveAsideEarlierOutputs(bool sceneDirs);
     // The command succeeded (or was interrupted and says what it left): keep what it wrote.
-    void Keep() { created_.clear(); }
+    void Keep() {
+        created_.clear();
+        kept_.reset();
+    }
 
 private:
     void RemoveCreated();
+    void RemoveAdded();
 
     std::filesystem::path path_;
     std::string key_;
@@ -56,6 +64,9 @@ private:
     std::filesystem::path lockPath_;
     int lockFd_ = -1;
     bool folderLocked_ = false;
+    // A folder that existed, under the folder lock: what was at its top once the earlier outputs
+    // were moved aside; everything else there is this command's (RemoveAdded).
+    std::optional<std::set<std::string>> kept_;
 };
 
 }  // namespace fovrt

@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -34,13 +36,14 @@ void WriteAtomically(const std::filesystem::path& path,
     }
 }
 
-void WriteTextAtomically(const std::filesystem::path& path, const std::string& text) {
+void WriteTextAtomically(const std::filesystem::path& path, std::string_view text) {
     WriteAtomically(path, [&](const std::filesystem::path& temp) {
+        errno = 0;  // the stream keeps no reason; the failed system call leaves it in errno
         std::ofstream out(temp, std::ios::binary);
-        if (!out) Fail("cannot open '{}' for writing", temp.string());
-        out << text;
+        if (!out) Fail("cannot open '{}' for writing: {}", temp.string(), std::strerror(errno));
+        out.write(text.data(), std::streamsize(text.size()));
         out.close();
-        if (!out) Fail("failed writing '{}'", temp.string());
+        if (!out) Fail("failed writing '{}': {}", path.string(), std::strerror(errno));
     });
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace fovrt {
 
@@ -14,7 +15,8 @@ namespace fovrt {
 void WriteAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tempPath)>& write);
 
-// Convenience: writes a whole string atomically.
-void WriteTextAtomically(const std::filesystem::path& path, const std::string& text);
+// Convenience: writes whole text (or bytes) atomically; a failed write (a full disk) is one
+// fovrt::Error naming `path` and the system's reason.
+void WriteTextAtomically(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace fovrt

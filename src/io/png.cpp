@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -52,13 +51,7 @@ void WriteRgb8Png(const std::filesystem::path& path, int width, int height,
                   const std::vector<uint8_t>& rgb) {
     if (width <= 0 || height <= 0) Fail("cannot write PNG '{}': empty image ({}x{})", path.string(), width, height);
     std::vector<uint8_t> png = EncodeRgb8Png(width, height, rgb);
-    WriteAtomically(path, [&](const std::filesystem::path& temp) {
-        std::ofstream out(temp, std::ios::binary);
-        if (!out) Fail("cannot open '{}' for writing", temp.string());
-        out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-        out.close();
-        if (!out) Fail("failed writing PNG '{}'", path.string());
-    });
+    WriteTextAtomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 void WritePng(const std::filesystem::path& path, const Plane<vec3>& hdr, float exposure, Tonemap tonemap) {

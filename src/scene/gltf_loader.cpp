@@ -161,16 +161,30 @@ Material ConvertMaterial(const tinygltf::Model& model, int index, const std::str
     Material out;
     out.name = m.name.empty() ? fmt::format("{}/material{}", std::filesystem::path(file).stem().string(), index) : m.name;
     std::string what = fmt::format("material '{}'", out.name);
+    // The colour rule of the MTL reader and the scene file's overrides, on the file's doubles
+    // before they become floats (3e38 is a finite float whose square is not).
+    auto checkColour = [&](const std::string& key, const std::vector<double>& values) {
+        std::string problem = MaterialColourProblem(values);
+        if (!problem.empty()) Fail("{}: {}: {}: {}", file, what, key, problem);
+    };
+    checkColour("pbrMetallicRoughness.baseColorFactor", pbr.baseColorFactor);
     if (pbr.baseColorFactor.size() >= 3)
         out.baseColor = vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]));
     out.metallic = float(pbr.metallicFactor);
     out.roughness = float(pbr.roughnessFactor);
-    if (m.emissiveFactor.size() == 3)
-        out.emission = vec3(float(m.emissiveFactor[0]), float(m.emissiveFactor[1]), float(m.emissiveFactor[2]));
+    checkColour("emissiveFactor", m.emissiveFactor);
+    std::vector<double> emission = m.emissiveFactor.size() == 3 ? m.emissiveFactor : std::vector<double>{0.0, 0.0, 0.0};
     if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
+        const std::string key = "KHR_materials_emissive_strength.emissiveStrength";
         const tinygltf::Value& strength = it->second.Get("emissiveStrength");
-        if (strength.IsNumber()) out.emission *= float(strength.GetNumberAsDouble());
+        if (strength.Type() != tinygltf::NULL_TYPE) {  // absent: the extension's default, 1
+            if (!strength.IsNumber()) Fail("{}: {}: {}: not a number", file, what, key);
+            checkColour(key, {strength.GetNumberAsDouble()});
+            for (double& c : emission) c *= strength.GetNumberAsDouble();
+            checkColour("emissiveFactor * " + key, emission);
+        }
     }
+    out.emission = vec3(float(emission[0]), float(emission[1]), float(emission[2]));
     out.emissionTwoSided = m.doubleSided;  // glTF's back-face flag; the BSDF is two-sided anyway
     if (!IsFinite(out.baseColor) || !IsFinite(out.emission) || !std::isfinite(out.metallic) || !std::isfinite(out.roughness))
         Fail("{}: {} has non-finite factors", file, what);
