@@ -34,6 +34,9 @@ struct DenoiserVariant {
     bool twoHistory = false;     // keeps the weighted history I_w, W_w, S_k and blends (Tu 2024)
     bool emaGradient = false;    // two-history's EMA luminance gradient g → q
     bool asvgfGradient = false;  // A-SVGF temporal gradient → per-pixel α (Schied 2018)
+    // Luminance stabilisation of the filtered illumination with its own history, clamped to the
+    // neighbourhood's spread (two-history-stable, denoise/two_history_stable.md).
+    bool stabilize = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device
