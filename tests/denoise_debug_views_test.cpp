@@ -83,6 +83,7 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
         {"asvgf", {"historyLength", "alpha", "lambda"}},
         {"two-history", {"historyLength", "historySamples", "p", "q"}},
         {"two-history-asvgf", {"historyLength", "historySamples", "alpha", "lambda", "p", "q"}},
+        {"two-history-stable", {"historyLength", "historySamples", "p", "q"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show
         {"rae-spp", {}},
     };
