@@ -62,6 +62,18 @@ constexpr std::array<ParamRow<TwoHistoryParams>, 2> kTwoHistoryRows{{
      &TwoHistoryParams::qScale},
 }};
 
+// Ranges: α_s = 1 passes the filtered frame through (no stabilisation); small α_s averages over
+// ~1/α_s frames. k = 0 pins the history to the neighbourhood mean; large k (≥ 4) leaves it
+// unclamped wherever the variance estimate is honest.
+constexpr std::array<ParamRow<TwoHistoryStableParams>, 2> kTwoHistoryStableRows{{
+    {{"denoise.two_history_stable.alpha", OpenMin(0, 1),
+      "stabilisation weight alpha_s of this frame's luminance (two-history-stable)"},
+     &TwoHistoryStableParams::alpha},
+    {{"denoise.two_history_stable.sigma_scale", Closed(0, 1e6),
+      "k: stabilised history clamped to the 3x3 mean +- k sigma (two-history-stable)"},
+     &TwoHistoryStableParams::sigmaScale},
+}};
+
 constexpr std::array<PrecisionRow, 2> kPrecisionRows{{
     {Precision::Fp32, "fp32", "32-bit float histories"},
     {Precision::Fp16, "fp16", "16-bit float histories (half the history bytes)"},
@@ -73,7 +85,8 @@ constexpr bool WellFormed(const std::array<Row, N>& rows) {
         if (ParamRowProblem(row.info) != nullptr) return false;
     return true;
 }
-static_assert(WellFormed(kSvgfRows) && WellFormed(kAsvgfRows) && WellFormed(kTwoHistoryRows),
+static_assert(WellFormed(kSvgfRows) && WellFormed(kAsvgfRows) && WellFormed(kTwoHistoryRows) &&
+                  WellFormed(kTwoHistoryStableRows),
               "a parameter row lacks a key or doc, or has an empty range (see ParamRowProblem)");
 
 }  // namespace
@@ -91,6 +104,7 @@ std::string ParamRange::Describe() const {
 std::span<const ParamRow<SvgfParams>> SvgfParamTable() { return kSvgfRows; }
 std::span<const ParamRow<AsvgfParams>> AsvgfParamTable() { return kAsvgfRows; }
 std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable() { return kTwoHistoryRows; }
+std::span<const ParamRow<TwoHistoryStableParams>> TwoHistoryStableParamTable() { return kTwoHistoryStableRows; }
 std::span<const PrecisionRow> PrecisionTable() { return kPrecisionRows; }
 
 const char* PrecisionName(Precision precision) {

@@ -38,6 +38,14 @@ struct TwoHistoryParams {
     float qScale = 1.0f;           // S
 };
 
+// two-history-stable's stabilisation pass (denoise/two_history_stable.md): the stabilised
+// luminance L_s ← lerp(clamp(L_s,prev, m ± k·σ), L, max(α_s, 1/W_u)) per channel, with m and σ²
+// the 3×3 mean and spread of the filtered luminance plus its variance estimate.
+struct TwoHistoryStableParams {
+    float alpha = 0.2f;       // α_s: weight of this frame's luminance
+    float sigmaScale = 1.0f;  // k: history clamp half-width in standard deviations
+};
+
 // The recurrent denoising autoencoder (SPEC §12): which trained network to run. A relative path
 // is looked up in the working directory, then in the source tree (the committed weights).
 inline constexpr const char* kRaeWeightsKey = "denoise.rae.weights";
@@ -52,6 +60,7 @@ struct DenoiserParams {
     SvgfParams svgf;
     AsvgfParams asvgf;
     TwoHistoryParams twoHistory;
+    TwoHistoryStableParams twoHistoryStable;
     RaeParams rae;
     Precision precision = Precision::Fp32;
 };
@@ -86,6 +95,7 @@ struct ParamRow {
 std::span<const ParamRow<SvgfParams>> SvgfParamTable();            // [denoise.svgf]
 std::span<const ParamRow<AsvgfParams>> AsvgfParamTable();          // [denoise.asvgf]
 std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable();  // [denoise.two_history]
+std::span<const ParamRow<TwoHistoryStableParams>> TwoHistoryStableParamTable();  // [denoise.two_history_stable]
 
 // The precision enum's table: the names the key denoise.precision takes.
 inline constexpr const char* kPrecisionKey = "denoise.precision";
@@ -104,7 +114,7 @@ bool PrecisionFromName(const std::string& name, Precision& precision);
 Precision ParsePrecision(const std::string& name, const std::string& what);
 
 // Calls visit(info, value) for every row of every table, in table order ([denoise.svgf],
-// [denoise.asvgf], [denoise.two_history]); `value` is the member inside `params` (float&, int& or
+// [denoise.asvgf], [denoise.two_history], [denoise.two_history_stable]); `value` is the member inside `params` (float&, int& or
 // bool&; const when `params` is).
 template <class Params, class Visit>
 void ForEachDenoiserParam(Params& params, Visit&& visit) {
@@ -115,6 +125,7 @@ void ForEachDenoiserParam(Params& params, Visit&& visit) {
     walk(params.svgf, SvgfParamTable());
     walk(params.asvgf, AsvgfParamTable());
     walk(params.twoHistory, TwoHistoryParamTable());
+    walk(params.twoHistoryStable, TwoHistoryStableParamTable());
 }
 
 // What is wrong with a table row (no key, no doc, min > max, an empty open range), or nullptr.

@@ -205,6 +205,9 @@ struct BlendStage {  // TwoHistoryBlendRef per plane: `out` blended in place wit
 struct EmaGradientStage {  // TwoHistoryGradientRef: the filtered gradient and these → q
     std::vector<PlaneId> illumination;
 };
+struct StabilizeStage {  // TwoHistoryStabilizeRef per plane: `in` → `out`, its L_s history in `history`
+    std::vector<StagePlane> planes;
+};
 struct ModulateStage {  // SvgfModulateRef
     std::vector<PlaneId> illumination;
 };
@@ -217,7 +220,7 @@ struct AsvgfAlphaStage {  // AsvgfAlphaRef: α and λ from the reconstructed gra
 };
 using ReferenceStage =
     std::variant<std::monostate, ReprojectStage, FilterMomentsStage, AtrousStage, BlendStage,
-                 EmaGradientStage, ModulateStage, AsvgfGradientStage, AsvgfAlphaStage>;
+                 EmaGradientStage, ModulateStage, AsvgfGradientStage, AsvgfAlphaStage, StabilizeStage>;
 
 // ---- Passes ---------------------------------------------------------------------------------
 

@@ -70,6 +70,8 @@ namespace fovrt {
     X(PowerSums, "powerSums", Shared, History, HISTORY(3), NONE)                                    \
     X(Gradient, "gradient", Shared, History, HISTORY(1), NONE)                                      \
     X(Q, "q", Shared, Scratch, PIXELS(4), NONE)                                                     \
+    /* two-history-stable: the stabilised luminance of each channel's filtered illumination */   \
+    X(StableLum, "stableLum", PerChannel, History, HISTORY(1), NONE)                                \
     /* A-SVGF: samples, stratum claims, (δ, Δ) ping-pong, stratum guide, σ_l·std, α, λ */          \
     X(AsvgfSamples, "asvgf.samples", Shared, Scratch, GRADIENT_SAMPLES, WHEN_READ(gradientSamples)) \
     X(AsvgfClaim, "asvgf.claim", Shared, Scratch, STRATA(4), NONE)                                  \

@@ -27,6 +27,8 @@ namespace fovrt {
     X(TwoHistoryGradient, "two_history_gradient", TH_GRADIENT_BINDING_LIST,                      \
       TH_GRADIENT_BINDING_LIST)                                                                  \
     X(TwoHistoryBlend, "two_history_blend", TH_BLEND_BINDING_LIST, TH_BLEND_BINDING_LIST)        \
+    X(TwoHistoryStabilize, "two_history_stabilize", TH_STABILIZE_BINDING_LIST,                   \
+      TH_STABILIZE_BINDING_LIST)                                                                 \
     X(AsvgfClaim, "asvgf_gradient_claim", ASVGF_CLAIM_BINDING_LIST, ASVGF_CLAIM_BINDING_LIST)    \
     X(AsvgfGather, "asvgf_gradient_gather", ASVGF_GATHER_BINDING_LIST, ASVGF_GATHER_BINDING_LIST) \
     X(AsvgfSigma, "asvgf_stratum_sigma", ASVGF_SIGMA_BINDING_LIST, ASVGF_SIGMA_BINDING_LIST)     \

@@ -175,11 +175,45 @@ void Atrous(Writer& w, const Family& f, int i) {
     if (both) Blend(w, f, K::Illum0, K::WIllum0);
 }
 
+// two_history_stabilize per channel (two-history-stable): the filtered plane `filtered` → the
+// other ping-pong plane (free after the last à-trous iteration), with each channel's stabilised
+// luminance history; returns the plane it wrote.
+PlaneKind Stabilize(Writer& w, const Family& f, PlaneKind filtered) {
+    using K = PlaneKind;
+    const K out = filtered == K::Illum1 ? K::Illum0 : K::Illum1;
+    StabilizeStage stage;
+    for (Channel ch : f.channels) stage.planes.push_back({ch, {filtered, ch}, {out, ch}, This(K::StableLum, ch)});
+    w.Pass("two_history_stabilize", "two_history_stabilize", stage);
+    const TwoHistoryStableParams& s = f.params.twoHistoryStable;
+    PushBlock push = PushBlock::Of(TwoHistoryStabilizePush{f.size, s.alpha, s.sigmaScale, 0u});
+    FOVRT_PUSH_PER_FRAME(push, TwoHistoryStabilizePush, has_prev, FrameValue::HasPrevious);
+    for (const StagePlane& p : stage.planes) {
+        Bindings b;
+        b.Read(TH_STABILIZE_B_ILLUM_IN, Scratch(filtered, p.channel))
+            .Write(TH_STABILIZE_B_ILLUM_OUT, Scratch(out, p.channel))
+            .Read(TH_STABILIZE_B_DEPTH, This(K::Depth))
+            .Read(TH_STABILIZE_B_NORMAL, This(K::Normal))
+            .Read(TH_STABILIZE_B_OBJECT, This(K::ObjectId))
+            .Read(TH_STABILIZE_B_PREV_DEPTH, Previous(K::Depth))
+            .Read(TH_STABILIZE_B_PREV_NORMAL, Previous(K::Normal))
+            .Read(TH_STABILIZE_B_PREV_OBJECT, Previous(K::ObjectId))
+            .Read(TH_STABILIZE_B_DEPTH_GRAD, Shared(K::DepthGradient))
+            .Read(TH_STABILIZE_B_PREV_PIXEL, Shared(K::PrevPixel))
+            .Read(TH_STABILIZE_B_WU, This(K::Length, f.First()))
+            .Read(TH_STABILIZE_B_PREV_STABLE, Previous(K::StableLum, p.channel))
+            .Write(TH_STABILIZE_B_CUR_STABLE, This(K::StableLum, p.channel));
+        w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryStabilize), std::move(b), push));
+    }
+    w.Barrier();
+    return out;
+}
+
 // svgf_modulate: Modulation()·(filtered direct + indirect) + emission → output, then downloaded
 // with the sanitising counters.
 void ModulateAndDownload(Writer& w, const Family& f) {
     using K = PlaneKind;
-    const K last = FilteredIlluminationPlane(f.svgf.atrousIterations) ? K::Illum1 : K::Illum0;
+    K last = FilteredIlluminationPlane(f.svgf.atrousIterations) ? K::Illum1 : K::Illum0;
+    if (f.v.stabilize) last = Stabilize(w, f, last);
     ModulateStage stage;
     for (Channel ch : f.channels) stage.illumination.push_back({last, ch});
     w.Pass("modulate", "modulate", stage);

@@ -37,6 +37,9 @@ struct DenoiserVariant {
     // Anti-lag (with asvgfGradient): a = clamp(gain·λ, 0, 1) shrinks the history length by
     // (1 − a)^power before SVGF's warm-up, then α = lerp(α, 1, a) (Q2RTX); base α is SVGF's.
     bool antilag = false;
+    // Luminance stabilisation of the filtered illumination with its own history, clamped to the
+    // neighbourhood's spread (two-history-stable, denoise/two_history_stable.md).
+    bool stabilize = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device

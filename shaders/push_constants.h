@@ -28,6 +28,9 @@
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
+// two_history_stabilize: alpha = α_s, sigma_scale = k (TwoHistoryStableParams).
+#define FOVRT_PUSH_TWO_HISTORY_STABILIZE(F) \
+    F(ivec2, size) F(float, alpha) F(float, sigma_scale) F(uint, has_prev)
 // asvgf_gradient_claim, asvgf_gradient_gather: image size, stratum grid, uploaded samples.
 #define FOVRT_PUSH_ASVGF_SAMPLES(F) F(ivec2, size) F(ivec2, grid) F(uint, count)
 // asvgf_gradient_atrous: step in strata.
@@ -87,6 +90,7 @@ FOVRT_DECLARE_PUSH(SvgfFilterMomentsPush, FOVRT_PUSH_SVGF_FILTER_MOMENTS);
 FOVRT_DECLARE_PUSH(SvgfAtrousPush, FOVRT_PUSH_SVGF_ATROUS);
 FOVRT_DECLARE_PUSH(TwoHistoryReprojectPush, FOVRT_PUSH_TWO_HISTORY_REPROJECT);
 FOVRT_DECLARE_PUSH(TwoHistoryGradientPush, FOVRT_PUSH_TWO_HISTORY_GRADIENT);
+FOVRT_DECLARE_PUSH(TwoHistoryStabilizePush, FOVRT_PUSH_TWO_HISTORY_STABILIZE);
 FOVRT_DECLARE_PUSH(AsvgfSamplesPush, FOVRT_PUSH_ASVGF_SAMPLES);
 FOVRT_DECLARE_PUSH(AsvgfAtrousPush, FOVRT_PUSH_ASVGF_ATROUS);
 FOVRT_DECLARE_PUSH(AsvgfSigmaPush, FOVRT_PUSH_ASVGF_SIGMA);
@@ -101,6 +105,7 @@ FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
               sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
               sizeof(TwoHistoryReprojectPush) == 28 && sizeof(TwoHistoryGradientPush) == 24 &&
+              sizeof(TwoHistoryStabilizePush) == 20 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
               sizeof(AsvgfAlphaPush) == 24 && sizeof(BandwidthPush) == 8);
 // Seven ivec2 first, then the scalars: 80 bytes, within the 128 every device allows.

@@ -158,7 +158,7 @@ expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --s
 expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
 # The denoiser bench at a small size: every denoiser has a per-pass byte model and a bound.
 if "$fovrt" bench --denoisers --width 64 --height 48 --frames 1 >bench.txt 2>err.txt; then
-  for name in svgf svgf-weighted asvgf two-history two-history-asvgf asvgf-antilag two-history-asvgf-antilag; do
+  for name in svgf svgf-weighted asvgf two-history two-history-asvgf asvgf-antilag two-history-asvgf-antilag two-history-stable; do
     grep -q "^$name \[" bench.txt && ok "bench times $name" || bad "bench lacks $name"
   done
   grep -q "no per-pass byte model" bench.txt && bad "bench: a denoiser lacks a byte model" || ok "bench: byte models"
@@ -197,7 +197,7 @@ expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
 expect_error "unknown denoiser names the nearest" "did you mean 'two-history'" memory --width 64 --height 64 --denoiser two-histroy
 expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 64 --denoiser svgf --precision fp8
 # info lists every denoiser variant of the table with its summary.
-"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 7 ]] &&
+"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 8 ]] &&
   grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||
   bad "info: $(cat info.txt err.txt)"
 # config --keys: one line per denoiser parameter from the tables (key, default, range, doc).

@@ -85,6 +85,7 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
         {"two-history-asvgf", {"historyLength", "historySamples", "alpha", "lambda", "p", "q"}},
         {"asvgf-antilag", {"historyLength", "antilag", "lambda"}},
         {"two-history-asvgf-antilag", {"historyLength", "historySamples", "antilag", "lambda", "p", "q"}},
+        {"two-history-stable", {"historyLength", "historySamples", "p", "q"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show
         {"rae-spp", {}},
     };

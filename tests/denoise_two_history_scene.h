@@ -45,6 +45,29 @@ inline SvgfFamilyReferenceDenoiser MakeSvgf(const SvgfParams& svgf) {
     return SvgfFamilyReferenceDenoiser(FindDenoiserVariant("svgf"), params);
 }
 
+// 3 + a·sin(x/6)·cos(y/9): a = 0 is a flat plane (no curvature, so spatial filtering is unbiased).
+inline float Truth(int x, int y, float amplitude = 1.0f) {
+    return 3.0f + amplitude * std::sin(float(x) / 6.0f) * std::cos(float(y) / 9.0f);
+}
+
+// Noisy frame: direct = truth + N(0, σ²/n), indirect = truth/2 + N(0, σ²/(4n)).
+inline void NoisyFrame(FrameInputs& f, int w, int h, uint32_t frame, float sigma,
+                       const std::function<int(int, int)>& spp, std::mt19937& rng, float amplitude = 1.0f) {
+    MakeStaticPlane(f, w, h, frame);
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int n = spp(x, y);
+            f.sampleCount(x, y) = uint16_t(n);
+            const float s = sigma / std::sqrt(float(n));
+            const float t = Truth(x, y, amplitude);
+            f.direct(x, y) = vec3(t + s * g(rng), t + s * g(rng), t + s * g(rng));
+            f.indirect(x, y) = vec3(0.5f * t + 0.5f * s * g(rng));
+        }
+}
+
+inline constexpr int kFoveaW = 64, kFoveaH = 64, kFoveaFrames = 120, kFoveaWarmup = 30;
+
 // relMSE (SPEC §8, ε = 0.01) over the pixels where mask(x, y) is true.
 inline double RelMse(const Plane<vec3>& y, const Plane<vec3>& r,
                      const std::function<bool(int, int)>& mask) {

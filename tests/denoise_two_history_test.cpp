@@ -19,33 +19,14 @@
 #include "test_support.h"
 
 using namespace fovrt;
+using fovrt::test::InMovingFovea;
+using fovrt::test::kFoveaFrames;
+using fovrt::test::kFoveaH;
+using fovrt::test::kFoveaW;
+using fovrt::test::kFoveaWarmup;
 using fovrt::test::MakeStaticPlane;
-
-namespace {
-
-// 3 + a·sin(x/6)·cos(y/9): a = 0 is a flat plane (no curvature, so spatial filtering is unbiased).
-float Truth(int x, int y, float amplitude = 1.0f) {
-    return 3.0f + amplitude * std::sin(float(x) / 6.0f) * std::cos(float(y) / 9.0f);
-}
-
-// Noisy frame: direct = truth + N(0, σ²/n), indirect = truth/2 + N(0, σ²/(4n)).
-void NoisyFrame(FrameInputs& f, int w, int h, uint32_t frame, float sigma,
-                const std::function<int(int, int)>& spp, std::mt19937& rng,
-                float amplitude = 1.0f) {
-    MakeStaticPlane(f, w, h, frame);
-    std::normal_distribution<float> g(0.0f, 1.0f);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const int n = spp(x, y);
-            f.sampleCount(x, y) = uint16_t(n);
-            const float s = sigma / std::sqrt(float(n));
-            const float t = Truth(x, y, amplitude);
-            f.direct(x, y) = vec3(t + s * g(rng), t + s * g(rng), t + s * g(rng));
-            f.indirect(x, y) = vec3(0.5f * t + 0.5f * s * g(rng));
-        }
-}
-
-}  // namespace
+using fovrt::test::NoisyFrame;
+using fovrt::test::Truth;
 
 TEST_CASE("two-history with constant n equals SVGF", "[two_history]") {
     for (int n : {1, 4}) {
@@ -81,9 +62,6 @@ namespace {
 struct FoveaResult {
     double foveaTh = 0, foveaSvgf = 0, peripheryTh = 0, peripherySvgf = 0;
 };
-
-constexpr int kFoveaW = 64, kFoveaH = 64, kFoveaFrames = 120, kFoveaWarmup = 30;
-using test::InMovingFovea;
 
 // Moving-fovea run (thesis protocol scaled to 64×64): n = 8 in the fovea, n = 1 outside.
 // relMSE (ε = 0.01) against the truth, averaged over frames 30..119.

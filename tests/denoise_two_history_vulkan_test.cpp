@@ -1,8 +1,9 @@
-// two-history, asvgf, two-history-asvgf and the anti-lag variants on Vulkan vs the C++ reference, pass by pass, on random
-// FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random sample counts, random
-// gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
+// two-history, asvgf, two-history-asvgf, the anti-lag variants and two-history-stable on Vulkan vs the C++
+// reference, pass by pass, on random FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random
+// sample counts, random gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
 // luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
-// two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α or the anti-lag factor, λ), and the final output
+// two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α or the anti-lag factor, λ),
+// two_history_stabilize (the stabilised luminance), and the final output
 // (blend + remaining iterations + modulation); fp32 and fp16 histories; zero validation errors.
 // Also: with constant n the Vulkan two-history equals the Vulkan SVGF.
 // Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) for ≥ 99.5 % of values (lavapipe's exp/pow differ from
@@ -110,6 +111,11 @@ void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int f
                   Compare(Floats(vk.ReadBuffer("gradient." + side), half), st.gradient, histTol));
         if (variant.emaGradient)
             check("q", Compare(test::AsFloats(vk.ReadBuffer("q")), ref.Q(), tol));
+        if (variant.stabilize)
+            for (size_t c = 0; c < channels.size(); ++c)
+                check("stabilised luminance",
+                      Compare(Floats(vk.ReadBuffer(channels[c] + ".stableLum." + side), half),
+                              ref.StableLuminance(c), histTol));
         if (asvgf) {
             check("alpha", Compare(test::AsFloats(vk.ReadBuffer("asvgf.alpha")), ref.Alpha(), tol));
             check("lambda",
@@ -208,6 +214,26 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 1;
         RunPair(FindDenoiserVariant("two-history"), params, 4, 64, 64, true);
+    }
+    // The stabilisation pass (its own bilinear reprojection, 3×3 moments, clamp) on every layout.
+    SECTION("two-history-stable: fp32 separate channels, thesis iterations") {
+        params.svgf.atrousIterations = 2;
+        RunPair(FindDenoiserVariant("two-history-stable"), params, 4);
+    }
+    SECTION("two-history-stable: fp32 combined, odd size 67x45, 3 iterations") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 3;
+        RunPair(FindDenoiserVariant("two-history-stable"), params, 3, 67, 45);
+    }
+    SECTION("two-history-stable: 3x3 reprojection fallback pixels restart the stabilisation") {
+        params.svgf.atrousIterations = 1;
+        params.twoHistoryStable.sigmaScale = 0.5f;  // the clamp engaged on many pixels
+        RunPair(FindDenoiserVariant("two-history-stable"), params, 4, 64, 64, true);
+    }
+    SECTION("two-history-stable: fp16 histories") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        RunPair(FindDenoiserVariant("two-history-stable"), params, 3);
     }
     SECTION("fp16 histories: two-history, asvgf and asvgf-antilag") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");

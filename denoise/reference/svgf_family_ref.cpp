@@ -67,6 +67,10 @@ void SvgfFamilyReferenceDenoiser::Allocate(int width, int height) {
             for (SvgfHistory& h : svgf_[size_t(side)]) h.Allocate(width, height, params_.svgf.weightBySampleCount);
         }
     }
+    for (auto& side : stable_)
+        for (size_t c = 0; c < side.size(); ++c)
+            side[c].Resize(variant_.stabilize && c < channels_.size() ? width : 0,
+                           variant_.stabilize && c < channels_.size() ? height : 0, 0.0f);
     prevGeometry_.Allocate(width, height);  // background: nothing reprojects
     if (variant_.asvgfGradient) {  // what a reset leaves in α and λ: the gradient needs a previous frame
         alpha_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfAlpha)));
@@ -186,6 +190,20 @@ void SvgfFamilyReferenceDenoiser::Run(const AsvgfAlphaStage& s, const FrameInput
     reconstructed_ = s.reconstructed;
     AsvgfAlphaRef(Gradient(s.reconstructed), in.width(), in.height(), params_.asvgf.alpha, alpha_, lambda_,
                   variant_.antilag ? std::optional(params_.asvgf.antilagGain) : std::nullopt);
+}
+
+void SvgfFamilyReferenceDenoiser::Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&) {
+    const size_t cur = SideIndex(HistorySide::This, parity_), prev = SideIndex(HistorySide::Previous, parity_);
+    const Plane<float>& wu = *ScalarPlane({{PlaneKind::Length, channels_.front()}, HistorySide::This}, parity_);
+    for (const StagePlane& p : s.planes) {
+        const size_t c = ChannelIndex(p.channel);
+        TwoHistoryStabilizeRef(Illum(p.in), in, prevGeometry_.View(), hasPrev_, stable_[prev][c], wu,
+                               params_.twoHistoryStable, params_.precision, stable_[cur][c], Illum(p.out));
+    }
+}
+
+const Plane<float>& SvgfFamilyReferenceDenoiser::StableLuminance(size_t channel) const {
+    return stable_[SideIndex(HistorySide::This, parity_ ^ 1)][channel];
 }
 
 size_t SvgfFamilyReferenceDenoiser::ChannelIndex(Channel channel) const {

@@ -18,6 +18,7 @@
 #include "denoise/reference/asvgf_ref.h"
 #include "denoise/reference/svgf_ref.h"
 #include "denoise/reference/two_history_ref.h"
+#include "denoise/reference/two_history_stable_ref.h"
 
 namespace fovrt {
 
@@ -48,6 +49,8 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     const Plane<float>& Alpha() const { return alpha_; }
     const Plane<float>& Lambda() const { return lambda_; }
     const Plane<vec2>& ReconstructedGradient() const;
+    // two-history-stable: this frame's stabilised luminance of channel c.
+    const Plane<float>& StableLuminance(size_t channel) const;
 
   private:
     bool ReadDebugPlane(DebugViewId view, Plane<float>& out) override;
@@ -63,6 +66,7 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     void Run(const ModulateStage& s, const FrameInputs& in, Plane<vec3>& output);
     void Run(const AsvgfGradientStage& s, const FrameInputs& in, Plane<vec3>&);
     void Run(const AsvgfAlphaStage& s, const FrameInputs& in, Plane<vec3>&);
+    void Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&);
 
     // The planes a stage names, in this reference's storage; `parity` 0 writes histories to
     // side A (this frame's parity_ during Denoise()).
@@ -94,6 +98,7 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     Plane<StratumGuide> strataGuide_;
     PlaneId reconstructed_;
     Plane<float> alpha_, lambda_, q_;
+    std::array<std::array<Plane<float>, 2>, 2> stable_;  // [side][channel]: L_s of two_history_stabilize
     std::vector<PassTiming> timings_;
     DenoiseStats stats_;
 };

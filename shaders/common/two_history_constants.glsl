@@ -23,6 +23,10 @@
 #define TH_REPROJECT_FLAG_GRADIENT 16u     // accumulate g (two-history; not two-history-asvgf)
 #define TH_REPROJECT_FLAG_ANTILAG 32u      // the map holds the anti-lag factor a (ALPHA_MAP too)
 
+// two_history_stabilize: below this luminance the stabilised colour is shifted (c + L_s − L)
+// instead of scaled (c·L_s/L), which would amplify the noise of a near-black pixel's hue.
+#define FOVRT_STABLE_LUMINANCE_FLOOR 1e-4
+
 
 // ---- Bindings declared once (shaders/bindings.h) of the two-history and A-SVGF passes.
 #include "../bindings.h"
@@ -34,11 +38,13 @@
 #include "../bindings/two_history_blend.h"
 #include "../bindings/two_history_gradient.h"
 #include "../bindings/two_history_reproject.h"
+#include "../bindings/two_history_stabilize.h"
 #ifdef __cplusplus
 FOVRT_PASS_BINDINGS(TH_REPROJECT)  // one channel ("two_history_reproject")
 FOVRT_PAIR_BINDINGS(TH_REPROJECT)  // "two_history_reproject_pair"
 FOVRT_PASS_BINDINGS(TH_GRADIENT)
 FOVRT_PASS_BINDINGS(TH_BLEND)
+FOVRT_PASS_BINDINGS(TH_STABILIZE)
 FOVRT_PASS_BINDINGS(ASVGF_CLAIM)
 FOVRT_PASS_BINDINGS(ASVGF_GATHER)
 FOVRT_PASS_BINDINGS(ASVGF_SIGMA)

@@ -1,0 +1,66 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// two_history_stabilize — luminance stabilisation of one channel's filtered illumination
+// (two-history-stable, denoise/two_history_stable.md). Mirrors TwoHistoryStabilizeRef.
+// Purpose: L = lum(filtered); m, σ² = the 3×3 mean and variance of L over object pixels plus the
+//   filtered variance estimate; L_s,prev reprojected with the bilinear taps of
+//   common/reprojection.glsl (no 3×3 fallback: where they fail the stabilisation restarts);
+//   L_s = lerp(clamp(L_s,prev, m ± kσ), L, max(α_s, 1/W_u)); out = the colour with luminance L_s.
+// Reads:  filtered (illumination, variance), geometry of both frames, depth gradient, previous
+//         pixel, W_u, the previous stabilised luminance.
+// Writes: the stabilised (illumination, variance), this frame's stabilised luminance.
+#include "shared_constants.h"
+#include "push_constants.h"
+#include "common/two_history_constants.glsl"
+#include "common/packing.glsl"
+#include "common/access.glsl"
+#include "common/luminance.glsl"
+#include "common/reprojection.glsl"
+#include "common/two_history_stable.glsl"
+
+layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
+
+FOVRT_DECLARE_BINDINGS(TH_STABILIZE_BINDING_LIST)  // shaders/bindings/two_history_stabilize.h
+
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_STABILIZE);  // shaders/push_constants.h
+
+float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
+vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
+uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, pc.size))) return;
+    int i = p.y * pc.size.x + p.x;
+    vec4 c = FETCH4(illum_in, i);
+    float l = luminance(c.rgb);
+
+    // 3×3 luminance moments over object pixels (taps off the image or on background weigh 0).
+    float sum = 0.0, sum2 = 0.0, count = 0.0;
+    [[unroll]] for (int k = 0; k < 9; ++k) {
+        ivec2 q = p + ivec2(k % 3 - 1, k / 3 - 1);
+        int j = clamped_index(q, pc.size);
+        float w = in_image(q, pc.size) && FETCH1(object_id, j) != FOVRT_NO_OBJECT ? 1.0 : 0.0;
+        float lq = luminance(FETCH4(illum_in, j).rgb);
+        sum += w * lq;
+        sum2 += w * lq * lq;
+        count += w;
+    }
+    float mean = count > 0.0 ? sum / count : l;
+    float spread = count > 0.0 ? max(0.0, sum2 / count - mean * mean) : 0.0;
+    float sigma = sqrt(spread + max(c.a, 0.0));
+
+    float ls = l;
+    if (pc.has_prev != 0u) {
+        vec2 dzv = FETCH2(depth_grad, i);
+        ReprojTaps taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i),
+                                                 FETCH3(normal, i), FETCH1(object_id, i), max(abs(dzv.x), abs(dzv.y)));
+        if (taps.count > 0) {
+            float history;
+            REPROJ_GATHER(prev_stable, taps, pc.size, FETCH1, 0.0, history);
+            ls = stabilized_luminance(history, l, mean, sigma, pc.sigma_scale, pc.alpha, FETCH1(wu, i));
+        }
+    }
+    cur_stable[i] = hfloat(to_history(ls));
+    illum_out[i] = vec4(stabilized_color(c.rgb, l, ls), c.a);
+}
