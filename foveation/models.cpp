@@ -1,6 +1,7 @@
 // The spp models of SPEC §7: two-level disc, linear eccentricity falloff, acuity (MAR), uniform,
 // and the fixed-ray-budget wrapper.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -219,41 +220,39 @@ private:
 
 }  // namespace
 
-void ValidateFoveationParams(const FoveationParams& p) {
-    auto sppKey = [](const char* key, int v) {
-        if (v < 1 || v > kMaxSpp) Fail("foveation.{} = {} is out of range [1, {}]", key, v, kMaxSpp);
-    };
-    if (p.model != "disc" && p.model != "linear" && p.model != "acuity" && p.model != "uniform")
-        Fail("foveation.model = '{}' is not one of disc, linear, acuity, uniform", p.model);
-    sppKey("spp_inside", p.sppInside);
-    sppKey("spp_outside", p.sppOutside);
-    sppKey("spp_max", p.sppMax);
-    sppKey("spp_min", p.sppMin);
-    sppKey("uniform_spp", p.uniformSpp);
-    if (!(p.radiusPx > 0.0f)) Fail("foveation.radius_px = {} must be > 0", p.radiusPx);
-    if (p.radiusReferenceWidth <= 0)
-        Fail("foveation.radius_reference_width = {} must be > 0", p.radiusReferenceWidth);
-    if (!(p.radiusDeg >= 0.0f && p.radiusDeg < 180.0f))
-        Fail("foveation.radius_deg = {} must be in [0, 180) (0 = radius in pixels)", p.radiusDeg);
-    if (!(p.fovealDeg >= 0.0f)) Fail("foveation.foveal_deg = {} must be >= 0", p.fovealDeg);
-    if (!(p.peripheralDeg > p.fovealDeg))
-        Fail("foveation.peripheral_deg = {} must be > foveation.foveal_deg = {}", p.peripheralDeg, p.fovealDeg);
-    if (!(p.omega0Deg > 0.0f)) Fail("foveation.omega0_deg = {} must be > 0", p.omega0Deg);
-    if (!(p.marSlope >= 0.0f)) Fail("foveation.mar_slope = {} must be >= 0", p.marSlope);
-    if (p.rayBudget < 0) Fail("foveation.ray_budget = {} must be >= 0 (0 = no budget)", p.rayBudget);
-}
-
 std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget) {
     return std::make_unique<BudgetModel>(std::move(inner), rayBudget);
 }
 
+namespace {
+
+// The models by name: the one list of foveation.model's values.
+struct ModelRow {
+    const char* name;
+    std::unique_ptr<SppModel> (*create)(const FoveationParams& p);
+};
+constexpr std::array<ModelRow, 4> kModels{{
+    {"disc", [](const FoveationParams& p) -> std::unique_ptr<SppModel> { return std::make_unique<DiscModel>(p); }},
+    {"linear", [](const FoveationParams& p) -> std::unique_ptr<SppModel> { return std::make_unique<LinearModel>(p); }},
+    {"acuity", [](const FoveationParams& p) -> std::unique_ptr<SppModel> { return std::make_unique<AcuityModel>(p); }},
+    {"uniform",
+     [](const FoveationParams& p) -> std::unique_ptr<SppModel> { return std::make_unique<UniformModel>(p.uniformSpp); }},
+}};
+constexpr std::array<const char*, kModels.size()> kModelNames = [] {
+    std::array<const char*, kModels.size()> names{};
+    for (size_t i = 0; i < kModels.size(); ++i) names[i] = kModels[i].name;
+    return names;
+}();
+
+}  // namespace
+
+NameList FoveationModelNames() { return kModelNames; }
+
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p) {
     ValidateFoveationParams(p);
     std::unique_ptr<SppModel> model;
-    if (p.model == "disc") model = std::make_unique<DiscModel>(p);
-    else if (p.model == "linear") model = std::make_unique<LinearModel>(p);
-    else if (p.model == "acuity") model = std::make_unique<AcuityModel>(p);
-    else model = std::make_unique<UniformModel>(p.uniformSpp);
+    for (const ModelRow& row : kModels)
+        if (p.model == row.name) model = row.create(p);
     if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget);
     return model;
 }
