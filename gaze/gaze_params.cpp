@@ -47,15 +47,15 @@ constexpr std::array<SettingRow<GazeParams>, 14> kGazeRows{{
     {{.key = "gaze.trace_path", .doc = "trace: CSV with columns n (ms), x, y (degrees)"}, &G::tracePath},
     {{.key = "gaze.trace_start_ms", .range = kFinite, .doc = "trace, recording: start offset after the first row"},
      &G::traceStartMs},
-    {{.key = "gaze.blink", .doc = "an invalid sample: hold the last direction, or a uniform map at the mean spp",
-      .names = BlinkModeNames},
-     &G::blink},
     {{.key = "gaze.yaw_deg", .range = kAheadDeg, .doc = "static: yaw (+ = right)", .slider = kAheadSlider},
      &G::yawDeg},
     {{.key = "gaze.pitch_deg", .range = kAheadDeg, .doc = "static: pitch (+ = up)", .slider = kAheadSlider},
      &G::pitchDeg},
     {{.key = "gaze.recording_path", .doc = "recording: headset recording CSV (gaze/recording.h)"},
      &G::recordingPath},
+    {{.key = "gaze.blink", .doc = "an invalid sample: hold the last direction, or a uniform map at the mean spp",
+      .names = BlinkModeNames},
+     &G::blink},
 }};
 
 using T = TrackerParams;
