@@ -1,8 +1,6 @@
 #include "denoise/params.h"
 
 #include <array>
-#include <cmath>
-#include <type_traits>
 
 #include "core/error.h"
 #include "shaders/shared_constants.h"
@@ -10,8 +8,6 @@
 namespace fovrt {
 namespace {
 
-constexpr ParamRange Closed(double min, double max) { return {min, max, false, false}; }
-constexpr ParamRange OpenMin(double min, double max) { return {min, max, true, false}; }
 constexpr ParamRange kAnyBool{};
 // Iteration counts share the shaders' cap (timestamp pools and step tables are sized by it).
 constexpr ParamRange kIterations = Closed(0, FOVRT_MAX_ATROUS_ITERATIONS);
@@ -74,38 +70,38 @@ constexpr std::array<ParamRow<TwoHistoryStableParams>, 2> kTwoHistoryStableRows{
      &TwoHistoryStableParams::sigmaScale},
 }};
 
+constexpr std::array<SettingRow<RaeParams>, 2> kRaeRows{{
+    {{.key = "denoise.rae.weights", .doc = "RAE network weights (.raew, training/rae_net.py), variant rae",
+      .nonEmpty = true},
+     &RaeParams::weights},
+    {{.key = "denoise.rae.weights_spp", .doc = "RAE network weights of variant rae-spp", .nonEmpty = true},
+     &RaeParams::weightsSpp},
+}};
+
 constexpr std::array<PrecisionRow, 2> kPrecisionRows{{
     {Precision::Fp32, "fp32", "32-bit float histories"},
     {Precision::Fp16, "fp16", "16-bit float histories (half the history bytes)"},
 }};
 
-template <class Row, size_t N>
-constexpr bool WellFormed(const std::array<Row, N>& rows) {
-    for (const Row& row : rows)
-        if (ParamRowProblem(row.info) != nullptr) return false;
-    return true;
-}
-static_assert(WellFormed(kSvgfRows) && WellFormed(kAsvgfRows) && WellFormed(kTwoHistoryRows) &&
-                  WellFormed(kTwoHistoryStableRows),
+constexpr std::array<const char*, kPrecisionRows.size()> kPrecisionNames = [] {
+    std::array<const char*, kPrecisionRows.size()> names{};
+    for (size_t i = 0; i < kPrecisionRows.size(); ++i) names[i] = kPrecisionRows[i].name;
+    return names;
+}();
+
+static_assert(RowsWellFormed(kSvgfRows) && RowsWellFormed(kAsvgfRows) && RowsWellFormed(kTwoHistoryRows) &&
+                  RowsWellFormed(kTwoHistoryStableRows) && RowsWellFormed(kRaeRows),
               "a parameter row lacks a key or doc, or has an empty range (see ParamRowProblem)");
 
 }  // namespace
-
-bool ParamRange::Contains(double value) const {
-    if (!std::isfinite(value)) return false;
-    if (value < min || value > max) return false;
-    return !(minOpen && value == min) && !(maxOpen && value == max);
-}
-
-std::string ParamRange::Describe() const {
-    return fmt::format("{}{}, {}{}", minOpen ? "(" : "[", min, max, maxOpen ? ")" : "]");
-}
 
 std::span<const ParamRow<SvgfParams>> SvgfParamTable() { return kSvgfRows; }
 std::span<const ParamRow<AsvgfParams>> AsvgfParamTable() { return kAsvgfRows; }
 std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable() { return kTwoHistoryRows; }
 std::span<const ParamRow<TwoHistoryStableParams>> TwoHistoryStableParamTable() { return kTwoHistoryStableRows; }
+std::span<const SettingRow<RaeParams>> RaeParamTable() { return kRaeRows; }
 std::span<const PrecisionRow> PrecisionTable() { return kPrecisionRows; }
+NameList PrecisionNames() { return kPrecisionNames; }
 
 const char* PrecisionName(Precision precision) {
     for (const PrecisionRow& row : kPrecisionRows)
@@ -140,15 +136,15 @@ std::optional<ParamProblem> DenoiserParamConflict(const DenoiserParams& params) 
 }
 
 void ValidateDenoiserParamRanges(const DenoiserParams& params) {
-    ForEachDenoiserParam(params, [](const ParamInfo& info, const auto& value) {
-        if constexpr (!std::is_same_v<std::decay_t<decltype(value)>, bool>)
-            if (!info.range.Contains(double(value)))
-                Fail("{}: {} is out of range {}", info.key, value, info.range.Describe());
-    });
+    ValidateRows(params.svgf, SvgfParamTable());
+    ValidateRows(params.asvgf, AsvgfParamTable());
+    ValidateRows(params.twoHistory, TwoHistoryParamTable());
+    ValidateRows(params.twoHistoryStable, TwoHistoryStableParamTable());
 }
 
 void ValidateDenoiserParams(const DenoiserParams& params) {
     ValidateDenoiserParamRanges(params);
+    ValidateRows(params.rae, RaeParamTable());
     if (std::optional<ParamProblem> problem = DenoiserParamConflict(params))
         Fail("{}: {}", problem->key, problem->message);
 }

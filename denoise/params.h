@@ -1,5 +1,5 @@
 // Tunables of the denoisers. Defaults are the struct initialisers below; key, range and meaning of
-// each member are one row of its struct's table (params.cpp). The config reader and writer, the
+// each member are one row of its struct's table (params.cpp; rows: core/setting_table.h). The config reader and writer, the
 // denoisers' checks and `fovrt config --keys` all walk those tables, so a parameter is added in
 // two places: its member here and its row there.
 #pragma once
@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 #include <variant>
+
+#include "core/setting_table.h"
 
 namespace fovrt {
 
@@ -48,9 +50,6 @@ struct TwoHistoryStableParams {
 
 // The recurrent denoising autoencoder (SPEC §12): which trained network to run. A relative path
 // is looked up in the working directory, then in the source tree (the committed weights).
-inline constexpr const char* kRaeWeightsKey = "denoise.rae.weights";
-inline constexpr const char* kRaeWeightsDoc = "RAE network weights (.raew, training/rae_net.py)";
-inline constexpr const char* kRaeWeightsSppKey = "denoise.rae.weights_spp";
 struct RaeParams {
     std::string weights = "training/weights/rae-quarter.raew";           // variant rae
     std::string weightsSpp = "training/weights/rae-quarter-spp.raew";    // variant rae-spp
@@ -67,24 +66,6 @@ struct DenoiserParams {
 
 // ---- Parameter tables -------------------------------------------------------------------------
 
-// Allowed values of a number; an open end excludes its bound.
-struct ParamRange {
-    double min = 0.0;
-    double max = 0.0;
-    bool minOpen = false;
-    bool maxOpen = false;
-
-    bool Contains(double value) const;  // false for NaN and infinities
-    std::string Describe() const;       // "(0, 1]"
-};
-
-// What a row says about its parameter, whatever struct holds it.
-struct ParamInfo {
-    const char* key;   // full TOML key: "denoise.svgf.alpha_color"
-    ParamRange range;  // unused for bool members
-    const char* doc;   // one line
-};
-
 // One row of a struct's table: the info and the member it describes.
 template <class Struct>
 struct ParamRow {
@@ -96,6 +77,7 @@ std::span<const ParamRow<SvgfParams>> SvgfParamTable();            // [denoise.s
 std::span<const ParamRow<AsvgfParams>> AsvgfParamTable();          // [denoise.asvgf]
 std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable();  // [denoise.two_history]
 std::span<const ParamRow<TwoHistoryStableParams>> TwoHistoryStableParamTable();  // [denoise.two_history_stable]
+std::span<const SettingRow<RaeParams>> RaeParamTable();            // [denoise.rae]: weight files
 
 // The precision enum's table: the names the key denoise.precision takes.
 inline constexpr const char* kPrecisionKey = "denoise.precision";
@@ -106,6 +88,8 @@ struct PrecisionRow {
     const char* doc;
 };
 std::span<const PrecisionRow> PrecisionTable();
+NameList PrecisionNames();  // the table's names, in order
+inline constexpr ParamInfo kPrecisionInfo{.key = kPrecisionKey, .doc = kPrecisionDoc, .names = PrecisionNames};
 const char* PrecisionName(Precision precision);
 // False when `name` is none of the table's names.
 bool PrecisionFromName(const std::string& name, Precision& precision);
@@ -128,22 +112,6 @@ void ForEachDenoiserParam(Params& params, Visit&& visit) {
     walk(params.twoHistoryStable, TwoHistoryStableParamTable());
 }
 
-// What is wrong with a table row (no key, no doc, min > max, an empty open range), or nullptr.
-// params.cpp static_asserts it over every row; tests feed it bad rows.
-constexpr const char* ParamRowProblem(const ParamInfo& info) {
-    if (info.key == nullptr || info.key[0] == '\0') return "row without a key";
-    if (info.doc == nullptr || info.doc[0] == '\0') return "row without a doc line";
-    if (info.range.min > info.range.max) return "range with min > max";
-    if (info.range.min == info.range.max && (info.range.minOpen || info.range.maxOpen))
-        return "open range with min == max (empty)";
-    return nullptr;
-}
-
-// A value that breaks a rule: the key to blame and why ("9 is out of range [0, 8]").
-struct ParamProblem {
-    std::string key;
-    std::string message;
-};
 // The rule between keys: feedback_iteration <= atrous_iterations. For readers that report with
 // their own context (the config reader adds file:line).
 std::optional<ParamProblem> DenoiserParamConflict(const DenoiserParams& params);

@@ -1,6 +1,7 @@
 // The spp models of SPEC §7: two-level disc, linear eccentricity falloff, acuity (MAR), uniform,
 // and the fixed-ray-budget wrapper.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -28,9 +29,64 @@ struct GazeContext {
     vec2 gazePixel;  // continuous pixel of the gaze ray (valid when inFront)
 };
 
-// A model defined by a continuous spp per pixel; Generate() rounds to nearest and clamps.
-class DensityModel : public SppModel {
+// A model's continuous spp at one pixel; `e` is the pixel's eccentricity (EccentricityDegrees).
+using DensityFn = float (*)(const FoveationParams& p, const EyeCamera& camera, const vec2& pixel, float e,
+                            const GazeContext& g);
+
+// disc: sppInside within the fovea disc (in pixels, or in degrees when radiusDeg > 0).
+float DiscDensity(const FoveationParams& p, const EyeCamera& camera, const vec2& pixel, float e, const GazeContext& g) {
+    bool inside;
+    if (p.radiusDeg > 0.0f) {
+        inside = e <= p.radiusDeg;
+    } else {
+        // Gaze behind the eye (never for real gaze): no pixel is foveal.
+        float radius = p.radiusPx * float(camera.width()) / float(p.radiusReferenceWidth);
+        vec2 d = pixel - g.gazePixel;
+        inside = g.inFront && glm::dot(d, d) <= radius * radius;
+    }
+    return float(inside ? p.sppInside : p.sppOutside);
+}
+
+float LinearDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext&) {
+    if (e <= p.fovealDeg) return float(p.sppMax);
+    if (e >= p.peripheralDeg) return float(p.sppMin);
+    float t = (e - p.fovealDeg) / (p.peripheralDeg - p.fovealDeg);
+    return float(p.sppMax) + t * float(p.sppMin - p.sppMax);
+}
+
+float AcuityDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext&) {
+    float ratio = p.omega0Deg / (p.omega0Deg + p.marSlope * e);  // ω0 / ω(e)
+    return std::max(float(p.sppMin), float(p.sppMax) * ratio * ratio);
+}
+
+float UniformDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float, const GazeContext&) {
+    return float(p.uniformSpp);
+}
+
+// The models by name: the one list of foveation.model's values.
+struct ModelRow {
+    const char* name;
+    DensityFn density;
+};
+constexpr std::array<ModelRow, 4> kModels{{
+    {"disc", DiscDensity},
+    {"linear", LinearDensity},
+    {"acuity", AcuityDensity},
+    {"uniform", UniformDensity},
+}};
+constexpr std::array<const char*, kModels.size()> kModelNames = [] {
+    std::array<const char*, kModels.size()> names{};
+    for (size_t i = 0; i < kModels.size(); ++i) names[i] = kModels[i].name;
+    return names;
+}();
+
+// A model defined by a continuous spp per pixel (its row's density); Generate() rounds to nearest
+// and clamps.
+class DensityModel final : public SppModel {
 public:
+    DensityModel(const ModelRow& row, const FoveationParams& p) : row_(row), p_(p) {}
+    std::string Name() const override { return row_.name; }
+
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
                   Plane<uint16_t>& spp) const override {
         Plane<float> density;
@@ -63,83 +119,15 @@ public:
                 ray *= 1.0f / std::sqrt(glm::dot(ray, ray));
                 // Same formula as EccentricityDegrees (2·asin(|ray − gaze| / 2)).
                 float e = Degrees(2.0f * std::asin(std::min(0.5f * glm::length(ray - g.gaze), 1.0f)));
-                density(x, y) = std::clamp(Density(camera, vec2(x + 0.5f, y + 0.5f), e, g), 1.0f,
+                density(x, y) = std::clamp(row_.density(p_, camera, vec2(x + 0.5f, y + 0.5f), e, g), 1.0f,
                                            float(kMaxSpp));
             }
         }
     }
 
-protected:
-    // `eccentricityDeg` is the pixel's eccentricity (EccentricityDegrees).
-    virtual float Density(const EyeCamera& camera, const vec2& pixel, float eccentricityDeg,
-                          const GazeContext& g) const = 0;
-};
-
-class DiscModel final : public DensityModel {
-public:
-    explicit DiscModel(const FoveationParams& p) : p_(p) {}
-    std::string Name() const override { return "disc"; }
-
-protected:
-    float Density(const EyeCamera& camera, const vec2& pixel, float e, const GazeContext& g) const override {
-        bool inside;
-        if (p_.radiusDeg > 0.0f) {
-            inside = e <= p_.radiusDeg;
-        } else {
-            // Gaze behind the eye (never for real gaze): no pixel is foveal.
-            float radius = p_.radiusPx * float(camera.width()) / float(p_.radiusReferenceWidth);
-            vec2 d = pixel - g.gazePixel;
-            inside = g.inFront && glm::dot(d, d) <= radius * radius;
-        }
-        return float(inside ? p_.sppInside : p_.sppOutside);
-    }
-
 private:
+    ModelRow row_;
     FoveationParams p_;
-};
-
-class LinearModel final : public DensityModel {
-public:
-    explicit LinearModel(const FoveationParams& p) : p_(p) {}
-    std::string Name() const override { return "linear"; }
-
-protected:
-    float Density(const EyeCamera&, const vec2&, float e, const GazeContext&) const override {
-        if (e <= p_.fovealDeg) return float(p_.sppMax);
-        if (e >= p_.peripheralDeg) return float(p_.sppMin);
-        float t = (e - p_.fovealDeg) / (p_.peripheralDeg - p_.fovealDeg);
-        return float(p_.sppMax) + t * float(p_.sppMin - p_.sppMax);
-    }
-
-private:
-    FoveationParams p_;
-};
-
-class AcuityModel final : public DensityModel {
-public:
-    explicit AcuityModel(const FoveationParams& p) : p_(p) {}
-    std::string Name() const override { return "acuity"; }
-
-protected:
-    float Density(const EyeCamera&, const vec2&, float e, const GazeContext&) const override {
-        float ratio = p_.omega0Deg / (p_.omega0Deg + p_.marSlope * e);  // ω0 / ω(e)
-        return std::max(float(p_.sppMin), float(p_.sppMax) * ratio * ratio);
-    }
-
-private:
-    FoveationParams p_;
-};
-
-class UniformModel final : public DensityModel {
-public:
-    explicit UniformModel(int spp) : spp_(spp) {}
-    std::string Name() const override { return "uniform"; }
-
-protected:
-    float Density(const EyeCamera&, const vec2&, float, const GazeContext&) const override { return float(spp_); }
-
-private:
-    int spp_;
 };
 
 // Fixed ray budget: scale the inner model's continuous map by s so that
@@ -219,41 +207,17 @@ private:
 
 }  // namespace
 
-void ValidateFoveationParams(const FoveationParams& p) {
-    auto sppKey = [](const char* key, int v) {
-        if (v < 1 || v > kMaxSpp) Fail("foveation.{} = {} is out of range [1, {}]", key, v, kMaxSpp);
-    };
-    if (p.model != "disc" && p.model != "linear" && p.model != "acuity" && p.model != "uniform")
-        Fail("foveation.model = '{}' is not one of disc, linear, acuity, uniform", p.model);
-    sppKey("spp_inside", p.sppInside);
-    sppKey("spp_outside", p.sppOutside);
-    sppKey("spp_max", p.sppMax);
-    sppKey("spp_min", p.sppMin);
-    sppKey("uniform_spp", p.uniformSpp);
-    if (!(p.radiusPx > 0.0f)) Fail("foveation.radius_px = {} must be > 0", p.radiusPx);
-    if (p.radiusReferenceWidth <= 0)
-        Fail("foveation.radius_reference_width = {} must be > 0", p.radiusReferenceWidth);
-    if (!(p.radiusDeg >= 0.0f && p.radiusDeg < 180.0f))
-        Fail("foveation.radius_deg = {} must be in [0, 180) (0 = radius in pixels)", p.radiusDeg);
-    if (!(p.fovealDeg >= 0.0f)) Fail("foveation.foveal_deg = {} must be >= 0", p.fovealDeg);
-    if (!(p.peripheralDeg > p.fovealDeg))
-        Fail("foveation.peripheral_deg = {} must be > foveation.foveal_deg = {}", p.peripheralDeg, p.fovealDeg);
-    if (!(p.omega0Deg > 0.0f)) Fail("foveation.omega0_deg = {} must be > 0", p.omega0Deg);
-    if (!(p.marSlope >= 0.0f)) Fail("foveation.mar_slope = {} must be >= 0", p.marSlope);
-    if (p.rayBudget < 0) Fail("foveation.ray_budget = {} must be >= 0 (0 = no budget)", p.rayBudget);
-}
-
 std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget) {
     return std::make_unique<BudgetModel>(std::move(inner), rayBudget);
 }
 
+NameList FoveationModelNames() { return kModelNames; }
+
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p) {
     ValidateFoveationParams(p);
     std::unique_ptr<SppModel> model;
-    if (p.model == "disc") model = std::make_unique<DiscModel>(p);
-    else if (p.model == "linear") model = std::make_unique<LinearModel>(p);
-    else if (p.model == "acuity") model = std::make_unique<AcuityModel>(p);
-    else model = std::make_unique<UniformModel>(p.uniformSpp);
+    for (const ModelRow& row : kModels)
+        if (p.model == row.name) model = std::make_unique<DensityModel>(row, p);
     if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget);
     return model;
 }

@@ -4,10 +4,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "core/camera.h"
 #include "core/image.h"
+#include "core/setting_table.h"
 
 namespace fovrt {
 
@@ -38,7 +41,7 @@ float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3
 
 // Parameters of every model, as loaded from the [foveation] config table (defaults = thesis).
 struct FoveationParams {
-    std::string model = "disc";  // disc | linear | acuity | uniform
+    std::string model = "disc";  // one of FoveationModelNames()
 
     // disc (thesis): sppInside within the fovea disc, sppOutside elsewhere. The radius is
     // radiusPx at an image `radiusReferenceWidth` pixels wide and scales with the image width
@@ -69,11 +72,18 @@ struct FoveationParams {
     bool operator==(const FoveationParams&) const = default;
 };
 
+// The model names (disc, linear, acuity, uniform): the rows of the factory in models.cpp.
+NameList FoveationModelNames();
+// [foveation]: key, member, range, meaning of every FoveationParams member (foveation_params.cpp).
+std::span<const SettingRow<FoveationParams>> FoveationParamTable();
+// The rule between keys (peripheral_deg > foveal_deg), for readers that add their own context.
+std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& params);
+// Throws fovrt::Error naming the first bad foveation.* key and its range.
+void ValidateFoveationParams(const FoveationParams& params);
+
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
 // out-of-range parameters throw fovrt::Error naming the foveation.* key.
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params);
-// Throws fovrt::Error naming the first bad foveation.* key.
-void ValidateFoveationParams(const FoveationParams& params);
 // Wraps a model so each map's total equals `rayBudget` (within a few samples; see models.cpp).
 std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget);
 

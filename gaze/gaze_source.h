@@ -4,10 +4,13 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "core/camera.h"
 #include "core/math.h"
+#include "core/setting_table.h"
 
 namespace fovrt {
 
@@ -49,13 +52,13 @@ struct TrackerParams {
     double dropout = 0.0;    // probability that a sample is lost (the true gaze's invalid samples always are)
     double blinkMs = 0.0;    // an invalid run this long is reported as a blink; shorter runs hold (rate > 0)
     uint32_t seed = 1;       // noise and dropouts
-    std::string prediction = "none";  // none | cv (constant velocity) | landing (saccade landing point)
+    std::string prediction = "none";  // one of PredictionNames(): none, cv (constant velocity), landing
     float saccadeDegPerS = 100.0f;    // saccade onset: angular speed between samples above this
 };
 
 // Parameters of every source, as loaded from the [gaze] config table (defaults = thesis).
 struct GazeParams {
-    std::string source = "lissajous";  // lissajous | trace | recording | static | mouse (live windows only)
+    std::string source = "lissajous";  // one of GazeSourceNames() (mouse: live windows only)
 
     // lissajous: p(t) = centre + offset + amplitude ⊙ sin(2π t frequency + phase).
     // units = "px": positions on a referenceWidth × referenceHeight image with the eye's FOV,
@@ -91,7 +94,19 @@ struct GazeParams {
     TrackerParams tracker;
 };
 
-// Throws fovrt::Error naming the first bad gaze.* key.
+// The names gaze.source, gaze.units, gaze.blink and gaze.prediction take (gaze_params.cpp).
+NameList GazeSourceNames();
+NameList GazeUnitNames();
+NameList BlinkModeNames();
+NameList PredictionNames();
+// [gaze]: key, member, range, meaning of every GazeParams member, and of its TrackerParams
+// (gaze.tracker_*, gaze.prediction, gaze.saccade_deg_s), in gaze_params.cpp.
+std::span<const SettingRow<GazeParams>> GazeParamTable();
+std::span<const SettingRow<TrackerParams>> TrackerParamTable();
+// The rules between keys (a trace needs its path, degrees stay below 90, the tracker's blink and
+// prediction need a rate), for readers that add their own context.
+std::optional<ParamProblem> GazeParamConflict(const GazeParams& params);
+// Throws fovrt::Error naming the first bad gaze.* key (with its range).
 void ValidateGazeParams(const GazeParams& params);
 // `referenceFov` is the FOV of the reference camera used by pixel-unit Lissajous gaze (the
 // left eye's FOV, or the symmetric run FOV). Trace files are loaded here (errors name file:line).

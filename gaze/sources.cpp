@@ -175,32 +175,6 @@ GazeSample TraceGaze::At(double timeSeconds) const {
 
 // ---- Factory ---------------------------------------------------------------------------------
 
-void ValidateGazeParams(const GazeParams& p) {
-    if (p.source != "lissajous" && p.source != "trace" && p.source != "recording" && p.source != "static" &&
-        p.source != "mouse")
-        Fail("gaze.source = '{}' is not one of lissajous, trace, recording, static, mouse", p.source);
-    if (p.blink != "hold" && p.blink != "uniform") Fail("gaze.blink = '{}' is not one of hold, uniform", p.blink);
-    if (p.units != "px" && p.units != "deg") Fail("gaze.units = '{}' is not one of px, deg", p.units);
-    if (p.referenceWidth <= 0) Fail("gaze.reference_width = {} must be > 0", p.referenceWidth);
-    if (p.referenceHeight <= 0) Fail("gaze.reference_height = {} must be > 0", p.referenceHeight);
-    for (int i = 0; i < 2; ++i) {
-        if (!std::isfinite(p.amplitude[i]) || !std::isfinite(p.frequencyHz[i]) ||
-            !std::isfinite(p.phaseDeg[i]) || !std::isfinite(p.offset[i]))
-            Fail("gaze.amplitude/frequency_hz/phase_deg/offset must be finite");
-        if (p.frequencyHz[i] < 0.0f) Fail("gaze.frequency_hz = {} must be >= 0", p.frequencyHz[i]);
-    }
-    if (p.units == "deg" && (std::abs(p.offset.x) + std::abs(p.amplitude.x) >= 90.0f ||
-                             std::abs(p.offset.y) + std::abs(p.amplitude.y) >= 90.0f))
-        Fail("gaze.offset + gaze.amplitude must stay below 90 degrees");
-    if (p.source == "trace" && p.tracePath.empty()) Fail("gaze.trace_path must be set when gaze.source = 'trace'");
-    if (p.source == "recording" && p.recordingPath.empty())
-        Fail("gaze.recording_path must be set when gaze.source = 'recording'");
-    if (!std::isfinite(p.traceStartMs)) Fail("gaze.trace_start_ms must be finite");
-    if (!(std::abs(p.yawDeg) < 90.0f)) Fail("gaze.yaw_deg = {} must be in (-90, 90)", p.yawDeg);
-    if (!(std::abs(p.pitchDeg) < 90.0f)) Fail("gaze.pitch_deg = {} must be in (-90, 90)", p.pitchDeg);
-    ValidateTrackerParams(p.tracker);
-}
-
 std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov& referenceFov) {
     ValidateGazeParams(params);
     if (params.source == "mouse")

@@ -143,26 +143,6 @@ bool IsIdealTracker(const TrackerParams& p) {
            p.dropout == 0.0 && p.prediction == "none";
 }
 
-void ValidateTrackerParams(const TrackerParams& p) {
-    if (!(p.rateHz >= 0.0 && p.rateHz <= 10000.0)) Fail("gaze.tracker_rate_hz = {} must be in [0, 10000] (0 = every frame)", p.rateHz);
-    if (!(std::abs(p.phaseMs) <= 1000.0)) Fail("gaze.tracker_phase_ms = {} must be in [-1000, 1000]", p.phaseMs);
-    if (!(p.latencyMs >= 0.0 && p.latencyMs <= 10000.0)) Fail("gaze.tracker_latency_ms = {} must be in [0, 10000]", p.latencyMs);
-    if (!(p.noiseDeg >= 0.0f && p.noiseDeg <= 45.0f)) Fail("gaze.tracker_noise_deg = {} must be in [0, 45]", p.noiseDeg);
-    if (!(std::abs(p.biasDeg.x) <= 45.0f && std::abs(p.biasDeg.y) <= 45.0f))
-        Fail("gaze.tracker_bias_deg = ({}, {}) must be within ±45 degrees", p.biasDeg.x, p.biasDeg.y);
-    if (!(p.dropout >= 0.0 && p.dropout < 1.0)) Fail("gaze.tracker_dropout = {} must be in [0, 1)", p.dropout);
-    if (!(p.blinkMs >= 0.0 && p.blinkMs <= 10000.0)) Fail("gaze.tracker_blink_ms = {} must be in [0, 10000]", p.blinkMs);
-    if (p.blinkMs > 0.0 && p.rateHz == 0.0)
-        Fail("gaze.tracker_blink_ms = {} needs gaze.tracker_rate_hz > 0 (runs of samples)", p.blinkMs);
-    if (p.prediction != "none" && p.prediction != "cv" && p.prediction != "landing")
-        Fail("gaze.prediction = '{}' is not one of none, cv, landing", p.prediction);
-    if (p.prediction != "none" && p.rateHz == 0.0)
-        Fail("gaze.prediction = '{}' needs gaze.tracker_rate_hz > 0 (it extrapolates from the tracker's samples)",
-             p.prediction);
-    if (!(p.saccadeDegPerS > 0.0f && p.saccadeDegPerS <= 2000.0f))
-        Fail("gaze.saccade_deg_s = {} must be in (0, 2000]", p.saccadeDegPerS);
-}
-
 // ---- TrackedGaze ---------------------------------------------------------------------------
 
 TrackedGaze::TrackedGaze(const GazeSource& truth, const TrackerParams& params) : truth_(truth), params_(params) {

@@ -1,15 +1,21 @@
 // RunConfig: defaults, TOML load, --set overrides, unknown keys, bad values, JSON/TOML round trip.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <set>
 #include <type_traits>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/frame_pipeline.h"
 #include "config/config.h"
 #include "config/config_cli.h"
 #include "config/config_io.h"
+#include "config/settings_tables.h"
 #include "core/error.h"
+#include "gaze/tracker.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -278,84 +284,29 @@ TEST_CASE("Experiment files: ignored tables, overlay tables, and the shipped pre
     if (presets == 0) WARN("no presets/*.toml found");
 }
 
-TEST_CASE("Eye FOV and frame times", "[config]") {
-    CameraConfig camera;  // 640×360, no explicit FOV
-    Fov fov = EyeFov(camera, 60.0f);
+TEST_CASE("The eye FOV: camera.fov_deg when given, else symmetric from the scene", "[config]") {
+    RunConfig config = DefaultConfig();  // 640×360, no explicit FOV
+    Scene scene;
+    scene.horizontalFovDegrees = 60.0f;
+    Fov fov = ResolveFov(config, scene);
     CHECK(fov.angleRight == Approx(Radians(30.0f)));
     CHECK(fov.angleLeft == Approx(Radians(-30.0f)));
     CHECK(std::tan(fov.angleUp) == Approx(std::tan(Radians(30.0f)) * 360.0f / 640.0f));
-    camera.fovDeg = std::array<float, 4>{-50, 40, 45, -35};
-    fov = EyeFov(camera, 60.0f);
+    config.camera.fovDeg = std::array<float, 4>{-50, 40, 45, -35};
+    fov = ResolveFov(config, scene);
     CHECK(fov.angleLeft == Approx(Radians(-50.0f)));
     CHECK(fov.angleDown == Approx(Radians(-35.0f)));
-    RunSettings run;  // fps 0: the scene's frame rate
-    CHECK(FrameTimeSeconds(run, 30.0f, 15) == Approx(0.5));
-    run.fps = 90.0f;
-    CHECK(FrameTimeSeconds(run, 30.0f, 45) == Approx(0.5));
 }
 
-namespace {
-
-// An in-range value other than `value`: the other boolean, or a step towards the far bound.
-template <class T>
-T NonDefault(const ParamInfo& info, T value) {
-    if constexpr (std::is_same_v<T, bool>) {
-        return !value;
-    } else {
-        const double far = value - info.range.min < info.range.max - value ? info.range.max : info.range.min;
-        T next = std::is_same_v<T, int> ? T(value + (far > value ? 1 : -1)) : T((double(value) + far) / 2.0);
-        return next;
-    }
-}
-
-}  // namespace
-
-TEST_CASE("Denoiser parameter tables: every key round-trips through the TOML writer and reader", "[config]") {
-    int keys = 0;
-    const DenoiserParams defaults;
-    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& defaultValue) {
-        INFO(info.key);
-        ++keys;
-        RunConfig c = DefaultConfig();
-        auto changed = NonDefault(info, defaultValue);
-        REQUIRE(changed != defaultValue);
-        ForEachDenoiserParam(c.denoise.params, [&](const ParamInfo& row, auto& member) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, decltype(changed)>)
-                if (row.key == info.key) member = changed;
-        });
-        const RunConfig back = ConfigFromTomlString(ConfigToToml(c), "roundtrip.toml");
-        ForEachDenoiserParam(back.denoise.params, [&](const ParamInfo& row, const auto& member) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, decltype(changed)>)
-                if (row.key == info.key) CHECK(member == changed);
-        });
-        CHECK(ConfigToJson(back) == ConfigToJson(c));
-    });
-    CHECK(keys == 18);  // 10 svgf + 4 asvgf (2 of them anti-lag) + 2 two-history + 2 two-history-stable
-    RunConfig c = DefaultConfig();
-    c.denoise.params.precision = Precision::Fp16;
-    CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
-}
-
-TEST_CASE("Denoiser parameter tables: each numeric key out of range fails naming it", "[config]") {
-    const DenoiserParams defaults;
-    int numeric = 0;
-    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& value) {
-        if constexpr (!std::is_same_v<std::decay_t<decltype(value)>, bool>) {
-            ++numeric;
-            const ParamRange& r = info.range;
-            for (double outside : {r.minOpen ? r.min : r.min - 1.0, r.maxOpen ? r.max : r.max + 1.0}) {
-                const std::string set = fmt::format("{}={}", info.key, outside);
-                INFO(set);
-                CHECK_THROWS_WITH(Resolve("", {set}),
-                                  Catch::Contains(fmt::format("'{}'", info.key)) && Catch::Contains("out of range"));
-            }
-        }
-    });
-    CHECK(numeric == 14);
-    // The rule between keys names both.
-    CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.atrous_iterations=2", "denoise.svgf.feedback_iteration=3"}),
-                      Catch::Contains("'denoise.svgf.feedback_iteration'") &&
-                          Catch::Contains("denoise.svgf.atrous_iterations = 2"));
+TEST_CASE("Frame times: run.fps when given, else the scene's frame rate", "[config]") {
+    RunConfig config = DefaultConfig();  // cornell; fps 0: the scene's frame rate
+    config.camera.width = 16;
+    config.camera.height = 16;
+    const float sceneRate = FramePipeline(config).GetScene().frameRate;
+    REQUIRE(sceneRate > 0.0f);
+    CHECK(FramePipeline(config).TimeOf(15) == Approx(15.0 / sceneRate));
+    config.run.fps = 90.0f;
+    CHECK(FramePipeline(config).TimeOf(45) == Approx(0.5));
 }
 
 TEST_CASE("a --set value that is not UTF-8 is refused up front naming the key", "[config]") {
@@ -366,4 +317,211 @@ TEST_CASE("a --set value that is not UTF-8 is refused up front naming the key", 
                                     "manifests)"));
     options.sets = {"output.dir=out-\xc3\xa9t\xc3\xa9"};  // valid UTF-8 ("été") is kept as given
     CHECK(ResolveConfig(options).output.dir == "out-\xc3\xa9t\xc3\xa9");
+}
+
+namespace {
+
+// A number inside `range` other than `value`: half-way to the nearer bound (the far one from a
+// bound), one step for integers, 1.5 further where that side is unbounded.
+template <class T>
+T OtherNumber(const ParamRange& range, T value) {
+    double target = double(value) - range.min < range.max - double(value) ? range.min : range.max;
+    if (double(value) == range.min) target = range.max;
+    if (double(value) == range.max) target = range.min;
+    if (std::isinf(target)) return T(double(value) + (target > 0 ? 1.5 : -1.5));
+    if constexpr (std::is_integral_v<T>) return T(double(value) + (target > double(value) ? 1.0 : -1.0));
+    return T((double(value) + target) / 2.0);
+}
+
+// A valid value for the key other than `value`.
+template <class T>
+T OtherValue(const ParamInfo& info, const T& value, const RunConfig& base) {
+    const std::string key = info.key;
+    if constexpr (std::is_same_v<T, bool>) {
+        return !value;
+    } else if constexpr (std::is_same_v<T, std::string>) {
+        if (info.names != nullptr)
+            for (const char* name : info.names())
+                if (value != name) return name;
+        return key == "denoise.device" ? std::string("cpu") : value + "x";
+    } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+        T more = value;
+        more.push_back("asvgf");
+        return more;
+    } else if constexpr (std::is_same_v<T, vec2>) {
+        return vec2(OtherNumber(info.range, value.x), OtherNumber(info.range, value.y));
+    } else if constexpr (std::is_same_v<T, FovDegrees>) {
+        return std::array<float, 4>{-40.0f, 35.5f, 30.0f, -25.25f};
+    } else {
+        if (key == "foveation.ray_budget") return T(2 * base.camera.width * base.camera.height);
+        return OtherNumber(info.range, value);
+    }
+}
+
+// Defaults with the keys other keys depend on set: a trace and a recording to play, a tracker
+// rate for blinks and predictions, degree-sized amplitudes for units = "deg".
+RunConfig RoundTripBase() {
+    return Resolve("", {"gaze.trace_path=a.csv", "gaze.recording_path=b.csv", "gaze.tracker_rate_hz=120",
+                        "gaze.amplitude=[20, 10]"});
+}
+
+// The value of `key` in `config`, as its member type.
+template <class T>
+T ValueOf(const RunConfig& config, const std::string& key) {
+    std::optional<T> found;
+    ForEachSetting(config, [&](const ParamInfo& info, const auto& member) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(member)>, T>)
+            if (key == info.key) found = member;
+    });
+    REQUIRE(found);
+    return *found;
+}
+
+}  // namespace
+
+TEST_CASE("Settings tables: every key round-trips a non-default value through TOML and JSON", "[config]") {
+    const RunConfig base = RoundTripBase();
+    std::set<std::string> keys;
+    ForEachSetting(base, [&](const ParamInfo& info, const auto& baseValue) {
+        using T = std::decay_t<decltype(baseValue)>;
+        INFO(info.key);
+        CHECK(keys.insert(info.key).second);  // each key once
+        const T changed = OtherValue(info, baseValue, base);
+        REQUIRE(!(changed == baseValue));
+        RunConfig c = base;
+        ForEachSetting(c, [&](const ParamInfo& row, auto& member) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(member)>, T>)
+                if (std::string(row.key) == info.key) member = changed;
+        });
+        const RunConfig back = ConfigFromTomlString(ConfigToToml(c), "roundtrip.toml");
+        CHECK(ValueOf<T>(back, info.key) == changed);
+        CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
+        CHECK(ConfigToJson(back) == ConfigToJson(c));
+    });
+    CHECK(keys.size() == 86);
+    RunConfig c = DefaultConfig();
+    c.denoise.params.precision = Precision::Fp16;
+    CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
+}
+
+TEST_CASE("config --keys lists every key the writer writes, with its default", "[config]") {
+    RunConfig all = DefaultConfig();
+    all.camera.fovDeg = std::array<float, 4>{-40, 40, 30, -30};  // the one key absent by default
+    std::set<std::string> written;
+    std::function<void(const nlohmann::json&, const std::string&)> collect = [&](const nlohmann::json& j,
+                                                                                 const std::string& prefix) {
+        for (const auto& [key, value] : j.items()) {
+            const std::string path = prefix.empty() ? key : prefix + "." + key;
+            if (value.is_object()) collect(value, path);
+            else written.insert(path);
+        }
+    };
+    collect(ConfigToJson(all), "");
+    std::set<std::string> listed;
+    for (const SettingLine& line : DescribeSettings()) {
+        INFO(line.key);
+        CHECK(listed.insert(line.key).second);
+        CHECK(!line.allowed.empty());
+        CHECK(!line.doc.empty());
+        if (line.key == "camera.fov_deg") CHECK(line.defaultValue.empty());
+        else CHECK(!line.defaultValue.empty());
+    }
+    CHECK(listed == written);
+    CHECK(listed.size() == 87);  // the 86 table rows and denoise.precision
+}
+
+TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {
+    int checked = 0;
+    const RunConfig defaults = DefaultConfig();
+    ForEachSetting(defaults, [&](const ParamInfo& info, const auto& value) {
+        using T = std::decay_t<decltype(value)>;
+        const ParamRange& r = info.range;
+        std::vector<std::string> bad;
+        if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+            for (double outside : {r.minOpen ? r.min : r.min - 1.0, r.maxOpen ? r.max : r.max + 1.0})
+                if (std::isfinite(outside) && std::abs(outside) < 1e15) bad.push_back(fmt::format("{}", outside));
+        } else if constexpr (std::is_same_v<T, vec2>) {
+            if (std::isfinite(r.min)) bad.push_back(fmt::format("[{}, 0]", r.minOpen ? r.min : r.min - 1.0));
+            else bad.push_back("[nan, 0]");
+        } else if constexpr (std::is_same_v<T, FovDegrees>) {
+            bad.push_back("[-90, 10, 10, -10]");
+        } else if constexpr (std::is_same_v<T, std::string>) {
+            if (info.names != nullptr || info.nonEmpty) bad.push_back("\"\"");
+        }
+        for (const std::string& value : bad) {
+            const std::string set = fmt::format("{}={}", info.key, value);
+            INFO(set);
+            ++checked;
+            std::string message;
+            try {
+                Resolve("", {set});
+            } catch (const Error& e) {
+                message = e.what();
+            }
+            CHECK(message.find('\n') == std::string::npos);
+            CHECK(message.find(fmt::format("'{}'", info.key)) != std::string::npos);
+            if (info.names != nullptr) {
+                for (const char* name : info.names()) CHECK(message.find(name) != std::string::npos);
+            } else if (info.nonEmpty && !std::is_arithmetic_v<T>) {
+                CHECK(message.find("must not be empty") != std::string::npos);
+            } else {
+                CHECK(message.find("out of range " + r.Describe()) != std::string::npos);
+            }
+        }
+    });
+    CHECK(checked > 100);
+    // The rule between keys names both.
+    CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.atrous_iterations=2", "denoise.svgf.feedback_iteration=3"}),
+                      Catch::Contains("'denoise.svgf.feedback_iteration'") &&
+                          Catch::Contains("denoise.svgf.atrous_iterations = 2"));
+}
+
+TEST_CASE("foveation.radius_deg: one range, [0, 180), in the reader and the model's checks", "[config]") {
+    // An eccentricity lies in [0°, 180°]; 180° would make every direction foveal.
+    CHECK(Resolve("", {"foveation.radius_deg=179.5"}).foveation.radiusDeg == 179.5f);
+    CHECK_THROWS_WITH(Resolve("", {"foveation.radius_deg=180"}),
+                      Catch::Contains("'foveation.radius_deg'") && Catch::Contains("out of range [0, 180)"));
+    FoveationParams params;
+    params.radiusDeg = 179.5f;
+    CHECK_NOTHROW(ValidateFoveationParams(params));
+    params.radiusDeg = 180.0f;
+    CHECK_THROWS_WITH(ValidateFoveationParams(params),
+                      Catch::Equals("foveation.radius_deg: 180 is out of range [0, 180)"));
+}
+
+TEST_CASE("the modules' checks walk the same rows as the reader", "[config]") {
+    // For every [foveation] and [gaze] row: a value the reader refuses, the module refuses too, naming
+    // the key and the same range.
+    auto outside = [](const ParamRange& r) { return std::isfinite(r.min) ? r.min - 1.0 : r.max + 1.0; };
+    int checked = 0;
+    auto probe = [&](const auto& defaults, const auto& table, auto validate) {
+        VisitRows(defaults, table, [&](const ParamInfo& info, const auto& value) {
+            using T = std::decay_t<decltype(value)>;
+            if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool> && !std::is_unsigned_v<T>) {
+                auto bad = defaults;
+                VisitRows(bad, table, [&](const ParamInfo& row, auto& member) {
+                    if constexpr (std::is_same_v<std::decay_t<decltype(member)>, T>)
+                        if (std::string(row.key) == info.key) member = T(outside(info.range));
+                });
+                INFO(info.key);
+                ++checked;
+                CHECK_THROWS_WITH(validate(bad), Catch::StartsWith(std::string(info.key) + ": ") &&
+                                                     Catch::Contains("out of range " + info.range.Describe()));
+            }
+        });
+    };
+    probe(FoveationParams{}, FoveationParamTable(), [](const FoveationParams& p) { ValidateFoveationParams(p); });
+    probe(GazeParams{}, GazeParamTable(), [](const GazeParams& p) { ValidateGazeParams(p); });
+    probe(TrackerParams{}, TrackerParamTable(), [](const TrackerParams& p) { ValidateTrackerParams(p); });
+    CHECK(checked >= 25);
+}
+
+TEST_CASE("a slider span outside its row's range is a malformed row", "[config]") {
+    CHECK(ParamRowProblem({.key = "k", .range = Closed(0, 10), .doc = "d", .slider = Closed(1, 9)}) == nullptr);
+    CHECK(ParamRowProblem({.key = "k", .range = Closed(0, 10), .doc = "d", .slider = Closed(1, 11)}) != nullptr);
+    CHECK(ParamRowProblem({.key = "k", .range = OpenMin(0, 10), .doc = "d", .slider = Closed(0, 5)}) != nullptr);
+    // Every row the preview panel slides has a span (the panel reads it by key).
+    for (const char* key : {"foveation.spp_inside", "foveation.radius_px", "foveation.foveal_deg",
+                            "foveation.peripheral_deg", "foveation.mar_slope", "foveation.uniform_spp"})
+        CHECK(!FindRow(FoveationParamTable(), key)->slider.Empty());
 }

@@ -6,6 +6,7 @@
 
 #include <toml++/toml.h>
 
+#include "app/frame_pipeline.h"
 #include "config/config.h"
 #include "config/config_io.h"
 #include "denoise/denoiser.h"
@@ -118,12 +119,16 @@ std::vector<bool> LitAt(const Scene& scene, double time) {
     return lit;
 }
 
-// The frames (of run.first_frame .. + run.frames) lit differently from the frame before.
-std::vector<int> SwitchFrames(const Scene& scene, const RunSettings& run) {
+// The frames (of run.first_frame .. + run.frames) of `config` in the room scene lit differently
+// from the frame before, at the times the frame pipeline gives them.
+std::vector<int> SwitchFrames(RunConfig config) {
+    config.scene.name = (test::SourceDir() / "scenes" / "room.toml").string();
+    const FramePipeline pipeline(config);
+    const RunSettings& run = config.run;
     std::vector<int> frames;
     for (int f = run.firstFrame + 1; f < run.firstFrame + run.frames; ++f)
-        if (LitAt(scene, FrameTimeSeconds(run, scene.frameRate, f)) !=
-            LitAt(scene, FrameTimeSeconds(run, scene.frameRate, f - 1)))
+        if (LitAt(pipeline.GetScene(), pipeline.TimeOf(uint32_t(f))) !=
+            LitAt(pipeline.GetScene(), pipeline.TimeOf(uint32_t(f - 1))))
             frames.push_back(f);
     return frames;
 }
@@ -132,10 +137,9 @@ std::vector<int> SwitchFrames(const Scene& scene, const RunSettings& run) {
 
 TEST_CASE("asvgf-lag preset: the quick run covers a light switch in room, with frames either side", "[app][presets]") {
     Preset p = LoadPreset("asvgf-lag.toml");
-    Scene room = LoadScene(test::SourceDir() / "scenes" / "room.toml");
-    const std::vector<int> full = SwitchFrames(room, p.config.run);
+    const std::vector<int> full = SwitchFrames(p.config);
     REQUIRE(!full.empty());
-    const std::vector<int> quick = SwitchFrames(room, p.quick.run);
+    const std::vector<int> quick = SwitchFrames(p.quick);
     INFO("quick frames " << p.quick.run.firstFrame << " + " << p.quick.run.frames << ", first switch of the full run at frame "
                          << full.front());
     REQUIRE(!quick.empty());

@@ -200,9 +200,12 @@ expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 
 "$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 8 ]] &&
   grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||
   bad "info: $(cat info.txt err.txt)"
-# config --keys: one line per denoiser parameter from the tables (key, default, range, doc).
+# config --keys: one line per key from the settings tables (key, default, allowed, meaning).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
-  grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
+  grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt &&
+  grep -q "^foveation.radius_deg  *0.0  *\[0, 180) " keys.txt &&
+  grep -q "^foveation.model  *disc  *disc|linear|acuity|uniform " keys.txt &&
+  grep -q "^gaze.tracker_rate_hz  *0.0  *\[0, 10000\] " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
 # A run renders the experiment's noisy inputs when it lists the same variants: A-SVGF's gradient
 # samples re-shade one pixel per 3×3 stratum with the previous frame's seed, so from frame 1 on the
 # inputs depend on whether a listed variant needs them. The experiment's denoised EXRs stand for

@@ -1,33 +1,27 @@
 // `fovrt config`: prints the fully resolved configuration (defaults <- -c FILE <- --set <-
 // --memory-budget) as TOML, or as JSON with --json, after the same validation every command runs.
-// --keys lists the denoiser parameters from their tables (denoise/params.cpp).
+// --keys lists every key from the settings tables (config/settings_tables.h).
 #include <cstdio>
 #include <memory>
 #include <string>
-#include <type_traits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "config/config_cli.h"
 #include "config/config_io.h"
+#include "config/settings_tables.h"
 #include "commands.h"
 
 namespace fovrt {
 namespace {
 
-// One line per [denoise.*] key: key, default, range, doc.
-void PrintDenoiserKeys() {
-    constexpr const char* kLine = "{:<44} {:<8} {:<14} {}\n";
-    fmt::print(kLine, "key", "default", "range", "doc");
-    std::string names;
-    for (const PrecisionRow& row : PrecisionTable()) names += (names.empty() ? "" : "|") + std::string(row.name);
-    const DenoiserParams defaults;
-    fmt::print(kLine, kPrecisionKey, PrecisionName(defaults.precision), names, kPrecisionDoc);
-    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto& value) {
-        const bool isBool = std::is_same_v<std::decay_t<decltype(value)>, bool>;
-        fmt::print(kLine, info.key, value, isBool ? "true|false" : info.range.Describe(), info.doc);
-    });
+// One line per key: key, default, allowed values, meaning (config/settings_tables.h).
+void PrintKeys() {
+    constexpr const char* kLine = "{:<40} {:<14} {:<24} {}\n";
+    fmt::print(kLine, "key", "default", "allowed", "meaning");
+    for (const SettingLine& line : DescribeSettings())
+        fmt::print(kLine, line.key, line.defaultValue.empty() ? "(absent)" : line.defaultValue, line.allowed, line.doc);
 }
 
 }  // namespace
@@ -43,10 +37,10 @@ void RegisterConfigCommand(CLI::App& app) {
     cmd->add_flag("--json", *json, "Print JSON (as in run manifests) instead of TOML");
     cmd->add_flag("--experiment", *experiment, "The file is an experiment file: skip its [experiment] table");
     cmd->add_flag("--quick", *quick, "With --experiment: merge [experiment.quick] over the file");
-    cmd->add_flag("--keys", *keys, "List the [denoise.*] keys: default, range and meaning");
+    cmd->add_flag("--keys", *keys, "List every config key: default, allowed values and meaning");
     cmd->callback([options, json, experiment, quick, keys] {
         if (*keys) {
-            PrintDenoiserKeys();
+            PrintKeys();
             return;
         }
         ExperimentTable experimentTable;

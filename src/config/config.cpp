@@ -1,6 +1,7 @@
 #include "config/config.h"
 #include "config/config_cli.h"
 #include "config/config_io.h"
+#include "config/settings_tables.h"
 
 #include <algorithm>
 #include <cctype>
@@ -19,12 +20,10 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
-#include "core/check.h"
 #include "core/error.h"
 #include "core/nearest_name.h"
 #include "denoise/params.h"
 #include "denoise/variants.h"
-#include "metrics/vdp_display.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
@@ -33,18 +32,17 @@ namespace {
 // Where each leaf key came from ("a.toml:12", "--set", "--memory-budget", "JSON").
 using Origins = std::map<std::string, std::string>;
 
-// Tables the schema knows; every other table is an unknown key. The denoiser parameters' tables
-// ([denoise.svgf], ...) come from their keys in denoise/params.cpp.
+// Tables the schema knows (the sections of every key of the settings tables); every other table is
+// an unknown key.
 const std::set<std::string>& KnownSections() {
     static const std::set<std::string> sections = [] {
-        std::set<std::string> names = {"scene", "camera",  "run",    "render",   "foveation",
-                                       "gaze",  "denoise", "output", "reference", "metric"};
-        names.insert("denoise.rae");  // RaeParams: string keys, outside the numeric tables
-        const DenoiserParams defaults;
-        ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) {
-            const std::string key = info.key;
-            names.insert(key.substr(0, key.rfind('.')));
-        });
+        std::set<std::string> names;
+        auto addSection = [&](const std::string& key) {
+            if (key.find('.') != std::string::npos) names.insert(key.substr(0, key.rfind('.')));
+        };
+        const RunConfig defaults;
+        ForEachSetting(defaults, [&](const ParamInfo& info, const auto&) { addSection(info.key); });
+        addSection(kPrecisionKey);
         return names;
     }();
     return sections;
@@ -138,111 +136,89 @@ public:
         return view.node();
     }
 
-    void Int(const std::string& key, int& out, int64_t lo, int64_t hi) {
-        int64_t v = out;
-        Int64(key, v, lo, hi);
-        out = int(v);
-    }
-    void Int(const std::string& key, int& out, const ParamRange& range) {
-        const toml::node* n = Find(key);
+    // One key of a settings table: read as the member's type, checked against its row
+    // (SettingValueProblem); an absent key keeps the member's value.
+    void Setting(const ParamInfo& info, bool& out) {
+        const toml::node* n = Find(info.key);
         if (!n) return;
-        if (!n->is_integer()) Bad(key, fmt::format("expected an integer, got {}", TypeName(*n)));
-        int64_t v = n->as_integer()->get();
-        if (!range.Contains(double(v))) Bad(key, fmt::format("{} is out of range {}", v, range.Describe()));
-        out = int(v);
-    }
-    void Int64(const std::string& key, int64_t& out, int64_t lo, int64_t hi) {
-        const toml::node* n = Find(key);
-        if (!n) return;
-        if (!n->is_integer()) Bad(key, fmt::format("expected an integer, got {}", TypeName(*n)));
-        int64_t v = n->as_integer()->get();
-        if (v < lo || v > hi) Bad(key, fmt::format("{} is out of range [{}, {}]", v, lo, hi));
-        out = v;
-    }
-    void Float(const std::string& key, float& out, double lo, double hi, bool loOpen = false) {
-        Float(key, out, ParamRange{lo, hi, loOpen, false});
-    }
-    void Float(const std::string& key, float& out, const ParamRange& range) {
-        const toml::node* n = Find(key);
-        if (!n) return;
-        double v;
-        if (n->is_integer()) v = double(n->as_integer()->get());
-        else if (n->is_floating_point()) v = n->as_floating_point()->get();
-        else Bad(key, fmt::format("expected a number, got {}", TypeName(*n)));
-        if (!range.Contains(v)) Bad(key, fmt::format("{} is out of range {}", v, range.Describe()));
-        out = float(v);
-    }
-    void Double(const std::string& key, double& out) {
-        const toml::node* n = Find(key);
-        if (!n) return;
-        if (n->is_integer()) out = double(n->as_integer()->get());
-        else if (n->is_floating_point()) out = n->as_floating_point()->get();
-        else Bad(key, fmt::format("expected a number, got {}", TypeName(*n)));
-        if (!std::isfinite(out)) Bad(key, "must be finite");
-    }
-    void Bool(const std::string& key, bool& out) {
-        const toml::node* n = Find(key);
-        if (!n) return;
-        if (!n->is_boolean()) Bad(key, fmt::format("expected true or false, got {}", TypeName(*n)));
+        if (!n->is_boolean()) Bad(info.key, fmt::format("expected true or false, got {}", TypeName(*n)));
         out = n->as_boolean()->get();
     }
-    void String(const std::string& key, std::string& out, const std::vector<std::string>& allowed = {}) {
-        const toml::node* n = Find(key);
+    template <class Integer>
+        requires std::is_integral_v<Integer>
+    void Setting(const ParamInfo& info, Integer& out) {
+        const toml::node* n = Find(info.key);
         if (!n) return;
-        if (!n->is_string()) Bad(key, fmt::format("expected a string, got {}", TypeName(*n)));
-        std::string v = n->as_string()->get();
-        if (allowed.size() != 0) {
-            bool ok = false;
-            std::string list;
-            for (const std::string& a : allowed) {
-                ok = ok || v == a;
-                list += (list.empty() ? "" : ", ") + a;
+        if (!n->is_integer()) Bad(info.key, fmt::format("expected an integer, got {}", TypeName(*n)));
+        Check(info, n->as_integer()->get());
+        out = Integer(n->as_integer()->get());
+    }
+    // uint64_t members are byte sizes: an integer, or a size string ("2GiB").
+    void Setting(const ParamInfo& info, uint64_t& out) {
+        const toml::node* n = Find(info.key);
+        if (!n) return;
+        if (n->is_integer()) {
+            Check(info, n->as_integer()->get());
+            out = uint64_t(n->as_integer()->get());
+        } else if (n->is_string()) {
+            try {
+                out = ParseByteSize(n->as_string()->get(), info.key);
+            } catch (const Error& e) {
+                Bad(info.key, e.what());
             }
-            if (!ok) Bad(key, fmt::format("'{}' is not one of {} (did you mean '{}'?)", v, list, NearestName(v, allowed)));
+        } else {
+            Bad(info.key, fmt::format("expected bytes (integer or \"512MiB\"), got {}", TypeName(*n)));
         }
+    }
+    void Setting(const ParamInfo& info, float& out) {
+        double v = out;
+        Setting(info, v);
+        out = float(v);
+    }
+    void Setting(const ParamInfo& info, double& out) {
+        const toml::node* n = Find(info.key);
+        if (!n) return;
+        const double v = Number(info.key, *n, "a number");
+        Check(info, v);
         out = v;
     }
-    void Strings(const std::string& key, std::vector<std::string>& out) {
-        const toml::node* n = Find(key);
+    void Setting(const ParamInfo& info, vec2& out) {
+        std::array<float, 2> a{};
+        if (!Numbers(info, a)) return;
+        out = vec2(a[0], a[1]);
+    }
+    void Setting(const ParamInfo& info, FovDegrees& out) {
+        std::array<float, 4> a{};
+        if (!Numbers(info, a)) return;
+        out = a;
+    }
+    void Setting(const ParamInfo& info, std::string& out) {
+        const toml::node* n = Find(info.key);
+        if (!n) return;
+        if (!n->is_string()) Bad(info.key, fmt::format("expected a string, got {}", TypeName(*n)));
+        Check(info, std::string(n->as_string()->get()));
+        out = n->as_string()->get();
+    }
+    void Setting(const ParamInfo& info, std::vector<std::string>& out) {
+        const toml::node* n = Find(info.key);
         if (!n) return;
         if (n->is_string()) {
             out = {n->as_string()->get()};
             return;
         }
-        if (!n->is_array()) Bad(key, fmt::format("expected an array of strings, got {}", TypeName(*n)));
+        if (!n->is_array()) Bad(info.key, fmt::format("expected an array of strings, got {}", TypeName(*n)));
         std::vector<std::string> v;
         for (const toml::node& e : *n->as_array()) {
-            if (!e.is_string()) Bad(key, fmt::format("expected an array of strings, found a {}", TypeName(e)));
+            if (!e.is_string()) Bad(info.key, fmt::format("expected an array of strings, found a {}", TypeName(e)));
             v.push_back(e.as_string()->get());
         }
         out = v;
     }
-    // A fixed-size array of numbers.
-    template <size_t N>
-    bool Numbers(const std::string& key, std::array<float, N>& out) {
-        const toml::node* n = Find(key);
-        if (!n) return false;
-        const toml::array* a = n->as_array();
-        if (!a || a->size() != N) Bad(key, fmt::format("expected an array of {} numbers", N));
-        for (size_t i = 0; i < N; ++i) {
-            const toml::node& e = *a->get(i);
-            double v;
-            if (e.is_integer()) v = double(e.as_integer()->get());
-            else if (e.is_floating_point()) v = e.as_floating_point()->get();
-            else Bad(key, fmt::format("expected an array of {} numbers, found a {}", N, TypeName(e)));
-            if (!std::isfinite(v)) Bad(key, "values must be finite");
-            out[i] = float(v);
-        }
-        return true;
+    // The value against its row; fails naming the key and the range or names.
+    template <class Value>
+    void Check(const ParamInfo& info, const Value& value) const {
+        if (std::optional<std::string> problem = SettingValueProblem(info, value)) Bad(info.key, *problem);
     }
-    void Vec2(const std::string& key, vec2& out) {
-        std::array<float, 2> a{out.x, out.y};
-        if (Numbers(key, a)) out = vec2(a[0], a[1]);
-    }
-    // A denoiser parameter: its type is the member's, its range the table row's.
-    void Param(const ParamInfo& info, float& out) { Float(info.key, out, info.range); }
-    void Param(const ParamInfo& info, int& out) { Int(info.key, out, info.range); }
-    void Param(const ParamInfo& info, bool& out) { Bool(info.key, out); }
 
     // Every key present but not consumed by the schema is an error.
     void CheckUnknown(const toml::table& table, const std::string& prefix) const {
@@ -263,6 +239,27 @@ public:
     }
 
 private:
+    // An integer or a float; fails naming `key` and what it expected otherwise.
+    double Number(const std::string& key, const toml::node& n, const std::string& expected) const {
+        if (n.is_integer()) return double(n.as_integer()->get());
+        if (n.is_floating_point()) return n.as_floating_point()->get();
+        Bad(key, fmt::format("expected {}, got {}", expected, TypeName(n)));
+    }
+    // A fixed-size array of numbers, each in the row's range.
+    template <size_t N>
+    bool Numbers(const ParamInfo& info, std::array<float, N>& out) {
+        const toml::node* n = Find(info.key);
+        if (!n) return false;
+        const toml::array* a = n->as_array();
+        if (!a || a->size() != N) Bad(info.key, fmt::format("expected an array of {} numbers", N));
+        for (size_t i = 0; i < N; ++i) {
+            const double v = Number(info.key, *a->get(i), fmt::format("an array of {} numbers", N));
+            Check(info, v);
+            out[i] = float(v);
+        }
+        return true;
+    }
+
     // " (did you mean 'camera.width'?)": the nearest key the schema knows.
     std::string Suggest(const std::string& key) const {
         const std::string nearest = NearestName(key, used_);
@@ -284,159 +281,56 @@ private:
     std::set<std::string> used_;
 };
 
-RunConfig Build(const toml::table& root, const Origins& origins, const std::string& sources,
-                const std::vector<std::string>& ignoredTables = {}) {
-    RunConfig c;
-    Reader r(root, origins);
-    constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
-
-    // memory_budget: bytes as an integer, or a size string ("2GiB").
-    if (const toml::node* n = r.Find("memory_budget")) {
-        if (n->is_integer()) {
-            int64_t v = n->as_integer()->get();
-            if (v < 0) r.Bad("memory_budget", fmt::format("{} must be >= 0 (0 = no budget)", v));
-            c.memoryBudget = uint64_t(v);
-        } else if (n->is_string()) {
-            try {
-                c.memoryBudget = ParseByteSize(n->as_string()->get(), "memory_budget");
-            } catch (const Error& e) {
-                r.Bad("memory_budget", e.what());
-            }
-        } else {
-            r.Bad("memory_budget", fmt::format("expected bytes (integer or \"512MiB\"), got {}", TypeName(*n)));
-        }
+// A device index may be given as a number (device = 1) or a string ("1"): the table's row is a
+// string, so a number is turned into its text first.
+toml::table WithDeviceAsText(const toml::table& root, const Origins& origins) {
+    toml::table copy = root;
+    toml::node_view<toml::node> device = copy.at_path("denoise.device");
+    if (device.is_integer()) {
+        const int64_t index = device.as_integer()->get();
+        if (index < 0) Reader(root, origins).Bad("denoise.device", "a device index must be >= 0");
+        copy["denoise"].as_table()->insert_or_assign("device", std::to_string(index));
     }
+    return copy;
+}
 
-    r.String("scene.name", c.scene.name);
-    if (c.scene.name.empty()) r.Bad("scene.name", "must not be empty");
-
-    r.Int("camera.width", c.camera.width, 1, 16384);
-    r.Int("camera.height", c.camera.height, 1, 16384);
-    std::array<float, 4> fov{};
-    if (r.Numbers("camera.fov_deg", fov)) {
-        for (float a : fov)
-            if (!(std::abs(a) < 90.0f)) r.Bad("camera.fov_deg", "angles must lie in (-90, 90) degrees");
+// The rules between keys and the checks a row cannot state (names of denoisers, devices present),
+// each failing with the key's origin.
+void CheckRules(const RunConfig& c, const Reader& r) {
+    if (c.camera.fovDeg) {
+        const auto& fov = *c.camera.fovDeg;
         if (!(fov[0] < fov[1])) r.Bad("camera.fov_deg", "left must be < right ([left, right, up, down])");
         if (!(fov[3] < fov[2])) r.Bad("camera.fov_deg", "down must be < up ([left, right, up, down])");
-        c.camera.fovDeg = fov;
     }
-    r.Float("camera.ipd", c.camera.ipd, 0.0, 1.0);
-
-    r.Int("run.frames", c.run.frames, 1, kMaxInt);
-    r.Int("run.first_frame", c.run.firstFrame, 0, kMaxInt);
-    r.Float("run.fps", c.run.fps, 0.0, 10000.0);
-    int64_t seed = c.run.seed;
-    r.Int64("run.seed", seed, 0, std::numeric_limits<uint32_t>::max());
-    c.run.seed = uint32_t(seed);
-    r.Int("run.threads", c.run.threads, 0, 4096);
-    r.Int("run.max_depth", c.run.maxDepth, 0, 1024);
-    r.String("render.demodulation", c.render.demodulation, {"albedo", "brdf"});
-
-    FoveationConfig& f = c.foveation;
-    r.String("foveation.model", f.model, {"disc", "linear", "acuity", "uniform"});
-    r.Int("foveation.spp_inside", f.sppInside, 1, kMaxSpp);
-    r.Int("foveation.spp_outside", f.sppOutside, 1, kMaxSpp);
-    r.Float("foveation.radius_px", f.radiusPx, 0.0, 1e6, true);
-    r.Int("foveation.radius_reference_width", f.radiusReferenceWidth, 1, 16384);
-    r.Float("foveation.radius_deg", f.radiusDeg, 0.0, 179.0);
-    r.Int("foveation.spp_max", f.sppMax, 1, kMaxSpp);
-    r.Int("foveation.spp_min", f.sppMin, 1, kMaxSpp);
-    r.Float("foveation.foveal_deg", f.fovealDeg, 0.0, 180.0);
-    r.Float("foveation.peripheral_deg", f.peripheralDeg, 0.0, 180.0);
-    r.Float("foveation.omega0_deg", f.omega0Deg, 0.0, 10.0, true);
-    r.Float("foveation.mar_slope", f.marSlope, 0.0, 10.0);
-    r.Int("foveation.uniform_spp", f.uniformSpp, 1, kMaxSpp);
-    r.Int64("foveation.ray_budget", f.rayBudget, 0, std::numeric_limits<int64_t>::max());
+    const FoveationConfig& f = c.foveation;
     const int64_t pixels = int64_t(c.camera.width) * c.camera.height;
     if (f.rayBudget != 0 && (f.rayBudget < pixels || f.rayBudget > pixels * kMaxSpp))
         r.Bad("foveation.ray_budget",
               fmt::format("{} is outside [width*height, {}*width*height] = [{}, {}] (0 = no budget)",
                           f.rayBudget, kMaxSpp, pixels, pixels * kMaxSpp));
-    if (f.peripheralDeg <= f.fovealDeg)
-        r.Bad("foveation.peripheral_deg",
-              fmt::format("{} must be > foveation.foveal_deg = {}", f.peripheralDeg, f.fovealDeg));
-
-    GazeConfig& g = c.gaze;
-    r.String("gaze.source", g.source, {"lissajous", "trace", "recording", "static", "mouse"});
-    r.String("gaze.units", g.units, {"px", "deg"});
-    r.Vec2("gaze.amplitude", g.amplitude);
-    r.Vec2("gaze.frequency_hz", g.frequencyHz);
-    r.Vec2("gaze.phase_deg", g.phaseDeg);
-    r.Vec2("gaze.offset", g.offset);
-    r.Int("gaze.reference_width", g.referenceWidth, 1, 16384);
-    r.Int("gaze.reference_height", g.referenceHeight, 1, 16384);
-    r.String("gaze.trace_path", g.tracePath);
-    r.Double("gaze.trace_start_ms", g.traceStartMs);
-    r.String("gaze.blink", g.blink, {"hold", "uniform"});
-    r.Float("gaze.yaw_deg", g.yawDeg, -89.999, 89.999);
-    r.Float("gaze.pitch_deg", g.pitchDeg, -89.999, 89.999);
-    r.String("gaze.recording_path", g.recordingPath);
-    TrackerParams& t = g.tracker;  // ranges: ValidateTrackerParams (gaze/tracker.cpp)
-    r.Double("gaze.tracker_rate_hz", t.rateHz);
-    r.Double("gaze.tracker_phase_ms", t.phaseMs);
-    r.Double("gaze.tracker_latency_ms", t.latencyMs);
-    r.Float("gaze.tracker_noise_deg", t.noiseDeg, 0.0, 45.0);
-    r.Vec2("gaze.tracker_bias_deg", t.biasDeg);
-    r.Double("gaze.tracker_dropout", t.dropout);
-    r.Double("gaze.tracker_blink_ms", t.blinkMs);
-    int64_t trackerSeed = t.seed;
-    r.Int64("gaze.tracker_seed", trackerSeed, 0, std::numeric_limits<uint32_t>::max());
-    t.seed = uint32_t(trackerSeed);
-    r.String("gaze.prediction", t.prediction, {"none", "cv", "landing"});
-    r.Float("gaze.saccade_deg_s", t.saccadeDegPerS, 0.0, 2000.0, true);
-    if (g.source == "trace" && g.tracePath.empty())
-        r.Bad("gaze.trace_path", "must be set when gaze.source = \"trace\"");
-    if (g.frequencyHz.x < 0 || g.frequencyHz.y < 0) r.Bad("gaze.frequency_hz", "must be >= 0");
-
-    DenoiseConfig& d = c.denoise;
-    r.Strings("denoise.denoisers", d.denoisers);
+    const DenoiseConfig& d = c.denoise;
     for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
         if (auto problem = DenoiserNameProblem(name)) r.Bad("denoise.denoisers", *problem);
     }
-    // A device index may be given as a number (device = 1) or a string ("1").
-    if (const toml::node* n = r.Find("denoise.device"); n && n->is_integer()) {
-        if (n->as_integer()->get() < 0) r.Bad("denoise.device", "a device index must be >= 0");
-        d.device = std::to_string(n->as_integer()->get());
-    } else {
-        r.String("denoise.device", d.device);
-    }
     if (!ParseDeviceSetting(d.device))
         r.Bad("denoise.device", fmt::format("'{}' is not {} (Vulkan devices present: {})", d.device,
                                             kDeviceSettingForms, DescribeVulkanDevices(VulkanContext::ListDevices())));
-    std::string precision = PrecisionName(d.params.precision);
-    std::vector<std::string> precisionNames;
-    for (const PrecisionRow& row : PrecisionTable()) precisionNames.push_back(row.name);
-    r.String(kPrecisionKey, precision, precisionNames);
-    PrecisionFromName(precision, d.params.precision);
-    r.String(kRaeWeightsKey, d.params.rae.weights);
-    if (d.params.rae.weights.empty()) r.Bad(kRaeWeightsKey, "must not be empty");
-    r.String(kRaeWeightsSppKey, d.params.rae.weightsSpp);
-    if (d.params.rae.weightsSpp.empty()) r.Bad(kRaeWeightsSppKey, "must not be empty");
-    ForEachDenoiserParam(d.params, [&](const ParamInfo& info, auto& value) { r.Param(info, value); });
-    if (std::optional<ParamProblem> problem = DenoiserParamConflict(d.params))
-        r.Bad(problem->key, problem->message);
+    for (const std::optional<ParamProblem>& problem :
+         {FoveationParamConflict(f), GazeParamConflict(c.gaze), DenoiserParamConflict(d.params)})
+        if (problem) r.Bad(problem->key, problem->message);
+}
 
-    r.String("output.dir", c.output.dir);
-    if (c.output.dir.empty()) r.Bad("output.dir", "must not be empty");
-    r.Bool("output.write_exr", c.output.writeExr);
-    r.Bool("output.write_png", c.output.writePng);
-    r.Bool("output.write_inputs", c.output.writeInputs);
-    r.Float("output.exposure", c.output.exposure, -64.0, 64.0);
-    r.Bool("output.report", c.output.report);
-
-    r.Int("reference.spp", c.reference.spp, 1, 1 << 24);
-    int64_t referenceSeed = c.reference.seed;
-    r.Int64("reference.seed", referenceSeed, 0, std::numeric_limits<uint32_t>::max());
-    c.reference.seed = uint32_t(referenceSeed);
-    r.String("reference.cache_dir", c.reference.cacheDir);
-
-    r.Bool("metric.vdp", c.metric.vdp);
-    std::vector<std::string> displays = {"camera"};
-    for (const VdpDisplay& d : VdpDisplayProfiles()) displays.push_back(d.name);
-    r.String("metric.display", c.metric.display, displays);
-    r.Float("metric.ppd", c.metric.ppd, 0.0, 1000.0);
-    r.Float("metric.peak", c.metric.peak, 0.0, 100000.0);
+RunConfig Build(const toml::table& given, const Origins& origins, const std::string& sources,
+                const std::vector<std::string>& ignoredTables = {}) {
+    const toml::table root = WithDeviceAsText(given, origins);
+    RunConfig c;
+    Reader r(root, origins);
+    ForEachSetting(c, [&](const ParamInfo& info, auto& value) { r.Setting(info, value); });
+    std::string precision = PrecisionName(c.denoise.params.precision);
+    r.Setting(kPrecisionInfo, precision);
+    PrecisionFromName(precision, c.denoise.params.precision);
+    CheckRules(c, r);
 
     toml::table checked = root;
     for (const std::string& name : ignoredTables) checked.erase(name);
@@ -456,12 +350,6 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
 // Shortest decimal that round-trips the float, as a double: manifests show 0.063, not 0.0630000010.
 double CleanFloat(float v) { return std::stod(fmt::format("{}", v)); }
 
-toml::array TomlArray(std::initializer_list<float> values) {
-    toml::array a;
-    for (float v : values) a.push_back(CleanFloat(v));
-    return a;
-}
-
 // Sets a dotted key ("denoise.svgf.alpha_color") of `root`, making the tables on the way.
 template <class Value>
 void InsertAt(toml::table& root, const std::string& key, Value value) {
@@ -473,95 +361,45 @@ void InsertAt(toml::table& root, const std::string& key, Value value) {
         table = table->get(segment)->as_table();
         start = dot + 1;
     }
-    table->insert_or_assign(key.substr(start), value);
+    table->insert_or_assign(key.substr(start), std::move(value));
 }
 
-// The denoiser parameters from their tables: floats as their shortest decimal, like every float.
-void InsertDenoiserParams(toml::table& root, const DenoiserParams& p) {
-    InsertAt(root, kPrecisionKey, std::string(PrecisionName(p.precision)));
-    InsertAt(root, kRaeWeightsKey, p.rae.weights);
-    InsertAt(root, kRaeWeightsSppKey, p.rae.weightsSpp);
-    ForEachDenoiserParam(p, [&](const ParamInfo& info, const auto& value) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, float>) InsertAt(root, info.key, CleanFloat(value));
-        else InsertAt(root, info.key, value);
-    });
+// One setting as TOML: floats as their shortest decimal, integers as TOML's 64-bit integers.
+template <class Value>
+auto TomlValue(const Value& value) {
+    if constexpr (std::is_same_v<Value, float>) {
+        return CleanFloat(value);
+    } else if constexpr (std::is_same_v<Value, bool> || std::is_same_v<Value, double> ||
+                         std::is_same_v<Value, std::string>) {
+        return value;
+    } else if constexpr (std::is_integral_v<Value>) {
+        return int64_t(value);
+    } else if constexpr (std::is_same_v<Value, vec2>) {
+        toml::array a;
+        for (int i = 0; i < 2; ++i) a.push_back(CleanFloat(value[i]));
+        return a;
+    } else if constexpr (std::is_same_v<Value, std::array<float, 4>>) {
+        toml::array a;
+        for (float v : value) a.push_back(CleanFloat(v));
+        return a;
+    } else {
+        static_assert(std::is_same_v<Value, std::vector<std::string>>);
+        toml::array a;
+        for (const std::string& v : value) a.push_back(v);
+        return a;
+    }
 }
 
 toml::table ToTable(const RunConfig& c) {
-    const FoveationConfig& f = c.foveation;
-    const GazeConfig& g = c.gaze;
-    toml::table camera{{"width", c.camera.width}, {"height", c.camera.height}, {"ipd", CleanFloat(c.camera.ipd)}};
-    if (c.camera.fovDeg) {
-        const auto& v = *c.camera.fovDeg;
-        camera.insert("fov_deg", TomlArray({v[0], v[1], v[2], v[3]}));
-    }
-    toml::array denoisers;
-    for (const std::string& name : c.denoise.denoisers) denoisers.push_back(name);
-    toml::table root{
-        {"memory_budget", int64_t(c.memoryBudget)},
-        {"scene", toml::table{{"name", c.scene.name}}},
-        {"camera", camera},
-        {"run", toml::table{{"frames", c.run.frames},
-                            {"first_frame", c.run.firstFrame},
-                            {"fps", CleanFloat(c.run.fps)},
-                            {"seed", int64_t(c.run.seed)},
-                            {"threads", c.run.threads},
-                            {"max_depth", c.run.maxDepth}}},
-        {"render", toml::table{{"demodulation", c.render.demodulation}}},
-        {"foveation", toml::table{{"model", f.model},
-                                  {"spp_inside", f.sppInside},
-                                  {"spp_outside", f.sppOutside},
-                                  {"radius_px", CleanFloat(f.radiusPx)},
-                                  {"radius_reference_width", f.radiusReferenceWidth},
-                                  {"radius_deg", CleanFloat(f.radiusDeg)},
-                                  {"spp_max", f.sppMax},
-                                  {"spp_min", f.sppMin},
-                                  {"foveal_deg", CleanFloat(f.fovealDeg)},
-                                  {"peripheral_deg", CleanFloat(f.peripheralDeg)},
-                                  {"omega0_deg", CleanFloat(f.omega0Deg)},
-                                  {"mar_slope", CleanFloat(f.marSlope)},
-                                  {"uniform_spp", f.uniformSpp},
-                                  {"ray_budget", f.rayBudget}}},
-        {"gaze", toml::table{{"source", g.source},
-                             {"units", g.units},
-                             {"amplitude", TomlArray({g.amplitude.x, g.amplitude.y})},
-                             {"frequency_hz", TomlArray({g.frequencyHz.x, g.frequencyHz.y})},
-                             {"phase_deg", TomlArray({g.phaseDeg.x, g.phaseDeg.y})},
-                             {"offset", TomlArray({g.offset.x, g.offset.y})},
-                             {"reference_width", g.referenceWidth},
-                             {"reference_height", g.referenceHeight},
-                             {"trace_path", g.tracePath},
-                             {"trace_start_ms", g.traceStartMs},
-                             {"blink", g.blink},
-                             {"yaw_deg", CleanFloat(g.yawDeg)},
-                             {"pitch_deg", CleanFloat(g.pitchDeg)},
-                             {"recording_path", g.recordingPath},
-                             {"tracker_rate_hz", g.tracker.rateHz},
-                             {"tracker_phase_ms", g.tracker.phaseMs},
-                             {"tracker_latency_ms", g.tracker.latencyMs},
-                             {"tracker_noise_deg", CleanFloat(g.tracker.noiseDeg)},
-                             {"tracker_bias_deg", TomlArray({g.tracker.biasDeg.x, g.tracker.biasDeg.y})},
-                             {"tracker_dropout", g.tracker.dropout},
-                             {"tracker_blink_ms", g.tracker.blinkMs},
-                             {"tracker_seed", int64_t(g.tracker.seed)},
-                             {"prediction", g.tracker.prediction},
-                             {"saccade_deg_s", CleanFloat(g.tracker.saccadeDegPerS)}}},
-        {"denoise", toml::table{{"denoisers", denoisers}, {"device", c.denoise.device}}},
-        {"output", toml::table{{"dir", c.output.dir},
-                               {"write_exr", c.output.writeExr},
-                               {"write_png", c.output.writePng},
-                               {"write_inputs", c.output.writeInputs},
-                               {"exposure", CleanFloat(c.output.exposure)},
-                               {"report", c.output.report}}},
-        {"reference", toml::table{{"spp", c.reference.spp},
-                                  {"seed", int64_t(c.reference.seed)},
-                                  {"cache_dir", c.reference.cacheDir}}},
-        {"metric", toml::table{{"vdp", c.metric.vdp},
-                               {"display", c.metric.display},
-                               {"ppd", CleanFloat(c.metric.ppd)},
-                               {"peak", CleanFloat(c.metric.peak)}}},
-    };
-    InsertDenoiserParams(root, c.denoise.params);
+    toml::table root;
+    ForEachSetting(c, [&](const ParamInfo& info, const auto& value) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, FovDegrees>) {
+            if (value) InsertAt(root, info.key, TomlValue(*value));  // absent: from the scene
+        } else {
+            InsertAt(root, info.key, TomlValue(value));
+        }
+    });
+    InsertAt(root, kPrecisionKey, std::string(PrecisionName(c.denoise.params.precision)));
     return root;
 }
 
@@ -667,20 +505,6 @@ uint64_t ParseByteSize(const std::string& text, const std::string& what) {
     double bytes = number * it->second;
     if (!(bytes < 0x1p63)) Fail("{}: '{}' is too large", what, text);
     return uint64_t(std::llround(bytes));
-}
-
-Fov EyeFov(const CameraConfig& camera, float sceneHorizontalFovDegrees) {
-    if (camera.fovDeg) {
-        const auto& a = *camera.fovDeg;
-        return Fov{Radians(a[0]), Radians(a[1]), Radians(a[2]), Radians(a[3])};
-    }
-    return Fov::FromHorizontal(Radians(sceneHorizontalFovDegrees), float(camera.width) / float(camera.height));
-}
-
-double FrameTimeSeconds(const RunSettings& run, float sceneFrameRate, int frame) {
-    double fps = run.fps > 0.0f ? double(run.fps) : double(sceneFrameRate);
-    FOVRT_CHECK_OP(fps, >, 0.0);
-    return double(frame) / fps;
 }
 
 RunConfig DefaultConfig() { return Build(toml::table{}, {}, "defaults"); }

@@ -1,5 +1,7 @@
 #include "frame_inputs.h"
 
+#include <array>
+
 namespace fovrt {
 
 void FrameInputs::Allocate(int width, int height) {
@@ -7,13 +9,22 @@ void FrameInputs::Allocate(int width, int height) {
     gradientSamples.clear();
 }
 
-const char* DemodulationName(Demodulation d) { return d == Demodulation::Brdf ? "brdf" : "albedo"; }
+namespace {
+// Indexed by Demodulation: the names render.demodulation takes.
+constexpr std::array<const char*, 2> kDemodulationNames = {"albedo", "brdf"};
+}  // namespace
+
+NameList DemodulationNames() { return kDemodulationNames; }
+
+const char* DemodulationName(Demodulation d) { return kDemodulationNames[size_t(d)]; }
 
 bool ParseDemodulation(std::string_view name, Demodulation& d) {
-    if (name == "albedo") d = Demodulation::Albedo;
-    else if (name == "brdf") d = Demodulation::Brdf;
-    else return false;
-    return true;
+    for (size_t i = 0; i < kDemodulationNames.size(); ++i)
+        if (name == kDemodulationNames[i]) {
+            d = Demodulation(i);
+            return true;
+        }
+    return false;
 }
 
 vec3 FrameInputs::NoisyColor(int x, int y) const {

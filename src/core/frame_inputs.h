@@ -13,6 +13,7 @@
 #include "image.h"
 #include "math.h"
 #include "plane_list.h"
+#include "setting_table.h"
 
 namespace fovrt {
 
@@ -43,7 +44,8 @@ inline vec3 Remodulate(const vec3& albedo, const vec3& direct, const vec3& indir
 // What direct and indirect are divided by (render.demodulation): the primary albedo (SVGF §3)
 // or the primary hit's BRDF pre-integration F_β (Zhuang et al., SPEC §6).
 enum class Demodulation : uint8_t { Albedo, Brdf };
-const char* DemodulationName(Demodulation d);  // "albedo" | "brdf"
+NameList DemodulationNames();                  // "albedo", "brdf", in enum order
+const char* DemodulationName(Demodulation d);  // one of DemodulationNames()
 // False (d untouched) for any other name.
 bool ParseDemodulation(std::string_view name, Demodulation& d);
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "core/check.h"
 #include "denoise/variants.h"
 
 namespace fovrt {
@@ -36,23 +37,41 @@ std::string Bytes(size_t b) {
                            : fmt::format("{:.1f} KiB", double(b) / 1024.0);
 }
 
+// Sliders over the span the setting's row gives (foveation/foveation_params.cpp,
+// gaze/gaze_params.cpp), so the panel never offers a value the checks refuse.
+template <class Table>
+ParamRange SliderSpan(const Table& table, const char* key) {
+    const ParamInfo* row = FindRow(table, key);
+    FOVRT_CHECK(row != nullptr && !row->slider.Empty());
+    return row->slider;
+}
+bool SliderOf(const char* label, const char* key, int& value) {
+    const ParamRange span = SliderSpan(FoveationParamTable(), key);
+    return ImGui::SliderInt(label, &value, int(span.min), int(span.max));
+}
+bool SliderOf(const char* label, const char* key, float& value, const char* format) {
+    const ParamRange span = SliderSpan(FoveationParamTable(), key);
+    return ImGui::SliderFloat(label, &value, float(span.min), float(span.max), format);
+}
+
 bool FoveationControls(FoveationParams& f) {
-    bool changed = Combo("model", {"disc", "linear", "acuity", "uniform"}, f.model);
+    std::vector<std::string> models(FoveationModelNames().begin(), FoveationModelNames().end());
+    bool changed = Combo("model", models, f.model);
     if (f.model == "disc") {
-        changed |= ImGui::SliderInt("spp inside", &f.sppInside, 1, 16);
-        changed |= ImGui::SliderInt("spp outside", &f.sppOutside, 1, 16);
-        changed |= ImGui::SliderFloat("radius px @1280", &f.radiusPx, 10.0f, 640.0f, "%.0f");
+        changed |= SliderOf("spp inside", "foveation.spp_inside", f.sppInside);
+        changed |= SliderOf("spp outside", "foveation.spp_outside", f.sppOutside);
+        changed |= SliderOf("radius px @1280", "foveation.radius_px", f.radiusPx, "%.0f");
     } else if (f.model == "linear" || f.model == "acuity") {
-        changed |= ImGui::SliderInt("spp max", &f.sppMax, 1, 16);
-        changed |= ImGui::SliderInt("spp min", &f.sppMin, 1, 16);
+        changed |= SliderOf("spp max", "foveation.spp_max", f.sppMax);
+        changed |= SliderOf("spp min", "foveation.spp_min", f.sppMin);
         if (f.model == "linear") {
-            changed |= ImGui::SliderFloat("foveal deg", &f.fovealDeg, 0.5f, 30.0f, "%.1f");
-            changed |= ImGui::SliderFloat("peripheral deg", &f.peripheralDeg, 1.0f, 90.0f, "%.1f");
+            changed |= SliderOf("foveal deg", "foveation.foveal_deg", f.fovealDeg, "%.1f");
+            changed |= SliderOf("peripheral deg", "foveation.peripheral_deg", f.peripheralDeg, "%.1f");
         } else {
-            changed |= ImGui::SliderFloat("MAR slope", &f.marSlope, 0.005f, 0.05f, "%.4f");
+            changed |= SliderOf("MAR slope", "foveation.mar_slope", f.marSlope, "%.4f");
         }
     } else {
-        changed |= ImGui::SliderInt("spp", &f.uniformSpp, 1, 16);
+        changed |= SliderOf("spp", "foveation.uniform_spp", f.uniformSpp);
     }
     int budget = int(f.rayBudget);
     if (ImGui::InputInt("ray budget (0: none)", &budget, 1000, 10000)) {
@@ -109,14 +128,20 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
         if (Combo("gaze (G: mouse)", source.GazeSourceNames(), gaze)) source.SetGazeSource(gaze);
         GazeParams params = source.SyntheticParams();
         bool changed = false;
+        const auto& rows = GazeParamTable();
         if (gaze == "lissajous") {
-            const float top = params.units == "deg" ? 60.0f : 1280.0f;
+            // In degrees the amplitude spans what a static gaze may take.
+            const ParamRange amplitude = SliderSpan(rows, "gaze.amplitude");
+            const float top = float(params.units == "deg" ? SliderSpan(rows, "gaze.yaw_deg").max : amplitude.max);
             changed |= ImGui::SliderFloat2(params.units == "deg" ? "amplitude deg" : "amplitude px",
-                                           &params.amplitude.x, 0.0f, top, "%.0f");
-            changed |= ImGui::SliderFloat2("frequency Hz", &params.frequencyHz.x, 0.0f, 2.0f, "%.2f");
+                                           &params.amplitude.x, float(amplitude.min), top, "%.0f");
+            const ParamRange frequency = SliderSpan(rows, "gaze.frequency_hz");
+            changed |= ImGui::SliderFloat2("frequency Hz", &params.frequencyHz.x, float(frequency.min),
+                                           float(frequency.max), "%.2f");
         } else if (gaze == "static") {
-            changed |= ImGui::SliderFloat("yaw deg", &params.yawDeg, -60.0f, 60.0f, "%.1f");
-            changed |= ImGui::SliderFloat("pitch deg", &params.pitchDeg, -60.0f, 60.0f, "%.1f");
+            const ParamRange yaw = SliderSpan(rows, "gaze.yaw_deg"), pitch = SliderSpan(rows, "gaze.pitch_deg");
+            changed |= ImGui::SliderFloat("yaw deg", &params.yawDeg, float(yaw.min), float(yaw.max), "%.1f");
+            changed |= ImGui::SliderFloat("pitch deg", &params.pitchDeg, float(pitch.min), float(pitch.max), "%.1f");
         }
         if (changed) {
             try {

@@ -1,0 +1,77 @@
+// [foveation]: one row per key of FoveationParams (defaults: its initialisers, foveation/spp_model.h)
+// and the rule between keys. The config reader, ValidateFoveationParams, `fovrt config --keys` and
+// the preview panel's sliders read these rows.
+#include <array>
+#include <limits>
+
+#include "core/error.h"
+#include "foveation/spp_model.h"
+
+namespace fovrt {
+namespace {
+
+using F = FoveationParams;
+constexpr ParamRange kSpp = Closed(1, kMaxSpp);
+
+// radius_deg bounds an eccentricity, the angle between two rays, which lies in [0°, 180°]:
+// a radius of 180° or more would make every direction foveal (the uniform model's job), and
+// every radius below it is a disc, so [0, 180).
+constexpr std::array<SettingRow<FoveationParams>, 14> kFoveationRows{{
+    {{.key = "foveation.model", .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform",
+      .names = FoveationModelNames},
+     &F::model},
+    {{.key = "foveation.spp_inside", .range = kSpp, .doc = "disc: spp inside the fovea disc", .slider = kSpp},
+     &F::sppInside},
+    {{.key = "foveation.spp_outside", .range = kSpp, .doc = "disc: spp outside it", .slider = kSpp},
+     &F::sppOutside},
+    {{.key = "foveation.radius_px", .range = OpenMin(0, 1e6),
+      .doc = "disc: radius in pixels at radius_reference_width (scales with the image width)",
+      .slider = Closed(10, 640)},
+     &F::radiusPx},
+    {{.key = "foveation.radius_reference_width", .range = Closed(1, 16384),
+      .doc = "disc: the image width radius_px is given at"},
+     &F::radiusReferenceWidth},
+    {{.key = "foveation.radius_deg", .range = OpenMax(0, 180),
+      .doc = "disc: > 0 = angular radius (eccentricity <= radius_deg) instead of radius_px"},
+     &F::radiusDeg},
+    {{.key = "foveation.spp_max", .range = kSpp, .doc = "linear, acuity: spp at the gaze", .slider = kSpp},
+     &F::sppMax},
+    {{.key = "foveation.spp_min", .range = kSpp, .doc = "linear, acuity: spp in the periphery", .slider = kSpp},
+     &F::sppMin},
+    {{.key = "foveation.foveal_deg", .range = Closed(0, 180), .doc = "linear: spp_max up to this eccentricity",
+      .slider = Closed(0.5, 30)},
+     &F::fovealDeg},
+    {{.key = "foveation.peripheral_deg", .range = Closed(0, 180),
+      .doc = "linear: spp_min from this eccentricity (> foveal_deg)", .slider = Closed(1, 90)},
+     &F::peripheralDeg},
+    {{.key = "foveation.omega0_deg", .range = OpenMin(0, 10), .doc = "acuity: foveal MAR ω0 in degrees (Guenter 1/48)"},
+     &F::omega0Deg},
+    {{.key = "foveation.mar_slope", .range = Closed(0, 10), .doc = "acuity: MAR slope m in deg/deg (Guenter 0.022)",
+      .slider = Closed(0.005, 0.05)},
+     &F::marSlope},
+    {{.key = "foveation.uniform_spp", .range = kSpp, .doc = "uniform: spp everywhere", .slider = kSpp},
+     &F::uniformSpp},
+    {{.key = "foveation.ray_budget", .range = Closed(0, double(std::numeric_limits<int64_t>::max())),
+      .doc = "samples per eye per frame, the map scaled to it; 0 = none (else from W·H to the spp cap × W·H)"},
+     &F::rayBudget},
+}};
+static_assert(RowsWellFormed(kFoveationRows), "a [foveation] row is malformed (see ParamRowProblem)");
+
+}  // namespace
+
+std::span<const SettingRow<FoveationParams>> FoveationParamTable() { return kFoveationRows; }
+
+std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& p) {
+    if (!(p.peripheralDeg > p.fovealDeg))
+        return ParamProblem{"foveation.peripheral_deg",
+                            fmt::format("{} must be > foveation.foveal_deg = {}", p.peripheralDeg, p.fovealDeg)};
+    return std::nullopt;
+}
+
+void ValidateFoveationParams(const FoveationParams& params) {
+    ValidateRows(params, FoveationParamTable());
+    if (std::optional<ParamProblem> problem = FoveationParamConflict(params))
+        Fail("{}: {}", problem->key, problem->message);
+}
+
+}  // namespace fovrt
