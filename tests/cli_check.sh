@@ -197,7 +197,7 @@ expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
 expect_error "unknown denoiser names the nearest" "did you mean 'two-history'" memory --width 64 --height 64 --denoiser two-histroy
 expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 64 --denoiser svgf --precision fp8
 # info lists every denoiser variant of the table with its summary.
-"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 8 ]] &&
+"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 10 ]] &&
   grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||
   bad "info: $(cat info.txt err.txt)"
 # config --keys: one line per key from the settings tables (key, default, allowed, meaning).
