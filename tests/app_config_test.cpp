@@ -9,7 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/frame_pipeline.h"
+#include "pipeline/frame_pipeline.h"
 #include "config/config.h"
 #include "config/config_cli.h"
 #include "config/config_io.h"

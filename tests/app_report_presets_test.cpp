@@ -6,7 +6,7 @@
 
 #include <toml++/toml.h>
 
-#include "app/frame_pipeline.h"
+#include "pipeline/frame_pipeline.h"
 #include "config/config.h"
 #include "config/config_io.h"
 #include "denoise/denoiser.h"

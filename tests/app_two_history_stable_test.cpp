@@ -8,7 +8,7 @@
 #include <array>
 #include <memory>
 
-#include "app/frame_pipeline.h"
+#include "pipeline/frame_pipeline.h"
 #include "denoise/denoiser_factory.h"
 #include "metrics/image_metrics.h"
 #include "test_support.h"

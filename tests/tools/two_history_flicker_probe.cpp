@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "app/frame_pipeline.h"
+#include "pipeline/frame_pipeline.h"
 #include "denoise/reference/svgf_family_ref.h"
 #include "denoise/reference/two_history_math.h"
 #include "metrics/image_metrics.h"
