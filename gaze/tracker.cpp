@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include <fmt/ranges.h>
+
 #include "core/error.h"
 #include "core/rng.h"
 
@@ -138,24 +140,33 @@ int64_t NewestSampleIndex(const TrackerParams& p, double t) {
 
 double SampleCaptureTime(const TrackerParams& p, int64_t index) { return p.phaseMs / 1000.0 + double(index) / p.rateHz; }
 
+const std::vector<std::string>& TrackerPredictions() {
+    static const std::vector<std::string> names = {"none", "cv", "landing"};
+    return names;
+}
+
 bool IsIdealTracker(const TrackerParams& p) {
     return p.rateHz == 0.0 && p.latencyMs == 0.0 && p.noiseDeg == 0.0f && p.biasDeg == vec2(0.0f) &&
            p.dropout == 0.0 && p.prediction == "none";
 }
 
 void ValidateTrackerParams(const TrackerParams& p) {
-    if (!(p.rateHz >= 0.0 && p.rateHz <= 10000.0)) Fail("gaze.tracker_rate_hz = {} must be in [0, 10000] (0 = every frame)", p.rateHz);
+    if (!(p.rateHz >= 0.0 && p.rateHz <= kTrackerMaxRateHz))
+        Fail("gaze.tracker_rate_hz = {} must be in [0, {}] (0 = every frame)", p.rateHz, kTrackerMaxRateHz);
     if (!(std::abs(p.phaseMs) <= 1000.0)) Fail("gaze.tracker_phase_ms = {} must be in [-1000, 1000]", p.phaseMs);
-    if (!(p.latencyMs >= 0.0 && p.latencyMs <= 10000.0)) Fail("gaze.tracker_latency_ms = {} must be in [0, 10000]", p.latencyMs);
-    if (!(p.noiseDeg >= 0.0f && p.noiseDeg <= 45.0f)) Fail("gaze.tracker_noise_deg = {} must be in [0, 45]", p.noiseDeg);
+    if (!(p.latencyMs >= 0.0 && p.latencyMs <= kTrackerMaxLatencyMs))
+        Fail("gaze.tracker_latency_ms = {} must be in [0, {}]", p.latencyMs, kTrackerMaxLatencyMs);
+    if (!(p.noiseDeg >= 0.0f && p.noiseDeg <= kTrackerMaxNoiseDeg))
+        Fail("gaze.tracker_noise_deg = {} must be in [0, {}]", p.noiseDeg, kTrackerMaxNoiseDeg);
     if (!(std::abs(p.biasDeg.x) <= 45.0f && std::abs(p.biasDeg.y) <= 45.0f))
         Fail("gaze.tracker_bias_deg = ({}, {}) must be within ±45 degrees", p.biasDeg.x, p.biasDeg.y);
     if (!(p.dropout >= 0.0 && p.dropout < 1.0)) Fail("gaze.tracker_dropout = {} must be in [0, 1)", p.dropout);
     if (!(p.blinkMs >= 0.0 && p.blinkMs <= 10000.0)) Fail("gaze.tracker_blink_ms = {} must be in [0, 10000]", p.blinkMs);
     if (p.blinkMs > 0.0 && p.rateHz == 0.0)
         Fail("gaze.tracker_blink_ms = {} needs gaze.tracker_rate_hz > 0 (runs of samples)", p.blinkMs);
-    if (p.prediction != "none" && p.prediction != "cv" && p.prediction != "landing")
-        Fail("gaze.prediction = '{}' is not one of none, cv, landing", p.prediction);
+    const auto& predictions = TrackerPredictions();
+    if (std::find(predictions.begin(), predictions.end(), p.prediction) == predictions.end())
+        Fail("gaze.prediction = '{}' is not one of {}", p.prediction, fmt::join(predictions, ", "));
     if (p.prediction != "none" && p.rateHz == 0.0)
         Fail("gaze.prediction = '{}' needs gaze.tracker_rate_hz > 0 (it extrapolates from the tracker's samples)",
              p.prediction);
@@ -164,6 +175,15 @@ void ValidateTrackerParams(const TrackerParams& p) {
 }
 
 // ---- TrackedGaze ---------------------------------------------------------------------------
+
+double TrackerLookbackSeconds(const TrackerParams& p) {
+    const double latency = p.latencyMs / 1000.0;
+    if (p.rateHz == 0.0) return latency;  // one capture at t − latency
+    // At(t): sample k is captured up to one period before t − latency; an invalid run looks back
+    // max(blink, 1 s) plus a sample for its last valid one; Predict reads the landing window
+    // (0.25 s + 2 samples) before that. 6 periods cover every rounding on the way.
+    return latency + std::max(p.blinkMs, 1000.0) / 1000.0 + 0.25 + 6.0 / p.rateHz;
+}
 
 TrackedGaze::TrackedGaze(const GazeSource& truth, const TrackerParams& params) : truth_(truth), params_(params) {
     ValidateTrackerParams(params_);

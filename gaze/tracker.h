@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "gaze/gaze_source.h"
@@ -59,6 +60,15 @@ double SampleCaptureTime(const TrackerParams& params, int64_t index);
 
 // True when the tracker passes the true gaze through unchanged (the defaults).
 bool IsIdealTracker(const TrackerParams& params);
+// The predictors gaze.prediction names: "none", "cv", "landing".
+const std::vector<std::string>& TrackerPredictions();
+// The upper ends of the tracker keys' ranges (ValidateTrackerParams; the live panel's sliders).
+inline constexpr double kTrackerMaxRateHz = 10000.0;
+inline constexpr double kTrackerMaxLatencyMs = 10000.0;
+inline constexpr float kTrackerMaxNoiseDeg = 45.0f;
+// How far back TrackedGaze::At(t) reads the true gaze: never before t − this (a live history of
+// true samples keeps this much: gaze/live_gaze_history.h).
+double TrackerLookbackSeconds(const TrackerParams& params);
 // Throws fovrt::Error naming the first bad gaze.tracker_* / gaze.prediction key.
 void ValidateTrackerParams(const TrackerParams& params);
 
