@@ -22,7 +22,9 @@
 #include "live/live_loop.h"
 #include "live/live_stats.h"
 #include "live/session_record.h"
+#include "live/tracked_frame_source.h"
 #include "preview/imgui_layer.h"
+#include "preview/overlay_marks.h"
 #include "preview/preview_panel.h"
 #include "preview/preview_source.h"
 #include "preview/vulkan_window.h"
@@ -92,7 +94,8 @@ public:
     PreviewSession(const RunConfig& config, const PreviewOptions& options)
         : config_(config), options_(options), window_(options.window),
           context_(VulkanContext::Create(window_.ContextOptions(ResolveDenoiseDevice(config)))),
-          attachment_(window_, context_), source_(config), stats_(options.stats) {
+          attachment_(window_, context_), source_(config), tracked_(source_, config.gaze.tracker),
+          stats_(options.stats) {
         glfwSetWindowUserPointer(window_.handle(), &keys_);
         glfwSetKeyCallback(window_.handle(), OnKey);  // before ImGui, which chains to it
         display_.emplace(context_);
@@ -102,7 +105,8 @@ public:
         panel_.display.overlay = options.overlay;
         panel_.display.exposure = config.output.exposure;
         panel_.display.byteOrder = window_.ByteOrder();
-        loop_.emplace(config, &context_, source_);
+        panel_.tracker = &tracked_;
+        loop_.emplace(config, &context_, tracked_);
         source_.Bind(loop_->Pipeline());
         const std::vector<std::string> views = loop_->ViewNames();
         if (std::find(views.begin(), views.end(), options.view) == views.end())
@@ -270,11 +274,8 @@ private:
             panel_.requestCapture = false;
         }
         if (latest) {
-            std::array<FoveaMark, 2> marks;
-            for (int eye = 0; eye < 2; ++eye)
-                marks[size_t(eye)] = {latest->gazePixel[size_t(eye)], latest->foveaRadiusPixels[size_t(eye)]};
             if (latest->number != uploadedNumber_) {
-                display_->SetEyes(latest->shown[0].rgb, latest->shown[1].rgb, marks);
+                display_->SetEyes(latest->shown[0].rgb, latest->shown[1].rgb, OverlayMarks(*latest));
                 uploadedNumber_ = latest->number;
             }
             panel_.display.mode = latest->shown[0].hdr ? DisplayMode::Hdr : DisplayMode::Display;
@@ -323,6 +324,7 @@ private:
     VulkanContext context_;
     Attachment attachment_;
     PreviewFrameSource source_;
+    TrackedFrameSource tracked_;  // the eye-tracker model over source_'s true gaze
     LiveStats stats_;
     std::optional<DisplayPass> display_;
     std::optional<ImGuiLayer> imgui_;

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "denoise/variants.h"
+#include "preview/tracker_panel.h"
 
 namespace fovrt {
 namespace {
@@ -129,6 +130,7 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
         Text(free ? "head: free camera (WASD, Q/E, right-drag)" : "head: the scene's camera path");
         if (free && ImGui::Button("back to the camera path (C)")) state.requestReturnToPath = true;
     }
+    if (state.tracker) DrawTrackerControls(*state.tracker, state.trackerRefused);
     if (ImGui::CollapsingHeader("Playback", ImGuiTreeNodeFlags_DefaultOpen)) {
         bool paused = controls.paused;
         if (ImGui::Checkbox("pause (space)", &paused)) loop.SetPaused(paused);

@@ -21,6 +21,7 @@
 #include "live/live_loop.h"
 #include "live/live_stats.h"
 #include "live/session_record.h"
+#include "live/tracked_frame_source.h"
 #include "vk/context.h"
 #include "xr/xr_connection.h"
 #include "xr/xr_eye_gaze.h"
@@ -108,7 +109,9 @@ public:
         writer_.emplace(*context_, options_.writeFrames);
 
         source_.emplace(config_, options.followPath);
-        loop_.emplace(config_, &*context_, *source_);
+        tracked_.emplace(*source_, config_.gaze.tracker);  // the eye-tracker model over the headset's gaze
+        if (mirror_) mirror_->SetTracker(&*tracked_);
+        loop_.emplace(config_, &*context_, *tracked_);
         source_->Bind(loop_->Pipeline());
         const std::vector<std::string> views = loop_->ViewNames();
         if (std::find(views.begin(), views.end(), options.view) == views.end())
@@ -298,7 +301,7 @@ private:
                             {"fov", {v.fov.angleLeft, v.fov.angleRight, v.fov.angleUp, v.fov.angleDown}},
                             {"gaze_pixel", {frame.gazePixel[size_t(eye)].x, frame.gazePixel[size_t(eye)].y}}});
         }
-        const nlohmann::json line = {
+        nlohmann::json line = {
             {"frame", s.request.frame},
             {"xr_frame", session_->FramesEnded()},  // the xrEndFrame (1-based) that submitted it
             {"display_time_ns", timing.displayTime},
@@ -314,6 +317,8 @@ private:
               {"denoise", frame.timings.denoiseMs},
               {"write_eyes", writer_->lastMs()},
               {"end_frame", MsBetween(endStart, submitted)}}}};
+        if (const auto& eye = s.request.trueGaze)  // a tracker model: gaze_direction is the tracked gaze
+            line["true_gaze_direction"] = {eye->direction.x, eye->direction.y, eye->direction.z};
         std::fprintf(frameLog_, "%s\n", line.dump().c_str());
         std::fflush(frameLog_);
         // The bytes the device composed for each eye's swapchain image (the last Write was this
@@ -412,6 +417,7 @@ private:
     std::array<std::optional<XrEyeSwapchain>, 2> swapchains_;
     std::optional<XrEyeImageWriter> writer_;
     std::optional<XrFrameSource> source_;
+    std::optional<TrackedFrameSource> tracked_;
     std::optional<LiveStats> stats_;
     std::optional<SessionRecorder> recorder_;
     std::optional<LiveLoop> loop_;

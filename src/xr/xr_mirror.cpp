@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "preview/overlay_marks.h"
 #include "xr/xr_app.h"
 
 namespace fovrt {
@@ -58,10 +59,7 @@ void XrMirror::Present(LiveLoop& loop, LiveStats& stats, const std::shared_ptr<c
     if (panelShown_) DrawPreviewPanel(loop, nullptr, stats, frame, "headset-paced", panel_);
     if (frame) {
         if (fresh) {
-            std::array<FoveaMark, 2> marks;
-            for (int eye = 0; eye < 2; ++eye)
-                marks[size_t(eye)] = {frame->gazePixel[size_t(eye)], frame->foveaRadiusPixels[size_t(eye)]};
-            display_->SetEyes(frame->shown[0].rgb, frame->shown[1].rgb, marks);
+            display_->SetEyes(frame->shown[0].rgb, frame->shown[1].rgb, OverlayMarks(*frame));
             uploaded_ = frame->number;
         }
         panel_.display.mode = frame->shown[0].hdr ? DisplayMode::Hdr : DisplayMode::Display;
