@@ -24,6 +24,7 @@
 #include "core/nearest_name.h"
 #include "denoise/params.h"
 #include "denoise/variants.h"
+#include "gaze/tracker.h"
 #include "metrics/vdp_display.h"
 #include "vk/device_choice.h"
 
@@ -375,14 +376,14 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     r.Double("gaze.tracker_rate_hz", t.rateHz);
     r.Double("gaze.tracker_phase_ms", t.phaseMs);
     r.Double("gaze.tracker_latency_ms", t.latencyMs);
-    r.Float("gaze.tracker_noise_deg", t.noiseDeg, 0.0, 45.0);
+    r.Float("gaze.tracker_noise_deg", t.noiseDeg, 0.0, kTrackerMaxNoiseDeg);
     r.Vec2("gaze.tracker_bias_deg", t.biasDeg);
     r.Double("gaze.tracker_dropout", t.dropout);
     r.Double("gaze.tracker_blink_ms", t.blinkMs);
     int64_t trackerSeed = t.seed;
     r.Int64("gaze.tracker_seed", trackerSeed, 0, std::numeric_limits<uint32_t>::max());
     t.seed = uint32_t(trackerSeed);
-    r.String("gaze.prediction", t.prediction, {"none", "cv", "landing"});
+    r.String("gaze.prediction", t.prediction, TrackerPredictions());
     r.Float("gaze.saccade_deg_s", t.saccadeDegPerS, 0.0, 2000.0, true);
     if (g.source == "trace" && g.tracePath.empty())
         r.Bad("gaze.trace_path", "must be set when gaze.source = \"trace\"");
