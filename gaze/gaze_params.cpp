@@ -61,13 +61,15 @@ constexpr std::array<SettingRow<GazeParams>, 14> kGazeRows{{
 using T = TrackerParams;
 constexpr std::array<SettingRow<TrackerParams>, 10> kTrackerRows{{
     {{.key = "gaze.tracker_rate_hz", .range = Closed(0, 10000),
-      .doc = "eye tracker samples per second; 0 = ideal, sampled at every frame"},
+      .doc = "eye tracker samples per second; 0 = ideal, sampled at every frame", .slider = Closed(0, 1000)},
      &T::rateHz},
     {{.key = "gaze.tracker_phase_ms", .range = Closed(-1000, 1000), .doc = "time of tracker sample 0"},
      &T::phaseMs},
-    {{.key = "gaze.tracker_latency_ms", .range = Closed(0, 10000), .doc = "eye-to-render delay of a sample"},
+    {{.key = "gaze.tracker_latency_ms", .range = Closed(0, 10000), .doc = "eye-to-render delay of a sample",
+      .slider = Closed(0, 500)},
      &T::latencyMs},
-    {{.key = "gaze.tracker_noise_deg", .range = Closed(0, 45), .doc = "RMS angular noise of a sample (seeded)"},
+    {{.key = "gaze.tracker_noise_deg", .range = Closed(0, 45), .doc = "RMS angular noise of a sample (seeded)",
+      .slider = Closed(0, 10)},
      &T::noiseDeg},
     {{.key = "gaze.tracker_bias_deg", .range = Closed(-45, 45), .doc = "constant (yaw, pitch) offset"},
      &T::biasDeg},

@@ -145,6 +145,15 @@ bool IsIdealTracker(const TrackerParams& p) {
 
 // ---- TrackedGaze ---------------------------------------------------------------------------
 
+double TrackerLookbackSeconds(const TrackerParams& p) {
+    const double latency = p.latencyMs / 1000.0;
+    if (p.rateHz == 0.0) return latency;  // one capture at t − latency
+    // At(t): sample k is captured up to one period before t − latency; an invalid run looks back
+    // max(blink, 1 s) plus a sample for its last valid one; Predict reads the landing window
+    // (0.25 s + 2 samples) before that. 6 periods cover every rounding on the way.
+    return latency + std::max(p.blinkMs, 1000.0) / 1000.0 + 0.25 + 6.0 / p.rateHz;
+}
+
 TrackedGaze::TrackedGaze(const GazeSource& truth, const TrackerParams& params) : truth_(truth), params_(params) {
     ValidateTrackerParams(params_);
 }

@@ -59,6 +59,9 @@ double SampleCaptureTime(const TrackerParams& params, int64_t index);
 
 // True when the tracker passes the true gaze through unchanged (the defaults).
 bool IsIdealTracker(const TrackerParams& params);
+// How far back TrackedGaze::At(t) reads the true gaze: never before t − this (a live history of
+// true samples keeps this much: gaze/live_gaze_history.h).
+double TrackerLookbackSeconds(const TrackerParams& params);
 // Throws fovrt::Error naming the first bad gaze.tracker_* / gaze.prediction key.
 void ValidateTrackerParams(const TrackerParams& params);
 

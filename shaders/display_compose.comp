@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // display_compose — the live preview's last step (SPEC §11 "tonemap + sRGB encode → present"):
-// both eyes, letterboxed into the window, through the display transform, with the gaze marker and
-// fovea outline on top, as packed 8-bit pixels a vkCmdCopyBufferToImage puts into the swapchain
+// both eyes, letterboxed into the window, through the display transform, with the gaze marker,
+// fovea outline and (with a modelled tracker) the true gaze's marker on top, as packed 8-bit pixels a vkCmdCopyBufferToImage puts into the swapchain
 // image unchanged (copies do not convert, so the bytes are sRGB-encoded for UNORM and SRGB
 // swapchain formats alike).
 // Reads:  both eyes' linear RGB (float[2·3·W·H], left then right); push constants (viewports,
@@ -35,10 +35,15 @@ uint display_rgb(vec3 hdr) {
            (fovrt_display_byte(hdr.g, pc.scale, reinhard) << 8) | fovrt_display_byte(hdr.b, pc.scale, reinhard);
 }
 
-// Gaze cross over fovea circle over the image. Distances in subpixels from p's centre.
-uint overlay(ivec2 p, ivec2 gaze, int radius, uint under) {
+// True gaze × over gaze cross over fovea circle over the image. Distances in subpixels from p's
+// centre.
+uint overlay(ivec2 p, ivec2 gaze, int radius, bool showTrue, ivec2 trueGaze, uint under) {
     const int w = FOVRT_DISPLAY_LINE_HALF_WIDTH;
     const int arm = FOVRT_DISPLAY_MARKER_ARM;
+    if (showTrue) {
+        ivec2 t = abs(p * FOVRT_DISPLAY_SUBPIXELS + FOVRT_DISPLAY_SUBPIXELS / 2 - trueGaze);
+        if (abs(t.x - t.y) <= FOVRT_DISPLAY_DIAGONAL_HALF_WIDTH && max(t.x, t.y) <= arm) return FOVRT_DISPLAY_TRUE_GAZE_RGB;
+    }
     ivec2 a = abs(p * FOVRT_DISPLAY_SUBPIXELS + FOVRT_DISPLAY_SUBPIXELS / 2 - gaze);
     if ((a.x <= w && a.y <= arm) || (a.y <= w && a.x <= arm)) return FOVRT_DISPLAY_GAZE_RGB;
     if (radius > 0) {
@@ -70,7 +75,9 @@ void main() {
         int i = (right ? pc.eye_size.x * pc.eye_size.y : 0) + e.y * pc.eye_size.x + e.x;
         rgb = display_rgb(LOAD3(eyes, i));
         if ((pc.flags & (first ? DISPLAY_FLAG_MARK0 : DISPLAY_FLAG_MARK1)) != 0u)
-            rgb = overlay(p, first ? pc.gaze0 : pc.gaze1, first ? pc.radius0 : pc.radius1, rgb);
+            rgb = overlay(p, first ? pc.gaze0 : pc.gaze1, first ? pc.radius0 : pc.radius1,
+                          (pc.flags & (first ? DISPLAY_FLAG_TRUE0 : DISPLAY_FLAG_TRUE1)) != 0u,
+                          first ? pc.true_gaze0 : pc.true_gaze1, rgb);
     }
     // Little-endian words: 0xAARRGGBB is B,G,R,A in memory; R,G,B,A swaps the outer bytes.
     uint bgra = 0xFF000000u | rgb;

@@ -48,12 +48,13 @@
 // letterboxed viewport of every slot shown (0: none); origin0/origin1: where slot 0 (the left eye,
 // or the one eye shown) and slot 1 (the right eye, side by side only) start; gaze_s = the gaze
 // point and radius_s = the fovea radius, in output pixels × FOVRT_DISPLAY_SUBPIXELS (radius ≤ 0:
-// no outline); step = eye pixels per output pixel (float(eye / extent), rounded once on the host);
+// no outline); true_gaze_s = where the eye really is (a modelled tracker's true gaze), likewise;
+// step = eye pixels per output pixel (float(eye / extent), rounded once on the host);
 // scale = 2^exposure (HDR) or 1 (display data); flags = DISPLAY_FLAG_*.
 #define FOVRT_PUSH_DISPLAY_COMPOSE(F)                                                               \
     F(ivec2, out_size) F(ivec2, eye_size) F(ivec2, extent) F(ivec2, origin0) F(ivec2, origin1)          \
-    F(ivec2, gaze0) F(ivec2, gaze1) F(float, step_x) F(float, step_y) F(int, radius0) F(int, radius1) \
-    F(float, scale) F(uint, flags)
+    F(ivec2, gaze0) F(ivec2, gaze1) F(ivec2, true_gaze0) F(ivec2, true_gaze1) F(float, step_x)         \
+    F(float, step_y) F(int, radius0) F(int, radius1) F(float, scale) F(uint, flags)
 
 // rae_conv (denoise/vulkan/rae_vk.h): output size; channels of input a (upsampled 2×2 nearest by
 // addressing when flags & RAE_FLAG_UPSAMPLE_A) and of input b (concatenated after a; 0 = none);
@@ -109,7 +110,7 @@ static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && s
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
               sizeof(AsvgfAlphaPush) == 24 && sizeof(BandwidthPush) == 8);
 // Seven ivec2 first, then the scalars: 80 bytes, within the 128 every device allows.
-static_assert(sizeof(DisplayComposePush) == 80);
+static_assert(sizeof(DisplayComposePush) == 96);
 static_assert(sizeof(RaeConvPush) == 48 && sizeof(RaePoolPush) == 24);
 }  // namespace fovrt
 #else

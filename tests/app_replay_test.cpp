@@ -129,6 +129,56 @@ TEST_CASE("a replayed recording renders bit-identical spp maps and noisy inputs"
     CHECK(n == std::size(frames));
 }
 
+TEST_CASE("a recording with a tracker model replays with its tracked gaze for the spp maps and its true gaze for the metrics",
+          "[app][live]") {
+    const RunConfig config = test::SmallCornellConfig();
+    const fs::path path = TempDir() / "tracked.jsonl";
+    // A lagging tracker: the spp maps followed a gaze 24° left of where the eye was (the disc: 8 px).
+    const vec3 eye = GazeDirectionFromAngles(9.0f, 1.0f), tracker = GazeDirectionFromAngles(-15.0f, 1.0f);
+    std::vector<StereoFrame> live;
+    {
+        FramePipeline pipeline(config);
+        SessionRecorder recorder(path, ConfigToJson(config), SessionHeaderExtra(pipeline));
+        for (uint32_t f = 0; f < 3; ++f) {
+            RecordedFrame frame;
+            frame.request = pipeline.RequestAt(f);
+            frame.head = pipeline.RigAt(f).head;
+            frame.request.trueGaze = GazeSample{frame.request.timeSeconds, eye, true};
+            frame.request.gaze = GazeSample{frame.request.timeSeconds, tracker, true};
+            frame.gazeSamples = {*frame.request.trueGaze};
+            live.emplace_back();
+            pipeline.Render(frame.request, live.back());
+            recorder.Append(frame);
+        }
+    }
+    Replay replay = OpenReplay(path, false);
+    FramePipeline pipeline(ReplayPipelineConfig(replay.recorded));
+    FrameSequence sequence(pipeline, replay);
+    RecordedFrame request;
+    StereoFrame frame;
+    size_t n = 0;
+    while (sequence.Next(request)) {
+        REQUIRE(n < live.size());
+        INFO("frame " << n);
+        REQUIRE(request.request.trueGaze);
+        pipeline.Render(request.request, frame);
+        CHECK(std::memcmp(&frame.gaze.direction, &tracker, sizeof(vec3)) == 0);
+        CHECK(std::memcmp(&frame.trueGaze.direction, &eye, sizeof(vec3)) == 0);
+        for (int e = 0; e < 2; ++e) {
+            const EyeFrame& x = frame.eyes[size_t(e)];
+            RequireIdentical(live[n].eyes[size_t(e)], x);
+            // The spp map is centred on the tracked gaze; the metrics' centre is the true gaze.
+            CHECK(x.trueGazePixel.x - x.gazePixel.x > 10.0f);
+            const ivec2 at(x.gazePixel), truth(x.trueGazePixel);
+            REQUIRE((truth.x >= 0 && truth.x < x.sppMap.width() && at.x >= 0 && at.x < x.sppMap.width()));
+            CHECK(x.sppMap(at.x, at.y) > x.sppMap(truth.x, truth.y));
+            CHECK(x.trueGazeEye == GazeInEye(x.camera, eye));
+        }
+        ++n;
+    }
+    CHECK(n == 3);
+}
+
 TEST_CASE("a replay's config keeps what the recording supplies and refuses what changes the frames", "[app][live]") {
     const RunConfig config = SmallCornell();
     const fs::path path = TempDir() / "config.jsonl";

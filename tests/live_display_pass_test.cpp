@@ -28,6 +28,7 @@ namespace {
 constexpr uint32_t kBackground = FOVRT_DISPLAY_BACKGROUND_RGB;
 constexpr uint32_t kGazeColour = FOVRT_DISPLAY_GAZE_RGB;
 constexpr uint32_t kFoveaColour = FOVRT_DISPLAY_FOVEA_RGB;
+constexpr uint32_t kTrueGazeColour = FOVRT_DISPLAY_TRUE_GAZE_RGB;
 
 // The transform written out in double precision from its definition (2^exposure, clamp, sRGB
 // OETF, round): the values used below are far from rounding ties, so float must agree exactly.
@@ -243,6 +244,38 @@ TEST_CASE("the overlay changes exactly the pixels on the gaze cross and fovea ci
     }
 }
 
+TEST_CASE("a tracker's true gaze adds an x over the tracked gaze's marker, and only then", "[live]") {
+    // 1:1 as above. ×: |dx − dy| ≤ 1 px (8 subpixels) and max(|dx|, |dy|) ≤ 6, drawn over the +
+    // and the circle; every other pixel is the overlay without a true gaze.
+    const Plane<vec3> eye = test::RandomImage(96, 80, 5, 0.9f);
+    const vec2 tracked(40.5f, 30.25f), truth(46.0f, 33.5f);
+    const float radius = 17.375f;
+    DisplaySettings s = Settings(DisplayLayout::LeftEye, true);
+    const auto plain = Rgb(ComposeDisplayReference(eye, eye, {FoveaMark{tracked, radius}, {}}, s, 96, 80), s.byteOrder);
+    const auto both =
+        Rgb(ComposeDisplayReference(eye, eye, {FoveaMark{tracked, radius, truth}, {}}, s, 96, 80), s.byteOrder);
+    size_t onX = 0;
+    for (int y = 0; y < 80; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const size_t i = size_t(y) * 96 + size_t(x);
+            const double dx = std::abs(x + 0.5 - truth.x), dy = std::abs(y + 0.5 - truth.y);
+            INFO(x << "," << y);
+            if (std::abs(dx - dy) <= 1.0 && std::max(dx, dy) <= 6.0) {
+                REQUIRE(both[i] == kTrueGazeColour);
+                ++onX;
+            } else {
+                REQUIRE(both[i] == plain[i]);
+            }
+        }
+    // Centre (46, 33.5): dx takes half-pixel steps, dy whole ones, so each diagonal pixel has a
+    // neighbour within 1 px: 46 pixels (counted from the closed form).
+    CHECK(onX == 46);
+    // Without the overlay, nothing of either.
+    s.overlay = false;
+    CHECK(Rgb(ComposeDisplayReference(eye, eye, {FoveaMark{tracked, radius, truth}, {}}, s, 96, 80), s.byteOrder) ==
+          Rgb(ComposeDisplayReference(eye, eye, {FoveaMark{tracked, radius}, {}}, s, 96, 80), s.byteOrder));
+}
+
 TEST_CASE("the overlay stays inside its eye's viewport, scaled with it", "[live]") {
     // Side by side, letterboxed and scaled ×2: the left eye's circle reaching past its half does not
     // touch the right half or the bars, and its gaze cross sits where the gaze lands.
@@ -292,7 +325,8 @@ TEST_CASE("display pass on Vulkan equals the C++ reference", "[live][vulkan]") {
     for (const Case& c : cases) {
         const Plane<vec3> left = EyeImage(c.eye.x, c.eye.y, 11), right = EyeImage(c.eye.x, c.eye.y, 12);
         const std::array<FoveaMark, 2> marks = {FoveaMark{vec2(c.eye) * 0.4f, 0.3f * float(c.eye.y)},
-                                                FoveaMark{vec2(c.eye) * vec2(0.7f, 0.55f), 0.2f * float(c.eye.x)}};
+                                                FoveaMark{vec2(c.eye) * vec2(0.7f, 0.55f), 0.2f * float(c.eye.x),
+                                                          vec2(c.eye) * vec2(0.6f, 0.5f)}};  // a tracker's true gaze
         pass.SetEyes(left, right, marks);
         for (DisplayLayout layout : {DisplayLayout::SideBySide, DisplayLayout::LeftEye, DisplayLayout::RightEye})
             for (int mode = 0; mode < 3; ++mode)  // HDR clamp, HDR Reinhard with exposure, display data

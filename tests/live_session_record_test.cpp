@@ -1,5 +1,6 @@
 // Session recordings (session/session_record.h): a written recording reads back bit-identical (free
-// poses, asymmetric FOVs, gaze samples, any finite float), stays readable after every line (a
+// poses, asymmetric FOVs, gaze samples, true and tracked gaze, any finite float; a recording
+// without tracked gaze reads as rendered with its true gaze), stays readable after every line (a
 // killed session), and a truncated or corrupt one is refused with one line naming the file, the
 // line and the frame.
 #include <unistd.h>
@@ -13,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "gaze_test_support.h"
 #include "session/session_record.h"
 #include "test_support.h"
 
@@ -75,16 +77,16 @@ RecordedFrame RandomFrame(Pcg32& rng, uint32_t frame) {
     }
     out.request.gaze = out.gazeSamples.empty() ? GazeSample{t, RandomDirection(rng), true} : out.gazeSamples.back();
     if (rng.NextBounded(6) == 0) out.request.gaze = GazeSample{t, vec3(0.0f), false};  // tracker lost
+    if (rng.NextBounded(3) == 0) {  // a tracker model: the spp maps followed another gaze
+        out.request.trueGaze = out.request.gaze;
+        out.request.gaze = GazeSample{t, RandomDirection(rng), rng.NextBounded(8) != 0};
+    }
     return out;
 }
 
 template <class T>
 bool SameBits(const T& a, const T& b) {
     return std::memcmp(&a, &b, sizeof(T)) == 0;
-}
-
-bool SameGaze(const GazeSample& a, const GazeSample& b) {
-    return SameBits(a.timeSeconds, b.timeSeconds) && SameBits(a.direction, b.direction) && a.valid == b.valid;
 }
 
 bool SamePose(const Pose& a, const Pose& b) {
@@ -99,12 +101,14 @@ bool SameEye(const EyeCamera& a, const EyeCamera& b) {
 
 bool SameFrame(const RecordedFrame& a, const RecordedFrame& b) {
     if (a.request.frame != b.request.frame || !SameBits(a.request.timeSeconds, b.request.timeSeconds)) return false;
-    if (!SamePose(a.head, b.head) || !SameGaze(a.request.gaze, b.request.gaze)) return false;
+    if (!SamePose(a.head, b.head) || !test::SameGazeBits(a.request.gaze, b.request.gaze)) return false;
+    if (a.request.trueGaze.has_value() != b.request.trueGaze.has_value()) return false;
+    if (a.request.trueGaze && !test::SameGazeBits(*a.request.trueGaze, *b.request.trueGaze)) return false;
     for (size_t eye = 0; eye < 2; ++eye)
         if (!SameEye(a.request.eyes[eye], b.request.eyes[eye])) return false;
     if (a.gazeSamples.size() != b.gazeSamples.size()) return false;
     for (size_t i = 0; i < a.gazeSamples.size(); ++i)
-        if (!SameGaze(a.gazeSamples[i], b.gazeSamples[i])) return false;
+        if (!test::SameGazeBits(a.gazeSamples[i], b.gazeSamples[i])) return false;
     return true;
 }
 
@@ -174,6 +178,51 @@ TEST_CASE("a recording reads back bit-identical frames: free poses, asymmetric F
     CHECK(summary.frames == written.size());
     CHECK(summary.firstFrame == 0);
     CHECK(summary.lastFrame == written.size() - 1);
+}
+
+TEST_CASE("true and tracked gaze: both read back; a recording without tracked gaze was rendered with the true one",
+          "[live]") {
+    const fs::path path = TempDir() / "tracked.jsonl";
+    const GazeSample eye{0.25, glm::normalize(vec3(0.3f, -0.1f, -1.0f)), true};
+    const GazeSample tracker{0.25, glm::normalize(vec3(0.1f, 0.05f, -1.0f)), true};
+    Pcg32 rng(3);
+    RecordedFrame tracked = RandomFrame(rng, 0), ideal = RandomFrame(rng, 1);
+    tracked.request.gaze = tracker;
+    tracked.request.trueGaze = eye;
+    ideal.request.gaze = eye;
+    ideal.request.trueGaze.reset();
+    {
+        SessionRecorder recorder(path, kConfig);
+        recorder.Append(tracked);
+        recorder.Append(ideal);
+    }
+    const std::vector<std::string> lines = Lines(path);
+    REQUIRE(lines.size() == 3);
+    // "gaze" is where the eye was, "tracked_gaze" what the spp maps followed; an ideal frame's line
+    // is the format as it was before the field existed.
+    const nlohmann::json first = nlohmann::json::parse(lines[1]);
+    CHECK(first["gaze"]["direction"][0].get<float>() == eye.direction.x);
+    CHECK(first["tracked_gaze"]["direction"][0].get<float>() == tracker.direction.x);
+    CHECK(lines[2].find("tracked_gaze") == std::string::npos);
+    {
+        SessionReader reader(path);
+        RecordedFrame frame;
+        REQUIRE(reader.Next(frame));
+        CHECK(SameFrame(frame, tracked));
+        REQUIRE(reader.Next(frame));
+        CHECK(SameFrame(frame, ideal));
+        CHECK(!frame.request.trueGaze);
+    }
+    // A recording from before the field: the frame was rendered with its one gaze.
+    nlohmann::json old = first;
+    old.erase("tracked_gaze");
+    WriteLines(path, {lines[0], old.dump()});
+    SessionReader reader(path);
+    RecordedFrame frame;
+    REQUIRE(reader.Next(frame));
+    CHECK(test::SameGazeBits(frame.request.gaze, eye));
+    CHECK(!frame.request.trueGaze);
+    CHECK(test::SameGazeBits(frame.request.EyeGaze(), eye));
 }
 
 TEST_CASE("every appended frame is on disk at once: a killed session leaves a readable recording", "[live]") {
@@ -257,6 +306,9 @@ TEST_CASE("a corrupt field names the file, the line, the frame and the key", "[l
     expect([](nlohmann::json& f) {
         f["gaze_samples"] = nlohmann::json::array({nlohmann::json{{"time_s", 1.0}, {"direction", {0, 0, -1}}}});
     }, "missing key gaze_samples[0].valid");
+    expect([](nlohmann::json& f) { f["tracked_gaze"] = {{"time_s", 1.0}, {"direction", {0, 0, 0}}, {"valid", true}}; },
+           "tracked_gaze.direction is not a unit vector (length 0)");
+    expect([](nlohmann::json& f) { f["tracked_gaze"] = 3; }, "tracked_gaze is not an object");
     expect([](nlohmann::json& f) { f["time_s"] = nullptr; }, "time_s is not a number");
     expect([](nlohmann::json& f) { f["exposure"] = 1; }, "unknown key exposure");
 

@@ -4,7 +4,8 @@
 # readback of its swapchain image and shows scene content in both eye halves; the pointer moves the
 # gaze (the spp map's bright disc follows it); the overlay toggle changes pixels; a key press
 # switches the denoiser (logged, histories reset); a recorded session replays headless to
-# bit-identical spp maps and noisy inputs; no display is one clear line.
+# bit-identical spp maps and noisy inputs; a tracker latency makes the spp map's gaze (+) lag the
+# pointer's true gaze (x), recorded frame by frame; no display is one clear line.
 # Usage: preview_check.sh FOVRT IMAGE_PROBE WORK_DIR
 set -uo pipefail
 fovrt=$(realpath "$1"); probe=$(realpath "$2"); work=$(realpath -m "$3")
@@ -159,6 +160,58 @@ if "$fovrt" preview "${small[@]}" --frames 1 --view alpha >/dev/null 2>err6.txt;
 elif [[ $(grep -c . err6.txt) -eq 1 ]] && grep -q "view alpha: not a view of denoiser svgf" err6.txt; then
   ok "bad view: $(cat err6.txt)"
 else bad "bad view: $(cat err6.txt)"; fi
+
+# 7. A tracker latency: the spp map follows the pointer `latency` late. The pointer jumps from A to
+#    B; the recording's frames carry true gaze B with tracked gaze A until the latency has passed,
+#    then B; F12 in between captures the overlay's x (true gaze) at B and + (tracked gaze) at A.
+lag_ms=6000; ax=100; ay=150; bx=220; by=200
+until_ok pointer_at $ax $ay || bad "the pointer did not reach ($ax, $ay)"
+"$fovrt" preview "${small[@]}" --set gaze.source=mouse --set gaze.tracker_latency_ms=$lag_ms --frames 100000 \
+  --record lag.jsonl --stats lag-stats.jsonl --capture-dir lagcap 2>err7.txt &
+pid=$!
+# lag_frames: one line per recorded frame, "frame true tracked" (directions rounded to 1e-4).
+lag_frames() {
+  python3 -c "import json, sys
+for l in list(open('lag.jsonl'))[1:]:
+    f = json.loads(l); d = lambda g: ','.join('%.4f' % v for v in g['direction'])
+    print(f['frame'], d(f['gaze']), d(f['tracked_gaze']) if 'tracked_gaze' in f else '-')" 2>/dev/null
+}
+until_ok eval '[[ $(lag_frames | wc -l) -ge 2 ]] || ! alive $pid'
+gaze_a=$(lag_frames | head -1 | cut -d' ' -f2)
+until_ok pointer_at $bx $by || bad "the pointer did not reach ($bx, $by)"
+# The first frame with the moved true gaze, then until the window has presented it.
+moved_frame() { lag_frames | awk -v a="$gaze_a" '$2 != a { print $1; exit }'; }
+until_ok eval '[[ -n $(moved_frame) ]] || ! alive $pid'
+fb=$(moved_frame)
+until_ok eval '[[ $(tail -1 lag-stats.jsonl 2>/dev/null | grep -o "\"frame\":[0-9]*" | cut -d: -f2) -gt ${fb:-0} ]] || ! alive $pid'
+win=$(preview_window)
+timeout 30 xdotool windowfocus --sync "$win" key F12
+until_ok eval 'grep -q "saved frame" err7.txt || ! alive $pid'
+# Until the tracked gaze has caught up with the pointer.
+until_ok eval '[[ -n $(lag_frames | awk -v a="$gaze_a" "\$2 != a && \$2 == \$3") ]] || ! alive $pid'
+timeout 30 xdotool windowfocus --sync "$win" key Escape || kill $pid
+wait $pid; rc=$?
+[[ $rc -eq 0 ]] && ok "tracker latency: session exit 0" || bad "tracker latency: exit $rc: $(tail -2 err7.txt)"
+summary=$(lag_frames | awk -v a="$gaze_a" '
+  { n++; if ($3 == "-") untracked++
+    state = ($2 == a && $3 == a) ? "A" : ($2 != a && $3 == a) ? "lag" : ($2 == $3) ? "B" : "other"
+    count[state]++; if (state != last) order = order (order == "" ? "" : ">") state; last = state }
+  END { printf "%d frames: %s (A %d, lag %d, B %d, other %d, untracked %d)", n, order, count["A"], count["lag"],
+        count["B"], count["other"], untracked }')
+[[ $summary == *": A>lag>B ("*"other 0, untracked 0)" ]] \
+  && ok "tracker latency $lag_ms ms: true and tracked gaze per recorded frame: $summary" \
+  || bad "tracker latency: recorded frames $summary"
+shot=$(ls lagcap/*_window.png 2>/dev/null | head -1)
+if [[ -n $shot ]]; then
+  number=$(basename "$shot" | sed 's/^frame0*\([0-9]*\)_window.png/\1/')
+  shown=$(lag_frames | awk -v f=$((number - 1)) -v a="$gaze_a" '$1 == f { print ($2 != a && $3 == a) ? "lag" : "not lagging" }')
+  x=$("$probe" colour "$shot" 30D0FF 0 0 320 360)
+  plus=$("$probe" colour "$shot" 20FF40 0 0 320 360)
+  near() { awk -v c="$1" -v x="$2" -v y="$3" 'BEGIN { split(c, p, " "); exit !((p[1]-x)^2 + (p[2]-y)^2 < 4) }'; }
+  if [[ $shown == lag ]] && near "$x" $bx $by && near "$plus" $ax $ay; then
+    ok "F12 during the lag (frame $number): true gaze x at ($x) = pointer, tracked + at ($plus) = where it was"
+  else bad "F12 capture of frame $number ($shown): x at ($x), + at ($plus); pointer ($bx, $by), before ($ax, $ay)"; fi
+else bad "tracker latency: no F12 capture: $(tail -2 err7.txt)"; fi
 
 echo "preview_check: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -8,7 +8,8 @@
 # cleanly; session and instance loss, and every bad input, give one line and a non-zero exit with
 # no recording left behind; a recorded session replays headless to identical spp maps and noisy
 # inputs and to the images the headset was sent; --mirror shows the headset's frames in a window
-# under Xvfb. Zero core validation errors.
+# under Xvfb; a tracker latency records each frame's true and tracked gaze, and the replay renders
+# with both. Zero core validation errors.
 # Usage: xr_check.sh FOVRT IMAGE_PROBE XR_TEST_ENV_SH WORK_DIR
 set -uo pipefail
 fovrt=$(realpath "$1"); probe=$(realpath "$2"); envsh=$(realpath "$3"); work=$(realpath -m "$4")
@@ -240,6 +241,45 @@ if command -v xvfb-run >/dev/null; then
       || bad "--mirror: the right eye's half looks empty (luma std $std)"
   else bad "--mirror: $(tail -2 err8.txt)"; fi
 else echo "skip: --mirror (no xvfb-run)"; fi
+
+# 9. A tracker model over the headset's eye gaze (200 ms latency): the recording holds every
+#    frame's true gaze and the tracked gaze its spp map followed — an earlier frame's true gaze,
+#    never its own — and a headless replay renders with both as recorded.
+FOVRT_TEST_XR_GAZE=on "$fovrt" xr "${small[@]}" --set output.dir=s9 --frames 5 --set gaze.tracker_latency_ms=200 \
+  --record tracked.jsonl 2>err9.txt
+rc=$?
+if [[ $rc -eq 0 ]] && "$fovrt" run --replay tracked.jsonl --set output.dir=s9r --set output.write_png=false \
+     --set output.write_inputs=false 2>err9r.txt; then
+  python3 - tracked.jsonl s9r/frames.jsonl s9/xr/frames.jsonl <<'PY' > summary9.txt && ok "tracker model: $(cat summary9.txt)" || bad "tracker model: $(cat summary9.txt)"
+import json, sys
+rec = [json.loads(l) for l in list(open(sys.argv[1]))[1:]]
+replayed = {r["frame"]: r for r in map(json.loads, open(sys.argv[2]))}
+logged = {r["frame"]: r for r in map(json.loads, open(sys.argv[3]))}
+problems = []
+if len(rec) != 5: problems.append(f"{len(rec)} frames recorded")
+# The tracker reports a sample through its (yaw, pitch) angles: equal to float rounding.
+same = lambda a, b: max(abs(x - y) for x, y in zip(a, b)) < 1e-5
+seen = []
+for k, f in enumerate(rec):
+    if "tracked_gaze" not in f: problems.append(f"frame {f['frame']}: no tracked_gaze"); continue
+    true, tracked = f["gaze"]["direction"], f["tracked_gaze"]["direction"]
+    seen.append(true)
+    if k == 0 and not same(tracked, true): problems.append("frame 0: the first sample is not the tracked gaze")
+    if k > 0 and (same(tracked, true) or not any(same(tracked, s) for s in seen[:-1])):
+        problems.append(f"frame {f['frame']}: tracked gaze is not an earlier frame's true gaze")
+    r = replayed.get(f["frame"])
+    if not r or any(abs(a - b) > 1e-6 for a, b in zip(r["gaze_head"] + r.get("true_gaze_head", [9] * 3), tracked + true)):
+        problems.append(f"frame {f['frame']}: the replay's gaze_head/true_gaze_head differ from the recording")
+    l = logged.get(f["frame"])
+    if not l or any(abs(a - b) > 1e-6 for a, b in zip(l["gaze_direction"] + l.get("true_gaze_direction", [9] * 3), tracked + true)):
+        problems.append(f"frame {f['frame']}: frames.jsonl's gaze_direction/true_gaze_direction differ from the recording")
+sources = [l["gaze_source"] for l in logged.values()]
+print("; ".join(problems[:4]) if problems else
+      f"{len(rec)} frames ({', '.join(sources)}) recorded with true and tracked gaze, each tracked gaze an earlier "
+      "frame's true gaze; the replay renders with both")
+sys.exit(1 if problems else 0)
+PY
+else bad "tracker model: exit $rc: $(tail -2 err9.txt) $(tail -2 err9r.txt 2>/dev/null)"; fi
 
 # Core validation saw every call above.
 errors=$(fovrt_xr_validation_errors)

@@ -17,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "core/check.h"
 #include "core/math.h"
 
 namespace fovrt {
@@ -112,6 +113,14 @@ const ParamInfo* FindRow(const Table& table, const std::string& key) {
     for (const auto& row : table)
         if (key == row.info.key) return &row.info;
     return nullptr;
+}
+
+// The preview panel's slider span of `key`, so a slider never offers a value the checks refuse.
+template <class Table>
+ParamRange SliderSpan(const Table& table, const std::string& key) {
+    const ParamInfo* row = FindRow(table, key);
+    FOVRT_CHECK(row != nullptr && !row->slider.Empty());
+    return row->slider;
 }
 
 // What is wrong with a table row (no key, no doc, min > max, an empty open range, a slider outside

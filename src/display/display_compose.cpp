@@ -41,10 +41,15 @@ uint32_t DisplayRgb(const vec3& hdr, float scale, bool reinhard) {
            (glsl::fovrt_display_byte(hdr.g, scale, reinhard) << 8) | glsl::fovrt_display_byte(hdr.b, scale, reinhard);
 }
 
-// Whether output pixel (x, y) is on the gaze cross (1) or the fovea circle (2), else 0. Distances
-// from the pixel's centre in subpixels, integers only, as in the shader.
-int OverlayAt(int x, int y, ivec2 gaze, int radius) {
+// Whether output pixel (x, y) is on the gaze cross (1), the fovea circle (2) or the true gaze's ×
+// (3), else 0. Distances from the pixel's centre in subpixels, integers only, as in the shader.
+int OverlayAt(int x, int y, ivec2 gaze, int radius, const ivec2* trueGaze) {
     constexpr int64_t w = FOVRT_DISPLAY_LINE_HALF_WIDTH, arm = FOVRT_DISPLAY_MARKER_ARM;
+    if (trueGaze) {
+        const int64_t tx = std::abs(int64_t(x) * FOVRT_DISPLAY_SUBPIXELS + FOVRT_DISPLAY_SUBPIXELS / 2 - trueGaze->x);
+        const int64_t ty = std::abs(int64_t(y) * FOVRT_DISPLAY_SUBPIXELS + FOVRT_DISPLAY_SUBPIXELS / 2 - trueGaze->y);
+        if (std::abs(tx - ty) <= FOVRT_DISPLAY_DIAGONAL_HALF_WIDTH && std::max(tx, ty) <= arm) return 3;
+    }
     const int64_t dx = std::abs(int64_t(x) * FOVRT_DISPLAY_SUBPIXELS + FOVRT_DISPLAY_SUBPIXELS / 2 - gaze.x);
     const int64_t dy = std::abs(int64_t(y) * FOVRT_DISPLAY_SUBPIXELS + FOVRT_DISPLAY_SUBPIXELS / 2 - gaze.y);
     if ((dx <= w && dy <= arm) || (dy <= w && dx <= arm)) return 1;
@@ -89,7 +94,7 @@ DisplayComposePush MakeDisplayComposePush(const DisplaySettings& settings, ivec2
     // by the same number.
     const float stepX = extent.x > 0 ? float(double(eyeSize.x) / extent.x) : 0.0f;
     const float stepY = extent.y > 0 ? float(double(eyeSize.y) / extent.y) : 0.0f;
-    std::array<ivec2, 2> gaze{ivec2(0), ivec2(0)};
+    std::array<ivec2, 2> gaze{ivec2(0), ivec2(0)}, trueGaze{ivec2(0), ivec2(0)};
     std::array<int, 2> radius{0, 0};
     for (int s = 0; s < 2; ++s) {
         const DisplayViewport& v = viewports[size_t(s)];
@@ -102,6 +107,11 @@ DisplayComposePush MakeDisplayComposePush(const DisplaySettings& settings, ivec2
         const double sx = double(v.extent.x) / eyeSize.x, sy = double(v.extent.y) / eyeSize.y;
         gaze[size_t(s)] = ivec2(Subpixels(v.origin.x + double(m.gazePixel.x) * sx),
                                 Subpixels(v.origin.y + double(m.gazePixel.y) * sy));
+        if (std::isfinite(m.trueGazePixel.x) && std::isfinite(m.trueGazePixel.y)) {
+            flags |= s == 0 ? DISPLAY_FLAG_TRUE0 : DISPLAY_FLAG_TRUE1;
+            trueGaze[size_t(s)] = ivec2(Subpixels(v.origin.x + double(m.trueGazePixel.x) * sx),
+                                        Subpixels(v.origin.y + double(m.trueGazePixel.y) * sy));
+        }
         const double r =
             std::isfinite(m.foveaRadius) ? std::round(double(m.foveaRadius) * sx * FOVRT_DISPLAY_SUBPIXELS) : 0.0;
         radius[size_t(s)] = int(std::clamp(r, 0.0, double(FOVRT_DISPLAY_MAX_RADIUS)));
@@ -115,6 +125,8 @@ DisplayComposePush MakeDisplayComposePush(const DisplaySettings& settings, ivec2
     push.origin1 = viewports[1].origin;
     push.gaze0 = gaze[0];
     push.gaze1 = gaze[1];
+    push.true_gaze0 = trueGaze[0];
+    push.true_gaze1 = trueGaze[1];
     push.step_x = stepX;
     push.step_y = stepY;
     push.radius0 = radius[0];
@@ -140,12 +152,15 @@ std::vector<uint32_t> ComposeDisplayReference(const Plane<vec3>& left, const Pla
         int radius;
         bool mark;
         const Plane<vec3>* image;
+        bool showTrue;
+        ivec2 trueGaze;
     };
     const std::array<Slot, 2> slots = {
         Slot{true, push.origin0, push.gaze0, push.radius0, (push.flags & DISPLAY_FLAG_MARK0) != 0,
-             (push.flags & DISPLAY_FLAG_SLOT0_RIGHT) ? &right : &left},
+             (push.flags & DISPLAY_FLAG_SLOT0_RIGHT) ? &right : &left, (push.flags & DISPLAY_FLAG_TRUE0) != 0,
+             push.true_gaze0},
         Slot{(push.flags & DISPLAY_FLAG_SIDE_BY_SIDE) != 0, push.origin1, push.gaze1, push.radius1,
-             (push.flags & DISPLAY_FLAG_MARK1) != 0, &right}};
+             (push.flags & DISPLAY_FLAG_MARK1) != 0, &right, (push.flags & DISPLAY_FLAG_TRUE1) != 0, push.true_gaze1}};
 
     std::vector<uint32_t> out(size_t(outW) * size_t(outH));
     for (int y = 0; y < outH; ++y) {
@@ -159,9 +174,10 @@ std::vector<uint32_t> ComposeDisplayReference(const Plane<vec3>& left, const Pla
                 const int ey = std::min(int((float(y - s.origin.y) + 0.5f) * push.step_y), eye.y - 1);
                 rgb = DisplayRgb((*s.image)(ex, ey), push.scale, reinhard);
                 if (s.mark) {
-                    const int on = OverlayAt(x, y, s.gaze, s.radius);
+                    const int on = OverlayAt(x, y, s.gaze, s.radius, s.showTrue ? &s.trueGaze : nullptr);
                     if (on == 1) rgb = FOVRT_DISPLAY_GAZE_RGB;
                     if (on == 2) rgb = FOVRT_DISPLAY_FOVEA_RGB;
+                    if (on == 3) rgb = FOVRT_DISPLAY_TRUE_GAZE_RGB;
                 }
                 break;
             }

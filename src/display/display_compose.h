@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -53,9 +54,12 @@ struct DisplaySettings {
 // One eye's overlay, in that eye's pixels: continuous coordinates (pixel (i, j) covers
 // [i, i+1) × [j, j+1), row 0 at the top); the gaze may lie outside the image, and the overlay is
 // clipped to the eye's viewport. A non-finite gaze draws nothing; radius ≤ 0 draws no outline.
+// With a modelled eye tracker (gaze/tracker.h) the spp map follows the tracked gaze (gazePixel,
+// the + and the circle) and the eye is at trueGazePixel (an ×); non-finite: no × (no tracker).
 struct FoveaMark {
     vec2 gazePixel{0.0f};
     float foveaRadius = 0.0f;  // eye pixels
+    vec2 trueGazePixel{std::numeric_limits<float>::quiet_NaN()};
 };
 
 // An eye's place in the window (output pixels). extent 0: not shown.

@@ -1,6 +1,7 @@
 #include "live/live_loop.h"
 
 #include <cstdio>
+#include <limits>
 
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
@@ -244,6 +245,9 @@ std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
         frame->timings.sppMs += e.sppMs;
         frame->timings.traceMs += e.renderMs;
         frame->gazePixel[size_t(eye)] = e.gazePixel;
+        frame->trueGazePixel[size_t(eye)] = frame->source.request.trueGaze
+                                                ? e.trueGazePixel
+                                                : vec2(std::numeric_limits<float>::quiet_NaN());
         frame->foveaRadiusPixels[size_t(eye)] = MetricFovea(runningFoveation_, e.camera.width()).RadiusPixels(e.camera);
     }
     ++frameIndex_;

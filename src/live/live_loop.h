@@ -49,7 +49,8 @@ struct LiveFrame {
     std::string denoiser;
     std::string view;
     std::array<ViewImage, 2> shown;
-    std::array<vec2, 2> gazePixel{};
+    std::array<vec2, 2> gazePixel{};      // the gaze the spp map follows (a tracker's)
+    std::array<vec2, 2> trueGazePixel{};  // where the eye is; NaN without a tracker model (= gazePixel)
     std::array<float, 2> foveaRadiusPixels{};
     LiveTimings timings;
     // What F12 saves: the frame's inputs and spp maps, and each eye's denoised output.

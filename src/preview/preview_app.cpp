@@ -22,6 +22,7 @@
 #include "ui/preview_panel.h"
 #include "ui/preview_source.h"
 #include "ui/vulkan_window.h"
+#include "live/tracked_frame_source.h"
 
 namespace fovrt {
 namespace {
@@ -74,7 +75,8 @@ public:
     PreviewSession(const RunConfig& config, const PreviewOptions& options)
         : config_(config), options_(options), window_(options.window),
           context_(VulkanContext::Create(window_.ContextOptions(LiveDisplayDevice(config)))),
-          attachment_(window_, context_), keys_(window_.handle()), source_(config), stats_(options.stats) {
+          attachment_(window_, context_), keys_(window_.handle()), source_(config),
+          tracked_(source_, config.gaze.tracker), stats_(options.stats) {
         display_.emplace(context_);
         imgui_.emplace(window_, context_);
         panelShown_ = options.panel;
@@ -82,7 +84,8 @@ public:
         panel_.display.overlay = options.overlay;
         panel_.display.exposure = config.output.exposure;
         panel_.display.byteOrder = window_.ByteOrder();
-        loop_.emplace(config, &context_, source_);
+        panel_.tracker = &tracked_;
+        loop_.emplace(config, &context_, tracked_);
         source_.Bind(loop_->Pipeline());
         wiring_.emplace(*loop_, options.session);
     }
@@ -260,6 +263,7 @@ private:
     Attachment attachment_;
     KeyQueue keys_;  // before ImGui, which chains to its key callback
     PreviewFrameSource source_;
+    TrackedFrameSource tracked_;  // the eye-tracker model over source_'s true gaze
     LiveStats stats_;
     std::optional<LiveFrameDisplay> display_;
     std::optional<ImGuiLayer> imgui_;

@@ -143,7 +143,8 @@ void CheckFrame(const FrameRequest& request, const Pose& head, std::span<const G
     CheckFinite("time_s", {request.timeSeconds});
     CheckPose("head", head);
     for (size_t eye = 0; eye < 2; ++eye) CheckEye(fmt::format("eyes[{}]", eye), request.eyes[eye]);
-    CheckGaze("gaze", request.gaze);
+    CheckGaze("gaze", request.EyeGaze());
+    if (request.trueGaze) CheckGaze("tracked_gaze", request.gaze);
     for (size_t i = 0; i < samples.size(); ++i) {
         CheckGaze(fmt::format("gaze_samples[{}]", i), samples[i]);
         if (i > 0 && samples[i].timeSeconds < samples[i - 1].timeSeconds)
@@ -254,7 +255,7 @@ GazeSample ParseGaze(const nlohmann::json& json, const std::string& key) {
 
 void ParseFrame(const nlohmann::json& json, RecordedFrame& out) {
     const Object root(json, "");
-    root.Only({"frame", "time_s", "head", "eyes", "gaze", "gaze_samples"});
+    root.Only({"frame", "time_s", "head", "eyes", "gaze", "tracked_gaze", "gaze_samples"});
     out.request.frame = uint32_t(root.Integer("frame", 0, std::numeric_limits<uint32_t>::max()));
     out.request.timeSeconds = root.Number("time_s");
     const Object head(root.At("head"), "head");
@@ -263,7 +264,13 @@ void ParseFrame(const nlohmann::json& json, RecordedFrame& out) {
     const nlohmann::json& eyes = root.At("eyes");
     if (!eyes.is_array() || eyes.size() != 2) Bad("eyes is not an array of 2 eyes (left, right)");
     for (size_t eye = 0; eye < 2; ++eye) out.request.eyes[eye] = ParseEye(eyes[eye], fmt::format("eyes[{}]", eye));
+    // "gaze" is where the eye was; "tracked_gaze", when there, what the spp maps followed.
     out.request.gaze = ParseGaze(root.At("gaze"), "gaze");
+    out.request.trueGaze.reset();
+    if (json.contains("tracked_gaze")) {
+        out.request.trueGaze = out.request.gaze;
+        out.request.gaze = ParseGaze(json.at("tracked_gaze"), "tracked_gaze");
+    }
     const nlohmann::json& samples = root.At("gaze_samples");
     if (!samples.is_array()) Bad("gaze_samples is not an array");
     out.gazeSamples.clear();
@@ -334,7 +341,8 @@ void SessionRecorder::Append(const FrameRequest& request, const Pose& head,
     line["time_s"] = request.timeSeconds;
     line["head"] = JsonPose(head);
     line["eyes"] = OrderedJson::array({JsonEye(request.eyes[0]), JsonEye(request.eyes[1])});
-    line["gaze"] = JsonGaze(request.gaze);
+    line["gaze"] = JsonGaze(request.EyeGaze());
+    if (request.trueGaze) line["tracked_gaze"] = JsonGaze(request.gaze);
     OrderedJson samples = OrderedJson::array();
     for (const GazeSample& sample : gazeSamples) samples.push_back(JsonGaze(sample));
     line["gaze_samples"] = std::move(samples);

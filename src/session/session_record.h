@@ -14,12 +14,17 @@
 //                "fov": {"left": l, "right": r, "up": u, "down": d}, "width": 640, "height": 360},
 //               {...the right eye...}],
 //      "gaze": {"time_s": t, "direction": [x, y, z], "valid": true},
+//      "tracked_gaze": {"time_s": t, "direction": [x, y, z], "valid": true},   (optional)
 //      "gaze_samples": [{"time_s": t, "direction": [x, y, z], "valid": true}, ...]}
 //   Units: metres, radians, seconds. Poses are world-from-local (core/camera.h); the quaternion is
 //   in OpenXR's x, y, z, w order; FOV angles as XrFovf (left and down usually negative). `gaze` is
-//   the sample the frame was rendered with, `gaze_samples` every sample taken since the previous
-//   frame, oldest first (a live window samples the mouse or tracker more often than it renders;
-//   may be empty). Gaze directions are in head space.
+//   the true gaze of the frame (where the eye was: FrameRequest::EyeGaze()), `tracked_gaze` what
+//   a modelled eye tracker reported of it (gaze/tracker.h), which the spp maps followed — present
+//   only when the session ran a tracker model (FrameRequest::trueGaze set); without it the frame
+//   was rendered with `gaze` (every recording made before the field existed reads so).
+//   `gaze_samples` are every true sample taken since the previous frame, oldest first (a live
+//   window samples the mouse or tracker more often than it renders; may be empty). Gaze
+//   directions are in head space.
 //
 // Exactness: every number reads back bit-identical. Doubles are written as the shortest decimal
 // that round-trips; floats as the shortest decimal of the float when a double-precision reader
@@ -64,7 +69,7 @@ inline constexpr int kSessionVersion = 1;
 struct RecordedFrame {
     FrameRequest request;
     Pose head;
-    std::vector<GazeSample> gazeSamples;  // oldest first; request.gaze is the one rendered with
+    std::vector<GazeSample> gazeSamples;  // true samples, oldest first; request.gaze is the one rendered with
 };
 
 // Writes a recording. Move-only; the destructor closes the file.

@@ -10,7 +10,8 @@ void LiveFrameDisplay::Record(const std::shared_ptr<const LiveFrame>& frame, Dis
         if (IsNew(frame)) {
             std::array<FoveaMark, 2> marks;
             for (int eye = 0; eye < 2; ++eye)
-                marks[size_t(eye)] = {frame->gazePixel[size_t(eye)], frame->foveaRadiusPixels[size_t(eye)]};
+                marks[size_t(eye)] = {frame->gazePixel[size_t(eye)], frame->foveaRadiusPixels[size_t(eye)],
+                                      frame->trueGazePixel[size_t(eye)]};
             pass_.SetEyes(frame->shown[0].rgb, frame->shown[1].rgb, marks);
             uploaded_ = frame->number;
         }

@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "denoise/variants.h"
+#include "ui/tracker_panel.h"
 
 namespace fovrt {
 namespace {
@@ -38,13 +39,7 @@ std::string Bytes(size_t b) {
 }
 
 // Sliders over the span the setting's row gives (foveation/foveation_params.cpp,
-// gaze/gaze_params.cpp), so the panel never offers a value the checks refuse.
-template <class Table>
-ParamRange SliderSpan(const Table& table, const char* key) {
-    const ParamInfo* row = FindRow(table, key);
-    FOVRT_CHECK(row != nullptr && !row->slider.Empty());
-    return row->slider;
-}
+// gaze/gaze_params.cpp).
 bool SliderOf(const char* label, const char* key, int& value) {
     const ParamRange span = SliderSpan(FoveationParamTable(), key);
     return ImGui::SliderInt(label, &value, int(span.min), int(span.max));
@@ -154,6 +149,7 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
         Text(free ? "head: free camera (WASD, Q/E, right-drag)" : "head: the scene's camera path");
         if (free && ImGui::Button("back to the camera path (C)")) state.requestReturnToPath = true;
     }
+    if (state.tracker) DrawTrackerControls(*state.tracker, state.trackerRefused);
     if (ImGui::CollapsingHeader("Playback", ImGuiTreeNodeFlags_DefaultOpen)) {
         bool paused = controls.paused;
         if (ImGui::Checkbox("pause (space)", &paused)) loop.SetPaused(paused);

@@ -10,6 +10,7 @@
 #include "display/display_compose.h"
 #include "live/live_loop.h"
 #include "live/live_stats.h"
+#include "live/tracked_frame_source.h"
 #include "ui/preview_source.h"
 
 struct GLFWwindow;
@@ -24,6 +25,8 @@ struct PanelState {
     // A headset session's state (runtime, session state, gaze source, frame counts), shown in
     // place of the gaze and head controls when there is no PreviewFrameSource.
     std::vector<std::string> sessionLines;
+    TrackedFrameSource* tracker = nullptr;  // the eye-tracker model's controls (null: none shown)
+    std::string trackerRefused;             // their last refused change
 };
 
 // source: null in a headset session (the headset gives the head and the gaze).

@@ -18,6 +18,7 @@
 #include "live/live_loop.h"
 #include "live/live_session.h"
 #include "live/live_stats.h"
+#include "live/tracked_frame_source.h"
 #include "pipeline/build_info.h"
 #include "pipeline/denoiser_set.h"
 #include "vk/context.h"
@@ -102,7 +103,9 @@ public:
         writer_.emplace(*context_, options_.writeFrames);
 
         source_.emplace(config_, options.followPath);
-        loop_.emplace(config_, &*context_, *source_);
+        tracked_.emplace(*source_, config_.gaze.tracker);  // the eye-tracker model over the headset's gaze
+        if (mirror_) mirror_->SetTracker(&*tracked_);
+        loop_.emplace(config_, &*context_, *tracked_);
         source_->Bind(loop_->Pipeline());
         wiring_.emplace(*loop_, options.session,
                         nlohmann::json{{"source", "openxr"},
@@ -269,7 +272,7 @@ private:
                             {"fov", {v.fov.angleLeft, v.fov.angleRight, v.fov.angleUp, v.fov.angleDown}},
                             {"gaze_pixel", {frame.gazePixel[size_t(eye)].x, frame.gazePixel[size_t(eye)].y}}});
         }
-        const nlohmann::json line = {
+        nlohmann::json line = {
             {"frame", s.request.frame},
             {"xr_frame", session_->FramesEnded()},  // the xrEndFrame (1-based) that submitted it
             {"display_time_ns", timing.displayTime},
@@ -285,6 +288,8 @@ private:
               {"denoise", frame.timings.denoiseMs},
               {"write_eyes", writer_->lastMs()},
               {"end_frame", MsBetween(endStart, submitted)}}}};
+        if (const auto& eye = s.request.trueGaze)  // a tracker model: gaze_direction is the tracked gaze
+            line["true_gaze_direction"] = {eye->direction.x, eye->direction.y, eye->direction.z};
         std::fprintf(frameLog_, "%s\n", line.dump().c_str());
         std::fflush(frameLog_);
         // The bytes the device composed for each eye's swapchain image (the last Write was this
@@ -383,6 +388,7 @@ private:
     std::array<std::optional<XrEyeSwapchain>, 2> swapchains_;
     std::optional<XrEyeImageWriter> writer_;
     std::optional<XrFrameSource> source_;
+    std::optional<TrackedFrameSource> tracked_;
     std::optional<LiveStats> stats_;
     std::optional<LiveSessionWiring> wiring_;  // its hooks run on the render thread: outlives the loop
     std::optional<LiveLoop> loop_;

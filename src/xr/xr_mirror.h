@@ -29,6 +29,8 @@ public:
     XrMirror& operator=(const XrMirror&) = delete;
 
     bool Closed() const;
+    // The panel's eye-tracker controls act on `tracker` (the session's tracker model).
+    void SetTracker(TrackedFrameSource* tracker) { panel_.tracker = tracker; }
     // Polls the window's input and presents `frame` (null: background) with the panel; at most
     // 60 times a second while the headset idles.
     void Present(LiveLoop& loop, LiveStats& stats, const std::shared_ptr<const LiveFrame>& frame,

@@ -6,9 +6,13 @@
 //   image_probe stats IMG x0 y0 x1 y1     mean and standard deviation of luma (0..255)
 //   image_probe centroid IMG x0 y0 x1 y1  centroid of the pixels brighter than halfway between
 //                                         the rectangle's darkest and brightest luma
+//   image_probe colour IMG RRGGBB x0 y0 x1 y1
+//                                         centroid and count of the pixels of exactly that colour
+//                                         (the overlay's markers: drawn as exact bytes)
 //   image_probe exr-equal A.exr B.exr     exit 0 when every channel of A is in B, bit for bit
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -102,6 +106,26 @@ int Centroid(const char* path, int x0, int y0, int x1, int y1) {
     return 0;
 }
 
+int ColourCentroid(const char* path, const char* hex, int x0, int y0, int x1, int y1) {
+    Image img = Load(path);
+    const unsigned long rgb = std::strtoul(hex, nullptr, 16);
+    double sx = 0, sy = 0, n = 0;
+    for (int y = y0; y < std::min(y1, img.h); ++y)
+        for (int x = x0; x < std::min(x1, img.w); ++x) {
+            const unsigned char* p = &img.rgb[3 * (size_t(y) * size_t(img.w) + size_t(x))];
+            if ((unsigned long)((p[0] << 16) | (p[1] << 8) | p[2]) != rgb) continue;
+            sx += x + 0.5;
+            sy += y + 0.5;
+            n += 1;
+        }
+    if (n == 0) {
+        std::printf("none\n");
+        return 1;
+    }
+    std::printf("%.1f %.1f %d\n", sx / n, sy / n, int(n));
+    return 0;
+}
+
 int ExrEqual(const char* a, const char* b) {
     const fovrt::ExrImage A = fovrt::ReadExr(a), B = fovrt::ReadExr(b);
     if (A.width != B.width || A.height != B.height) {
@@ -134,6 +158,9 @@ int main(int argc, char** argv) {
     try {
         if (cmd == "diff" && argc == 4) return Diff(argv[2], argv[3]);
         if (cmd == "exr-equal" && argc == 4) return ExrEqual(argv[2], argv[3]);
+        if (cmd == "colour" && argc == 8)
+            return ColourCentroid(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]), std::atoi(argv[6]),
+                                  std::atoi(argv[7]));
         if ((cmd == "stats" || cmd == "centroid") && argc == 7) {
             const int x0 = std::atoi(argv[3]), y0 = std::atoi(argv[4]), x1 = std::atoi(argv[5]),
                       y1 = std::atoi(argv[6]);
@@ -143,6 +170,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "image_probe: %s\n", e.what());
         return 2;
     }
-    std::fprintf(stderr, "usage: image_probe diff|stats|centroid|exr-equal ...\n");
+    std::fprintf(stderr, "usage: image_probe diff|stats|centroid|colour|exr-equal ...\n");
     return 2;
 }
