@@ -48,6 +48,9 @@ struct VdpExperimentDisplay {
 };
 VdpExperimentDisplay ExperimentVdpDisplay(const RunConfig& config, const EyeCamera& camera);
 
+// The luminance (cd/m²) the display emits for linear radiance shown at the PNGs' exposure.
+Plane<float> VdpDisplayLuminance(const Plane<vec3>& radiance, float exposureStops, const VdpPhotometry& photometry);
+
 // The metric's fixation for a gaze position in continuous pixel coordinates (EyeFrame's
 // trueGazePixel: pixel x spans [x, x+1)); the metric adds the half pixel itself.
 VdpFixation VdpFixationAt(const vec2& gazePixel);
