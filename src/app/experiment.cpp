@@ -37,21 +37,6 @@
 namespace fovrt {
 namespace {
 
-// Per instance: 1 when a material of its mesh has a roughness or metallic map (scene-file maps
-// or glTF metallic-roughness): the "detail" region of brdf-demodulation experiments (issue #13).
-std::vector<uint8_t> InstancesWithMaterialMaps(const Scene& scene) {
-    std::vector<uint8_t> out(scene.instances.size(), 0);
-    for (size_t i = 0; i < scene.instances.size(); ++i)
-        for (uint32_t m : scene.meshes[scene.instances[i].mesh].materials) {
-            const Material& material = scene.materials[m];
-            if (material.roughnessTexture >= 0 || material.metallicTexture >= 0 ||
-                material.metallicRoughnessTexture >= 0)
-                out[i] = 1;
-        }
-    return out;
-}
-
-
 namespace fs = std::filesystem;
 
 constexpr int64_t kMaxSeed = std::numeric_limits<uint32_t>::max();
@@ -74,25 +59,6 @@ std::vector<std::string> StringArray(const ExperimentTable& experiment, const st
         values.push_back(*value);
     }
     return values;
-}
-
-
-// A scene's label in file names, reports and manifests: its `name` (not the path it was given
-// by), reduced to [A-Za-z0-9._-] so it is one path component under output.dir; a label already
-// used in this experiment gets "-2", "-3", ...
-std::string SceneLabel(const std::string& name, std::vector<std::string>& used) {
-    std::string label;
-    for (char c : name) {
-        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                          c == '.' || c == '_' || c == '-';
-        label += keep ? c : '_';
-    }
-    if (label.empty() || label.find_first_not_of('.') == std::string::npos) label = "scene";
-    std::string unique = label;
-    for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n)
-        unique = fmt::format("{}-{}", label, n);
-    used.push_back(unique);
-    return unique;
 }
 
 std::string SeedsText(const std::vector<uint32_t>& seeds) {
@@ -132,6 +98,21 @@ ReportTable MemoryTable(const RunConfig& config) {
 }
 
 }  // namespace
+
+std::string SceneLabel(const std::string& name, std::vector<std::string>& used) {
+    std::string label;
+    for (char c : name) {
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                          c == '.' || c == '_' || c == '-';
+        label += keep ? c : '_';
+    }
+    if (label.empty() || label.find_first_not_of('.') == std::string::npos) label = "scene";
+    std::string unique = label;
+    for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n)
+        unique = fmt::format("{}-{}", label, n);
+    used.push_back(unique);
+    return unique;
+}
 
 FoveaRadius MetricFovea(const FoveationParams& f, int imageWidth) {
     if (f.model == "disc") {
@@ -412,12 +393,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     images.fovea = fovea;
                     images.cameraCut = e.inputs.cameraCut;
                     images.reference = &reference;
-                    // "detail": pixels whose primary hit is an instance with roughness/metallic maps.
-                    Plane<uint8_t> detail(camera.width(), camera.height(), uint8_t(0));
-                    for (size_t p = 0; p < detail.size(); ++p) {
-                        const uint32_t id = e.inputs.objectId[p];
-                        detail[p] = id < detailInstances.size() ? detailInstances[id] : uint8_t(0);
-                    }
+                    const Plane<uint8_t> detail = DetailMask(detailInstances, e.inputs);
                     images.detailMask = &detail;
                     for (size_t v = 0; v < denoisers.size(); ++v) {
                         const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(),
@@ -580,11 +556,13 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     return results;
 }
 
-// Every large buffer of one scene's pass (the scene does not change it): the run's and the
-// references'.
+// Every large buffer of one scene's pass (the scene does not change it): the run's, the
+// references' and the metric's frames (an experiment always scores).
 std::vector<BufferPlan> PlanExperimentMemory(const RunConfig& config) {
-    std::vector<BufferPlan> plan = PlanRunMemory(config);
+    std::vector<BufferPlan> plan = PlanRunMemory(config);  // with run.score it has the metric's frames
     for (BufferPlan& reference : PlanReferenceMemory(config)) plan.push_back(std::move(reference));
+    if (!config.run.score)
+        for (BufferPlan& vdp : PlanVdpMemory(config, true)) plan.push_back(std::move(vdp));
     return plan;
 }
 

@@ -330,6 +330,7 @@ RunConfig Build(const toml::table& root, const Origins& origins, const std::stri
     c.run.seed = uint32_t(seed);
     r.Int("run.threads", c.run.threads, 0, 4096);
     r.Int("run.max_depth", c.run.maxDepth, 0, 1024);
+    r.Bool("run.score", c.run.score);
     r.String("render.demodulation", c.render.demodulation, {"albedo", "brdf"});
 
     FoveationConfig& f = c.foveation;
@@ -506,7 +507,8 @@ toml::table ToTable(const RunConfig& c) {
                             {"fps", CleanFloat(c.run.fps)},
                             {"seed", int64_t(c.run.seed)},
                             {"threads", c.run.threads},
-                            {"max_depth", c.run.maxDepth}}},
+                            {"max_depth", c.run.maxDepth},
+                            {"score", c.run.score}}},
         {"render", toml::table{{"demodulation", c.render.demodulation}}},
         {"foveation", toml::table{{"model", f.model},
                                   {"spp_inside", f.sppInside},

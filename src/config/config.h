@@ -16,7 +16,9 @@
 //                ipd = 0.063 (metres)
 //   [run]        frames = 16, first_frame = 0, fps = 0 (frame i at i/fps s; 0 = the scene's
 //                frame_rate), seed = 1,
-//                threads = 0 (0 = all cores), max_depth = 2 (1 = direct only, 2 = one bounce)
+//                threads = 0 (0 = all cores), max_depth = 2 (1 = direct only, 2 = one bounce),
+//                score = false (`run` only: score every variant against the cached references,
+//                app/run_score.h)
 //   [render]     demodulation = "albedo"|"brdf": what the tracer divides direct / indirect by
 //                (the primary albedo, or the BRDF pre-integration F_β, SPEC §6); both factor
 //                planes are written either way, and a denoiser named "<name>+brdf"/"+albedo"
@@ -80,6 +82,7 @@ struct RunSettings {
     uint32_t seed = 1;
     int threads = 0;     // 0 = all cores
     int maxDepth = 2;    // path vertices after the camera: 1 = direct only, 2 = one indirect bounce
+    bool score = false;  // `run`: relMSE, SSIM, FLIP and FovVideoVDP against the cached references
 };
 
 struct RenderConfig {
