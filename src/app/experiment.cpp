@@ -26,6 +26,7 @@
 #include "app/report_html.h"
 #include "app/report_summary.h"
 #include "core/atomic_file.h"
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/nearest_name.h"
@@ -59,6 +60,12 @@ std::vector<std::string> StringArray(const ExperimentTable& experiment, const st
         values.push_back(*value);
     }
     return values;
+}
+
+// "312.4 s wall, 590.1 s CPU (user + system, all threads)": the experiment's cost so far.
+std::string RunTimeText(std::chrono::steady_clock::time_point start) {
+    return fmt::format("{:.1f} s wall, {:.1f} s CPU (user + system, all threads)", MsSince(start) / 1000.0,
+                       CpuSeconds());
 }
 
 std::string SeedsText(const std::vector<uint32_t>& seeds) {
@@ -337,6 +344,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 visuals.eye = 0;
                 visuals.seed = config.run.seed;
                 visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
+                visuals.exposure = config.output.exposure;
             }
             std::optional<VdpExperimentScorer> vdp;
             if (config.metric.vdp) vdp.emplace(config, pipeline.FramesPerSecond(), visualsHere ? visualFrame : -1);
@@ -523,7 +531,10 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                        {"reference spp", std::to_string(base.reference.spp)},
                        {"denoise device", part.deviceDescription},
                        {"relMSE ε", "0.01"},
-                       {"fovrt", FOVRT_VERSION}};
+                       {"fovrt", FOVRT_VERSION},
+                       // Up to the report: the outputs above are written, the manifest follows.
+                       {spec.merge ? "time (this merge)" : "time", RunTimeText(totalStart)}};
+    report.tables.push_back(PerSeedTable(scored, base.metric.vdp ? part.vdp : std::vector<VdpScore>{}));
     report.tables.push_back(MemoryTable(base));
     report.tables.push_back(part.timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
     report.stats = &stats;
@@ -549,6 +560,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     manifest["denoise_device"] = part.deviceDescription;
     manifest["pass_ms"] = part.timings.MeansJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
+    manifest["cpu_s"] = CpuSeconds();
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
