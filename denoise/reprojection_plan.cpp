@@ -150,7 +150,10 @@ void Reproject(Writer& w, const Family& f) {
     box.box = true;
     const PlaneId listArgs{PlaneKind::SpatialArgs, f.First()};
 
-    w.Pass(th ? "two_history_reproject" : "reproject", th ? "two_history_reproject" : "reproject", stage);
+    // The timer says what the pass keeps, not which shader runs it: A-SVGF reprojects one history
+    // (as SVGF does) through the two-history family's shader, so its pass is "reproject".
+    const char* timer = f.v.twoHistory ? "two_history_reproject" : "reproject";
+    w.Pass(timer, timer, stage);
     w.Fill(Scratch(listArgs.kind, listArgs.channel), 0u);
     w.Barrier();
     w.Dispatch(OverPixels(main, b, push));

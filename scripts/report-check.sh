@@ -4,9 +4,12 @@
 # and fails on
 #   - a script error or console message (the report's check script records window errors and
 #     console.error in <html data-errors>; Chromium logs every console message as CONSOLE),
-#   - any image or SVG figure that did not draw (the check script marks each data-drawn="1" or
-#     "0" once the page has loaded; every <img>/<svg> of the file must come back "1"),
-#   - a page whose check never ran (no data-report-check="ok" on <body>).
+#   - any image, SVG figure or full-frame canvas that did not draw (the check script marks each
+#     data-drawn="1" or "0" once the page has loaded; every <img>/<svg>/<canvas> of the file must
+#     come back "1"),
+#   - a page whose check never ran (no data-report-check="ok" on <body>),
+#   - a summary table wider than the page in a 1400-pixel-wide window (the page's script notes it
+#     as an error).
 # Usage: scripts/report-check.sh REPORT.html [DOM_OUT.html]
 # Exit 0 and "report-check: ok (N figures drawn)" on success; 1 with one line per problem.
 set -euo pipefail
@@ -33,7 +36,7 @@ trap 'rm -rf "$tmp"' EXIT
 dom=${2:-$tmp/dom.html}
 # --no-sandbox: root in a container; a private profile keeps runs independent; the virtual time
 # budget lets the load event and the check script run before the DOM is dumped.
-if ! timeout 120 "$browser" --headless --no-sandbox --disable-gpu --user-data-dir="$tmp/profile" \
+if ! timeout 120 "$browser" --headless --no-sandbox --disable-gpu --user-data-dir="$tmp/profile" --window-size=1400,1000 \
     --host-resolver-rules="MAP * ~NOTFOUND" --virtual-time-budget=10000 \
     --enable-logging=stderr --v=0 --dump-dom "file://$abs_report" >"$dom" 2>"$tmp/stderr"; then
   echo "report-check: error: $browser failed on $report: $(tail -3 "$tmp/stderr")" >&2
@@ -42,7 +45,7 @@ fi
 
 problems=0
 fail() { echo "report-check: FAIL: $*" >&2; problems=$((problems + 1)); }
-figures=$( (grep -o "<img\|<svg" "$abs_report" || true) | wc -l)
+figures=$( (grep -o "<img\|<svg\|<canvas" "$abs_report" || true) | wc -l)
 drawn=$( (grep -o 'data-drawn="1"' "$dom" || true) | wc -l)
 undrawn=$( (grep -o 'data-drawn="0"' "$dom" || true) | wc -l)
 [[ "$figures" -gt 0 ]] || fail "$report has no figures"

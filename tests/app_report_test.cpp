@@ -1,4 +1,6 @@
 // Results model, CSV/JSON/table writers and the self-contained HTML report.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -8,6 +10,7 @@
 #include "app/report_html.h"
 #include "app/report_summary.h"
 #include "foveation/spp_model.h"
+#include "io/png.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -190,7 +193,10 @@ TEST_CASE("HTML report is a single offline file with plots, images and tables", 
     v.sppMap = Plane<uint16_t>(64, 48, 1);
     v.reference = Plane<vec3>(64, 48, vec3(0.5f));
     v.noisy = Plane<vec3>(64, 48, vec3(0.7f));
-    v.variants = {{"svgf", Plane<vec3>(64, 48, vec3(0.55f))}};
+    v.variants = {{"svgf", Plane<vec3>(64, 48, vec3(0.55f))}, {"two-history", Plane<vec3>(64, 48, vec3(0.45f))}};
+    v.vdpMaps["svgf"] = Plane<float>(64, 48, 0.01f);
+    v.vdpMaps["two-history"] = Plane<float>(64, 48, 0.02f);
+    v.exposure = 1.0f;
     report.scenes.push_back(std::move(v));
     report.tables.push_back({"Memory", {"buffer", "MB"}, {{"two-history extra", "88 B/px"}}});
     report.tables.push_back({"Timings", {"pass", "ms"}, {{"atrous", "1.25"}}});
@@ -207,13 +213,37 @@ TEST_CASE("HTML report is a single offline file with plots, images and tables", 
     CHECK(html.find("data:image/png;base64,iVBORw0KGgo") != std::string::npos);  // PNG signature
     CHECK(html.find("relmse — fovea") != std::string::npos);
     CHECK(html.find("ssim by region") != std::string::npos);
-    CHECK(html.find("0.900 [0.900, 0.900]") != std::string::npos);     // the paired ratio with its interval
+    // The paired ratio over its interval (two lines: the summary fits a 1400-pixel page).
+    CHECK(html.find("0.900<br><span class=\"ci\">[0.900, 0.900]</span>") != std::string::npos);
     CHECK(html.find("circular moving-block bootstrap") != std::string::npos);  // the method stated
     CHECK(html.find("class=\"colorbar\"") != std::string::npos);       // colour bars
     CHECK(html.find("relMSE per pixel (log scale)") != std::string::npos);
     CHECK(html.find("Memory") != std::string::npos);
     CHECK(html.find("atrous") != std::string::npos);
     CHECK(html.find("ε = 0.01") != std::string::npos);
+    // The metric's maps of both variants, one scale (0 … the largest loss).
+    CHECK(html.find("FovVideoVDP difference map (JOD loss per pixel, viridis over 0 … 0.02") != std::string::npos);
+    CHECK(html.find("alt=\"two-history FovVideoVDP map\"") != std::string::npos);
+    // Each variant but the baseline against it, with a diverging colour bar.
+    CHECK(html.find("Difference to svgf") != std::string::npos);
+    CHECK(html.find("alt=\"two-history vs svgf\"") != std::string::npos);
+    CHECK(html.find("alt=\"svgf vs svgf\"") == std::string::npos);
+    CHECK(html.find("relMSE ratio per pixel (variant / svgf)") != std::string::npos);
+    CHECK(html.find("img[hidden]{display:none}") != std::string::npos);  // the RGBE sources stay hidden
+    // Full frames of reference, noisy and both variants, painted from RGBE at the slider's stops
+    // through the display LUT (once, on <body>).
+    size_t canvases = 0;
+    for (size_t at = html.find("<canvas class=\"hdr\""); at != std::string::npos;
+         at = html.find("<canvas class=\"hdr\"", at + 1))
+        ++canvases;
+    CHECK(canvases == 4);
+    CHECK(html.find("<canvas class=\"hdr\" width=\"64\" height=\"48\" title=\"reference\">") != std::string::npos);
+    CHECK(html.find("class=\"exposure\" min=\"-4\" max=\"8\"") != std::string::npos);
+    CHECK(html.find("stops over output.exposure (+1)") != std::string::npos);
+    const size_t lut = html.find("data-display-lut=\"");
+    REQUIRE(lut != std::string::npos);
+    CHECK(html.find("data-display-lut=", lut + 1) == std::string::npos);
+    CHECK(html.find('"', lut + 18) - (lut + 18) == Base64(std::vector<uint8_t>(65536)).size());
     // Offline: no external fetches; one inline script (the drawing check), no script file.
     CHECK(html.find("http://") == html.find("http://www.w3.org/2000/svg"));
     CHECK(html.find("https://") == std::string::npos);
@@ -222,6 +252,51 @@ TEST_CASE("HTML report is a single offline file with plots, images and tables", 
     CHECK(html.find("data-report-check") != std::string::npos);
     CHECK(html.find("<link") == std::string::npos);
     std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("RGBE full frames: the display LUT shows a pixel as the PNG output does", "[app][report]") {
+    Plane<vec3> image(3, 1, vec3(0.0f));
+    image(0, 0) = vec3(0.02f, 0.2f, 0.7f);
+    image(1, 0) = vec3(3.0f, 1.5f, 0.001f);
+    const RgbeImage rgbe = EncodeRgbe(image);
+    const std::vector<uint8_t> lut = DisplayLut();
+    REQUIRE(lut.size() == 65536);
+    CHECK(rgbe.exponent[2] == 0);  // black
+    for (int stop : {-2, 0, 3}) {
+        Plane<vec3> decoded(3, 1, vec3(0.0f));
+        for (size_t i = 0; i < image.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                const int e = rgbe.exponent[i];
+                if (e == 0) continue;
+                // Within half a mantissa step of the radiance; the LUT at E + stop shows the
+                // decoded radiance × 2^stop exactly as the PNG output would.
+                const float step = std::ldexp(1.0f / 256.0f, e - 128);
+                decoded(int(i), 0)[c] = (float(rgbe.mantissa[3 * i + size_t(c)]) + 0.5f) * step;
+                CHECK(std::abs(decoded(int(i), 0)[c] - image(int(i), 0)[c]) <= 0.5f * step);
+            }
+        const std::vector<uint8_t> png = TonemapToRgb8(decoded, float(stop));
+        for (size_t i = 0; i < image.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                const int e = rgbe.exponent[i];
+                const size_t row = e == 0 ? 0 : size_t(std::clamp(e + stop, 1, 255)) * 256;
+                INFO("pixel " << i << " channel " << c << " stop " << stop);
+                CHECK(lut[row + rgbe.mantissa[3 * i + size_t(c)]] == png[3 * i + size_t(c)]);
+            }
+    }
+}
+
+TEST_CASE("per-seed table: each seed's means and its JOD", "[app][report]") {
+    Results r = MakeResults();
+    r.Add({"cornell", 0, 0, "svgf", "whole", "relmse", 0.5, 7});  // one row of a second seed
+    const std::vector<VdpScore> vdp = {{"cornell", 1, 0, "svgf", 9.0}, {"cornell", 1, 1, "svgf", 8.0},
+                                       {"cornell", 7, 0, "svgf", 7.5}};
+    const ReportTable t = PerSeedTable(r, vdp);
+    REQUIRE(t.rows.size() == 4);  // seeds 1 and 7 × svgf, two-history
+    CHECK(t.rows[0] == std::vector<std::string>{"cornell", "1", "svgf", "4.600e-02", "2.300e-02", "–", "0.9000", "–",
+                                                "8.500"});
+    CHECK(t.rows[1][2] == "two-history");
+    CHECK(t.rows[1][8] == "–");  // not scored
+    CHECK(t.rows[2] == std::vector<std::string>{"cornell", "7", "svgf", "5.000e-01", "–", "–", "–", "–", "7.500"});
 }
 
 TEST_CASE("MetricsCollector: regions × metrics per variant, temporal from the second frame", "[app][report]") {

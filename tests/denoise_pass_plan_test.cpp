@@ -2,6 +2,7 @@
 // exactly the planes allocated, for every variant and mode; and against the binding lists: every
 // dispatch binds each slot of its shader's layout once, reading only what its kind lets it read.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -94,6 +95,13 @@ TEST_CASE(
     CHECK(names == std::vector<std::string>{"upload", "pack_guide", "two_history_reproject",
                                             "filter_moments", "two_history_gradient",
                                             "two_history_blend", "modulate", "download"});
+    // A-SVGF keeps one history: its reprojection is timed as "reproject", as SVGF's, though the
+    // two-history family's shader runs it.
+    names.clear();
+    for (const PlannedPass& pass : BuildDenoiserPlan("asvgf", DenoiserParams{}, 32, 32).passes)
+        names.push_back(pass.name);
+    CHECK(std::count(names.begin(), names.end(), "reproject") == 1);
+    CHECK(std::count(names.begin(), names.end(), "two_history_reproject") == 0);
 }
 
 TEST_CASE("variant rows are consistent: sample counts where a history weighs by them") {

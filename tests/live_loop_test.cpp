@@ -1,10 +1,12 @@
 // LiveLoop (src/live/live_loop.h) without a window: frames come out in order on the render
 // thread (and, pipelined, on two threads, equal to the serial loop's), pause holds and step renders exactly one frame, a denoiser switch starts from empty
-// histories (the first frame after it equals a fresh denoiser's), and a failure on the render
-// thread is reported instead of lost.
+// histories (the first frame after it equals a fresh denoiser's), the "vdp" view carries the
+// metric's temporal channels across frames and restarts them on a denoiser switch, and a failure
+// on the render thread is reported instead of lost.
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -14,6 +16,7 @@
 #include "denoise/denoiser_factory.h"
 #include "live/live_loop.h"
 #include "pipeline/frame_pipeline.h"
+#include "pipeline/reference_cache.h"
 
 using namespace fovrt;
 
@@ -139,6 +142,69 @@ TEST_CASE("live loop: a denoiser switch starts from empty histories", "[live]") 
     }
     const auto views = loop.ViewNames();
     CHECK(std::find(views.begin(), views.end(), "spp") != views.end());
+}
+
+TEST_CASE("live loop: the vdp view keeps the metric across frames and restarts it on a switch", "[live][vdp]") {
+    RunConfig config = SmallConfig();
+    config.camera.width = 48;
+    config.camera.height = 32;
+    config.reference.spp = 4;
+    config.reference.cacheDir = (std::filesystem::temp_directory_path() / "fovrt_live_loop_vdp").string();
+    std::filesystem::remove_all(config.reference.cacheDir);
+    {  // the references of the first frames, as `fovrt reference` leaves them
+        FramePipeline pipeline(config);
+        ReferenceCache cache(config.reference.cacheDir);
+        const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
+        for (uint32_t frame = 0; frame < 4; ++frame) {
+            pipeline.SetFrame(frame);
+            for (int eye = 0; eye < 2; ++eye)
+                cache.GetOrRender(MakeReferenceKey(pipeline.GetScene(), fingerprint, frame, pipeline.TimeOf(frame), eye,
+                                                   pipeline.RigAt(frame).Eye(eye), config.reference.spp,
+                                                   config.run.maxDepth, config.reference.seed),
+                                  pipeline.GetRenderer());
+        }
+    }
+    PathSource source(config);
+    LiveLoop loop(config, nullptr, source);
+    loop.SetView("vdp");
+    loop.SetPaused(true);
+    loop.Start();
+    std::vector<std::shared_ptr<const LiveFrame>> frames;
+    auto step = [&](uint64_t n) {
+        loop.Step();
+        WaitFor([&] { return loop.FramesRendered() == n; });
+        frames.push_back(loop.Latest());
+    };
+    step(1);
+    step(2);
+    loop.SetDenoiser("two-history");
+    step(3);
+    // The view a fresh stream gives: the frame as the first of a sequence.
+    ReferenceCache cache(config.reference.cacheDir);
+    const FramePipeline& pipeline = loop.Pipeline();
+    auto freshView = [&](const LiveFrame& f, int eye) {
+        const EyeFrame& e = f.stereo.eyes[size_t(eye)];
+        const auto reference = cache.Find(MakeReferenceKey(
+            pipeline.GetScene(), SceneFingerprint(pipeline.GetScene()), f.stereo.frame, f.stereo.timeSeconds, eye,
+            e.camera, config.reference.spp, config.run.maxDepth, config.reference.seed));
+        REQUIRE(reference);
+        VdpViewStream stream(config, e.camera, pipeline.FramesPerSecond());
+        ViewSources sources{&e.inputs, &e.sppMap, &f.denoised[size_t(eye)], &*reference, nullptr, &stream,
+                            e.trueGazePixel};
+        ViewImage view;
+        REQUIRE(BuildView("vdp", sources, view));
+        return view.rgb.vector();
+    };
+    for (const auto& f : frames) {
+        REQUIRE(f->view == "vdp");
+        CHECK(f->shown[0].legend.find("FovVideoVDP") != std::string::npos);  // not the fallback
+    }
+    for (int eye = 0; eye < 2; ++eye) {
+        CHECK(frames[0]->shown[size_t(eye)].rgb.vector() == freshView(*frames[0], eye));
+        CHECK(frames[1]->shown[size_t(eye)].rgb.vector() != freshView(*frames[1], eye));  // frame 1 in its past
+        CHECK(frames[2]->shown[size_t(eye)].rgb.vector() == freshView(*frames[2], eye));  // restarted
+    }
+    std::filesystem::remove_all(config.reference.cacheDir);
 }
 
 TEST_CASE("live loop: a render-thread failure is reported", "[live]") {

@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
 #include <tbb/info.h>
 
 #include "commands.h"
 #include "core/camera.h"
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "core/frame_inputs.h"
 #include "denoise/bench/denoise_bench.h"
@@ -34,13 +34,6 @@ using Clock = std::chrono::steady_clock;
 
 double Seconds(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
-}
-
-// User + system CPU seconds of this process (who = RUSAGE_SELF) or of its waited-for children.
-double CpuSeconds(int who) {
-    rusage u{};
-    getrusage(who, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 struct BenchOptions {

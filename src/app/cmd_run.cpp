@@ -4,8 +4,10 @@
 // the spp map, denoises with every configured variant, appends one line per frame to frames.jsonl
 // (gaze, samples, per-stage timings) and finishes with a run manifest (JSON: the fully resolved
 // config, versions, seed, counters, timing aggregates). Memory stays flat however many frames:
-// nothing per frame is kept. The manifest is written last: a directory without manifest.json is
-// an interrupted run. --record FILE writes the rendered frames as a session recording.
+// nothing per frame is kept (but, with run.score, the metric's luminance frames). The manifest is
+// written last: a directory without manifest.json is an interrupted run. --record FILE writes the
+// rendered frames as a session recording. run.score (--score) scores every variant against the
+// cached references as `experiment` does (app/run_score.h).
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -25,6 +27,7 @@
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/replay.h"
+#include "app/run_score.h"
 #include "config/config.h"
 #include "config/config_cli.h"
 #include "config/config_io.h"
@@ -112,6 +115,7 @@ struct RunOptions {
     std::string replay;      // --replay FILE
     bool allowChanges = false;
     std::string record;      // --record FILE
+    bool score = false;      // --score: run.score = true
 };
 
 // `config` is the job's config; `replay` (optional) the recording it re-renders.
@@ -129,6 +133,13 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
     if (replay) CheckReplayScene(*replay, pipeline);
     FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
     DenoiserSet denoisers(config.denoise);
+    std::optional<OutputDir> cacheDir;  // before any rendering, as the experiment's
+    std::optional<RunScorer> scorer;
+    if (config.run.score) {
+        if (config.denoise.denoisers.empty()) Fail("run.score: denoise.denoisers is empty (nothing to score)");
+        cacheDir.emplace(config.reference.cacheDir, "reference.cache_dir");
+        scorer.emplace(config, pipeline);
+    }
     std::optional<SessionRecorder> recorder;
     if (!recordPath.empty()) recorder.emplace(recordPath, ConfigToJson(config), SessionHeaderExtra(pipeline));
     std::fprintf(stderr, "fovrt run: scene '%s', %d frames%s, %d×%d per eye, denoisers on %s -> %s\n",
@@ -196,6 +207,11 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                 eyeRecord["write_inputs_ms"] = MsSince(writeStart);
                 timings.Add({"write_inputs"}, eyeRecord["write_inputs_ms"].get<double>());
 
+                if (scorer) {
+                    const auto scoreStart = std::chrono::steady_clock::now();
+                    scorer->BeginEye(frame, eye);
+                    timings.Add({"score_reference"}, MsSince(scoreStart));
+                }
                 nlohmann::json denoiseRecord = nlohmann::json::object();
                 for (size_t v = 0; v < denoisers.size(); ++v) {
                     Denoiser& denoiser = denoisers.At(v, eye);
@@ -209,6 +225,11 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                     }
                     timings.Add({"denoise", denoisers.Name(v), "wall"}, wallMs);
                     denoiseRecord[denoisers.Name(v)] = {{"wall_ms", wallMs}, {"passes_ms", passes}};
+                    if (scorer) {
+                        const auto scoreStart = std::chrono::steady_clock::now();
+                        scorer->AddOutput(denoisers.Name(v), denoised);
+                        timings.Add({"score_metrics"}, MsSince(scoreStart));
+                    }
                     fs::path dir = outDir / "denoised" / denoisers.Name(v);
                     if (config.output.writePng)
                         WritePng(dir / (stem + ".png"), denoised, config.output.exposure);
@@ -266,15 +287,18 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                               {"first", firstIndex},
                               {"last", lastIndex},
                               {"records", "frames.jsonl"}};
+        if (scorer) manifest["score"] = scorer->Finish(outDir, denoisers.Name(0));
         manifest["timings_ms"] = timings.ToJson();
         manifest["total_s"] = MsSince(totalStart) / 1000.0;
         WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
         out.Keep();
+        if (cacheDir) cacheDir->Keep();
         std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
                      framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
                      (outDir / "manifest.json").string().c_str());
     } catch (const Interrupted& e) {
         out.Keep();  // the frames written so far stay, and the message says so
+        if (cacheDir) cacheDir->Keep();  // every cache entry is complete (written atomically)
         throw Interrupted(e.Signal(), fmt::format("{}: {} of {} frames written in {}; no manifest", e.what(),
                                                   framesRendered, sequence.Count(), outDir.string()));
     }
@@ -292,8 +316,12 @@ void Run(const RunConfig& config, Replay* replay, const std::string& recordPath)
 void RunCommand(const RunOptions& options) {
     InterruptScope interrupts;
     if (options.allowChanges && options.replay.empty()) Fail("--allow-changes needs --replay FILE");
+    auto withScore = [&](RunConfig config) {
+        if (options.score) config.run.score = true;
+        return config;
+    };
     if (options.replay.empty()) {
-        Run(ResolveConfig(options.config), nullptr, options.record);
+        Run(withScore(ResolveConfig(options.config)), nullptr, options.record);
         return;
     }
     if (!options.record.empty() && std::filesystem::exists(options.record) &&
@@ -301,7 +329,7 @@ void RunCommand(const RunOptions& options) {
         Fail("--record {}: is the recording being replayed", options.record);
     Replay replay = OpenReplay(options.replay, options.allowChanges);
     RunConfig config = ResolveReplayConfig(replay, options.config, ResolveConfig, "fovrt run");
-    Run(config, &replay, options.record);
+    Run(withScore(config), &replay, options.record);
 }
 
 }  // namespace
@@ -317,6 +345,9 @@ void RegisterRunCommand(CLI::App& app) {
     cmd->add_flag("--allow-changes", options->allowChanges,
                   "With --replay: accept config changes that make the frames differ from the recording");
     cmd->add_option("--record", options->record, "Record the rendered frames as a session recording (JSON Lines)");
+    cmd->add_flag("--score", options->score,
+                  "Score every variant against the cached references as `experiment` does (run.score = true): "
+                  "frames-<scene>.csv, jod.csv, summary.json and the manifest's \"score\"");
     cmd->callback([options] { RunCommand(*options); });
 }
 

@@ -22,6 +22,7 @@
 #include "config/config_cli.h"
 #include "config/config_io.h"
 #include "core/atomic_file.h"
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/nearest_name.h"
@@ -37,21 +38,6 @@
 
 namespace fovrt {
 namespace {
-
-// Per instance: 1 when a material of its mesh has a roughness or metallic map (scene-file maps
-// or glTF metallic-roughness): the "detail" region of brdf-demodulation experiments (issue #13).
-std::vector<uint8_t> InstancesWithMaterialMaps(const Scene& scene) {
-    std::vector<uint8_t> out(scene.instances.size(), 0);
-    for (size_t i = 0; i < scene.instances.size(); ++i)
-        for (uint32_t m : scene.meshes[scene.instances[i].mesh].materials) {
-            const Material& material = scene.materials[m];
-            if (material.roughnessTexture >= 0 || material.metallicTexture >= 0 ||
-                material.metallicRoughnessTexture >= 0)
-                out[i] = 1;
-        }
-    return out;
-}
-
 
 namespace fs = std::filesystem;
 
@@ -77,23 +63,10 @@ std::vector<std::string> StringArray(const ExperimentTable& experiment, const st
     return values;
 }
 
-
-// A scene's label in file names, reports and manifests: its `name` (not the path it was given
-// by), reduced to [A-Za-z0-9._-] so it is one path component under output.dir; a label already
-// used in this experiment gets "-2", "-3", ...
-std::string SceneLabel(const std::string& name, std::vector<std::string>& used) {
-    std::string label;
-    for (char c : name) {
-        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                          c == '.' || c == '_' || c == '-';
-        label += keep ? c : '_';
-    }
-    if (label.empty() || label.find_first_not_of('.') == std::string::npos) label = "scene";
-    std::string unique = label;
-    for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n)
-        unique = fmt::format("{}-{}", label, n);
-    used.push_back(unique);
-    return unique;
+// "312.4 s wall, 590.1 s CPU (user + system, all threads)": the experiment's cost so far.
+std::string RunTimeText(std::chrono::steady_clock::time_point start) {
+    return fmt::format("{:.1f} s wall, {:.1f} s CPU (user + system, all threads)", MsSince(start) / 1000.0,
+                       CpuSeconds());
 }
 
 std::string SeedsText(const std::vector<uint32_t>& seeds) {
@@ -133,6 +106,21 @@ ReportTable MemoryTable(const RunConfig& config) {
 }
 
 }  // namespace
+
+std::string SceneLabel(const std::string& name, std::vector<std::string>& used) {
+    std::string label;
+    for (char c : name) {
+        const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                          c == '.' || c == '_' || c == '-';
+        label += keep ? c : '_';
+    }
+    if (label.empty() || label.find_first_not_of('.') == std::string::npos) label = "scene";
+    std::string unique = label;
+    for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n)
+        unique = fmt::format("{}-{}", label, n);
+    used.push_back(unique);
+    return unique;
+}
 
 std::vector<uint32_t> ParseSeedsOption(const std::string& text, uint32_t first) {
     auto bad = [&](const std::string& why) -> std::vector<uint32_t> {
@@ -348,6 +336,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 visuals.eye = 0;
                 visuals.seed = config.run.seed;
                 visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
+                visuals.exposure = config.output.exposure;
             }
             std::optional<VdpExperimentScorer> vdp;
             if (config.metric.vdp) vdp.emplace(config, pipeline.FramesPerSecond(), visualsHere ? visualFrame : -1);
@@ -404,12 +393,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     images.fovea = fovea;
                     images.cameraCut = e.inputs.cameraCut;
                     images.reference = &reference;
-                    // "detail": pixels whose primary hit is an instance with roughness/metallic maps.
-                    Plane<uint8_t> detail(camera.width(), camera.height(), uint8_t(0));
-                    for (size_t p = 0; p < detail.size(); ++p) {
-                        const uint32_t id = e.inputs.objectId[p];
-                        detail[p] = id < detailInstances.size() ? detailInstances[id] : uint8_t(0);
-                    }
+                    const Plane<uint8_t> detail = DetailMask(detailInstances, e.inputs);
                     images.detailMask = &detail;
                     for (size_t v = 0; v < denoisers.size(); ++v) {
                         const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(),
@@ -539,7 +523,10 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                        {"reference spp", std::to_string(base.reference.spp)},
                        {"denoise device", part.deviceDescription},
                        {"relMSE ε", "0.01"},
-                       {"fovrt", FOVRT_VERSION}};
+                       {"fovrt", FOVRT_VERSION},
+                       // Up to the report: the outputs above are written, the manifest follows.
+                       {spec.merge ? "time (this merge)" : "time", RunTimeText(totalStart)}};
+    report.tables.push_back(PerSeedTable(scored, base.metric.vdp ? part.vdp : std::vector<VdpScore>{}));
     report.tables.push_back(MemoryTable(base));
     report.tables.push_back(part.timings.ToReport("Per-pass denoiser timings (mean over frames and eyes)"));
     report.stats = &stats;
@@ -565,6 +552,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     manifest["denoise_device"] = part.deviceDescription;
     manifest["pass_ms"] = part.timings.MeansJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
+    manifest["cpu_s"] = CpuSeconds();
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
@@ -572,11 +560,13 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     return results;
 }
 
-// Every large buffer of one scene's pass (the scene does not change it): the run's and the
-// references'.
+// Every large buffer of one scene's pass (the scene does not change it): the run's, the
+// references' and the metric's frames (an experiment always scores).
 std::vector<BufferPlan> PlanExperimentMemory(const RunConfig& config) {
-    std::vector<BufferPlan> plan = PlanRunMemory(config);
+    std::vector<BufferPlan> plan = PlanRunMemory(config);  // with run.score it has the metric's frames
     for (BufferPlan& reference : PlanReferenceMemory(config)) plan.push_back(std::move(reference));
+    if (!config.run.score)
+        for (BufferPlan& vdp : PlanVdpMemory(config, true)) plan.push_back(std::move(vdp));
     return plan;
 }
 

@@ -24,6 +24,11 @@ namespace fovrt {
 
 struct ConfigOptions;  // config/config_cli.h
 
+// A scene's label in file names, reports and manifests: its `name` (not the path it was given
+// by), reduced to [A-Za-z0-9._-] so it is one path component under output.dir; a label already
+// in `used` gets "-2", "-3", ... (the label returned is appended to `used`).
+std::string SceneLabel(const std::string& name, std::vector<std::string>& used);
+
 // An experiment file: a RunConfig plus an [experiment] table (scenes, variants, quick overrides).
 struct ExperimentSpec {
     std::filesystem::path file;

@@ -10,32 +10,6 @@
 
 namespace fovrt {
 
-VdpExperimentDisplay ExperimentVdpDisplay(const RunConfig& config, const EyeCamera& camera) {
-    const MetricConfig& m = config.metric;
-    VdpExperimentDisplay d;
-    d.name = m.display;
-    if (m.display == "camera") {
-        // The eye's own pixel: its horizontal extent (tan right − tan left) over its width.
-        const Fov& fov = camera.fov();
-        d.geometry.tanPerPixel =
-            (std::tan(double(fov.angleRight)) - std::tan(double(fov.angleLeft))) / double(camera.width());
-    } else {
-        const VdpDisplay& profile = FindVdpDisplay(m.display);
-        d.photometry = profile.photometry;
-        d.geometry = profile.geometry;
-    }
-    // Display-referred, as the PNGs show the frames (see the header).
-    d.photometry.eotf = VdpEotf::Linear;
-    if (m.ppd > 0.0f) d.geometry = VdpGeometry::FromPixelsPerDegree(double(m.ppd));
-    if (m.peak > 0.0f) d.photometry.peak = double(m.peak);
-    if (d.photometry.black >= d.photometry.peak)
-        Fail("metric.peak: {} cd/m² is not above the display's black level {} cd/m²", d.photometry.peak,
-             d.photometry.black);
-    return d;
-}
-
-VdpFixation VdpFixationAt(const vec2& gazePixel) { return {gazePixel.x - 0.5f, gazePixel.y - 0.5f}; }
-
 std::string VdpDisplayText(const VdpExperimentDisplay& display) {
     return fmt::format("{}, {:.1f} px/deg, {:g} cd/m² peak", display.name, display.geometry.PixelsPerDegree(),
                        display.photometry.peak);
@@ -43,19 +17,6 @@ std::string VdpDisplayText(const VdpExperimentDisplay& display) {
 
 VdpExperimentScorer::VdpExperimentScorer(const RunConfig& config, double fps, int visualFrame)
     : config_(config), fps_(fps), visualFrame_(visualFrame) {}
-
-namespace {
-
-// The luminance the display emits for linear radiance shown at the PNGs' exposure.
-Plane<float> DisplayLuminance(const Plane<vec3>& radiance, float exposureStops, const VdpPhotometry& photometry) {
-    const float scale = std::exp2(exposureStops);
-    if (scale == 1.0f) return VdpLuminance(radiance, photometry);
-    Plane<vec3> exposed(radiance.width(), radiance.height());
-    for (size_t i = 0; i < radiance.size(); ++i) exposed[i] = radiance[i] * scale;
-    return VdpLuminance(exposed, photometry);
-}
-
-}  // namespace
 
 void VdpExperimentScorer::AddReference(int eye, int frame, const EyeCamera& camera, const Plane<vec3>& reference,
                                        const vec2& trueGazePixel) {
@@ -65,7 +26,7 @@ void VdpExperimentScorer::AddReference(int eye, int frame, const EyeCamera& came
         display_ = ExperimentVdpDisplay(config_, camera);
     }
     if (frame == visualFrame_) s.visualPosition = int(s.reference.size());
-    s.reference.push_back(DisplayLuminance(reference, config_.output.exposure, display_.photometry));
+    s.reference.push_back(VdpDisplayLuminance(reference, config_.output.exposure, display_.photometry));
     s.fixations.push_back(VdpFixationAt(trueGazePixel));
 }
 
@@ -73,7 +34,7 @@ void VdpExperimentScorer::AddOutput(int eye, const std::string& variant, const P
     EyeSequences& s = eyes_[size_t(eye)];
     auto it = std::find_if(s.variants.begin(), s.variants.end(), [&](const auto& v) { return v.first == variant; });
     if (it == s.variants.end()) it = s.variants.insert(s.variants.end(), {variant, {}});
-    it->second.push_back(DisplayLuminance(output, config_.output.exposure, display_.photometry));
+    it->second.push_back(VdpDisplayLuminance(output, config_.output.exposure, display_.photometry));
 }
 
 std::vector<VdpScore> VdpExperimentScorer::Score(const std::string& scene, uint32_t seed) {

@@ -2,13 +2,7 @@
 // against the reference, one JOD per (scene, seed, eye, variant) sequence, foveated at the true
 // gaze of each frame (where the eye looked; the same centre as the other metrics' fovea).
 //
-// Display ([metric] in config/config.h):
-//   - geometry: the eye camera's own pixel (its horizontal FOV over its width, so pixels per
-//     degree follow the headset's optics), or a named profile's / metric.ppd;
-//   - photometry: the frames as the PNGs show them: linear radiance × 2^output.exposure,
-//     clamped to [0, 1] and mapped linearly to [black, peak] (peak 100 cd/m² unless the profile or
-//     metric.peak says otherwise). fovrt's radiance has no absolute scale (a scene's emitters are
-//     in arbitrary units), so "absolute" input would be a guess; the display's white is not.
+// Display: pipeline/metric_display.h.
 // Statistics: per variant the mean JOD (and of each temporal channel alone) over seeds and eyes,
 // and against the baseline the mean paired difference (pairs on seed and eye) with a percentile
 // bootstrap interval over the pairs (metrics/statistics.h, fixed RNG seed).
@@ -23,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config.h"
+#include "pipeline/metric_display.h"
 #include "app/report_html.h"
 #include "core/camera.h"
 #include "core/image.h"
@@ -39,18 +34,6 @@ struct VdpScore {
     std::string variant;
     double jod = 10.0, jodSustained = 10.0, jodTransient = 10.0;
 };
-
-// The display the experiment's frames are scored on (config.metric, an eye camera).
-struct VdpExperimentDisplay {
-    std::string name;  // metric.display
-    VdpPhotometry photometry;
-    VdpGeometry geometry;
-};
-VdpExperimentDisplay ExperimentVdpDisplay(const RunConfig& config, const EyeCamera& camera);
-
-// The metric's fixation for a gaze position in continuous pixel coordinates (EyeFrame's
-// trueGazePixel: pixel x spans [x, x+1)); the metric adds the half pixel itself.
-VdpFixation VdpFixationAt(const vec2& gazePixel);
 
 // Collects one (scene, seed) pass and scores its sequences at the end.
 class VdpExperimentScorer {

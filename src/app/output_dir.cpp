@@ -27,8 +27,8 @@ namespace {
 
 // What an earlier run or experiment writes at the top of its folder (cmd_run.cpp,
 // experiment.cpp); shards/ is not among them (a merge reads it).
-const char* const kEarlierOutputs[] = {"manifest.json", "frames.jsonl", "inputs",     "noisy",
-                                       "denoised",      "summary.json", "report.html"};
+const char* const kEarlierOutputs[] = {"manifest.json", "frames.jsonl", "inputs",      "noisy",
+                                       "denoised",      "summary.json", "report.html", "jod.csv"};
 constexpr const char* kCsvPrefix = "frames-";  // frames-<scene>.csv
 
 // The holder written into the lock file: "pid 12 on host, started 2026-01-01 10:00:00 UTC: fovrt run ...".

@@ -37,6 +37,7 @@ constexpr ReplayKeyRule kReplayKeyRules[] = {
     {"run.seed", KeyRule::kChanges, "seeds every sample"},
     {"run.max_depth", KeyRule::kChanges, "the path length"},
     {"run.threads", KeyRule::kFree, "images are identical for any thread count"},
+    {"run.score", KeyRule::kFree, "scores the frames after they are rendered"},
     {"render.demodulation", KeyRule::kChanges, "what direct / indirect are divided by"},
     {"gaze.", KeyRule::kSupplied, "each recorded frame has its gaze sample"},
     {"gaze.blink", KeyRule::kChanges, "builds the spp maps of the recorded blinks"},

@@ -12,8 +12,10 @@
 
 #include "app/report.h"
 #include "core/camera.h"
+#include "core/frame_inputs.h"
 #include "core/image.h"
 #include "metrics/regions.h"
+#include "scene/scene.h"
 
 namespace fovrt {
 
@@ -30,6 +32,12 @@ struct EyeFrameImages {
     const Plane<uint8_t>* detailMask = nullptr;  // region "detail" when set and not empty
     std::vector<std::pair<std::string, const Plane<vec3>*>> outputs;  // variant -> HDR output
 };
+
+// Per instance: 1 when a material of its mesh has a roughness or metallic map (scene-file maps
+// or glTF metallic-roughness): the "detail" region of brdf-demodulation experiments.
+std::vector<uint8_t> InstancesWithMaterialMaps(const Scene& scene);
+// The "detail" mask of one eye's frame: the pixels whose primary hit is such an instance.
+Plane<uint8_t> DetailMask(const std::vector<uint8_t>& detailInstances, const FrameInputs& inputs);
 
 class MetricsCollector {
 public:

@@ -58,8 +58,12 @@ std::string MetricLabel(const std::string& metric) {
 std::string RatioCell(const std::optional<PairedRatio>& r, bool isBaseline) {
     if (isBaseline) return "<td class=\"base\">baseline</td>";
     if (!r || r->pairs == 0) return "<td>–</td>";
+    // The ratio over its interval, so the summary's four ratio columns fit a 1400-pixel page.
+    std::string text = HtmlEscape(FormatRatio(*r));
+    if (const size_t space = text.find(' '); space != std::string::npos)
+        text = text.substr(0, space) + "<br><span class=\"ci\">" + text.substr(space + 1) + "</span>";
     return fmt::format("<td class=\"{}\" title=\"{} pairs, blocks of {} frames\">{}</td>",
-                       r->Significant() ? "sig" : "ns", r->pairs, r->blockLength, FormatRatio(*r));
+                       r->Significant() ? "sig" : "ns", r->pairs, r->blockLength, text);
 }
 
 // The summary of one scene: variant × region rows; relMSE (mean, median, geometric mean, ratio,
@@ -190,6 +194,41 @@ std::string RelMseColorBar() {
     return SvgColorBar(320, ticks, "relMSE per pixel (log scale)");
 }
 
+// The colour bar of the difference-to-baseline maps: log10 of the per-pixel relMSE ratio.
+std::string RatioColorBar(const std::string& baseline) {
+    return SvgColorBar(320, {{0.0, "1/10"}, {0.25, "1/3"}, {0.5, "1"}, {0.75, "3"}, {1.0, "10"}},
+                       "relMSE ratio per pixel (variant / " + baseline + ")", Diverging);
+}
+
+// The report's full frames as two PNGs (mantissas RGB, exponent grey) of their RGBE at the PNG
+// outputs' exposure, which the page's script shows at any whole stop through DisplayLut, without
+// a second copy of the display transform.
+std::pair<std::vector<uint8_t>, std::vector<uint8_t>> RgbePngs(const Plane<vec3>& hdr, float exposure) {
+    Plane<vec3> exposed = hdr;
+    for (size_t i = 0; i < exposed.size(); ++i) exposed[i] *= std::exp2(exposure);
+    const RgbeImage rgbe = EncodeRgbe(exposed);
+    std::vector<uint8_t> grey(rgbe.exponent.size() * 3);
+    for (size_t i = 0; i < grey.size(); ++i) grey[i] = rgbe.exponent[i / 3];
+    return {EncodeRgb8Png(hdr.width(), hdr.height(), rgbe.mantissa), EncodeRgb8Png(hdr.width(), hdr.height(), grey)};
+}
+
+const std::string& DisplayLutBase64() {
+    static const std::string lut = Base64(DisplayLut());
+    return lut;
+}
+
+// A full frame the page shows at the exposure its slider picks (the script paints the canvas
+// from the RGBE images beside it).
+std::string HdrFigure(const Plane<vec3>& image, float exposure, const std::string& caption) {
+    const auto [mantissa, exponent] = RgbePngs(image, exposure);
+    return fmt::format("<figure><canvas class=\"hdr\" width=\"{}\" height=\"{}\" title=\"{}\"></canvas>"
+                       "<img class=\"rgbe-m\" hidden alt=\"{} (RGBE mantissas)\" src=\"data:image/png;base64,{}\">"
+                       "<img class=\"rgbe-e\" hidden alt=\"{} (RGBE exponents)\" src=\"data:image/png;base64,{}\">"
+                       "<figcaption>{}</figcaption></figure>",
+                       image.width(), image.height(), HtmlEscape(caption), HtmlEscape(caption), Base64(mantissa),
+                       HtmlEscape(caption), Base64(exponent), HtmlEscape(caption));
+}
+
 std::string SppColorBar(int maxSpp) {
     std::vector<std::pair<double, std::string>> ticks;
     const int step = std::max(1, (maxSpp - 1 + 3) / 4);
@@ -291,6 +330,39 @@ std::string SceneSection(const HtmlReport& report, const ExperimentStats* stats,
                                              name + " FovVideoVDP map", 320), name);
                 out += "</div>";
             }
+            // Each variant against the baseline, pixel by pixel: where it gains, where it loses.
+            const std::string baseline = !report.baseline.empty() ? report.baseline
+                                         : v.variants.empty()     ? std::string()
+                                                                  : v.variants.front().first;
+            const Plane<vec3>* base = nullptr;
+            for (const auto& [name, img] : v.variants)
+                if (name == baseline) base = &img;
+            if (base && v.variants.size() > 1) {
+                const Plane<float> baseError = Shrink(RelMseMap(*base, v.reference), kMapWidth);
+                out += fmt::format("<h3>Difference to {}: log10 of the per-pixel relMSE ratio (blue: the variant's "
+                                   "error is lower, red: higher)</h3><div class=\"row\">",
+                                   HtmlEscape(baseline));
+                for (const auto& [name, img] : v.variants) {
+                    if (&img == base) continue;
+                    Plane<float> ratio = Shrink(RelMseMap(img, v.reference), kMapWidth);
+                    for (size_t i = 0; i < ratio.size(); ++i)
+                        ratio[i] = std::log10(std::max(ratio[i], 1e-9f) / std::max(baseError[i], 1e-9f));
+                    out += Figure(PngImg(DivergingPng(ratio, -1.0f, 1.0f), name + " vs " + baseline, 320) +
+                                      RatioColorBar(baseline),
+                                  name + " vs " + baseline);
+                }
+                out += "</div>";
+            }
+            // Full frames at an exposure the reader picks (the PNGs' exposure at 0).
+            out += fmt::format("<h3>Full frames (frame {}, eye {}, seed {})</h3><p class=\"note\">Exposure "
+                               "<input type=\"range\" class=\"exposure\" min=\"-4\" max=\"8\" step=\"1\" "
+                               "value=\"0\"><output>0</output> stops over output.exposure ({:+g}); the display "
+                               "transform of the PNG outputs (clamp, sRGB).</p><div class=\"row\">",
+                               v.frame, v.eye, v.seed, v.exposure);
+            out += HdrFigure(v.reference, v.exposure, "reference");
+            if (!v.noisy.empty()) out += HdrFigure(v.noisy, v.exposure, "noisy");
+            for (const auto& [name, img] : v.variants) out += HdrFigure(img, v.exposure, name);
+            out += "</div>";
             // Fovea crops.
             const int radius = std::max(8, int(std::lround(v.foveaRadiusPixels)));
             // The rectangle in the heading: a crop can be cut again from the full frames.
@@ -299,31 +371,51 @@ std::string SceneSection(const HtmlReport& report, const ExperimentStats* stats,
                                "<div class=\"row\">",
                                rect.x0, rect.x0 + rect.width - 1, rect.y0, rect.y0 + rect.height - 1,
                                v.reference.width(), v.reference.height(), v.gazePixel.x, v.gazePixel.y);
-            out += Figure(PngImg(EncodePngToMemory(Crop(v.reference, v.gazePixel, radius)), "reference", 240), "reference");
-            if (!v.noisy.empty())
-                out += Figure(PngImg(EncodePngToMemory(Crop(v.noisy, v.gazePixel, radius)), "noisy", 240), "noisy");
-            for (const auto& [name, img] : v.variants)
-                out += Figure(PngImg(EncodePngToMemory(Crop(img, v.gazePixel, radius)), name, 240), name);
+            auto crop = [&](const Plane<vec3>& img) { return EncodePngToMemory(Crop(img, v.gazePixel, radius), v.exposure); };
+            out += Figure(PngImg(crop(v.reference), "reference", 240), "reference");
+            if (!v.noisy.empty()) out += Figure(PngImg(crop(v.noisy), "noisy", 240), "noisy");
+            for (const auto& [name, img] : v.variants) out += Figure(PngImg(crop(img), name, 240), name);
             out += "</div>";
         }
     }
     return out + "</section>";
 }
 
-// The report's only script. It draws nothing: it records script errors (window "error" events,
-// console.error) in <html data-errors>, and after the page has loaded marks every image and SVG
-// figure data-drawn="1" when it drew (an image decoded to a non-zero size; an SVG with a
-// non-empty bounding box and, for a plot, every series a polyline with points), else "0", and sets
-// <body data-report-check="ok"> when every figure drew and no error was seen ("failed" otherwise).
+// The report's only script. It paints each full frame (canvas.hdr) from its RGBE images through
+// the display LUT (DisplayLutBase64, on <body data-display-lut>) at the stops its section's
+// slider says, marking it data-painted="1". It records script errors (window "error" events,
+// console.error) in <html data-errors>, and after the page has loaded marks every image, SVG
+// figure and frame canvas data-drawn="1" when it drew (an image decoded to a non-zero size; an
+// SVG with a non-empty bounding box and, for a plot, every series a polyline with points; a
+// canvas painted), else "0", and sets <body data-report-check="ok"> when every figure drew and no
+// error was seen ("failed" otherwise). In a window 1400 px wide or wider, a summary table that
+// does not fit the page counts as an error.
 constexpr const char* kCheckScript = R"(<script>
 (function(){
 var errors=[];function note(m){errors.push(String(m));document.documentElement.setAttribute('data-errors',errors.join(' | '));}
 window.addEventListener('error',function(e){note(e.message||('failed to load '+((e.target&&(e.target.src||e.target.href))||'a resource').slice(0,80)));},true);
 var ce=console.error;console.error=function(){note(Array.prototype.join.call(arguments,' '));ce.apply(console,arguments);};
+function pixels(img){var c=document.createElement('canvas');c.width=img.naturalWidth;c.height=img.naturalHeight;
+var x=c.getContext('2d');x.drawImage(img,0,0);return x.getImageData(0,0,c.width,c.height).data;}
+function frames(){var b64=document.body.getAttribute('data-display-lut');if(!b64)return;
+var raw=atob(b64),lut=new Uint8Array(raw.length);for(var i=0;i<raw.length;i++)lut[i]=raw.charCodeAt(i);
+function paint(c,stop){if(!c._m){var f=c.parentNode;c._m=pixels(f.querySelector('img.rgbe-m'));c._e=pixels(f.querySelector('img.rgbe-e'));}
+var x=c.getContext('2d'),out=x.createImageData(c.width,c.height),o=out.data,m=c._m,e=c._e;
+for(var i=0;i<o.length;i+=4){var E=e[i]===0?0:Math.min(255,Math.max(1,e[i]+stop))*256;
+o[i]=lut[E+m[i]];o[i+1]=lut[E+m[i+1]];o[i+2]=lut[E+m[i+2]];o[i+3]=255;}
+x.putImageData(out,0,0);c.setAttribute('data-painted','1');}
+document.querySelectorAll('input.exposure').forEach(function(s){var sec=s.closest('section');
+function go(){var stop=parseInt(s.value,10);s.nextElementSibling.textContent=(stop>0?'+':'')+stop;
+sec.querySelectorAll('canvas.hdr').forEach(function(c){paint(c,stop);});}
+s.addEventListener('input',go);go();});}
 window.addEventListener('load',function(){
-var figures=document.querySelectorAll('img, svg'),drawn=0,failed=0;
-figures.forEach(function(f){var ok;
-if(f.tagName.toLowerCase()==='img'){ok=f.complete&&f.naturalWidth>0&&f.naturalHeight>0;}
+try{frames();}catch(err){note(err);}
+if(window.innerWidth>=1400)document.querySelectorAll('table.summary').forEach(function(t){
+if(t.getBoundingClientRect().right>document.documentElement.clientWidth+0.5)note('a summary table is wider than the page at '+window.innerWidth+' px');});
+var figures=document.querySelectorAll('img, svg, canvas.hdr'),drawn=0,failed=0;
+figures.forEach(function(f){var ok,tag=f.tagName.toLowerCase();
+if(tag==='img'){ok=f.complete&&f.naturalWidth>0&&f.naturalHeight>0;}
+else if(tag==='canvas'){ok=f.getAttribute('data-painted')==='1';}
 else{var b=f.getBBox();ok=b.width>0&&b.height>0;
 if(f.classList.contains('plot')){var lines=f.querySelectorAll('polyline.series');ok=ok&&lines.length>0;
 lines.forEach(function(l){if(!l.points||l.points.numberOfItems<1)ok=false;});}}
@@ -339,9 +431,11 @@ h1{font-size:22px}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:
 table{border-collapse:collapse;margin:8px 0;font-size:13px}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}
 th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
 .row,.plots{display:flex;flex-wrap:wrap;gap:12px}figure{margin:0}figcaption{font-size:12px;text-align:center}
-img{image-rendering:pixelated;border:1px solid #ddd;display:block}svg{background:#fff;border:1px solid #ddd}
+img{image-rendering:pixelated;border:1px solid #ddd;display:block}img[hidden]{display:none}svg{background:#fff;border:1px solid #ddd}
 .note{font-size:12px;color:#555}td.ns{color:#888}td.sig{font-weight:600}td.base{color:#555;font-style:italic}
-table.summary td{white-space:nowrap}svg.colorbar{border:none;display:block;margin:2px auto 0})";
+table.summary td{white-space:nowrap}table.summary{font-size:12px}span.ci{font-size:11px;color:inherit}
+svg.colorbar{border:none;display:block;margin:2px auto 0}canvas.hdr{width:400px;image-rendering:pixelated;border:1px solid #ddd;display:block}
+input.exposure{vertical-align:middle;width:220px}output{display:inline-block;min-width:2.5em;font-weight:600})";
 
 }  // namespace
 
@@ -393,11 +487,58 @@ vec3 Viridis(float t) {
     return glm::mix(stops[i], stops[i + 1], s - float(i)) / 255.0f;
 }
 
-std::vector<uint8_t> FalseColorPng(const Plane<float>& values, float lo, float hi) {
+vec3 Diverging(float t) {
+    static const vec3 stops[3] = {{0x21, 0x66, 0xac}, {0xf7, 0xf7, 0xf7}, {0xb2, 0x18, 0x2b}};
+    if (!std::isfinite(t)) t = 0.5f;
+    const float s = std::clamp(t, 0.0f, 1.0f) * 2.0f;
+    const int i = std::min(int(s), 1);
+    return glm::mix(stops[i], stops[i + 1], s - float(i)) / 255.0f;
+}
+
+namespace {
+
+std::vector<uint8_t> RampPng(const Plane<float>& values, float lo, float hi, vec3 (*ramp)(float)) {
     Plane<vec3> colors(values.width(), values.height());
     const float range = hi > lo ? hi - lo : 1.0f;
-    for (size_t i = 0; i < values.size(); ++i) colors[i] = Viridis((values[i] - lo) / range);
+    for (size_t i = 0; i < values.size(); ++i) colors[i] = ramp((values[i] - lo) / range);
     return DisplayColorPng(colors);
+}
+
+}  // namespace
+
+std::vector<uint8_t> FalseColorPng(const Plane<float>& values, float lo, float hi) {
+    return RampPng(values, lo, hi, Viridis);
+}
+
+std::vector<uint8_t> DivergingPng(const Plane<float>& values, float lo, float hi) {
+    return RampPng(values, lo, hi, Diverging);
+}
+
+RgbeImage EncodeRgbe(const Plane<vec3>& hdr) {
+    RgbeImage out{std::vector<uint8_t>(hdr.size() * 3, 0), std::vector<uint8_t>(hdr.size(), 0)};
+    for (size_t i = 0; i < hdr.size(); ++i) {
+        const vec3 c = glm::max(hdr[i], vec3(0.0f));
+        const float top = std::max(c.r, std::max(c.g, c.b));
+        if (!(top > 1e-30f) || !std::isfinite(top)) continue;
+        int e = 0;
+        std::frexp(top, &e);  // top = f · 2^e, f in [0.5, 1)
+        if (e + 128 < 1 || e + 128 > 255) continue;
+        const float toMantissa = std::ldexp(256.0f, -e);
+        for (int k = 0; k < 3; ++k) out.mantissa[3 * i + size_t(k)] = uint8_t(std::min(255.0f, c[k] * toMantissa));
+        out.exponent[i] = uint8_t(e + 128);
+    }
+    return out;
+}
+
+std::vector<uint8_t> DisplayLut() {
+    Plane<vec3> values(256, 256);
+    for (int e = 0; e < 256; ++e)
+        for (int m = 0; m < 256; ++m)
+            values(m, e) = vec3(e == 0 ? 0.0f : std::ldexp((float(m) + 0.5f) / 256.0f, e - 128));
+    const std::vector<uint8_t> rgb = TonemapToRgb8(values);
+    std::vector<uint8_t> lut(values.size());
+    for (size_t i = 0; i < lut.size(); ++i) lut[i] = rgb[3 * i];
+    return lut;
 }
 
 CropRect CropRectOf(int width, int height, const vec2& centre, int radius) {
@@ -454,7 +595,8 @@ std::vector<double> AxisTicks(double lo, double hi, bool log, int target) {
     return ticks;
 }
 
-std::string SvgColorBar(int width, const std::vector<std::pair<double, std::string>>& ticks, const std::string& label) {
+std::string SvgColorBar(int width, const std::vector<std::pair<double, std::string>>& ticks, const std::string& label,
+                        vec3 (*ramp)(float)) {
     // 64 solid steps (no gradient: no element ids to keep unique in the document).
     constexpr double kPad = 14, kBarH = 10;
     constexpr int kSteps = 64;
@@ -464,7 +606,7 @@ std::string SvgColorBar(int width, const std::vector<std::pair<double, std::stri
         "44\" font-family=\"sans-serif\">",
         width);
     for (int i = 0; i < kSteps; ++i) {
-        const vec3 c = Viridis((float(i) + 0.5f) / float(kSteps));
+        const vec3 c = ramp((float(i) + 0.5f) / float(kSteps));
         out += fmt::format("<rect x=\"{:.2f}\" y=\"2\" width=\"{:.2f}\" height=\"{}\" fill=\"#{:02x}{:02x}{:02x}\"/>",
                            kPad + barW * i / kSteps, barW / kSteps + 0.3, kBarH, int(std::lround(c.r * 255)),
                            int(std::lround(c.g * 255)), int(std::lround(c.b * 255)));
@@ -624,9 +766,12 @@ std::string RenderHtmlReport(const HtmlReport& report) {
     std::optional<ExperimentStats> localStats;
     const ExperimentStats* stats = report.stats;
     if (!stats && report.results) stats = &localStats.emplace(*report.results, report.baseline);
+    // The full frames' display LUT, once, when a scene shows them.
+    const bool frames = std::ranges::any_of(report.scenes, [](const SceneVisuals& v) { return !v.reference.empty(); });
+    const std::string lut = frames ? " data-display-lut=\"" + DisplayLutBase64() + "\"" : "";
     std::string out = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" +
                       HtmlEscape(report.title) + "</title><style>" + kCss + "</style>" + kCheckScript +
-                      "</head><body>";
+                      "</head><body" + lut + ">";
     out += "<h1>" + HtmlEscape(report.title) + "</h1>";
     out += fmt::format(
         "<p class=\"note\">relMSE = mean((y−r)²/(r²+ε)) per channel on HDR, ε = {:g}. SSIM (Wang 2004, 11×11 "

@@ -1,7 +1,8 @@
 // The self-contained HTML report: one file that opens offline (inline CSS, inline SVG plots,
-// base64 PNG images, no external references). Its one inline script draws nothing: it records
-// script errors and marks every figure once the browser has drawn it (data-drawn="1", or "0"
-// for an image that failed to decode or a plot with nothing in it) and sets
+// base64 PNG images, no external references). Its one inline script paints the full frames at the
+// exposure the page's slider picks, records script errors and marks every figure once the
+// browser has drawn it (data-drawn="1", or "0" for an image that failed to decode, a plot with
+// nothing in it or a frame not painted) and sets
 // data-report-check="ok" on <body> when all of them drew — the browser check
 // (tests/report_browser_check.sh) reads that from headless Chromium's DOM.
 //
@@ -10,8 +11,10 @@
 // to relMSE) with the method stated, the outlier frames that dominate a mean, per-frame plots of
 // every metric (whole and fovea) per variant with axis ticks, a legend under the plot, blinks and
 // saccades shaded and the outlier frames marked, the gaze speed, the gaze path, the spp map and
-// false-colour relMSE maps (viridis of log10 relMSE per pixel), each with its colour bar, and
-// fovea crops of reference / noisy / each variant. Then whatever tables the caller passes.
+// false-colour relMSE maps (viridis of log10 relMSE per pixel), each with its colour bar, the
+// FovVideoVDP maps, each variant's per-pixel relMSE ratio to the baseline, the full frames of
+// reference / noisy / each variant with an exposure slider (the script paints them from RGBE
+// images), and fovea crops of the same. Then whatever tables the caller passes.
 #pragma once
 
 #include <cstdint>
@@ -64,6 +67,7 @@ struct SceneVisuals {
     std::vector<vec2> gazePath;      // gaze pixel per frame (this eye), may leave the image
     float foveaRadiusPixels = 200.0f;
     vec2 gazePixel{0.0f};            // at `frame`: centre of the fovea crops
+    float exposure = 0.0f;           // output.exposure: the images as the PNG outputs show them
     Plane<uint16_t> sppMap;          // optional (empty = not shown)
     Plane<vec3> reference;           // optional; needed for error maps and crops
     Plane<vec3> noisy;               // optional
@@ -88,8 +92,21 @@ void WriteHtmlReport(const std::filesystem::path& path, const HtmlReport& report
 std::string Base64(const std::vector<uint8_t>& bytes);
 std::string HtmlEscape(const std::string& text);
 vec3 Viridis(float t);  // t in [0,1]
+// Blue (0) – light grey (1/2) – red (1), for signed differences (ColorBrewer RdBu ends).
+vec3 Diverging(float t);
 // PNG of a scalar map through viridis, values mapped linearly from [lo, hi].
 std::vector<uint8_t> FalseColorPng(const Plane<float>& values, float lo, float hi);
+// The same through Diverging: lo blue, the middle grey, hi red.
+std::vector<uint8_t> DivergingPng(const Plane<float>& values, float lo, float hi);
+// Ward's RGBE of an HDR image: 8-bit mantissas (3 per pixel) and a shared exponent per pixel
+// E = e + 128 for a largest channel in [2^(e−1), 2^e), 0 for black; radiance ≈ (m + 0.5)/256 · 2^(E − 128).
+struct RgbeImage {
+    std::vector<uint8_t> mantissa, exponent;
+};
+RgbeImage EncodeRgbe(const Plane<vec3>& hdr);
+// The display byte of every RGBE (E, m), entry E·256 + m: PNG's display transform (io/png.h,
+// exposure 0) of (m + 0.5)/256 · 2^(E − 128); row 0 is black. An exposure of k stops is row E + k.
+std::vector<uint8_t> DisplayLut();
 // The pixels Crop takes from a width × height image: a square of side 2·radius around centre,
 // moved inside the image (x0, y0: its top-left pixel).
 struct CropRect {
@@ -122,7 +139,7 @@ std::vector<double> AxisTicks(double lo, double hi, bool log, int target = 5);
 // A horizontal colour bar (SVG) for a viridis map over [lo, hi] with the given tick labels at
 // their positions t in [0, 1].
 std::string SvgColorBar(int width, const std::vector<std::pair<double, std::string>>& ticks,
-                        const std::string& label);
+                        const std::string& label, vec3 (*ramp)(float) = Viridis);
 // The gaze path as an SVG polyline over a width × height frame, with the fovea disc at the end.
 std::string SvgGazePath(int width, int height, const std::vector<vec2>& path, float foveaRadius);
 

@@ -1,6 +1,8 @@
 #include "app/report_summary.h"
 
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -168,6 +170,50 @@ std::string SummaryTable(const Results& results, const ExperimentStats& stats) {
         out += "\n";
     }
     return out;
+}
+
+ReportTable PerSeedTable(const Results& results, const std::vector<VdpScore>& vdp) {
+    struct Sum {
+        double total = 0.0;
+        size_t count = 0;
+    };
+    // (scene, seed, variant, region or "jod", metric) → sum and count.
+    std::map<std::tuple<std::string, uint32_t, std::string, std::string, std::string>, Sum> sums;
+    for (const ResultRow& r : results.rows()) {
+        if (!std::isfinite(r.value)) continue;
+        Sum& s = sums[{r.scene, r.seed, r.variant, r.region, r.metric}];
+        s.total += r.value;
+        ++s.count;
+    }
+    for (const VdpScore& v : vdp) {
+        Sum& s = sums[{v.scene, v.seed, v.variant, "", "jod"}];
+        s.total += v.jod;
+        ++s.count;
+    }
+    const std::vector<std::pair<std::string, std::string>> columns = {
+        {"whole", "relmse"}, {"fovea", "relmse"}, {"periphery", "relmse"}, {"whole", "ssim"}, {"whole", "flip"}, {"", "jod"}};
+    ReportTable table{"Per seed (means over frames and eyes of each seed alone)",
+                      {"scene", "seed", "variant", "relMSE whole", "relMSE fovea", "relMSE periphery", "SSIM",
+                       "FLIP", "JOD"},
+                      {}};
+    for (const std::string& scene : results.Scenes())
+        for (uint32_t seed : results.Seeds(scene))
+            for (const std::string& variant : results.Variants(scene)) {
+                std::vector<std::string> row = {scene, std::to_string(seed), variant};
+                for (const auto& [region, metric] : columns) {
+                    auto it = sums.find({scene, seed, variant, region, metric});
+                    if (it == sums.end() || it->second.count == 0) {
+                        row.push_back("–");
+                        continue;
+                    }
+                    const double mean = it->second.total / double(it->second.count);
+                    row.push_back(metric == "relmse" ? fmt::format("{:.3e}", mean)
+                                  : metric == "jod"  ? fmt::format("{:.3f}", mean)
+                                                     : fmt::format("{:.4f}", mean));
+                }
+                table.rows.push_back(std::move(row));
+            }
+    return table;
 }
 
 }  // namespace fovrt

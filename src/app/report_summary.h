@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/experiment_stats.h"
+#include "app/experiment_vdp.h"
 #include "app/report.h"
 
 namespace fovrt {
@@ -31,5 +32,10 @@ nlohmann::json SummaryJson(const Results& results, const ExperimentStats& stats)
 void WriteSummaryJson(const std::filesystem::path& path, const Results& results, const ExperimentStats& stats);
 
 std::string SummaryTable(const Results& results, const ExperimentStats& stats);
+
+// The report's per-seed table: per scene, seed and variant, that seed's means over frames and
+// eyes of relMSE (whole, fovea, periphery), SSIM and FLIP (whole) and, where `vdp` scored it, the
+// FovVideoVDP JOD (mean over eyes): how far each seed's figures lie from the pooled summary.
+ReportTable PerSeedTable(const Results& results, const std::vector<VdpScore>& vdp);
 
 }  // namespace fovrt

@@ -45,6 +45,7 @@ struct RunSettings {
     uint32_t seed = 1;
     int threads = 0;     // 0 = all cores
     int maxDepth = 2;    // path vertices after the camera: 1 = direct only, 2 = one indirect bounce
+    bool score = false;  // `run`: relMSE, SSIM, FLIP and FovVideoVDP against the cached references
 };
 
 struct RenderConfig {

@@ -49,7 +49,7 @@ constexpr std::array<SettingRow<CameraConfig>, 4> kCameraRows{{
     {{.key = "camera.ipd", .range = Closed(0, 1), .doc = "interpupillary distance in metres"}, &CameraConfig::ipd},
 }};
 
-constexpr std::array<SettingRow<RunSettings>, 6> kRunRows{{
+constexpr std::array<SettingRow<RunSettings>, 7> kRunRows{{
     {{.key = "run.frames", .range = Closed(1, kMaxInt), .doc = "frames to render"}, &RunSettings::frames},
     {{.key = "run.first_frame", .range = Closed(0, kMaxInt), .doc = "index of the first frame"},
      &RunSettings::firstFrame},
@@ -61,6 +61,10 @@ constexpr std::array<SettingRow<RunSettings>, 6> kRunRows{{
     {{.key = "run.max_depth", .range = Closed(0, 1024),
       .doc = "path vertices after the camera: 1 = direct only, 2 = one indirect bounce"},
      &RunSettings::maxDepth},
+    {{.key = "run.score",
+      .doc = "`fovrt run` only: score every variant against the cached references (relMSE, SSIM, FLIP, "
+             "FovVideoVDP; app/run_score.h)"},
+     &RunSettings::score},
 }};
 
 constexpr std::array<SettingRow<RenderConfig>, 1> kRenderRows{{

@@ -257,7 +257,8 @@ std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
 
 void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
     LiveFrame* frame = &frameRef;
-    if (controls.denoiser != runningDenoiser_) ApplyDenoiser(controls.denoiser);
+    const bool switched = controls.denoiser != runningDenoiser_;
+    if (switched) ApplyDenoiser(controls.denoiser);
     for (int eye = 0; eye < 2; ++eye) {
         EyeFrame& e = frame->stereo.eyes[size_t(eye)];
         const auto denoiseStart = LiveClock::now();
@@ -268,7 +269,8 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
 
     const auto viewStart = LiveClock::now();
     std::array<std::optional<Plane<vec3>>, 2> references;
-    if (controls.view == "error") {
+    const bool vdpView = controls.view == "vdp";
+    if (controls.view == "error" || vdpView) {
         if (!referenceCache_) {
             referenceCache_ = std::make_unique<ReferenceCache>(config_.reference.cacheDir);
             fingerprint_ = SceneFingerprint(pipeline_.GetScene());
@@ -283,14 +285,21 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
     frame->view = controls.view;
     for (int eye = 0; eye < 2; ++eye) {
         const EyeFrame& e = frame->stereo.eyes[size_t(eye)];
+        std::unique_ptr<VdpViewStream>& vdp = vdpViews_[size_t(eye)];
+        // The metric's temporal channels see one sequence: a new view, denoiser, cut or a gap
+        // in the references starts it again.
+        if (!vdpView || switched || e.inputs.cameraCut || !references[size_t(eye)]) vdp.reset();
+        if (vdpView && references[size_t(eye)] && !vdp)
+            vdp = std::make_unique<VdpViewStream>(config_, e.camera, pipeline_.FramesPerSecond());
         ViewSources sources{&e.inputs, &e.sppMap, &frame->denoised[size_t(eye)],
                             references[size_t(eye)] ? &*references[size_t(eye)] : nullptr,
-                            denoisers_[size_t(eye)].get()};
+                            denoisers_[size_t(eye)].get(), vdp.get(), e.trueGazePixel};
         if (!BuildView(controls.view, sources, frame->shown[size_t(eye)])) {
             BuildView("denoised", sources, frame->shown[size_t(eye)]);
             frame->shown[size_t(eye)].legend =
-                controls.view == "error" ? "no cached reference for this view: showing denoised (run `fovrt reference`)"
-                                         : "view '" + controls.view + "' not available: showing denoised";
+                controls.view == "error" || vdpView
+                    ? "no cached reference for this view: showing denoised (run `fovrt reference`)"
+                    : "view '" + controls.view + "' not available: showing denoised";
         }
     }
     frame->timings.viewMs = MsBetween(viewStart, LiveClock::now());

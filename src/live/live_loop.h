@@ -151,6 +151,9 @@ private:
 
     std::unique_ptr<ReferenceCache> referenceCache_;  // opened when the error view is first shown
     uint64_t fingerprint_ = 0;
+    // The "vdp" view's metric per eye (denoise stage): made when the view is shown, dropped when
+    // another view, another denoiser, a cut or a frame without reference ends the sequence.
+    std::array<std::unique_ptr<VdpViewStream>, 2> vdpViews_;
 
     uint32_t frameIndex_ = 0;
     double sceneTime_ = 0.0;

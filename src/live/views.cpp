@@ -43,8 +43,21 @@ vec3 FalseColour(float value, float lo, float hi) {
 
 const std::vector<std::string>& BaseViewNames() {
     static const std::vector<std::string> names = {"denoised", "noisy", "spp",  "albedo",
-                                                   "normal",   "depth", "error"};
+                                                   "normal",   "depth", "error", "vdp"};
     return names;
+}
+
+VdpViewStream::VdpViewStream(const RunConfig& config, const EyeCamera& camera, double fps)
+    : VdpViewStream(ExperimentVdpDisplay(config, camera), config.output.exposure, fps) {}
+
+VdpViewStream::VdpViewStream(const VdpExperimentDisplay& display, float exposureStops, double fps)
+    : stream(display.geometry, fps), photometry(display.photometry), exposureStops(exposureStops) {}
+
+Plane<float> VdpViewMap(VdpViewStream& vdp, const Plane<vec3>& test, const Plane<vec3>& reference,
+                        const vec2& gazePixel) {
+    return vdp.stream.Next(VdpDisplayLuminance(test, vdp.exposureStops, vdp.photometry),
+                           VdpDisplayLuminance(reference, vdp.exposureStops, vdp.photometry),
+                           VdpFixationAt(gazePixel));
 }
 
 std::vector<std::string> ViewNamesFor(const Denoiser& denoiser) {
@@ -81,6 +94,13 @@ bool BuildView(const std::string& name, const ViewSources& s, ViewImage& out) {
             rgb[i] = FalseColour(std::log10((rel.r + rel.g + rel.b) / 3.0f + 1e-6f), -4.0f, 0.0f);
         }
         out = {std::move(rgb), false, "relMSE vs cached reference, log10: -4 (dark) .. 0 (yellow)"};
+    } else if (name == "vdp") {
+        if (!s.vdp || !s.reference || s.reference->width() != s.denoised->width()) return false;
+        const Plane<float> map = VdpViewMap(*s.vdp, *s.denoised, *s.reference, s.gazePixel);
+        out = {Map(map, [](float v) { return FalseColour(std::log10(v + 1e-9f), kVdpViewLog10Min, kVdpViewLog10Max); }),
+               false,
+               fmt::format("FovVideoVDP vs cached reference at the gaze, JOD loss per pixel, log10: {:g} (dark) .. "
+                           "{:g} (yellow)", kVdpViewLog10Min, kVdpViewLog10Max)};
     } else {
         if (!s.denoiser) return false;
         const auto views = s.denoiser->DebugViews();

@@ -49,6 +49,8 @@ void ValidateSequence(const std::vector<Plane<float>>& test, const std::vector<P
     const size_t fixCount = options.fixations.size();
     if (options.foveated && fixCount > 1 && fixCount != size_t(frames))
         Fail("FovVideoVDP: {} fixations for {} frames (need 1 or one per frame)", fixCount, frames);
+    if (options.firstScoredFrame < 0 || options.firstScoredFrame >= frames)
+        Fail("FovVideoVDP: first scored frame {} of {} frames", options.firstScoredFrame, frames);
 }
 
 // Pooling of the per band × channel × frame Q: bands (β_sch), channels (β_tch, transient
@@ -87,6 +89,8 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     ValidateSequence(test, reference, fps, options);
     const int width = reference[0].width(), height = reference[0].height();
     const int frames = int(test.size());
+    const int first = options.firstScoredFrame;
+    const int scored = frames - first;
     const bool video = frames > 1;
     const size_t fixCount = options.fixations.size();
 
@@ -98,11 +102,11 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     VdpResult result;
     result.bands = bands;
     result.channels = channels;
-    result.frames = frames;
+    result.frames = scored;
     result.bandFrequencies = VdpBandFrequencies(width, height, ppd);
     result.bandFrequencies.resize(size_t(bands));
-    result.q.assign(size_t(frames) * size_t(channels) * size_t(bands), 0.0);
-    if (options.diffMaps) result.diffMaps.resize(size_t(frames));
+    result.q.assign(size_t(scored) * size_t(channels) * size_t(bands), 0.0);
+    if (options.diffMaps) result.diffMaps.resize(size_t(scored));
 
     VdpTemporalFilters filters;
     if (video) filters = MakeVdpTemporalFilters(fps, params_);
@@ -131,7 +135,8 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     const float beta = float(params_.beta);
     const float channelWeight[2] = {1.0f, float(params_.wTransient)};
 
-    tbb::parallel_for(0, frames, [&](int f) {
+    tbb::parallel_for(first, frames, [&](int f) {
+        const size_t out = size_t(f - first);  // the frame's place in the result
         // Images in the order test, reference per channel; the reference's sustained image adapts.
         std::vector<Plane<float>> images;
         if (video) {
@@ -182,7 +187,7 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
                 });
                 double sum = 0.0;
                 for (double v : rowSums) sum += v;
-                result.q[(size_t(f) * size_t(channels) + size_t(c)) * size_t(bands) + size_t(b)] =
+                result.q[(out * size_t(channels) + size_t(c)) * size_t(bands) + size_t(b)] =
                     std::pow(sum / double(adapt.size()), 1.0 / double(beta));
             }
         }
@@ -191,7 +196,7 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
             const float bJod = float(std::pow(10.0, params_.logJodExp));
             const float aJod = float(std::abs(params_.jodA));
             for (float& v : map.vector()) v = std::pow(std::max(v, 0.0f), bJod) * aJod;
-            result.diffMaps[size_t(f)] = std::move(map);
+            result.diffMaps[out] = std::move(map);
         }
     });
 

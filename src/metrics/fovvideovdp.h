@@ -29,6 +29,9 @@ struct VdpOptions {
     // (width/2, height/2 in whole pixels, the reference's default).
     std::vector<VdpFixation> fixations;
     bool diffMaps = false;  // per-frame difference maps (VdpResult::diffMaps)
+    // Frames before this one only feed the temporal filters: Q, the maps and the JOD are of the
+    // frames from here on (a stream scores its newest frame with the frames before it: VdpStream).
+    int firstScoredFrame = 0;
 };
 
 struct VdpResult {
@@ -37,10 +40,10 @@ struct VdpResult {
     // only the sustained channel (transient = 10).
     double jodSustained = 10.0;
     double jodTransient = 10.0;
-    int bands = 0, channels = 0, frames = 0;
+    int bands = 0, channels = 0, frames = 0;  // frames: the scored ones (from firstScoredFrame)
     std::vector<double> bandFrequencies;  // peak frequency (cpd) of each band
     std::vector<double> q;                // per band × channel × frame quality, see Q()
-    // Per frame: the difference map in the units of JOD lost per pixel (reference's "raw" map).
+    // Per scored frame: the difference map in the units of JOD lost per pixel (reference's "raw" map).
     std::vector<Plane<float>> diffMaps;
 
     double Q(int band, int channel, int frame) const {

@@ -1,5 +1,6 @@
 #include "pipeline/denoiser_set.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
@@ -74,6 +75,21 @@ std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
         plan.push_back({prefix + "spp_map", pixels * sizeof(uint16_t), false});
         plan.push_back({prefix + "render.visibility",
                         visibilityBuffers * pixels * kVisibilityPixelBytes, false});
+    }
+    for (BufferPlan& vdp : PlanVdpMemory(config, config.run.score)) plan.push_back(std::move(vdp));
+    return plan;
+}
+
+std::vector<BufferPlan> PlanVdpMemory(const RunConfig& config, bool scored) {
+    if (!scored || !config.metric.vdp) return {};
+    const size_t bytes = size_t(config.camera.width) * size_t(config.camera.height) * sizeof(float) *
+                         size_t(std::max(1, config.run.frames));
+    std::vector<BufferPlan> plan;
+    for (int eye = 0; eye < 2; ++eye) {
+        const std::string prefix = "eye" + std::to_string(eye) + ".vdp.";
+        plan.push_back({prefix + "reference_luminance", bytes, false});
+        for (const std::string& name : config.denoise.denoisers)
+            plan.push_back({prefix + name + "_luminance", bytes, false});
     }
     return plan;
 }
