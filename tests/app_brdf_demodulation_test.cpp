@@ -127,14 +127,8 @@ TEST_CASE("rae takes F_beta-demodulated frames back to its albedo; rae+brdf is r
 
 TEST_CASE("vulkan +brdf denoisers match the C++ reference on real frames", "[vulkan]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device; GPU-vs-reference check not run");
-    RunConfig config = SmallDetail();
-    FramePipeline pipeline(config);
-    constexpr int kFrames = 4;
-    std::vector<StereoFrame> frames(kFrames);
-    for (int f = 0; f < kFrames; ++f) pipeline.Render(uint32_t(f), frames[size_t(f)]);
-    REQUIRE(frames[1].eyes[0].inputs.gradientSamples.size() > 0);
-    std::vector<const FrameInputs*> leftEye;
-    for (const StereoFrame& frame : frames) leftEye.push_back(&frame.eyes[0].inputs);
+    const std::vector<StereoFrame> frames = test::RenderFourFrames(SmallDetail());
+    const std::vector<const FrameInputs*> leftEye = test::LeftEyeInputs(frames);
     for (const std::string base : {"svgf", "asvgf", "two-history"})
         DYNAMIC_SECTION(base + "+brdf") { test::CheckVulkanMatchesReference(base + "+brdf", leftEye); }
     CHECK(test::TestContext()->validationErrors() == 0);

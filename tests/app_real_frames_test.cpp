@@ -33,15 +33,8 @@ RunConfig SmallCornell() {
 
 TEST_CASE("vulkan denoisers match the C++ reference on real rendered frames", "[vulkan]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device; GPU-vs-reference check not run");
-    RunConfig config = SmallCornell();
-    FramePipeline pipeline(config);
-    constexpr int kFrames = 4;
-    std::vector<StereoFrame> frames(kFrames);
-    for (int f = 0; f < kFrames; ++f) pipeline.Render(uint32_t(f), frames[size_t(f)]);
-    REQUIRE(frames[1].eyes[0].inputs.gradientSamples.size() > 0);
-
-    std::vector<const FrameInputs*> leftEye;
-    for (const StereoFrame& frame : frames) leftEye.push_back(&frame.eyes[0].inputs);
+    const std::vector<StereoFrame> frames = test::RenderFourFrames(SmallCornell());
+    const std::vector<const FrameInputs*> leftEye = test::LeftEyeInputs(frames);
     for (const std::string& name : DenoiserNames())
         DYNAMIC_SECTION(name) { test::CheckVulkanMatchesReference(name, leftEye); }
     CHECK(test::TestContext()->validationErrors() == 0);

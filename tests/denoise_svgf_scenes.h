@@ -62,6 +62,19 @@ struct StaticScene {
     }
 };
 
+// Frame `frame` of `scene` with the faults the history must survive: a 4×4 block at (10, 10) that
+// changed object (a disocclusion: history 1 there), a NaN at (40, 40), an Inf at (41, 40) and a
+// negative sample at (42, 40) (two non-finite samples, kept out of every history).
+inline FrameInputs FaultyFrame(const StaticScene& scene, uint32_t frame) {
+    FrameInputs f = scene.Frame(frame);
+    for (int y = 10; y < 14; ++y)
+        for (int x = 10; x < 14; ++x) f.objectId(x, y) = 7;
+    f.direct(40, 40) = vec3(std::nanf(""), 1.0f, 1.0f);
+    f.indirect(41, 40) = vec3(INFINITY, 0.0f, 0.0f);
+    f.direct(42, 40) = vec3(-1.0f, 0.5f, 0.5f);
+    return f;
+}
+
 // Random inputs: random patches of object ids and depths, sub-pixel motion, HDR noise.
 inline FrameInputs RandomFrame(int w, int h, uint32_t seed, uint32_t frame) {
     FrameInputs f;

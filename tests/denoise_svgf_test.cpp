@@ -157,14 +157,8 @@ TEST_CASE("disocclusion, camera cut and NaN inputs never leave stale or non-fini
     CHECK(d.CurrentHistory(0).length(10, 20) == Approx(6.0f));
     CHECK(d.CurrentHistory(0).length(10, 2) == Approx(1.0f));  // background never accumulates
 
-    // Object id changes in a block → history 1 there, kept elsewhere.
-    FrameInputs f = scene.Frame(6);
-    for (int y = 10; y < 14; ++y)
-        for (int x = 10; x < 14; ++x) f.objectId(x, y) = 7;
-    // A NaN, an Inf and a negative pixel.
-    f.direct(40, 40) = vec3(std::nanf(""), 1.0f, 1.0f);
-    f.indirect(41, 40) = vec3(INFINITY, 0.0f, 0.0f);
-    f.direct(42, 40) = vec3(-1.0f, 0.5f, 0.5f);
+    // Object id changes in a block → history 1 there, kept elsewhere; a NaN, an Inf, a negative.
+    FrameInputs f = FaultyFrame(scene, 6);
     d.Denoise(f, out);
     CHECK(d.CurrentHistory(0).length(11, 11) == Approx(1.0f));
     CHECK(d.CurrentHistory(0).length(20, 40) == Approx(7.0f));

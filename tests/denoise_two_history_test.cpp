@@ -19,14 +19,7 @@
 #include "test_support.h"
 
 using namespace fovrt;
-using fovrt::test::InMovingFovea;
-using fovrt::test::kFoveaFrames;
-using fovrt::test::kFoveaH;
-using fovrt::test::kFoveaW;
-using fovrt::test::kFoveaWarmup;
-using fovrt::test::MakeStaticPlane;
-using fovrt::test::NoisyFrame;
-using fovrt::test::Truth;
+using namespace fovrt::test;  // the moving-fovea fixture (test_support.h)
 
 TEST_CASE("two-history with constant n equals SVGF", "[two_history]") {
     for (int n : {1, 4}) {

@@ -13,9 +13,27 @@
 #include "core/frame_inputs.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/params.h"
+#include "pipeline/frame_pipeline.h"
 #include "vk_test_support.h"
 
 namespace fovrt::test {
+
+// The first four frames `config` renders: the inputs the real-frame checks feed (frame 1 on carries
+// A-SVGF's gradient samples).
+inline std::vector<StereoFrame> RenderFourFrames(const RunConfig& config) {
+    FramePipeline pipeline(config);
+    std::vector<StereoFrame> frames(4);
+    for (size_t f = 0; f < frames.size(); ++f) pipeline.Render(uint32_t(f), frames[f]);
+    REQUIRE(frames[1].eyes[0].inputs.gradientSamples.size() > 0);
+    return frames;
+}
+
+// The left eye's inputs of `frames`, in order.
+inline std::vector<const FrameInputs*> LeftEyeInputs(const std::vector<StereoFrame>& frames) {
+    std::vector<const FrameInputs*> inputs;
+    for (const StereoFrame& frame : frames) inputs.push_back(&frame.eyes[0].inputs);
+    return inputs;
+}
 
 inline void CheckVulkanMatchesReference(const std::string& name, const std::vector<const FrameInputs*>& frames) {
     const DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});

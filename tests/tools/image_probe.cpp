@@ -81,6 +81,28 @@ int Stats(const char* path, int x0, int y0, int x1, int y1) {
     return 0;
 }
 
+// Prints the centre of the pixels in [x0, x1) × [y0, y1) that `selected(x, y)` picks ("none" and
+// 1 when none is); with `count`, also how many there are.
+template <class Selected>
+int PrintCentroid(const Image& img, int x0, int y0, int x1, int y1, bool count, Selected&& selected) {
+    double sx = 0, sy = 0, n = 0;
+    for (int y = y0; y < std::min(y1, img.h); ++y)
+        for (int x = x0; x < std::min(x1, img.w); ++x)
+            if (selected(x, y)) {
+                sx += x + 0.5;
+                sy += y + 0.5;
+                n += 1;
+            }
+    if (n == 0) {
+        std::printf("none\n");
+        return 1;
+    }
+    if (count) std::printf("%.1f %.1f %d\n", sx / n, sy / n, int(n));
+    else std::printf("%.1f %.1f\n", sx / n, sy / n);
+    return 0;
+}
+
+// The centre of the box's bright pixels (luma above the middle of its range).
 int Centroid(const char* path, int x0, int y0, int x1, int y1) {
     Image img = Load(path);
     float lo = 1e9f, hi = -1e9f;
@@ -90,40 +112,17 @@ int Centroid(const char* path, int x0, int y0, int x1, int y1) {
             hi = std::max(hi, img.Luma(x, y));
         }
     const float mid = 0.5f * (lo + hi);
-    double sx = 0, sy = 0, n = 0;
-    for (int y = y0; y < std::min(y1, img.h); ++y)
-        for (int x = x0; x < std::min(x1, img.w); ++x)
-            if (img.Luma(x, y) > mid) {
-                sx += x + 0.5;
-                sy += y + 0.5;
-                n += 1;
-            }
-    if (n == 0) {
-        std::printf("none\n");
-        return 1;
-    }
-    std::printf("%.1f %.1f\n", sx / n, sy / n);
-    return 0;
+    return PrintCentroid(img, x0, y0, x1, y1, false, [&](int x, int y) { return img.Luma(x, y) > mid; });
 }
 
+// The centre and count of the box's pixels of exactly colour `hex` (RRGGBB).
 int ColourCentroid(const char* path, const char* hex, int x0, int y0, int x1, int y1) {
     Image img = Load(path);
     const unsigned long rgb = std::strtoul(hex, nullptr, 16);
-    double sx = 0, sy = 0, n = 0;
-    for (int y = y0; y < std::min(y1, img.h); ++y)
-        for (int x = x0; x < std::min(x1, img.w); ++x) {
-            const unsigned char* p = &img.rgb[3 * (size_t(y) * size_t(img.w) + size_t(x))];
-            if ((unsigned long)((p[0] << 16) | (p[1] << 8) | p[2]) != rgb) continue;
-            sx += x + 0.5;
-            sy += y + 0.5;
-            n += 1;
-        }
-    if (n == 0) {
-        std::printf("none\n");
-        return 1;
-    }
-    std::printf("%.1f %.1f %d\n", sx / n, sy / n, int(n));
-    return 0;
+    return PrintCentroid(img, x0, y0, x1, y1, true, [&](int x, int y) {
+        const unsigned char* p = &img.rgb[3 * (size_t(y) * size_t(img.w) + size_t(x))];
+        return (unsigned long)((p[0] << 16) | (p[1] << 8) | p[2]) == rgb;
+    });
 }
 
 int ExrEqual(const char* a, const char* b) {
