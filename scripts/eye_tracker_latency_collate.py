@@ -2,17 +2,17 @@
 """Collates the eye-tracker latency study (scripts/eye-tracker-latency.sh) from each point's
 summary.json: writes latency-study.csv (one row per recording × scene × latency × prediction) and
 latency-study.svg (means over recordings and scenes against latency, one line per predictor:
-foveal relMSE, rendered-fovea-to-gaze distance, share of frames with the gaze outside the
-rendered fovea). Standard library only."""
+foveal relMSE, FovVideoVDP JOD scored at the true gaze, rendered-fovea-to-gaze distance, share of
+frames with the gaze outside the rendered fovea). Standard library only."""
 import csv
 import json
 import sys
 from pathlib import Path
 
-FIELDS = ["recording", "scene", "latency_ms", "prediction", "foveal_relmse", "whole_relmse",
+FIELDS = ["recording", "scene", "latency_ms", "prediction", "foveal_relmse", "whole_relmse", "jod",
           "foveal_relmse_fixation", "foveal_relmse_saccade", "fovea_distance_deg_mean",
           "outside_fovea_share", "saccades", "recovery_ms_mean", "recovery_ms_median", "unrecovered"]
-PANELS = [("foveal_relmse", "foveal relMSE"), ("fovea_distance_deg_mean", "fovea to true gaze (deg)"),
+PANELS = [("foveal_relmse", "foveal relMSE"), ("jod", "FovVideoVDP JOD"), ("fovea_distance_deg_mean", "fovea to true gaze (deg)"),
           ("outside_fovea_share", "gaze outside rendered fovea (share)")]
 COLOURS = {"none": "#d62728", "cv": "#1f77b4", "landing": "#2ca02c"}
 
@@ -28,9 +28,10 @@ def rows_of(root):
             variant = next(iter(variants))
             gaze = summary["gaze_tracking"].get(scene, {})
             split = gaze.get("foveal_relmse", {}).get(variant, {})
+            vdp = summary.get("fovvideovdp", {}).get("scenes", {}).get(scene, {}).get(variant, {})
             yield {"recording": recording, "scene": scene, "latency_ms": latency, "prediction": prediction,
                    "foveal_relmse": variants[variant]["fovea"]["relmse"]["mean"],
-                   "whole_relmse": variants[variant]["whole"]["relmse"]["mean"],
+                   "whole_relmse": variants[variant]["whole"]["relmse"]["mean"], "jod": vdp.get("jod"),
                    "foveal_relmse_fixation": split.get("fixation"), "foveal_relmse_saccade": split.get("saccade"),
                    "fovea_distance_deg_mean": gaze["fovea_distance_deg"]["mean"],
                    "outside_fovea_share": gaze["outside_fovea_share"], "saccades": gaze["saccades"],
@@ -40,7 +41,8 @@ def rows_of(root):
 
 def means(rows, key):
     """{prediction: [(latency, mean over recordings and scenes)]}, relMSE normalised per
-    (recording, scene) by its latency-0 'none' value so scenes of different error weigh alike."""
+    (recording, scene) by its latency-0 'none' value so scenes of different error weigh alike, JOD
+    as the difference to that value (JOD is a difference scale)."""
     base = {}
     for r in rows:
         if r["latency_ms"] == 0 and r["prediction"] == "none":
@@ -48,7 +50,14 @@ def means(rows, key):
     out = {}
     for r in rows:
         value = r[key]
-        if key.endswith("relmse"):
+        if value is None:
+            continue
+        if key == "jod":
+            b = base.get((r["recording"], r["scene"]))
+            if b is None:
+                continue
+            value = value - b
+        elif key.endswith("relmse"):
             b = base.get((r["recording"], r["scene"]))
             if not b:
                 continue
@@ -65,11 +74,14 @@ def svg(rows):
         values = [v for s in series.values() for _, v in s] or [0.0]
         latencies = [lat for s in series.values() for lat, _ in s] or [0.0]
         lo, hi = min(0.0, min(values)), max(values) * 1.1 or 1.0
+        if hi <= lo:  # all at or below 0 (a JOD loss): the axis ends at 0
+            hi = 0.0 if lo < 0.0 else 1.0
         x_max = max(latencies) or 1.0
         ox = i * (width + 20)
         fx = lambda lat: ox + margin + (width - margin - 10) * lat / x_max
         fy = lambda v: height - margin + (margin + 10 - height) * (v - lo) / (hi - lo)
-        title = label + (" / latency-0 none" if key.endswith("relmse") else "")
+        title = label + (" / latency-0 none" if key.endswith("relmse") else
+                         " − latency-0 none" if key == "jod" else "")
         parts.append(f'<text x="{ox + width / 2}" y="14" text-anchor="middle" font-size="12">{title}</text>')
         parts.append(f'<line x1="{fx(0)}" y1="{fy(lo)}" x2="{fx(x_max)}" y2="{fy(lo)}" stroke="black"/>')
         parts.append(f'<line x1="{fx(0)}" y1="{fy(lo)}" x2="{fx(0)}" y2="{fy(hi)}" stroke="black"/>')
@@ -105,7 +117,8 @@ def main():
     (root / "latency-study.svg").write_text(svg(rows))
     print(f"{root / 'latency-study.csv'}: {len(rows)} rows; plot {root / 'latency-study.svg'}")
     for key, label in PANELS:
-        print(label + (" (relative to latency 0, none)" if key.endswith("relmse") else ""))
+        print(label + (" (relative to latency 0, none)" if key.endswith("relmse") else
+                       " (difference to latency 0, none)" if key == "jod" else ""))
         for prediction, points in sorted(means(rows, key).items()):
             print(f"  {prediction:<8} " + "  ".join(f"{lat:g} ms: {v:.4g}" for lat, v in points))
 
