@@ -23,6 +23,14 @@ using namespace fovrt;
 
 namespace {
 
+// Frame 0 of `config`, both eyes.
+StereoFrame FirstFrame(const RunConfig& config) {
+    FramePipeline pipeline(config);
+    StereoFrame frame;
+    pipeline.Render(0, frame);
+    return frame;
+}
+
 RunConfig SmallDetail() {
     RunConfig config = DefaultConfig();
     config.scene.name = "brdf-detail";
@@ -79,10 +87,7 @@ TEST_CASE("the renderer traces F_beta only for +brdf names, and a +brdf variant 
 }
 
 TEST_CASE("re-demodulation to F_beta keeps the noisy colour and swaps the factor", "[app]") {
-    RunConfig config = SmallDetail();
-    FramePipeline pipeline(config);
-    StereoFrame frame;
-    pipeline.Render(0, frame);
+    const StereoFrame frame = FirstFrame(SmallDetail());
     const FrameInputs& in = frame.eyes[0].inputs;
     REQUIRE(in.demodulation == Demodulation::Albedo);
     FrameInputs scratch;
@@ -102,10 +107,7 @@ TEST_CASE("re-demodulation to F_beta keeps the noisy colour and swaps the factor
 }
 
 TEST_CASE("rae takes F_beta-demodulated frames back to its albedo; rae+brdf is refused", "[app]") {
-    RunConfig config = SmallDetail();
-    FramePipeline pipeline(config);
-    StereoFrame frame;
-    pipeline.Render(0, frame);
+    const StereoFrame frame = FirstFrame(SmallDetail());
     const FrameInputs& albedoFrame = frame.eyes[0].inputs;
     FrameInputs scratch;
     const FrameInputs& brdfFrame = Redemodulate(albedoFrame, Demodulation::Brdf, scratch);

@@ -108,13 +108,24 @@ TEST_CASE("reference keys: identical scenes give identical keys, any content cha
     }
 }
 
-TEST_CASE("reference cache renders once, then reads back the same pixels", "[app]") {
+// Cornell's renderer at frame 0 and an empty cache folder, removed again at the end.
+struct CornellCacheBench {
     Scene scene = LoadScene(ResolveSceneName("cornell"));
-    RenderSettings settings;
-    auto renderer = CreateRenderer(scene, settings);
-    renderer->SetFrame(0);
-    auto dir = std::filesystem::temp_directory_path() / "fovrt_reference_cache_test";
-    std::filesystem::remove_all(dir);
+    std::unique_ptr<Renderer> renderer = CreateRenderer(scene, RenderSettings{});
+    std::filesystem::path dir;
+
+    explicit CornellCacheBench(const std::string& name) : dir(std::filesystem::temp_directory_path() / name) {
+        renderer->SetFrame(0);
+        std::filesystem::remove_all(dir);
+    }
+    ~CornellCacheBench() { std::filesystem::remove_all(dir); }
+};
+
+TEST_CASE("reference cache renders once, then reads back the same pixels", "[app]") {
+    CornellCacheBench bench("fovrt_reference_cache_test");
+    const Scene& scene = bench.scene;
+    Renderer* renderer = bench.renderer.get();
+    const std::filesystem::path& dir = bench.dir;
     ReferenceCache cache(dir);
     auto key = MakeReferenceKey(scene, SceneFingerprint(scene), 0, 0.0, 0, Camera(), 4, 2, 1);
     bool hit = true;
@@ -130,16 +141,13 @@ TEST_CASE("reference cache renders once, then reads back the same pixels", "[app
     Plane<vec3> third = later.GetOrRender(key, *renderer, &hit);
     CHECK(hit);
     for (size_t i = 0; i < first.size(); ++i) REQUIRE(third[i] == first[i]);
-    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("reference cache never uses an entry made for another key or changed on disk", "[app]") {
-    Scene scene = LoadScene(ResolveSceneName("cornell"));
-    RenderSettings settings;
-    auto renderer = CreateRenderer(scene, settings);
-    renderer->SetFrame(0);
-    auto dir = std::filesystem::temp_directory_path() / "fovrt_reference_cache_integrity_test";
-    std::filesystem::remove_all(dir);
+    CornellCacheBench bench("fovrt_reference_cache_integrity_test");
+    const Scene& scene = bench.scene;
+    Renderer* renderer = bench.renderer.get();
+    const std::filesystem::path& dir = bench.dir;
     const uint64_t fp = SceneFingerprint(scene);
     const auto eye0 = MakeReferenceKey(scene, fp, 0, 0.0, 0, Camera(), 4, 2, 1);
     const auto eye1 = MakeReferenceKey(scene, fp, 0, 0.0, 1, Camera(0.1f), 4, 2, 1);
@@ -181,5 +189,4 @@ TEST_CASE("reference cache never uses an entry made for another key or changed o
         CHECK(samePixels(cache.GetOrRender(eye0, *renderer, &hit), image0));
         CHECK_FALSE(hit);
     }
-    std::filesystem::remove_all(dir);
 }

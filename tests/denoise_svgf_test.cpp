@@ -20,6 +20,27 @@ DenoiserParams Params(int iterations = 5) {
     p.svgf.atrousIterations = iterations;
     return p;
 }
+// SVGF's reprojection run frame by frame on one 64×64 static frame (its pixels changed by the
+// test between steps), with two history sides and the previous geometry.
+struct ReprojectBench {
+    FrameInputs frame = StaticScene{}.Frame(0);
+    SvgfGeometryPlanes prev;
+    SvgfHistory history[2];
+    Plane<vec4> illum;
+    DenoiseStats stats;
+
+    explicit ReprojectBench(bool weighted) {
+        prev.Allocate(64, 64);
+        for (SvgfHistory& h : history) h.Allocate(64, 64, weighted);
+    }
+    // Frame t: reads history side (t + 1) & 1, writes side t & 1.
+    void Step(int t, const SvgfReprojectOptions& options) {
+        SvgfReprojectRef(frame.direct, nullptr, frame, prev.View(), history[(t + 1) & 1], history[t & 1], illum,
+                         options, stats);
+        prev.CopyFrom(frame);
+    }
+};
+
 }  // namespace
 
 TEST_CASE("reprojection taps: bilinear weights, renormalisation, 3x3 fallback, off-screen", "[svgf]") {
@@ -76,42 +97,26 @@ TEST_CASE("history length is interpolated from the valid taps, not the nearest",
 }
 
 TEST_CASE("temporal accumulation: alpha = max(alpha, 1/length), moments and variance", "[svgf]") {
-    StaticScene scene;
     const float values[3] = {1.0f, 3.0f, 2.0f};
-    FrameInputs f = scene.Frame(0);
-    SvgfGeometryPlanes prev;
-    prev.Allocate(64, 64);
-    SvgfHistory h[2];
-    h[0].Allocate(64, 64, false);
-    h[1].Allocate(64, 64, false);
-    Plane<vec4> illum;
-    DenoiseStats stats;
+    ReprojectBench b(false);
+    Plane<vec4>& illum = b.illum;
     const int x = 10, y = 20;
     float expect = 0.0f, m1 = 0.0f, m2 = 0.0f;
     for (int t = 0; t < 3; ++t) {
-        f.direct(x, y) = vec3(values[t]);
-        SvgfReprojectRef(f.direct, nullptr, f, prev.View(), h[(t + 1) & 1], h[t & 1], illum, {}, stats);
-        prev.CopyFrom(f);
+        b.frame.direct(x, y) = vec3(values[t]);
+        b.Step(t, {});
         float a = std::max(0.2f, 1.0f / float(t + 1));
         expect = t == 0 ? values[0] : glm::mix(expect, values[t], a);
         m1 = t == 0 ? values[0] : glm::mix(m1, values[t], a);
         m2 = t == 0 ? values[0] * values[0] : glm::mix(m2, values[t] * values[t], a);
-        CHECK(h[t & 1].length(x, y) == Approx(float(t + 1)));
+        CHECK(b.history[t & 1].length(x, y) == Approx(float(t + 1)));
     }
     CHECK(illum(x, y).x == Approx(expect));
     CHECK(illum(x, y).w == Approx(m2 - m1 * m1));
 }
 
 TEST_CASE("svgf-weighted: W <- (1-alpha) W + n, C <- C + n (x - C) / W", "[svgf]") {
-    StaticScene scene;
-    FrameInputs f = scene.Frame(0);
-    SvgfGeometryPlanes prev;
-    prev.Allocate(64, 64);
-    SvgfHistory h[2];
-    h[0].Allocate(64, 64, true);
-    h[1].Allocate(64, 64, true);
-    Plane<vec4> illum;
-    DenoiseStats stats;
+    ReprojectBench b(true);
     SvgfReprojectOptions opt;
     opt.weighted = true;
     const int x = 10, y = 20;
@@ -119,14 +124,13 @@ TEST_CASE("svgf-weighted: W <- (1-alpha) W + n, C <- C + n (x - C) / W", "[svgf]
     const uint16_t ns[3] = {4, 1, 8};
     float W = 0.0f, C = 0.0f;
     for (int t = 0; t < 3; ++t) {
-        f.direct(x, y) = vec3(xs[t]);
-        f.sampleCount(x, y) = ns[t];
-        SvgfReprojectRef(f.direct, nullptr, f, prev.View(), h[(t + 1) & 1], h[t & 1], illum, opt, stats);
-        prev.CopyFrom(f);
+        b.frame.direct(x, y) = vec3(xs[t]);
+        b.frame.sampleCount(x, y) = ns[t];
+        b.Step(t, opt);
         W = 0.8f * W + float(ns[t]);
         C = C + float(ns[t]) * (xs[t] - C) / W;
-        CHECK(h[t & 1].weight(x, y) == Approx(W));
-        CHECK(h[t & 1].color(x, y).x == Approx(C));
+        CHECK(b.history[t & 1].weight(x, y) == Approx(W));
+        CHECK(b.history[t & 1].color(x, y).x == Approx(C));
     }
 }
 
