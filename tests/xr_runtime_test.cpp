@@ -321,6 +321,13 @@ struct Client {
         REQUIRE_XR(xrCreateActionSpace(session, &spi, &gazeSpace));
     }
 
+    // Instance, session and an RGBA8 swapchain per eye: where most session checks start.
+    void StartWithSwapchains() {
+        Create();
+        REQUIRE_XR(CreateSession());
+        CreateSwapchains(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM);
+    }
+
     // One swapchain per eye at the recommended size, in the given formats.
     void CreateSwapchains(VkFormat left, VkFormat right) {
         uint32_t n = 0;
@@ -878,9 +885,7 @@ TEST_CASE("the runtime ends, loses and drops sessions when told to", "[xr][vulka
         XrEnvironment env(Vars{{"FOVRT_TEST_XR_EXIT_AFTER", "6"}, {"FOVRT_TEST_XR_SIZE", "32x32"},
                                {"FOVRT_TEST_XR_HZ", "120"}});
         Client c;
-        c.Create();
-        REQUIRE_XR(c.CreateSession());
-        c.CreateSwapchains(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM);
+        c.StartWithSwapchains();
         c.RunUntil([&] { return c.exitingSeen; });
         CHECK(c.states.back() == XR_SESSION_STATE_EXITING);
         CHECK(std::count(c.states.begin(), c.states.end(), XR_SESSION_STATE_STOPPING) == 1);
@@ -898,9 +903,7 @@ TEST_CASE("the runtime ends, loses and drops sessions when told to", "[xr][vulka
     SECTION("FOVRT_TEST_XR_LOSS_AFTER: LOSS_PENDING, then the session is lost") {
         XrEnvironment env(Vars{{"FOVRT_TEST_XR_LOSS_AFTER", "5"}, {"FOVRT_TEST_XR_SIZE", "32x32"}});
         Client c;
-        c.Create();
-        REQUIRE_XR(c.CreateSession());
-        c.CreateSwapchains(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM);
+        c.StartWithSwapchains();
         auto frame = XrInit<XrFrameState>(XR_TYPE_FRAME_STATE);
         int ended = 0;
         for (int i = 0; i < 50 && c.State() != XR_SESSION_STATE_LOSS_PENDING; ++i) {
@@ -932,9 +935,7 @@ TEST_CASE("the runtime ends, loses and drops sessions when told to", "[xr][vulka
     SECTION("FOVRT_TEST_XR_INSTANCE_LOSS_AFTER: instance loss pending, then lost") {
         XrEnvironment env(Vars{{"FOVRT_TEST_XR_INSTANCE_LOSS_AFTER", "4"}, {"FOVRT_TEST_XR_SIZE", "32x32"}});
         Client c;
-        c.Create();
-        REQUIRE_XR(c.CreateSession());
-        c.CreateSwapchains(VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM);
+        c.StartWithSwapchains();
         c.RunUntil([&] { return c.instanceLossSeen; });
         auto event = XrInit<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
         CHECK(xrPollEvent(c.instance, &event) == XR_ERROR_INSTANCE_LOST);
