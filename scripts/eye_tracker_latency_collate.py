@@ -90,7 +90,7 @@ def svg(rows):
         parts.append(f'<text x="{ox + width / 2}" y="{height - 8}" text-anchor="middle" font-size="11">'
                      'tracker latency (ms)</text>')
         for frac in (0.0, 0.5, 1.0):
-            v = lo + frac * (hi - lo) / 1.1
+            v = lo + frac * (hi - lo)
             parts.append(f'<text x="{fx(0) - 4}" y="{fy(v) + 4}" text-anchor="end" font-size="10">{v:.3g}</text>')
         for n, (prediction, points) in enumerate(sorted(series.items())):
             colour = COLOURS.get(prediction, "gray")
