@@ -308,10 +308,11 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
     frame->timings.frameMs = MsBetween(frame->startedAt, frame->finishedAt);
     frame->number = rendered_ + 1;
     if (onFrameDone_) onFrameDone_(*frame);
-    ++rendered_;
     auto published = std::make_shared<const LiveFrame>(std::move(frameRef));
     std::lock_guard<std::mutex> lock(mutex_);
     latest_ = std::move(published);
+    // Counted once published: whoever sees FramesRendered() == n finds frame n in Latest().
+    ++rendered_;
 }
 
 }  // namespace fovrt
