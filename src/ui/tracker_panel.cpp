@@ -9,24 +9,28 @@ namespace fovrt {
 
 void DrawTrackerControls(TrackedFrameSource& tracker, std::string& refused) {
     if (!ImGui::CollapsingHeader("Eye tracker")) return;
-    const auto& rows = TrackerParamTable();
     TrackerParams params = tracker.Params();
     bool changed = false;
-    constexpr ImGuiSliderFlags kLog = ImGuiSliderFlags_Logarithmic;
+    // A logarithmic slider over the span of the key's row (gaze/gaze_params.cpp).
+    auto slider = [&](const char* label, const char* key, float& value, const char* format) {
+        const ParamRange span = SliderSpan(TrackerParamTable(), key);
+        return ImGui::SliderFloat(label, &value, float(span.min), float(span.max), format,
+                                  ImGuiSliderFlags_Logarithmic);
+    };
     float rate = float(params.rateHz), latency = float(params.latencyMs);
-    if (ImGui::SliderFloat("rate Hz (0: every frame)", &rate, 0.0f, float(SliderSpan(rows, "gaze.tracker_rate_hz").max), "%.0f", kLog)) {
+    if (slider("rate Hz (0: every frame)", "gaze.tracker_rate_hz", rate, "%.0f")) {
         params.rateHz = rate;
         changed = true;
     }
-    if (ImGui::SliderFloat("latency ms", &latency, 0.0f, float(SliderSpan(rows, "gaze.tracker_latency_ms").max), "%.0f", kLog)) {
+    if (slider("latency ms", "gaze.tracker_latency_ms", latency, "%.0f")) {
         params.latencyMs = latency;
         changed = true;
     }
-    changed |= ImGui::SliderFloat("noise deg RMS", &params.noiseDeg, 0.0f, float(SliderSpan(rows, "gaze.tracker_noise_deg").max), "%.2f", kLog);
+    changed |= slider("noise deg RMS", "gaze.tracker_noise_deg", params.noiseDeg, "%.2f");
     if (ImGui::BeginCombo("prediction", params.prediction.c_str())) {
-        for (const std::string name : PredictionNames())
-            if (ImGui::Selectable(name.c_str(), name == params.prediction)) {
-                changed |= name != params.prediction;
+        for (const char* name : PredictionNames())
+            if (ImGui::Selectable(name, params.prediction == name)) {
+                changed |= params.prediction != name;
                 params.prediction = name;
             }
         ImGui::EndCombo();
