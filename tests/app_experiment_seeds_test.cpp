@@ -76,18 +76,8 @@ TEST_CASE("two seeds give different noisy inputs and identical references", "[ap
 TEST_CASE("experiment over seeds: every value in the CSV with its seed, one shared reference per eye",
           "[app][seeds]") {
     const fs::path dir = test::ScratchDir("fovrt_seeds_test") / "experiment";
-    fs::create_directories(dir);
-    const fs::path file = dir / "exp.toml";
-    std::ofstream(file) << "[camera]\nwidth = 32\nheight = 18\n"
-                        << "[run]\nframes = 3\n"
-                        << "[foveation]\nradius_px = 80\nradius_reference_width = 320\n"
-                        << "[denoise]\ndevice = \"cpu\"\n"
-                        << "[reference]\nspp = 4\ncache_dir = \"" << (dir / "cache").string() << "\"\n"
-                        << "[output]\ndir = \"" << (dir / "out").string() << "\"\nreport = false\n"
-                        << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"two-history\"]\n"
-                        << "baseline = \"two-history\"\nseeds = [4, 9]\n";
-    ConfigOptions options;
-    options.configPath = file.string();
+    const ConfigOptions options =
+        test::SmallExperimentOptions(dir, {.experimentLines = "baseline = \"two-history\"\nseeds = [4, 9]\n"});
     ExperimentSpec spec = LoadExperiment(options);
     CHECK(spec.seeds == std::vector<uint32_t>{4, 9});
     CHECK(spec.baseline == "two-history");
@@ -155,13 +145,9 @@ TEST_CASE("bad seeds and baselines are one line naming the option or key", "[app
     CHECK(ErrorOf([] { ParseSeedsOption("4294967296", 1); }).find("above 2^32 - 1") != std::string::npos);
 
     const fs::path dir = test::ScratchDir("fovrt_seeds_test") / "bad";
-    fs::create_directories(dir);
     auto errorFor = [&](const std::string& experimentLines) {
-        const fs::path file = dir / "bad.toml";
-        std::ofstream(file) << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"asvgf\"]\n"
-                            << experimentLines;
-        ConfigOptions options;
-        options.configPath = file.string();
+        const ConfigOptions options = test::ExperimentFileOptions(
+            dir, "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"asvgf\"]\n" + experimentLines);
         return ErrorOf([&] { LoadExperiment(options); });
     };
     CHECK(errorFor("seeds = 3\n").find("experiment.seeds must be a non-empty array") != std::string::npos);
@@ -177,13 +163,9 @@ TEST_CASE("bad seeds and baselines are one line naming the option or key", "[app
 }
 
 TEST_CASE("--set experiment.KEY acts exactly like the key in the file", "[app][config]") {
-    const fs::path dir = test::ScratchDir("fovrt_seeds_test") / "set";
-    fs::create_directories(dir);
-    const fs::path file = dir / "exp.toml";
-    std::ofstream(file) << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"asvgf\"]\n"
-                        << "[experiment.quick.run]\nframes = 2\n";
-    ConfigOptions options;
-    options.configPath = file.string();
+    ConfigOptions options = test::ExperimentFileOptions(
+        test::ScratchDir("fovrt_seeds_test") / "set",
+        "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"asvgf\"]\n[experiment.quick.run]\nframes = 2\n");
     options.sets = {"experiment.variants=[\"two-history\", \"svgf\"]", "experiment.seeds=[4, 9]",
                     "experiment.scenes=[\"veach-ajar\"]", "experiment.baseline=\"svgf\"", "experiment.visual_frame=1"};
     ExperimentSpec spec = LoadExperiment(options);
@@ -213,6 +195,6 @@ TEST_CASE("--set experiment.KEY acts exactly like the key in the file", "[app][c
     options.sets = {"experiment.baseline=\"nope\""};
     CHECK(ErrorOf([&] { LoadExperiment(options); }).find("--set experiment.baseline=\"nope\": experiment.baseline 'nope'") == 0);
     options.sets = {};
-    std::ofstream(file, std::ios::app) << "[experiment.extra]\n";
-    CHECK(ErrorOf([&] { LoadExperiment(options); }).find(file.string() + ":6: unknown key experiment.extra") == 0);
+    std::ofstream(options.configPath, std::ios::app) << "[experiment.extra]\n";
+    CHECK(ErrorOf([&] { LoadExperiment(options); }).find(options.configPath + ":6: unknown key experiment.extra") == 0);
 }

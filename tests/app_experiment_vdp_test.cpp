@@ -99,37 +99,18 @@ TEST_CASE("experiment FovVideoVDP: the display comes from the camera, a profile 
 }
 
 TEST_CASE("experiment FovVideoVDP: a bad metric.display names the key and the nearest profile", "[app][vdp]") {
-    const fs::path dir = test::ScratchDir("fovrt_experiment_vdp_test") / "bad";
-    fs::create_directories(dir);
-    const fs::path file = dir / "exp.toml";
-    std::ofstream(file) << "[metric]\ndisplay = \"headset-24\"\n"
-                        << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\"]\n";
-    ConfigOptions options;
-    options.configPath = file.string();
-    std::string error;
-    try {
-        LoadExperiment(options);
-    } catch (const Error& e) {
-        error = e.what();
-    }
-    CHECK(error.find("metric.display") != std::string::npos);
-    CHECK(error.find("did you mean 'headset-25'") != std::string::npos);
+    const ConfigOptions options =
+        test::ExperimentFileOptions(test::ScratchDir("fovrt_experiment_vdp_test") / "bad",
+                                    "[metric]\ndisplay = \"headset-24\"\n"
+                                    "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\"]\n");
+    CHECK_THROWS_WITH(LoadExperiment(options),
+                      Catch::Contains("metric.display") && Catch::Contains("did you mean 'headset-25'"));
 }
 
 TEST_CASE("experiment FovVideoVDP: JOD per sequence in jod.csv and summary.json", "[app][vdp]") {
     const fs::path dir = test::ScratchDir("fovrt_experiment_vdp_test") / "experiment";
-    fs::create_directories(dir);
-    const fs::path file = dir / "exp.toml";
-    std::ofstream(file) << "[camera]\nwidth = 64\nheight = 36\n"
-                        << "[run]\nframes = 4\n"
-                        << "[foveation]\nradius_px = 80\nradius_reference_width = 320\n"
-                        << "[denoise]\ndevice = \"cpu\"\n"
-                        << "[reference]\nspp = 16\ncache_dir = \"" << (dir / "cache").string() << "\"\n"
-                        << "[output]\ndir = \"" << (dir / "out").string() << "\"\nreport = true\n"
-                        << "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\", \"two-history\"]\n"
-                        << "seeds = [1]\n";
-    ConfigOptions options;
-    options.configPath = file.string();
+    const ConfigOptions options = test::SmallExperimentOptions(
+        dir, {.width = 64, .height = 36, .frames = 4, .referenceSpp = 16, .report = true, .experimentLines = "seeds = [1]\n"});
     RunExperiment(LoadExperiment(options));
 
     // One row per (seed, eye, variant) sequence.

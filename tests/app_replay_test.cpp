@@ -54,6 +54,26 @@ RecordedFrame Perturbed(const FramePipeline& pipeline, uint32_t frame, Pcg32& rn
     return out;
 }
 
+// The replay path of `fovrt run --replay`: the recording at `path` with its recorded config, a
+// fresh pipeline whose gaze source is never asked, the frames read back and rendered one at a
+// time, each handed to `check(n, request, frame)`. Returns how many frames it replayed.
+template <class Check>
+size_t ReplayEach(const fs::path& path, Check&& check) {
+    Replay replay = OpenReplay(path, false);
+    FramePipeline pipeline(ReplayPipelineConfig(replay.recorded));
+    CheckReplayScene(replay, pipeline);
+    FrameSequence sequence(pipeline, replay);
+    RecordedFrame request;
+    StereoFrame frame;
+    size_t n = 0;
+    while (sequence.Next(request)) {
+        pipeline.Render(request.request, frame);
+        check(n, request, frame);
+        ++n;
+    }
+    return n;
+}
+
 std::vector<PlaneBytes> Planes(const FrameInputs& inputs) {
     std::vector<PlaneBytes> planes;
     inputs.ForEachPlane([&](const PlaneBytes& p) { planes.push_back(p); });
@@ -109,26 +129,15 @@ TEST_CASE("a replayed recording renders bit-identical spp maps and noisy inputs"
     REQUIRE(rendered[1].eyes[0].inputs.gradientSamples.size() > 0);
     REQUIRE(rendered[3].eyes[0].inputs.cameraCut);
 
-    // The replay path of `fovrt run --replay`: the recorded config, a fresh pipeline whose gaze
-    // source is never asked, the frames read back one at a time.
-    Replay replay = OpenReplay(path, false);
-    CHECK(replay.summary.frames == std::size(frames));
-    FramePipeline pipeline(ReplayPipelineConfig(replay.recorded));
-    CheckReplayScene(replay, pipeline);
-    FrameSequence sequence(pipeline, replay);
-    RecordedFrame request;
-    StereoFrame frame;
-    size_t n = 0;
-    while (sequence.Next(request)) {
+    CHECK(OpenReplay(path, false).summary.frames == std::size(frames));
+    const size_t replayed = ReplayEach(path, [&](size_t n, const RecordedFrame&, const StereoFrame& frame) {
         REQUIRE(n < rendered.size());
-        pipeline.Render(request.request, frame);
         for (int eye = 0; eye < 2; ++eye) {
             INFO("frame " << frames[n] << " eye " << eye);
             RequireIdentical(rendered[n].eyes[size_t(eye)], frame.eyes[size_t(eye)]);
         }
-        ++n;
-    }
-    CHECK(n == std::size(frames));
+    });
+    CHECK(replayed == std::size(frames));
 }
 
 TEST_CASE("a recording with a tracker model replays with its tracked gaze for the spp maps and its true gaze for the metrics",
@@ -153,17 +162,10 @@ TEST_CASE("a recording with a tracker model replays with its tracked gaze for th
             recorder.Append(frame);
         }
     }
-    Replay replay = OpenReplay(path, false);
-    FramePipeline pipeline(ReplayPipelineConfig(replay.recorded));
-    FrameSequence sequence(pipeline, replay);
-    RecordedFrame request;
-    StereoFrame frame;
-    size_t n = 0;
-    while (sequence.Next(request)) {
+    const size_t replayed = ReplayEach(path, [&](size_t n, const RecordedFrame& request, const StereoFrame& frame) {
         REQUIRE(n < live.size());
         INFO("frame " << n);
         REQUIRE(request.request.trueGaze);
-        pipeline.Render(request.request, frame);
         CHECK(std::memcmp(&frame.gaze.direction, &tracker, sizeof(vec3)) == 0);
         CHECK(std::memcmp(&frame.trueGaze.direction, &eye, sizeof(vec3)) == 0);
         for (int e = 0; e < 2; ++e) {
@@ -176,9 +178,8 @@ TEST_CASE("a recording with a tracker model replays with its tracked gaze for th
             CHECK(x.sppMap(at.x, at.y) > x.sppMap(truth.x, truth.y));
             CHECK(x.trueGazeEye == GazeInEye(x.camera, eye));
         }
-        ++n;
-    }
-    CHECK(n == 3);
+    });
+    CHECK(replayed == 3);
 }
 
 TEST_CASE("a replay's config keeps what the recording supplies and refuses what changes the frames", "[app][live]") {

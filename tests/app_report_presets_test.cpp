@@ -65,6 +65,16 @@ void CheckCommon(const Preset& p) {
     CHECK(p.quick.reference.spp >= 1);
 }
 
+// The thesis's foveation (an 8/1 spp disc of 200 px at 1280 wide) and its two a-trous iterations.
+void CheckThesisFoveation(const RunConfig& c) {
+    CHECK(c.camera.width == 1280);
+    CHECK(c.foveation.model == "disc");
+    CHECK(c.foveation.sppInside == 8);
+    CHECK(c.foveation.sppOutside == 1);
+    CHECK(c.foveation.radiusPx == 200.0f);
+    CHECK(c.denoise.params.svgf.atrousIterations == 2);
+}
+
 }  // namespace
 
 TEST_CASE("thesis-foveated preset: the thesis protocol", "[app][presets]") {
@@ -73,13 +83,8 @@ TEST_CASE("thesis-foveated preset: the thesis protocol", "[app][presets]") {
     CHECK(p.scenes == std::vector<std::string>{"cornell", "veach-ajar"});
     CHECK(p.variants == std::vector<std::string>{"svgf", "svgf-weighted", "two-history", "asvgf", "two-history-asvgf"});
     const RunConfig& c = p.config;
-    CHECK(c.camera.width == 1280);
+    CheckThesisFoveation(c);
     CHECK(c.camera.height == 720);
-    CHECK(c.foveation.model == "disc");
-    CHECK(c.foveation.sppInside == 8);
-    CHECK(c.foveation.sppOutside == 1);
-    CHECK(c.foveation.radiusPx == 200.0f);
-    CHECK(c.denoise.params.svgf.atrousIterations == 2);
     CHECK(c.denoise.params.svgf.feedbackIteration == 1);
     CHECK(c.denoise.params.svgf.alphaColor == Approx(0.05f));
     CHECK(c.denoise.params.twoHistory.gradientBeta == Approx(0.8f));
@@ -156,12 +161,7 @@ TEST_CASE("brdf-demodulation preset: albedo vs F_beta for svgf and two-history, 
     CHECK(p.variants == std::vector<std::string>{"svgf", "svgf+brdf", "two-history", "two-history+brdf"});
     const RunConfig& c = p.config;
     CHECK(c.render.demodulation == "albedo");  // one render feeds both kinds of variant
-    CHECK(c.camera.width == 1280);
-    CHECK(c.foveation.model == "disc");
-    CHECK(c.foveation.sppInside == 8);
-    CHECK(c.foveation.sppOutside == 1);
-    CHECK(c.foveation.radiusPx == 200.0f);
-    CHECK(c.denoise.params.svgf.atrousIterations == 2);
+    CheckThesisFoveation(c);
 }
 
 TEST_CASE("every preset runs three seeds", "[app][presets]") {

@@ -29,6 +29,62 @@ constexpr int kPartVersion = 2;  // 2: FovVideoVDP scores
 nlohmann::json Vec2Json(const vec2& v) { return {v.x, v.y}; }
 vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(1).get<float>()); }
 
+// A SceneRecord's fields in part.json, one list for the writer and the reader: `field(key, member)`
+// over a SceneRecord or a const one.
+template <class Record, class Field>
+void RecordFields(Record& r, Field&& field) {
+    field("index", r.index);
+    field("label", r.label);
+    field("requested", r.requested);
+    field("source", r.source);
+    field("fingerprint", r.fingerprint);
+    field("render_ms", r.renderMs);
+    field("reference_ms", r.referenceMs);
+    field("reference_hits", r.referenceHits);
+    field("reference_lookups", r.referenceLookups);
+    field("eye_frames", r.eyeFrames);
+    field("blink_frames", r.blinkFrames);
+    field("rays", r.rays);
+    field("dropped_samples", r.droppedSamples);
+    field("has_visuals", r.hasVisuals);
+}
+
+// The scalar fields of a report's visuals.json, likewise.
+template <class Visuals, class Field>
+void VisualsFields(Visuals& v, Field&& field) {
+    field("scene", v.scene);
+    field("width", v.width);
+    field("height", v.height);
+    field("frame", v.frame);
+    field("eye", v.eye);
+    field("seed", v.seed);
+    field("fovea_radius_px", v.foveaRadiusPixels);
+}
+
+// A VdpScore's fields, likewise.
+template <class Score, class Field>
+void VdpScoreFields(Score& s, Field&& field) {
+    field("scene", s.scene);
+    field("seed", s.seed);
+    field("eye", s.eye);
+    field("variant", s.variant);
+    field("jod", s.jod);
+    field("jod_sustained", s.jodSustained);
+    field("jod_transient", s.jodTransient);
+}
+
+// A *Fields list's `field` that writes each member into a JSON object, and one that reads it back.
+struct JsonFieldWriter {
+    nlohmann::json& json;
+    template <class V>
+    void operator()(const char* key, const V& value) const { json[key] = value; }
+};
+struct JsonFieldReader {
+    const nlohmann::json& json;
+    template <class V>
+    void operator()(const char* key, V& value) const { json.at(key).get_to(value); }
+};
+
 void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
     fs::create_directories(dir);
     nlohmann::json marks = nlohmann::json::array();
@@ -49,15 +105,14 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
         layers.push_back(ExrLayer::FromPlane(fmt::format("vdp{}", vdpMaps.size()), map));
         vdpMaps.push_back(name);
     }
-    const nlohmann::json meta = {{"scene", v.scene},   {"width", v.width},
-                                 {"height", v.height}, {"frame", v.frame},
-                                 {"eye", v.eye},       {"seed", v.seed},
-                                 {"gaze_marks", marks}, {"gaze_path", path},
-                                 {"fovea_radius_px", v.foveaRadiusPixels},
-                                 {"gaze_pixel", Vec2Json(v.gazePixel)},
-                                 {"variants", variants},
-                                 {"vdp_maps", vdpMaps},
-                                 {"has_images", !layers.empty()}};
+    nlohmann::json meta = nlohmann::json::object();
+    VisualsFields(v, JsonFieldWriter{meta});
+    meta["gaze_marks"] = marks;
+    meta["gaze_path"] = path;
+    meta["gaze_pixel"] = Vec2Json(v.gazePixel);
+    meta["variants"] = variants;
+    meta["vdp_maps"] = vdpMaps;
+    meta["has_images"] = !layers.empty();
     WriteTextAtomically(dir / "visuals.json", meta.dump() + "\n");  // a full disk is an error, not a cut-off file
     if (!layers.empty()) WriteExrLayers(dir / "visuals.exr", v.width, v.height, layers);
 }
@@ -66,15 +121,9 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
     std::ifstream in(dir / "visuals.json");
     const nlohmann::json meta = nlohmann::json::parse(in);
     SceneVisuals v;
-    v.scene = meta.at("scene");
-    v.width = meta.at("width");
-    v.height = meta.at("height");
-    v.frame = meta.at("frame");
-    v.eye = meta.at("eye");
-    v.seed = meta.at("seed");
+    VisualsFields(v, JsonFieldReader{meta});
     for (const auto& m : meta.at("gaze_marks")) v.gazeMarks.push_back({m.at(0), m.at(1), m.at(2), m.at(3), m.at(4), m.at(5)});
     for (const auto& p : meta.at("gaze_path")) v.gazePath.push_back(Vec2From(p));
-    v.foveaRadiusPixels = meta.at("fovea_radius_px");
     v.gazePixel = Vec2From(meta.at("gaze_pixel"));
     if (!meta.at("has_images").get<bool>()) return v;
     const ExrImage image = ReadExr(dir / "visuals.exr");
@@ -98,46 +147,18 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
 }
 
 nlohmann::json RecordJson(const SceneRecord& r) {
-    return {{"index", r.index},
-            {"label", r.label},
-            {"requested", r.requested},
-            {"source", r.source},
-            {"fingerprint", r.fingerprint},
-            {"render_ms", r.renderMs},
-            {"reference_ms", r.referenceMs},
-            {"reference_hits", r.referenceHits},
-            {"reference_lookups", r.referenceLookups},
-            {"eye_frames", r.eyeFrames},
-            {"blink_frames", r.blinkFrames},
-            {"rays", r.rays},
-            {"dropped_samples", r.droppedSamples},
-            {"has_visuals", r.hasVisuals}};
-}
-
-SceneRecord RecordFrom(const nlohmann::json& j) {
-    SceneRecord r;
-    r.index = j.at("index");
-    r.label = j.at("label");
-    r.requested = j.at("requested");
-    r.source = j.at("source");
-    r.fingerprint = j.at("fingerprint");
-    r.renderMs = j.at("render_ms");
-    r.referenceMs = j.at("reference_ms");
-    r.referenceHits = j.at("reference_hits");
-    r.referenceLookups = j.at("reference_lookups");
-    r.eyeFrames = j.at("eye_frames");
-    r.blinkFrames = j.at("blink_frames");
-    r.rays = j.at("rays");
-    r.droppedSamples = j.at("dropped_samples");
-    r.hasVisuals = j.at("has_visuals");
-    return r;
+    nlohmann::json j = nlohmann::json::object();
+    RecordFields(r, JsonFieldWriter{j});
+    return j;
 }
 
 nlohmann::json VdpScoresJson(const std::vector<VdpScore>& scores) {
     nlohmann::json out = nlohmann::json::array();
-    for (const VdpScore& s : scores)
-        out.push_back({{"scene", s.scene}, {"seed", s.seed}, {"eye", s.eye}, {"variant", s.variant},
-                       {"jod", s.jod}, {"jod_sustained", s.jodSustained}, {"jod_transient", s.jodTransient}});
+    for (const VdpScore& s : scores) {
+        nlohmann::json j = nlohmann::json::object();
+        VdpScoreFields(s, JsonFieldWriter{j});
+        out.push_back(std::move(j));
+    }
     return out;
 }
 
@@ -416,7 +437,8 @@ LoadedPart LoadPart(const fs::path& dir, const ShardSelection& selection, const 
         if (FileChecksum(dir / file, file) != checksum)
             Fail("{}: checksum mismatch (the file changed after it was written)", file);
     for (const auto& j : meta.at("scenes")) {
-        SceneRecord r = RecordFrom(j);
+        SceneRecord r;
+        RecordFields(r, JsonFieldReader{j});
         if (r.hasVisuals) r.visuals = ReadVisuals(dir / fmt::format("visuals-{}", r.index));
         part.scenes.push_back(std::move(r));
     }
@@ -473,9 +495,7 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
         if (merged.deviceDescription.empty()) merged.deviceDescription = meta.at("device");
         if (merged.replayRecord.is_null()) merged.replayRecord = meta.at("replay");
         if (merged.vdpDisplay.empty()) merged.vdpDisplay = meta.at("vdp_display").get<std::string>();
-        for (const auto& j : meta.at("vdp"))
-            merged.vdp.push_back({j.at("scene"), j.at("seed"), j.at("eye"), j.at("variant"), j.at("jod"),
-                                  j.at("jod_sustained"), j.at("jod_transient")});
+        for (const auto& j : meta.at("vdp")) VdpScoreFields(merged.vdp.emplace_back(), JsonFieldReader{j});
         for (SceneRecord& r : part.scenes) {
             auto it = scenes.find(r.index);
             if (it == scenes.end()) {

@@ -196,75 +196,69 @@ XrResult XRAPI_CALL SuggestInteractionProfileBindings(
 
 XrResult XRAPI_CALL AttachSessionActionSets(XrSession handle,
                                             const XrSessionActionSetsAttachInfo* info) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!info || info->type != XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO ||
-        info->countActionSets == 0 || !info->actionSets)
-        return XR_ERROR_VALIDATION_FAILURE;
-    if (s->actionSetsAttached) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
-    for (uint32_t i = 0; i < info->countActionSets; ++i) {
-        ActionSet* set = Find(TheRuntime().actionSets, info->actionSets[i]);
-        if (!set || set->instance != s->instance) return XR_ERROR_HANDLE_INVALID;
-    }
-    for (uint32_t i = 0; i < info->countActionSets; ++i)
-        Find(TheRuntime().actionSets, info->actionSets[i])->attached = true;
-    s->actionSetsAttached = true;
-    // Real runtimes report the (possibly new) current profiles once sets are attached.
-    auto event = XrInit<XrEventDataInteractionProfileChanged>(XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED);
-    event.session = handle;
-    PushEvent(*s->instance, &event, sizeof event);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!info || info->type != XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO ||
+            info->countActionSets == 0 || !info->actionSets)
+            return XR_ERROR_VALIDATION_FAILURE;
+        if (s->actionSetsAttached) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
+        for (uint32_t i = 0; i < info->countActionSets; ++i) {
+            ActionSet* set = Find(TheRuntime().actionSets, info->actionSets[i]);
+            if (!set || set->instance != s->instance) return XR_ERROR_HANDLE_INVALID;
+        }
+        for (uint32_t i = 0; i < info->countActionSets; ++i)
+            Find(TheRuntime().actionSets, info->actionSets[i])->attached = true;
+        s->actionSetsAttached = true;
+        // Real runtimes report the (possibly new) current profiles once sets are attached.
+        auto event = XrInit<XrEventDataInteractionProfileChanged>(XR_TYPE_EVENT_DATA_INTERACTION_PROFILE_CHANGED);
+        event.session = handle;
+        PushEvent(*s->instance, &event, sizeof event);
+        return XR_SUCCESS;
+    });
 }
 
 XrResult XRAPI_CALL GetCurrentInteractionProfile(XrSession handle, XrPath topLevelUserPath,
                                                  XrInteractionProfileState* state) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!state || state->type != XR_TYPE_INTERACTION_PROFILE_STATE)
-        return XR_ERROR_VALIDATION_FAILURE;
-    const std::string* path = PathString(*s->instance, topLevelUserPath);
-    if (!path) return XR_ERROR_PATH_INVALID;
-    if (!IsTopLevelUserPath(*path)) return XR_ERROR_PATH_UNSUPPORTED;
-    if (!s->actionSetsAttached) return XR_ERROR_ACTIONSET_NOT_ATTACHED;
-    state->interactionProfile = XR_NULL_PATH;
-    if (*path == kEyesUserPath && s->instance->config.gaze == GazeMode::On) {
-        auto profile = s->instance->pathIds.find(kEyeGazeProfile);
-        if (profile != s->instance->pathIds.end() && s->instance->suggested.count(profile->second))
-            state->interactionProfile = profile->second;
-    }
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!state || state->type != XR_TYPE_INTERACTION_PROFILE_STATE)
+            return XR_ERROR_VALIDATION_FAILURE;
+        const std::string* path = PathString(*s->instance, topLevelUserPath);
+        if (!path) return XR_ERROR_PATH_INVALID;
+        if (!IsTopLevelUserPath(*path)) return XR_ERROR_PATH_UNSUPPORTED;
+        if (!s->actionSetsAttached) return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+        state->interactionProfile = XR_NULL_PATH;
+        if (*path == kEyesUserPath && s->instance->config.gaze == GazeMode::On) {
+            auto profile = s->instance->pathIds.find(kEyeGazeProfile);
+            if (profile != s->instance->pathIds.end() && s->instance->suggested.count(profile->second))
+                state->interactionProfile = profile->second;
+        }
+        return XR_SUCCESS;
+    });
 }
 
 XrResult XRAPI_CALL SyncActions(XrSession handle, const XrActionsSyncInfo* info) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!info || info->type != XR_TYPE_ACTIONS_SYNC_INFO ||
-        (info->countActiveActionSets > 0 && !info->activeActionSets))
-        return XR_ERROR_VALIDATION_FAILURE;
-    std::vector<ActionSet*> active;
-    for (uint32_t i = 0; i < info->countActiveActionSets; ++i) {
-        ActionSet* set = Find(TheRuntime().actionSets, info->activeActionSets[i].actionSet);
-        if (!set) return XR_ERROR_HANDLE_INVALID;
-        if (!set->attached || set->instance != s->instance) return XR_ERROR_ACTIONSET_NOT_ATTACHED;
-        if (info->activeActionSets[i].subactionPath != XR_NULL_PATH &&
-            !PathString(*s->instance, info->activeActionSets[i].subactionPath))
-            return XR_ERROR_PATH_INVALID;
-        active.push_back(set);
-    }
-    s->activeActions.clear();
-    if (s->state != XR_SESSION_STATE_FOCUSED) return XR_SESSION_NOT_FOCUSED;  // all inactive
-    if (s->instance->config.gaze == GazeMode::On)
-        for (ActionSet* set : active)
-            for (Action* action : set->actions)
-                if (action->type == XR_ACTION_TYPE_POSE_INPUT && GazeBound(*s->instance, action))
-                    s->activeActions.insert(action);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!info || info->type != XR_TYPE_ACTIONS_SYNC_INFO ||
+            (info->countActiveActionSets > 0 && !info->activeActionSets))
+            return XR_ERROR_VALIDATION_FAILURE;
+        std::vector<ActionSet*> active;
+        for (uint32_t i = 0; i < info->countActiveActionSets; ++i) {
+            ActionSet* set = Find(TheRuntime().actionSets, info->activeActionSets[i].actionSet);
+            if (!set) return XR_ERROR_HANDLE_INVALID;
+            if (!set->attached || set->instance != s->instance) return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+            if (info->activeActionSets[i].subactionPath != XR_NULL_PATH &&
+                !PathString(*s->instance, info->activeActionSets[i].subactionPath))
+                return XR_ERROR_PATH_INVALID;
+            active.push_back(set);
+        }
+        s->activeActions.clear();
+        if (s->state != XR_SESSION_STATE_FOCUSED) return XR_SESSION_NOT_FOCUSED;  // all inactive
+        if (s->instance->config.gaze == GazeMode::On)
+            for (ActionSet* set : active)
+                for (Action* action : set->actions)
+                    if (action->type == XR_ACTION_TYPE_POSE_INPUT && GazeBound(*s->instance, action))
+                        s->activeActions.insert(action);
+        return XR_SUCCESS;
+    });
 }
 
 XrResult CheckActionInfo(Session* s, const XrActionStateGetInfo* info, XrActionType type,
@@ -286,48 +280,43 @@ XrResult CheckActionInfo(Session* s, const XrActionStateGetInfo* info, XrActionT
 template <typename State, typename Fill>
 XrResult GetActionState(XrSession handle, const XrActionStateGetInfo* info, XrActionType type,
                         XrStructureType stateType, State* state, Fill fill) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    Action* action = nullptr;
-    if (XrResult r = CheckActionInfo(s, info, type, &action); XR_FAILED(r)) return r;
-    if (!state || state->type != stateType) return XR_ERROR_VALIDATION_FAILURE;
-    fill(*state, GazeActionActive(*s, action));
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        Action* action = nullptr;
+        if (XrResult r = CheckActionInfo(s, info, type, &action); XR_FAILED(r)) return r;
+        if (!state || state->type != stateType) return XR_ERROR_VALIDATION_FAILURE;
+        fill(*state, GazeActionActive(*s, action));
+        return XR_SUCCESS;
+    });
+}
+
+// The fill of a value action's state: this runtime drives none, so each reads inactive, unchanged
+// and `zero`.
+template <typename State, typename Value>
+auto InactiveValue(Value zero) {
+    return [zero](State& st, bool) {
+        st.currentState = zero;
+        st.changedSinceLastSync = XR_FALSE;
+        st.lastChangeTime = 0;
+        st.isActive = XR_FALSE;
+    };
 }
 
 XrResult XRAPI_CALL GetActionStateBoolean(XrSession h, const XrActionStateGetInfo* info,
                                           XrActionStateBoolean* state) {
-    return GetActionState(h, info, XR_ACTION_TYPE_BOOLEAN_INPUT, XR_TYPE_ACTION_STATE_BOOLEAN,
-                          state, [](XrActionStateBoolean& st, bool) {
-                              st.currentState = XR_FALSE;
-                              st.changedSinceLastSync = XR_FALSE;
-                              st.lastChangeTime = 0;
-                              st.isActive = XR_FALSE;
-                          });
+    return GetActionState(h, info, XR_ACTION_TYPE_BOOLEAN_INPUT, XR_TYPE_ACTION_STATE_BOOLEAN, state,
+                          InactiveValue<XrActionStateBoolean>(XrBool32(XR_FALSE)));
 }
 
 XrResult XRAPI_CALL GetActionStateFloat(XrSession h, const XrActionStateGetInfo* info,
                                         XrActionStateFloat* state) {
     return GetActionState(h, info, XR_ACTION_TYPE_FLOAT_INPUT, XR_TYPE_ACTION_STATE_FLOAT, state,
-                          [](XrActionStateFloat& st, bool) {
-                              st.currentState = 0.0f;
-                              st.changedSinceLastSync = XR_FALSE;
-                              st.lastChangeTime = 0;
-                              st.isActive = XR_FALSE;
-                          });
+                          InactiveValue<XrActionStateFloat>(0.0f));
 }
 
 XrResult XRAPI_CALL GetActionStateVector2f(XrSession h, const XrActionStateGetInfo* info,
                                            XrActionStateVector2f* state) {
-    return GetActionState(h, info, XR_ACTION_TYPE_VECTOR2F_INPUT, XR_TYPE_ACTION_STATE_VECTOR2F,
-                          state, [](XrActionStateVector2f& st, bool) {
-                              st.currentState = {0.0f, 0.0f};
-                              st.changedSinceLastSync = XR_FALSE;
-                              st.lastChangeTime = 0;
-                              st.isActive = XR_FALSE;
-                          });
+    return GetActionState(h, info, XR_ACTION_TYPE_VECTOR2F_INPUT, XR_TYPE_ACTION_STATE_VECTOR2F, state,
+                          InactiveValue<XrActionStateVector2f>(XrVector2f{0.0f, 0.0f}));
 }
 
 XrResult XRAPI_CALL GetActionStatePose(XrSession h, const XrActionStateGetInfo* info,

@@ -201,6 +201,18 @@ XrResult CheckSession(XrSession handle, Session** out);
 // CheckSession, then SessionGate: the prologue of every call on a running session (a failure, or
 // the result the call returns when it otherwise succeeds).
 XrResult CheckSessionAndGate(XrSession handle, Session** out);
+// A call on a running session: CheckSessionAndGate, then `body(Session*)`, all under the API lock.
+// Returns the prologue's failure, else what body returns with its XR_SUCCESS replaced by the
+// gate's result (XR_SESSION_LOSS_PENDING while a loss is queued).
+template <typename Body>
+XrResult OnRunningSession(XrSession handle, Body&& body) {
+    auto lock = LockApi();
+    Session* s = nullptr;
+    const XrResult gate = CheckSessionAndGate(handle, &s);
+    if (XR_FAILED(gate)) return gate;
+    const XrResult result = body(s);
+    return result == XR_SUCCESS ? gate : result;
+}
 
 // XR_ERROR_SYSTEM_INVALID unless id is the system xrGetSystem returned.
 XrResult CheckSystem(const Instance& instance, XrSystemId id);

@@ -152,47 +152,41 @@ void ScriptedEvents(Session& s) {
 }
 
 XrResult XRAPI_CALL BeginSession(XrSession handle, const XrSessionBeginInfo* info) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!info || info->type != XR_TYPE_SESSION_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
-    if (info->primaryViewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
-        return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
-    if (s->running) return XR_ERROR_SESSION_RUNNING;
-    if (s->state != XR_SESSION_STATE_READY) return XR_ERROR_SESSION_NOT_READY;
-    s->running = true;
-    s->slotOrigin = Now();
-    s->lastSlot = 0;
-    s->framesWaited = 0;
-    s->frameBegun = false;
-    ScriptedEvents(*s);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!info || info->type != XR_TYPE_SESSION_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
+        if (info->primaryViewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
+            return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+        if (s->running) return XR_ERROR_SESSION_RUNNING;
+        if (s->state != XR_SESSION_STATE_READY) return XR_ERROR_SESSION_NOT_READY;
+        s->running = true;
+        s->slotOrigin = Now();
+        s->lastSlot = 0;
+        s->framesWaited = 0;
+        s->frameBegun = false;
+        ScriptedEvents(*s);
+        return XR_SUCCESS;
+    });
 }
 
 XrResult XRAPI_CALL EndSession(XrSession handle) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-    if (s->state != XR_SESSION_STATE_STOPPING) return XR_ERROR_SESSION_NOT_STOPPING;
-    s->running = false;
-    s->frameBegun = false;
-    s->framesWaited = 0;
-    SetSessionState(*s, XR_SESSION_STATE_IDLE);
-    if (s->exiting) SetSessionState(*s, XR_SESSION_STATE_EXITING);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (s->state != XR_SESSION_STATE_STOPPING) return XR_ERROR_SESSION_NOT_STOPPING;
+        s->running = false;
+        s->frameBegun = false;
+        s->framesWaited = 0;
+        SetSessionState(*s, XR_SESSION_STATE_IDLE);
+        if (s->exiting) SetSessionState(*s, XR_SESSION_STATE_EXITING);
+        return XR_SUCCESS;
+    });
 }
 
 XrResult XRAPI_CALL RequestExitSession(XrSession handle) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-    if (!s->exiting) BeginExit(*s);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (!s->exiting) BeginExit(*s);
+        return XR_SUCCESS;
+    });
 }
 
 XrResult XRAPI_CALL WaitFrame(XrSession handle, const XrFrameWaitInfo* info, XrFrameState* state) {
@@ -226,17 +220,15 @@ XrResult XRAPI_CALL WaitFrame(XrSession handle, const XrFrameWaitInfo* info, XrF
 }
 
 XrResult XRAPI_CALL BeginFrame(XrSession handle, const XrFrameBeginInfo* info) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (info && info->type != XR_TYPE_FRAME_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
-    if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-    if (s->framesWaited == 0) return XR_ERROR_CALL_ORDER_INVALID;  // no xrWaitFrame before
-    --s->framesWaited;
-    if (s->frameBegun) return XR_FRAME_DISCARDED;  // the previous frame never ended
-    s->frameBegun = true;
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (info && info->type != XR_TYPE_FRAME_BEGIN_INFO) return XR_ERROR_VALIDATION_FAILURE;
+        if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (s->framesWaited == 0) return XR_ERROR_CALL_ORDER_INVALID;  // no xrWaitFrame before
+        --s->framesWaited;
+        if (s->frameBegun) return XR_FRAME_DISCARDED;  // the previous frame never ended
+        s->frameBegun = true;
+        return XR_SUCCESS;
+    });
 }
 
 XrResult CheckSubImage(const Session& s, const XrSwapchainSubImage& sub) {
@@ -278,32 +270,30 @@ XrResult CheckLayer(const Session& s, const XrCompositionLayerBaseHeader* layer)
 }
 
 XrResult XRAPI_CALL EndFrame(XrSession handle, const XrFrameEndInfo* info) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!info || info->type != XR_TYPE_FRAME_END_INFO) return XR_ERROR_VALIDATION_FAILURE;
-    if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
-    if (!s->frameBegun) return XR_ERROR_CALL_ORDER_INVALID;
-    if (info->displayTime <= 0) return XR_ERROR_TIME_INVALID;
-    if (info->environmentBlendMode != XR_ENVIRONMENT_BLEND_MODE_OPAQUE)
-        return XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED;
-    if (info->layerCount > kMaxLayerCount) return XR_ERROR_LAYER_LIMIT_EXCEEDED;
-    if (info->layerCount > 0 && !info->layers) return XR_ERROR_VALIDATION_FAILURE;
-    for (uint32_t i = 0; i < info->layerCount; ++i)
-        if (XrResult r = CheckLayer(*s, info->layers[i]); XR_FAILED(r)) return r;
-    s->frameBegun = false;
-    if (XrResult r = ReadBackAndDump(*s, *info, s->framesEnded); XR_FAILED(r)) return r;
-    ++s->framesEnded;
-    if (!s->exiting && !s->lossPending) {
-        if (s->state == XR_SESSION_STATE_READY) SetSessionState(*s, XR_SESSION_STATE_SYNCHRONIZED);
-        else if (s->state == XR_SESSION_STATE_SYNCHRONIZED)
-            SetSessionState(*s, XR_SESSION_STATE_VISIBLE);
-        else if (s->state == XR_SESSION_STATE_VISIBLE)
-            SetSessionState(*s, XR_SESSION_STATE_FOCUSED);
-    }
-    ScriptedEvents(*s);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!info || info->type != XR_TYPE_FRAME_END_INFO) return XR_ERROR_VALIDATION_FAILURE;
+        if (!s->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (!s->frameBegun) return XR_ERROR_CALL_ORDER_INVALID;
+        if (info->displayTime <= 0) return XR_ERROR_TIME_INVALID;
+        if (info->environmentBlendMode != XR_ENVIRONMENT_BLEND_MODE_OPAQUE)
+            return XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED;
+        if (info->layerCount > kMaxLayerCount) return XR_ERROR_LAYER_LIMIT_EXCEEDED;
+        if (info->layerCount > 0 && !info->layers) return XR_ERROR_VALIDATION_FAILURE;
+        for (uint32_t i = 0; i < info->layerCount; ++i)
+            if (XrResult r = CheckLayer(*s, info->layers[i]); XR_FAILED(r)) return r;
+        s->frameBegun = false;
+        if (XrResult r = ReadBackAndDump(*s, *info, s->framesEnded); XR_FAILED(r)) return r;
+        ++s->framesEnded;
+        if (!s->exiting && !s->lossPending) {
+            if (s->state == XR_SESSION_STATE_READY) SetSessionState(*s, XR_SESSION_STATE_SYNCHRONIZED);
+            else if (s->state == XR_SESSION_STATE_SYNCHRONIZED)
+                SetSessionState(*s, XR_SESSION_STATE_VISIBLE);
+            else if (s->state == XR_SESSION_STATE_VISIBLE)
+                SetSessionState(*s, XR_SESSION_STATE_FOCUSED);
+        }
+        ScriptedEvents(*s);
+        return XR_SUCCESS;
+    });
 }
 
 }  // namespace

@@ -159,32 +159,29 @@ XrResult XRAPI_CALL LocateSpace(XrSpace spaceHandle, XrSpace baseHandle, XrTime 
 
 XrResult XRAPI_CALL LocateViews(XrSession handle, const XrViewLocateInfo* info, XrViewState* state,
                                 uint32_t capacity, uint32_t* count, XrView* views) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!info || info->type != XR_TYPE_VIEW_LOCATE_INFO || !state ||
-        state->type != XR_TYPE_VIEW_STATE)
-        return XR_ERROR_VALIDATION_FAILURE;
-    if (info->viewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
-        return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
-    if (info->displayTime <= 0) return XR_ERROR_TIME_INVALID;
-    Space* space = Find(TheRuntime().spaces, info->space);
-    if (!space || space->session != s) return XR_ERROR_HANDLE_INVALID;
-    if (views)
-        for (uint32_t i = 0; i < std::min(capacity, kViewCount); ++i)
-            if (views[i].type != XR_TYPE_VIEW) return XR_ERROR_VALIDATION_FAILURE;
-    bool baseValid = false;
-    Pose base = SpaceInStage(*space, info->displayTime, &baseValid, nullptr);
-    Pose head = HeadPose(info->displayTime);
-    state->viewStateFlags = baseValid ? kAllLocationFlags : 0;
-    XrResult r = TwoCall(capacity, count, views, kViewCount, [&](XrView& view, uint32_t eye) {
-        view.pose = ToXr(baseValid ? Compose(Inverse(base), Compose(head, EyeFromHead(int(eye))))
-                                   : Pose{});
-        Fov fov = EyeFov(int(eye));
-        view.fov = {fov.angleLeft, fov.angleRight, fov.angleUp, fov.angleDown};
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!info || info->type != XR_TYPE_VIEW_LOCATE_INFO || !state ||
+            state->type != XR_TYPE_VIEW_STATE)
+            return XR_ERROR_VALIDATION_FAILURE;
+        if (info->viewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO)
+            return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+        if (info->displayTime <= 0) return XR_ERROR_TIME_INVALID;
+        Space* space = Find(TheRuntime().spaces, info->space);
+        if (!space || space->session != s) return XR_ERROR_HANDLE_INVALID;
+        if (views)
+            for (uint32_t i = 0; i < std::min(capacity, kViewCount); ++i)
+                if (views[i].type != XR_TYPE_VIEW) return XR_ERROR_VALIDATION_FAILURE;
+        bool baseValid = false;
+        Pose base = SpaceInStage(*space, info->displayTime, &baseValid, nullptr);
+        Pose head = HeadPose(info->displayTime);
+        state->viewStateFlags = baseValid ? kAllLocationFlags : 0;
+        return TwoCall(capacity, count, views, kViewCount, [&](XrView& view, uint32_t eye) {
+            view.pose = ToXr(baseValid ? Compose(Inverse(base), Compose(head, EyeFromHead(int(eye))))
+                                       : Pose{});
+            Fov fov = EyeFov(int(eye));
+            view.fov = {fov.angleLeft, fov.angleRight, fov.angleUp, fov.angleDown};
+        });
     });
-    return XR_FAILED(r) ? r : gate;
 }
 
 }  // namespace

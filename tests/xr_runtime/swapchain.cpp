@@ -34,14 +34,11 @@ std::vector<VkFormat> SupportedFormats(VkPhysicalDevice device) {
 
 XrResult XRAPI_CALL EnumerateSwapchainFormats(XrSession handle, uint32_t capacity,
                                               uint32_t* count, int64_t* formats) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    std::vector<VkFormat> list = SupportedFormats(s->physicalDevice);
-    XrResult r = TwoCall(capacity, count, formats, uint32_t(list.size()),
-                         [&](int64_t& f, uint32_t i) { f = list[i]; });
-    return XR_FAILED(r) ? r : gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        std::vector<VkFormat> list = SupportedFormats(s->physicalDevice);
+        return TwoCall(capacity, count, formats, uint32_t(list.size()),
+                       [&](int64_t& f, uint32_t i) { f = list[i]; });
+    });
 }
 
 bool MemoryType(VkPhysicalDevice device, uint32_t bits, VkMemoryPropertyFlags wanted,
@@ -91,57 +88,55 @@ XrResult CreateImages(Swapchain& sc, VkImageUsageFlags usage, VkImageCreateFlags
 
 XrResult XRAPI_CALL CreateSwapchain(XrSession handle, const XrSwapchainCreateInfo* info,
                                     XrSwapchain* out) {
-    auto lock = LockApi();
-    Session* s = nullptr;
-    XrResult gate = CheckSessionAndGate(handle, &s);
-    if (XR_FAILED(gate)) return gate;
-    if (!info || !out || info->type != XR_TYPE_SWAPCHAIN_CREATE_INFO)
-        return XR_ERROR_VALIDATION_FAILURE;
-    std::vector<VkFormat> formats = SupportedFormats(s->physicalDevice);
-    auto format = VkFormat(info->format);
-    if (std::find(formats.begin(), formats.end(), format) == formats.end())
-        return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
-    if (info->width == 0 || info->height == 0 || info->width > kMaxImageSize ||
-        info->height > kMaxImageSize || info->arraySize == 0 || info->mipCount == 0 ||
-        info->sampleCount == 0)
-        return XR_ERROR_VALIDATION_FAILURE;
-    if (info->sampleCount != 1 || info->faceCount != 1 ||
-        (info->createFlags & XR_SWAPCHAIN_CREATE_PROTECTED_CONTENT_BIT) ||
-        (info->usageFlags & XR_SWAPCHAIN_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT))
-        return XR_ERROR_FEATURE_UNSUPPORTED;
-    VkImageUsageFlags usage = kRuntimeUsage;
-    VkImageCreateFlags flags = 0;
-    if (info->usageFlags & XR_SWAPCHAIN_USAGE_UNORDERED_ACCESS_BIT) usage |= VK_IMAGE_USAGE_STORAGE_BIT;
-    if (info->usageFlags & XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT) usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    if (info->usageFlags & XR_SWAPCHAIN_USAGE_SAMPLED_BIT) usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
-    if (info->usageFlags & XR_SWAPCHAIN_USAGE_INPUT_ATTACHMENT_BIT_KHR)
-        usage |= VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT;
-    if (info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT)
-        flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
-    // The usage must be possible for this format (e.g. STORAGE on an sRGB format often is not).
-    VkImageFormatProperties limits{};
-    if (vkGetPhysicalDeviceImageFormatProperties(s->physicalDevice, format, VK_IMAGE_TYPE_2D,
-                                                 VK_IMAGE_TILING_OPTIMAL, usage, flags,
-                                                 &limits) != VK_SUCCESS ||
-        info->width > limits.maxExtent.width || info->height > limits.maxExtent.height ||
-        info->arraySize > limits.maxArrayLayers || info->mipCount > limits.maxMipLevels)
-        return XR_ERROR_FEATURE_UNSUPPORTED;
-    auto sc = std::make_unique<Swapchain>();
-    sc->session = s;
-    sc->info = *info;
-    sc->info.next = nullptr;
-    sc->format = format;
-    bool isStatic = info->createFlags & XR_SWAPCHAIN_CREATE_STATIC_IMAGE_BIT;
-    XrResult r = CreateImages(*sc, usage, flags, isStatic ? 1 : kSwapchainImageCount);
-    Swapchain* raw = sc.release();
-    TheRuntime().swapchains.insert(raw);
-    s->swapchains.push_back(raw);
-    if (XR_FAILED(r)) {
-        DestroySwapchainObject(raw);
-        return r;
-    }
-    *out = ToHandle<XrSwapchain>(raw);
-    return gate;
+    return OnRunningSession(handle, [&](Session* s) -> XrResult {
+        if (!info || !out || info->type != XR_TYPE_SWAPCHAIN_CREATE_INFO)
+            return XR_ERROR_VALIDATION_FAILURE;
+        std::vector<VkFormat> formats = SupportedFormats(s->physicalDevice);
+        auto format = VkFormat(info->format);
+        if (std::find(formats.begin(), formats.end(), format) == formats.end())
+            return XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED;
+        if (info->width == 0 || info->height == 0 || info->width > kMaxImageSize ||
+            info->height > kMaxImageSize || info->arraySize == 0 || info->mipCount == 0 ||
+            info->sampleCount == 0)
+            return XR_ERROR_VALIDATION_FAILURE;
+        if (info->sampleCount != 1 || info->faceCount != 1 ||
+            (info->createFlags & XR_SWAPCHAIN_CREATE_PROTECTED_CONTENT_BIT) ||
+            (info->usageFlags & XR_SWAPCHAIN_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT))
+            return XR_ERROR_FEATURE_UNSUPPORTED;
+        VkImageUsageFlags usage = kRuntimeUsage;
+        VkImageCreateFlags flags = 0;
+        if (info->usageFlags & XR_SWAPCHAIN_USAGE_UNORDERED_ACCESS_BIT) usage |= VK_IMAGE_USAGE_STORAGE_BIT;
+        if (info->usageFlags & XR_SWAPCHAIN_USAGE_TRANSFER_DST_BIT) usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        if (info->usageFlags & XR_SWAPCHAIN_USAGE_SAMPLED_BIT) usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+        if (info->usageFlags & XR_SWAPCHAIN_USAGE_INPUT_ATTACHMENT_BIT_KHR)
+            usage |= VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT;
+        if (info->usageFlags & XR_SWAPCHAIN_USAGE_MUTABLE_FORMAT_BIT)
+            flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
+        // The usage must be possible for this format (e.g. STORAGE on an sRGB format often is not).
+        VkImageFormatProperties limits{};
+        if (vkGetPhysicalDeviceImageFormatProperties(s->physicalDevice, format, VK_IMAGE_TYPE_2D,
+                                                     VK_IMAGE_TILING_OPTIMAL, usage, flags,
+                                                     &limits) != VK_SUCCESS ||
+            info->width > limits.maxExtent.width || info->height > limits.maxExtent.height ||
+            info->arraySize > limits.maxArrayLayers || info->mipCount > limits.maxMipLevels)
+            return XR_ERROR_FEATURE_UNSUPPORTED;
+        auto sc = std::make_unique<Swapchain>();
+        sc->session = s;
+        sc->info = *info;
+        sc->info.next = nullptr;
+        sc->format = format;
+        bool isStatic = info->createFlags & XR_SWAPCHAIN_CREATE_STATIC_IMAGE_BIT;
+        XrResult r = CreateImages(*sc, usage, flags, isStatic ? 1 : kSwapchainImageCount);
+        Swapchain* raw = sc.release();
+        TheRuntime().swapchains.insert(raw);
+        s->swapchains.push_back(raw);
+        if (XR_FAILED(r)) {
+            DestroySwapchainObject(raw);
+            return r;
+        }
+        *out = ToHandle<XrSwapchain>(raw);
+        return XR_SUCCESS;
+    });
 }
 
 XrResult XRAPI_CALL DestroySwapchain(XrSwapchain handle) {
