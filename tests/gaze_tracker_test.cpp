@@ -31,6 +31,15 @@ private:
 
 vec2 Angles(const GazeSample& s) { return GazeAnglesFromDirection(s.direction); }
 
+// A noiseless 120 Hz tracker `latencyMs` behind the eye, with `prediction`.
+TrackerParams Tracker120(double latencyMs, const std::string& prediction = "none") {
+    TrackerParams params;
+    params.rateHz = 120.0;
+    params.latencyMs = latencyMs;
+    params.prediction = prediction;
+    return params;
+}
+
 }  // namespace
 
 TEST_CASE("tracker: the defaults pass the true gaze through unchanged", "[gaze][tracker]") {
@@ -145,12 +154,7 @@ TEST_CASE("tracker: dropouts at their probability; the tracker's blink detection
 TEST_CASE("tracker: constant-velocity prediction cancels latency on constant-speed pursuit", "[gaze][tracker]") {
     // Smooth pursuit at 20°/s right and 5°/s down.
     FunctionGaze truth([](double t) { return vec2(float(-10.0 + 20.0 * t), float(3.0 - 5.0 * t)); });
-    TrackerParams params;
-    params.rateHz = 120.0;
-    params.latencyMs = 50.0;
-    TrackerParams cv = params;
-    cv.prediction = "cv";
-    TrackedGaze none(truth, params), predicted(truth, cv);
+    TrackedGaze none(truth, Tracker120(50.0)), predicted(truth, Tracker120(50.0, "cv"));
     for (double t = 0.3; t < 0.9; t += 0.0111) {
         INFO("t = " << t);
         const vec3 eye = truth.At(t).direction;
@@ -192,12 +196,7 @@ TEST_CASE("tracker: the landing predictor lands closer than no prediction on mai
         const vec2 start(float(-5.0 + 10.0 * rng.NextFloat()), float(-5.0 + 10.0 * rng.NextFloat()));
         const vec2 u(float(std::cos(angle)), float(std::sin(angle)));
         FunctionGaze truth([=](double t) { return start + float(SaccadeDisplacementDeg(amplitude, t - onset)) * u; });
-        TrackerParams params;
-        params.rateHz = 120.0;
-        params.latencyMs = 30.0;
-        TrackerParams landing = params;
-        landing.prediction = "landing";
-        TrackedGaze none(truth, params), predicted(truth, landing);
+        TrackedGaze none(truth, Tracker120(30.0)), predicted(truth, Tracker120(30.0, "landing"));
         // From onset until the tracker has seen the end (duration + latency + a period).
         const double end = onset + SaccadeDurationS(amplitude) + 0.030 + 1.0 / 120.0;
         for (double t = onset; t < end; t += 0.001) {

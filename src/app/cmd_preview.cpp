@@ -28,7 +28,6 @@ void RegisterPreviewCommand(CLI::App& app) {
                     "render N frames, show the last, exit (0: until the window closes)");
     cmd->add_option("--screenshot", options->screenshot,
                     "with --frames: write the last presented window image (PNG, the swapchain's pixels)");
-    cmd->add_option("--stats", options->stats, "per-frame timings and latency, JSON Lines");
     cmd->add_option("--linger", options->lingerSeconds,
                     "with --frames: keep showing the last frame this many seconds before exiting");
     cmd->add_option("--capture-dir", options->captureDir, "where F12 saves (default <output.dir>/captures)");

@@ -24,7 +24,6 @@ void RegisterXrCommand(CLI::App& app) {
     cmd->add_option("--frames", options->frames,
                     "render N frames, then end the session through xrRequestExitSession (0: until Ctrl-C or "
                     "the runtime stops)");
-    cmd->add_option("--stats", options->stats, "per-frame timings and latency, JSON Lines");
     cmd->add_flag("--write-frames", options->writeFrames,
                   "write what each eye was sent, as PNG, to <output.dir>/xr/frames");
     cmd->add_flag("--follow-path", options->followPath,

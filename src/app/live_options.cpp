@@ -11,6 +11,7 @@ void AddLiveSessionOptions(CLI::App* command, LiveSessionOptions& options) {
     command->add_option("--record", options.record,
                         "record the session (head pose, both eyes' cameras, gaze samples, config; JSON Lines) "
                         "for `run --replay`");
+    command->add_option("--stats", options.stats, "per-frame timings and latency, JSON Lines");
 }
 
 }  // namespace fovrt

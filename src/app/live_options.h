@@ -8,7 +8,7 @@
 
 namespace fovrt {
 
-// --view, --write-inputs, --record into `options`.
+// --view, --write-inputs, --record, --stats into `options`.
 void AddLiveSessionOptions(CLI::App* command, LiveSessionOptions& options);
 
 }  // namespace fovrt

@@ -21,6 +21,7 @@ struct LiveSessionOptions {
     std::string view = "denoised";  // --view: a view of the first denoiser (LiveLoop::ViewNames)
     bool writeInputs = false;       // --write-inputs: FrameInputs + spp map EXRs per frame and eye in <output.dir>/inputs
     std::string record;             // --record: the session recording (session/session_record.h); "" none
+    std::string stats;              // --stats: per-frame timings and latency, JSON Lines; "" none
 };
 
 // Throws fovrt::Error "--view V: not a view of denoiser D (views: a, b, …)" when `view` is not

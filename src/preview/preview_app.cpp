@@ -76,7 +76,7 @@ public:
         : config_(config), options_(options), window_(options.window),
           context_(VulkanContext::Create(window_.ContextOptions(LiveDisplayDevice(config)))),
           attachment_(window_, context_), keys_(window_.handle()), source_(config),
-          tracked_(source_, config.gaze.tracker), stats_(options.stats) {
+          tracked_(source_, config.gaze.tracker), stats_(options.session.stats) {
         display_.emplace(context_);
         imgui_.emplace(window_, context_);
         panelShown_ = options.panel;

@@ -17,9 +17,8 @@ struct PreviewOptions {
     WindowOptions window;
     uint64_t frames = 0;          // render this many frames, show the last, exit (0: until closed)
     std::string screenshot;       // PNG of the last presented window image (the swapchain's pixels)
-    std::string stats;            // per-frame stats, JSON Lines
     std::string captureDir;       // where F12 writes (default: <output.dir>/captures)
-    LiveSessionOptions session;   // --view, --write-inputs, --record (as `fovrt xr`)
+    LiveSessionOptions session;   // --view, --write-inputs, --record, --stats (as `fovrt xr`)
     double lingerSeconds = 0.0;   // with frames: keep the last frame on screen this long
     DisplayLayout layout = DisplayLayout::SideBySide;
     bool overlay = true;

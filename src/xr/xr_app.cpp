@@ -111,7 +111,7 @@ public:
                         nlohmann::json{{"source", "openxr"},
                                        {"runtime", connection_->runtimeName()},
                                        {"system", connection_->systemName()}});
-        stats_.emplace(options.stats);
+        stats_.emplace(options.session.stats);
 
         outDir_ = fs::path(config_.output.dir) / "xr";
         fs::create_directories(outDir_);

@@ -19,8 +19,7 @@ namespace fovrt {
 
 struct XrOptions {
     uint64_t frames = 0;         // frames rendered and submitted, then xrRequestExitSession (0: until Ctrl-C or the runtime stops)
-    LiveSessionOptions session;  // --view, --write-inputs, --record (as `fovrt preview`)
-    std::string stats;           // per-frame timings and latency, JSON Lines
+    LiveSessionOptions session;  // --view, --write-inputs, --record, --stats (as `fovrt preview`)
     bool writeFrames = false;    // what each eye was sent, as PNG, in <output.dir>/xr/frames
     bool followPath = false;     // the scene camera's path carries the headset's origin along
     float speed = 1.0f;          // scene seconds per second of display time
