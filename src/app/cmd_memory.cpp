@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "config/config.h"
+#include "config/settings_tables.h"
 #include "commands.h"
 #include "core/error.h"
 #include "denoise/denoiser.h"
@@ -77,8 +79,13 @@ void PrintMemory(const MemoryOptions& o) {
 void RegisterMemoryCommand(CLI::App& app) {
     auto o = std::make_shared<MemoryOptions>();
     CLI::App* cmd = app.add_subcommand("memory", "List every denoiser buffer with bytes and bytes/pixel");
-    cmd->add_option("--width", o->width, "Width per eye")->check(CLI::Range(1, 32768));
-    cmd->add_option("--height", o->height, "Height per eye")->check(CLI::Range(1, 32768));
+    // The sizes camera.width/height accept, so the plan never describes a run the config refuses.
+    for (auto [option, key, value] : {std::tuple{"--width", "camera.width", &o->width},
+                                      std::tuple{"--height", "camera.height", &o->height}}) {
+        const ParamInfo* row = FindRow(CameraTable(), key);
+        cmd->add_option(option, *value, fmt::format("Pixels per eye, as {}", key))
+            ->check(CLI::Range(int(row->range.min), int(row->range.max)));
+    }
     cmd->add_option("--eyes", o->eyes, "Eyes")->check(CLI::Range(1, 2));
     cmd->add_option("--denoiser", o->denoiser, "Denoiser name");
     cmd->add_option("--precision", o->precision, "History storage: fp32 or fp16");

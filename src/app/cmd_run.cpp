@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/shared_options.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/replay.h"
@@ -340,10 +341,7 @@ void RegisterRunCommand(CLI::App& app) {
                "denoise, write a run manifest");
     auto options = std::make_shared<RunOptions>();
     AddConfigOptions(cmd, options->config);
-    cmd->add_option("--replay", options->replay,
-                    "Re-render a session recording frame for frame (its config, with -c/--set on top)");
-    cmd->add_flag("--allow-changes", options->allowChanges,
-                  "With --replay: accept config changes that make the frames differ from the recording");
+    AddReplayOptions(cmd, options->replay, options->allowChanges);
     cmd->add_option("--record", options->record, "Record the rendered frames as a session recording (JSON Lines)");
     cmd->add_flag("--score", options->score,
                   "Score every variant against the cached references as `experiment` does (run.score = true): "

@@ -189,7 +189,9 @@ void RegisterVdpCommand(CLI::App& app) {
     cmd->add_option("test", o->test, "Test frames: a folder of .exr/.png (sorted by name) or one file")->required();
     cmd->add_option("reference", o->reference, "Reference frames, as many as the test's")->required();
     cmd->add_option("--fps", o->fps, "Frame rate of the sequences");
-    cmd->add_option("--display", o->display, "Display profile: headset-15, headset-25, headset-35, monitor-24-fhd");
+    std::string profiles;
+    for (const VdpDisplay& d : VdpDisplayProfiles()) profiles += (profiles.empty() ? "" : ", ") + d.name;
+    cmd->add_option("--display", o->display, "Display profile: " + profiles);
     cmd->add_option("--ppd", o->ppd, "Pixels per degree at the image centre (overrides the profile)");
     cmd->add_option("--fov", o->fov, "Horizontal field of view of the frames in degrees (overrides the profile)");
     cmd->add_option("--peak", o->peak, "Peak luminance in cd/m² (overrides the profile)");

@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
-#include "app/live_options.h"
+#include "app/shared_options.h"
 #include "config/config_cli.h"
 #include "core/error.h"
 #include "xr/xr_app.h"

@@ -13,18 +13,13 @@ int main(int argc, char** argv) {
     CLI::App app{"fovrt: foveated VR path-tracing testbed (stereo Embree tracer, foveated spp maps, "
                  "SVGF / A-SVGF / two-history SVGF on Vulkan compute)"};
     app.require_subcommand(1);
-    fovrt::RegisterRunCommand(app);
-    fovrt::RegisterReferenceCommand(app);
-    fovrt::RegisterDatasetCommand(app);
-    fovrt::RegisterExperimentCommand(app);
-    fovrt::RegisterClusterCommand(app);
-    fovrt::RegisterInfoCommand(app);
-    fovrt::RegisterConfigCommand(app);
-    fovrt::RegisterBenchCommand(app);
-    fovrt::RegisterMemoryCommand(app);
-    fovrt::RegisterVdpCommand(app);
-    fovrt::RegisterPreviewCommand(app);
-    fovrt::RegisterXrCommand(app);
+    // In the order `fovrt --help` lists them.
+    using namespace fovrt;
+    for (auto registerCommand : {RegisterRunCommand, RegisterReferenceCommand, RegisterDatasetCommand,
+                                 RegisterExperimentCommand, RegisterClusterCommand, RegisterInfoCommand,
+                                 RegisterConfigCommand, RegisterBenchCommand, RegisterMemoryCommand,
+                                 RegisterVdpCommand, RegisterPreviewCommand, RegisterXrCommand})
+        registerCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -547,6 +547,10 @@ nlohmann::json ConfigToJson(const RunConfig& config) { return NodeToJson(ToTable
 
 void AddConfigOptions(CLI::App* command, ConfigOptions& options) {
     command->add_option("-c,--config", options.configPath, "TOML config file (defaults apply to absent keys)");
+    AddConfigOverrideOptions(command, options);
+}
+
+void AddConfigOverrideOptions(CLI::App* command, ConfigOptions& options) {
     command->add_option("--set", options.sets,
                         "Override one config key: section.key=value (TOML value; repeatable)")
         ->allow_extra_args(false);

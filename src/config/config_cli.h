@@ -32,7 +32,10 @@ struct ConfigOptions {
     nlohmann::json base;
     std::string baseOrigin;
 };
+// -c/--config, then AddConfigOverrideOptions.
 void AddConfigOptions(CLI::App* command, ConfigOptions& options);
+// --set and --memory-budget: for commands whose config file is a positional argument.
+void AddConfigOverrideOptions(CLI::App* command, ConfigOptions& options);
 RunConfig ResolveConfig(const ConfigOptions& options);
 
 // An experiment file's [experiment] table after every --set experiment.KEY, and where each of its
