@@ -1,8 +1,11 @@
 #include "denoise/debug_views.h"
 
+#include <algorithm>
 #include <limits>
 
+#include "core/math.h"
 #include "denoise/denoiser.h"
+#include "denoise/reference/two_history_math.h"
 #include "denoise/variants.h"
 
 namespace fovrt {
@@ -49,6 +52,38 @@ const std::vector<DebugView>& DebugViewTable() {
          .meaning = "two-history's gradient-guided blend factor: I_b = lerp(I_opt, I_u, q) "
                     "(two-history-asvgf: A-SVGF's lambda)",
          .offeredBy = [](const V& v) { return v.twoHistory; }},
+        {.id = DebugViewId::T,
+         .name = "t",
+         .meaning = "two-history's history choice t = p + q - pq: I_b = lerp(I_w, I_u, t), 1 takes "
+                    "the unweighted history",
+         .offeredBy = [](const V& v) { return v.twoHistory; }},
+        {.id = DebugViewId::HistoryU,
+         .name = "historyU",
+         .meaning = "luminance of the unweighted colour history I_u (after the a-trous feedback; "
+                    "the first channel: direct, or combined)",
+         .lo = 0.0f,
+         .hi = kUnbounded,
+         .offeredBy = [](const V& v) { return v.twoHistory; }},
+        {.id = DebugViewId::HistoryW,
+         .name = "historyW",
+         .meaning = "luminance of the sample-count-weighted colour history I_w (the first channel)",
+         .lo = 0.0f,
+         .hi = kUnbounded,
+         .offeredBy = [](const V& v) { return v.twoHistory; }},
+        {.id = DebugViewId::Variance,
+         .name = "variance",
+         .meaning = "variance m2 - m1^2 of the unweighted luminance moments, the edge-stopping "
+                    "guide of both histories (the first channel)",
+         .lo = 0.0f,
+         .hi = kUnbounded,
+         .offeredBy = [](const V& v) { return v.twoHistory; }},
+        {.id = DebugViewId::StableLum,
+         .name = "stableLum",
+         .meaning = "two-history-stable's stabilised luminance L_s of the filtered illumination "
+                    "(the first channel)",
+         .lo = 0.0f,
+         .hi = kUnbounded,
+         .offeredBy = [](const V& v) { return v.stabilize; }},
     };
     return rows;
 }
@@ -75,7 +110,31 @@ std::vector<std::string> Denoiser::DebugViews() const {
 bool Denoiser::ReadDebugView(const std::string& name, Plane<float>& out) {
     const DenoiserVariant* variant = LookupDenoiserVariant(Name());
     const DebugView* view = variant ? FindDebugView(*variant, name) : nullptr;
-    return view && ReadDebugPlane(view->id, out);
+    if (!view) return false;
+    if (view->id != DebugViewId::T) return ReadDebugPlane(view->id, out);
+    // Not a plane: the blend combines p and q as it goes (two_history_math.h).
+    Plane<float> p, q;
+    if (!ReadDebugPlane(DebugViewId::P, p) || !ReadDebugPlane(DebugViewId::Q, q)) return false;
+    for (size_t i = 0; i < p.size(); ++i) p[i] = TwoHistoryFinalBlend(p[i], q[i]);
+    out = std::move(p);
+    return true;
+}
+
+int DebugViewComponents(DebugViewId view) {
+    switch (view) {
+        case DebugViewId::HistoryU:
+        case DebugViewId::HistoryW: return 3;
+        case DebugViewId::Variance: return 2;
+        default: return 1;
+    }
+}
+
+float ReduceDebugPixel(DebugViewId view, const float* c) {
+    switch (DebugViewComponents(view)) {
+        case 3: return Luminance(vec3(c[0], c[1], c[2]));
+        case 2: return std::max(0.0f, c[1] - c[0] * c[0]);
+        default: return c[0];
+    }
 }
 
 }  // namespace fovrt

@@ -28,7 +28,18 @@ enum class DebugViewId {
     Lambda,          // A-SVGF's λ̂(p)
     P,               // two-history's variance-optimal blend factor
     Q,               // two-history's gradient-guided blend factor
+    T,               // two-history's history choice t = p + q − pq (computed from P and Q)
+    HistoryU,        // luminance of two-history's unweighted colour history I_u (first channel)
+    HistoryW,        // luminance of its weighted colour history I_w (first channel)
+    Variance,        // the variance of the unweighted luminance moments, m2 − m1² (first channel)
+    StableLum,       // two-history-stable's stabilised luminance L_s (first channel)
 };
+
+// How many floats per pixel the plane behind `view` holds (3: a colour history, 2: moments, else
+// 1), and the one value the view shows of them: the luminance, the variance m2 − m1² (≥ 0), or
+// the value itself. The hosts read the plane; this reduces it, the same for both.
+int DebugViewComponents(DebugViewId view);
+float ReduceDebugPixel(DebugViewId view, const float* components);
 
 struct DebugView {
     DebugViewId id;

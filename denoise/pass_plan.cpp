@@ -256,6 +256,19 @@ std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& v, const DenoiserP
             if (v.twoHistory) return PlaneRef{BlendQPlane(v), HistorySide::None};
             return std::nullopt;
         case DebugViewId::P:  // evaluated from W_u, W_w and S, as the blend does
+        case DebugViewId::T:  // from P and Q (Denoiser::ReadDebugView)
+            return std::nullopt;
+        case DebugViewId::HistoryU:
+            if (v.twoHistory) return PlaneRef{{PlaneKind::Color, first}, HistorySide::This};
+            return std::nullopt;
+        case DebugViewId::HistoryW:
+            if (v.twoHistory) return PlaneRef{{PlaneKind::WColor, first}, HistorySide::This};
+            return std::nullopt;
+        case DebugViewId::Variance:
+            if (v.twoHistory) return PlaneRef{{PlaneKind::Moments, first}, HistorySide::This};
+            return std::nullopt;
+        case DebugViewId::StableLum:
+            if (v.stabilize) return PlaneRef{{PlaneKind::StableLum, first}, HistorySide::This};
             return std::nullopt;
     }
     return std::nullopt;

@@ -2,9 +2,9 @@
 # End-to-end checks of the fovrt executable (run by ctest as app_cli): `run` writes a multi-layer
 # EXR per frame and eye plus a complete manifest; bad input gives one clear error line naming the
 # file/key and a non-zero exit, and leaves no manifest behind.
-# Usage: cli_check.sh FOVRT WORK_DIR
+# Usage: cli_check.sh FOVRT WORK_DIR IMAGE_PROBE
 set -uo pipefail
-fovrt=$1; work=$2
+fovrt=$1; work=$2; probe=$3
 src=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 passed=0; failed=0
@@ -63,6 +63,24 @@ else
   bad "experiment --replay failed: $(cat err.txt)"
 fi
 expect_error "experiment replay truncated" "truncated.jsonl: line 3" experiment exp.toml --replay truncated.jsonl --set output.dir=e14
+
+# output.write_debug_views: one EXR per denoiser, frame and eye with a layer per debug view it
+# offers (denoise/debug_views.h), each inside its valid range.
+if "$fovrt" run "${small[@]}" --set output.dir=debug1 --set denoise.device=cpu --set output.write_debug_views=true \
+    --set 'denoise.denoisers=["two-history-stable", "svgf"]' >/dev/null 2>err.txt; then
+  layers=$("$probe" exr-channels debug1/denoised/two-history-stable/f00001_left.debug.exr)
+  names=$(echo "$layers" | cut -d' ' -f1 | tr '\n' ' ')
+  [[ $names == "historyLength historySamples historyU historyW p q stableLum t variance " ]] &&
+    ok "debug views EXR: two-history-stable's 9 layers" || bad "debug views EXR layers: '$names'"
+  echo "$layers" | awk '$1 ~ /^(p|q|t)$/ && ($2 < 0 || $3 > 1) {bad = 1} /nonfinite/ {bad = 1} END {exit bad}' &&
+    ok "debug views EXR: p, q, t in [0, 1], all finite" || bad "debug views EXR values: $layers"
+  [[ $("$probe" exr-channels debug1/denoised/svgf/f00000_right.debug.exr | cut -d' ' -f1) == historyLength ]] &&
+    ok "debug views EXR: svgf's one layer" || bad "debug views EXR: svgf's layers"
+  [[ $(ls debug1/denoised/*/*.debug.exr | wc -l) -eq 8 ]] && ok "debug views EXR: one per denoiser, frame and eye" ||
+    bad "debug views EXR: $(ls debug1/denoised/*/*.debug.exr | wc -l) files, expected 8"
+else
+  bad "run --set output.write_debug_views=true failed: $(cat err.txt)"
+fi
 
 # A scene given by path is labelled by its `name`: the CSV and EXRs go under output.dir in a
 # folder named "cornell" (never a folder named after the path, never outside output.dir), and the

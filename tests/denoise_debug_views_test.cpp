@@ -3,7 +3,8 @@
 // variant's views and reads before the first frame (or after Reset) return false; A-SVGF's α is
 // (1 − λ̂)α + λ̂ and two-history-asvgf's q is λ̂; and on Vulkan every view of every variant equals
 // the C++ reference's within the tolerance of the pass that writes it (random 64×64 frames with
-// sample counts and gradient samples, fp32 and fp16 histories, zero validation errors).
+// sample counts and gradient samples, fp32 and fp16 histories, zero validation errors); the
+// two-history family's history choice t is p + q − pq.
 // Tolerance (as tests/denoise_svgf_vulkan_test.cpp and denoise_two_history_vulkan_test.cpp):
 // |vk − ref| ≤ 2e-3·(1 + |ref|), fp16 histories 1e-2; SVGF's history length everywhere, the
 // two-history family's planes for ≥ 99.5 % of the pixels (lavapipe's exp/pow differ from libm in
@@ -81,11 +82,14 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
         {"svgf", {"historyLength"}},
         {"svgf-weighted", {"historyLength", "historySamples"}},
         {"asvgf", {"historyLength", "alpha", "lambda"}},
-        {"two-history", {"historyLength", "historySamples", "p", "q"}},
-        {"two-history-asvgf", {"historyLength", "historySamples", "alpha", "lambda", "p", "q"}},
+        {"two-history", {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance"}},
+        {"two-history-asvgf",
+         {"historyLength", "historySamples", "alpha", "lambda", "p", "q", "t", "historyU", "historyW", "variance"}},
         {"asvgf-antilag", {"historyLength", "antilag", "lambda"}},
-        {"two-history-asvgf-antilag", {"historyLength", "historySamples", "antilag", "lambda", "p", "q"}},
-        {"two-history-stable", {"historyLength", "historySamples", "p", "q"}},
+        {"two-history-asvgf-antilag",
+         {"historyLength", "historySamples", "antilag", "lambda", "p", "q", "t", "historyU", "historyW", "variance"}},
+        {"two-history-stable",
+         {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show
         {"rae-spp", {}},
     };
@@ -147,6 +151,15 @@ TEST_CASE("C++ reference debug views: valid ranges, refusals, A-SVGF's alpha and
                     CHECK(q.vector() == lambda.vector());
                 }
             }
+        }
+        if (v.twoHistory) {  // the history choice is the blend's t = p + q − pq, pixel by pixel
+            Plane<float> p, q, t;
+            REQUIRE(d->ReadDebugView("p", p));
+            REQUIRE(d->ReadDebugView("q", q));
+            REQUIRE(d->ReadDebugView("t", t));
+            float maxDiff = 0.0f;
+            for (size_t i = 0; i < t.size(); ++i) maxDiff = std::max(maxDiff, std::abs(t[i] - (p[i] + q[i] - p[i] * q[i])));
+            CHECK(maxDiff < 1e-6f);
         }
         // After 3 frames with random sample counts the views vary over the image.
         for (const std::string& view : d->DebugViews()) {

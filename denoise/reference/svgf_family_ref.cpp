@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <chrono>
+#include <cstring>
 #include <utility>
 
 #include "core/check.h"
@@ -245,6 +246,7 @@ const Plane<float>* SvgfFamilyReferenceDenoiser::ScalarPlane(const PlaneRef& ref
         case PlaneKind::Q: return &q_;
         case PlaneKind::AsvgfAlpha: return &alpha_;
         case PlaneKind::AsvgfLambda: return &lambda_;
+        case PlaneKind::StableLum: return variant_.stabilize ? &stable_[side][ChannelIndex(ref.id.channel)] : nullptr;
         default: return nullptr;
     }
 }
@@ -289,6 +291,25 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
         return true;
     }
     const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
+    if (ref && DebugViewComponents(view) > 1) {  // a colour history or the moments, in the state
+        if (!twoHistoryLayout_) return false;
+        const TwoHistoryState& st = CurrentState();
+        const size_t c = ChannelIndex(ref->id.channel);
+        const int w = st.wu.width(), h = st.wu.height();
+        Plane<float> reduced(w, h);
+        for (size_t i = 0; i < reduced.size(); ++i) {
+            float values[3] = {};
+            switch (ref->id.kind) {
+                case PlaneKind::Color: std::memcpy(values, &st.iu[c][i], sizeof(vec3)); break;
+                case PlaneKind::WColor: std::memcpy(values, &st.iw[c][i], sizeof(vec3)); break;
+                case PlaneKind::Moments: std::memcpy(values, &st.moments[c][i], sizeof(vec2)); break;
+                default: return false;
+            }
+            reduced[i] = ReduceDebugPixel(view, values);
+        }
+        out = std::move(reduced);
+        return true;
+    }
     const Plane<float>* plane = ref ? ScalarPlane(*ref, lastParity) : nullptr;
     if (!plane || plane->empty()) return false;
     out = *plane;

@@ -223,7 +223,17 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
     }
     const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (!ref) return false;
-    buffers_.ReadPlane(*context_, ResolveSide(*ref, lastParity), width_, height_, scalarBytes(ref->id.kind), out);
+    const BufferKey key = ResolveSide(*ref, lastParity);
+    const int components = DebugViewComponents(view);
+    if (components == 1) {
+        buffers_.ReadPlane(*context_, key, width_, height_, scalarBytes(ref->id.kind), out);
+        return true;
+    }
+    const std::vector<float> values = buffers_.ReadFloats(*context_, key, scalarBytes(ref->id.kind));
+    Plane<float> plane(width_, height_);
+    FOVRT_CHECK(values.size() == size_t(components) * plane.size());
+    for (size_t i = 0; i < plane.size(); ++i) plane[i] = ReduceDebugPixel(view, &values[size_t(components) * i]);
+    out = std::move(plane);
     return true;
 }
 

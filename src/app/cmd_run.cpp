@@ -48,6 +48,22 @@ namespace {
 
 const char* kEyeNames[2] = {"left", "right"};
 
+// Every debug view the denoiser offers of its last frame (denoise/debug_views.h), one layer each
+// named as the view, in one EXR: the per-pixel state behind its output (output.write_debug_views).
+void WriteDebugViewsExr(const std::filesystem::path& path, Denoiser& denoiser) {
+    const std::vector<std::string> names = denoiser.DebugViews();
+    if (names.empty()) return;
+    std::vector<Plane<float>> planes(names.size());
+    std::vector<ExrLayer> layers;
+    for (size_t i = 0; i < names.size(); ++i) {
+        if (!denoiser.ReadDebugView(names[i], planes[i]))
+            Fail("{}: debug view {} could not be read", denoiser.Name(), names[i]);
+        layers.push_back(ExrLayer::FromPlane(names[i], planes[i]));
+    }
+    std::filesystem::create_directories(path.parent_path());
+    WriteExrLayers(path, planes[0].width(), planes[0].height(), layers);
+}
+
 double MsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
@@ -235,6 +251,7 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                     if (config.output.writePng)
                         WritePng(dir / (stem + ".png"), denoised, config.output.exposure);
                     if (config.output.writeExr) WriteRgbExr(dir / (stem + ".exr"), denoised);
+                    if (config.output.writeDebugViews) WriteDebugViewsExr(dir / (stem + ".debug.exr"), denoiser);
                 }
                 eyeRecord["denoise"] = denoiseRecord;
                 record[kEyeNames[eye]] = eyeRecord;

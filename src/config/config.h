@@ -66,6 +66,7 @@ struct OutputConfig {
     bool writeExr = false;     // denoised HDR per eye per frame
     bool writePng = true;      // tonemapped previews
     bool writeInputs = true;   // FrameInputs + spp map EXR per frame and eye (`run`'s product)
+    bool writeDebugViews = false;  // each denoiser's debug views, one EXR layer each, per frame and eye (`run`)
     float exposure = 0.0f;     // stops, PNG only
     bool report = true;        // HTML/JSON report at the end
 };

@@ -82,12 +82,15 @@ constexpr std::array<SettingRow<DenoiseConfig>, 2> kDenoiseRows{{
      &DenoiseConfig::device},
 }};
 
-constexpr std::array<SettingRow<OutputConfig>, 6> kOutputRows{{
+constexpr std::array<SettingRow<OutputConfig>, 7> kOutputRows{{
     {{.key = "output.dir", .doc = "output folder", .nonEmpty = true}, &OutputConfig::dir},
     {{.key = "output.write_exr", .doc = "denoised HDR EXR per eye per frame"}, &OutputConfig::writeExr},
     {{.key = "output.write_png", .doc = "tonemapped PNG previews"}, &OutputConfig::writePng},
     {{.key = "output.write_inputs", .doc = "FrameInputs + spp map EXR per frame and eye (run)"},
      &OutputConfig::writeInputs},
+    {{.key = "output.write_debug_views",
+      .doc = "each denoiser's debug views (p, t, historyU, ...) as the layers of one EXR per frame and eye (run)"},
+     &OutputConfig::writeDebugViews},
     {{.key = "output.exposure", .range = Closed(-64, 64), .doc = "PNG exposure in stops"}, &OutputConfig::exposure},
     {{.key = "output.report", .doc = "HTML/JSON report at the end"}, &OutputConfig::report},
 }};

@@ -10,6 +10,9 @@
 //                                         centroid and count of the pixels of exactly that colour
 //                                         (the overlay's markers: drawn as exact bytes)
 //   image_probe exr-equal A.exr B.exr     exit 0 when every channel of A is in B, bit for bit
+//   image_probe exr-channels A.exr        each float channel, sorted by name: "name min max"
+//                                         (non-finite values counted as "nonfinite N")
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -125,6 +128,26 @@ int ColourCentroid(const char* path, const char* hex, int x0, int y0, int x1, in
     });
 }
 
+int ExrChannels(const char* path) {
+    const fovrt::ExrImage image = fovrt::ReadExr(path);
+    for (const auto& [name, data] : image.channels) {  // a std::map: sorted by name
+        if (!image.Has(name) || data.floats.empty()) continue;
+        float lo = INFINITY, hi = -INFINITY;
+        size_t nonFinite = 0;
+        for (float v : data.floats) {
+            if (!std::isfinite(v)) {
+                ++nonFinite;
+                continue;
+            }
+            lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        std::printf("%s %g %g", name.c_str(), lo, hi);
+        if (nonFinite) std::printf(" nonfinite %zu", nonFinite);
+        std::printf("\n");
+    }
+    return 0;
+}
+
 int ExrEqual(const char* a, const char* b) {
     const fovrt::ExrImage A = fovrt::ReadExr(a), B = fovrt::ReadExr(b);
     if (A.width != B.width || A.height != B.height) {
@@ -157,6 +180,7 @@ int main(int argc, char** argv) {
     try {
         if (cmd == "diff" && argc == 4) return Diff(argv[2], argv[3]);
         if (cmd == "exr-equal" && argc == 4) return ExrEqual(argv[2], argv[3]);
+        if (cmd == "exr-channels" && argc == 3) return ExrChannels(argv[2]);
         if (cmd == "colour" && argc == 8)
             return ColourCentroid(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]), std::atoi(argv[6]),
                                   std::atoi(argv[7]));

@@ -6,7 +6,10 @@
 //   - the foveal temporal error (mean |Δlum| of eye 0 over the 8-spp disc, the experiments'
 //     measure) split by the frames since the pixel entered the fovea, with the mean |Δt| and the
 //     mean |Δlum| of each history in each split.
-// Usage: two_history_flicker_probe [--scene NAME] [--frames N (60)] [--set key=value ...]
+// With --svg PREFIX, two plots: PREFIX-choice.svg, the second traced pixel's n/8, p, q and t over
+// the frames (the pixel denoise/two_history_stable.md follows), and PREFIX-age.svg, each variant's
+// foveal temporal error by the pixels' age (the split's columns).
+// Usage: two_history_flicker_probe [--scene NAME] [--frames N (60)] [--set key=value ...] [--svg PREFIX]
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "app/report_html.h"
+#include "core/atomic_file.h"
 #include "pipeline/frame_pipeline.h"
 #include "denoise/reference/svgf_family_ref.h"
 #include "denoise/reference/two_history_math.h"
@@ -48,11 +53,13 @@ int main(int argc, char** argv) {
     std::string scene = "cornell";
     int frames = 60;
     std::vector<std::string> sets;
+    std::string svgPrefix;
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string arg = argv[a];
         if (arg == "--scene") scene = argv[a + 1];
         else if (arg == "--frames") frames = std::atoi(argv[a + 1]);
         else if (arg == "--set") sets.push_back(argv[a + 1]);
+        else if (arg == "--svg") svgPrefix = argv[a + 1];
         else {
             std::fprintf(stderr, "two_history_flicker_probe: unknown argument '%s'\n", arg.c_str());
             return 2;
@@ -74,6 +81,16 @@ int main(int argc, char** argv) {
         std::array<Plane<vec3>, kVariants> out, prev;
         std::array<Split, kAgeBins> splits;
         StereoFrame frame;
+        // The second traced pixel over time, for --svg.
+        LinePlot choice, flickerPlot;
+        choice.title = fmt::format("{} pixel ({}, {}): the history choice", scene, probes[1].x, probes[1].y);
+        choice.yLabel = "blend factor";
+        for (const char* name : {"n / 8 (samples this frame)", "p", "q", "t = p + q - pq"})
+            choice.series.push_back({name, {}});
+        flickerPlot.title = fmt::format("{}: foveal temporal error by the pixel's age", scene);
+        flickerPlot.xLabel = "frames since the pixel entered the fovea (7: 7 or more)";
+        flickerPlot.yLabel = "mean |delta lum|";
+        for (const char* name : kNames) flickerPlot.series.push_back({name, {}});
         std::printf("%s %dx%d, %d frames; trace: frame x y n p q t lum(I_u) lum(I_w) var lum(out) svgf two-history "
                     "two-history-stable\n",
                     scene.c_str(), w, h, frames);
@@ -109,6 +126,10 @@ int main(int argc, char** argv) {
                 const float p = TwoHistoryOptimalBlend(StoredTwoHistoryWeights(st.wu[i], st.ww[i], st.powerSums[i]));
                 float var = 0.0f;
                 for (size_t c = 0; c < th.ChannelCount(); ++c) var += th.Illum(c, 1)[i].a;
+                if (px == probes[1]) {
+                    const double values[] = {double(in.sampleCount[i]) / 8.0, p, q[i], TwoHistoryFinalBlend(p, q[i])};
+                    for (size_t s = 0; s < 4; ++s) choice.series[s].points.emplace_back(f, values[s]);
+                }
                 std::printf("trace %3d %3d %3d %2d %.3f %.3f %.3f %.4f %.4f %.5f %.4f %.4f %.4f\n", f, px.x, px.y,
                             int(in.sampleCount[i]), p, q[i], TwoHistoryFinalBlend(p, q[i]), LumSum(st, false, i),
                             LumSum(st, true, i), var, Luminance(out[0][i]), Luminance(out[1][i]),
@@ -124,10 +145,15 @@ int main(int argc, char** argv) {
             const Split& s = splits[size_t(b)];
             if (s.count == 0) continue;
             const double n = double(s.count);
+            for (int v = 0; v < kVariants; ++v) flickerPlot.series[size_t(v)].points.emplace_back(b, s.temporal[v] / n);
             std::printf("age %s%d: %5.1f%%  svgf %.5f  two-history %.5f  two-history-stable %.5f  |dt| %.4f  "
                         "|dI_u| %.5f  |dI_w| %.5f\n",
                         b == kAgeBins - 1 ? ">=" : "", b, 100.0 * n / double(total), s.temporal[0] / n,
                         s.temporal[1] / n, s.temporal[2] / n, s.dt / n, s.dIu / n, s.dIw / n);
+        }
+        if (!svgPrefix.empty()) {
+            WriteTextAtomically(svgPrefix + "-choice.svg", SvgLinePlot(choice) + "\n");
+            WriteTextAtomically(svgPrefix + "-age.svg", SvgLinePlot(flickerPlot) + "\n");
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "two_history_flicker_probe: %s\n", e.what());
