@@ -258,15 +258,15 @@ std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& v, const DenoiserP
         case DebugViewId::P:  // evaluated from W_u, W_w and S, as the blend does
         case DebugViewId::T:  // from P and Q (Denoiser::ReadDebugView)
             return std::nullopt;
-        case DebugViewId::HistoryU:
-            if (v.twoHistory) return PlaneRef{{PlaneKind::Color, first}, HistorySide::This};
-            return std::nullopt;
+        case DebugViewId::HistoryU:  // the first channel's two colour histories and its moments
         case DebugViewId::HistoryW:
-            if (v.twoHistory) return PlaneRef{{PlaneKind::WColor, first}, HistorySide::This};
-            return std::nullopt;
-        case DebugViewId::Variance:
-            if (v.twoHistory) return PlaneRef{{PlaneKind::Moments, first}, HistorySide::This};
-            return std::nullopt;
+        case DebugViewId::Variance: {
+            if (!v.twoHistory) return std::nullopt;
+            const PlaneKind kind = view == DebugViewId::HistoryU   ? PlaneKind::Color
+                                   : view == DebugViewId::HistoryW ? PlaneKind::WColor
+                                                                   : PlaneKind::Moments;
+            return PlaneRef{{kind, first}, HistorySide::This};
+        }
         case DebugViewId::StableLum:
             if (v.stabilize) return PlaneRef{{PlaneKind::StableLum, first}, HistorySide::This};
             return std::nullopt;
