@@ -1,5 +1,6 @@
 // FovVideoVDP in `fovrt experiment` (app/experiment_vdp.h): every variant scored per (seed, eye)
-// sequence at the true gaze, with its outputs (jod.csv, summary.json, the stdout block).
+// sequence at the true gaze, with its outputs (jod.csv, summary.json, the stdout block) and its
+// time beside the denoisers' in the manifest.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -139,4 +140,9 @@ TEST_CASE("experiment FovVideoVDP: JOD per sequence in jod.csv and summary.json"
     const std::string html = ReadFile(dir / "out" / "report.html");
     CHECK(html.find("FovVideoVDP JOD") != std::string::npos);
     CHECK(html.find("two-history FovVideoVDP map") != std::string::npos);
+    // The manifest says what the metric cost beside the denoisers (both measured in this run).
+    const nlohmann::json manifest = nlohmann::json::parse(ReadFile(dir / "out" / "manifest.json"));
+    const nlohmann::json& scene = manifest.at("scenes").at(0);
+    CHECK(scene.at("metric_ms_per_eye").get<double>() > 0.0);
+    CHECK(scene.at("denoise_ms_per_eye").get<double>() > 0.0);
 }

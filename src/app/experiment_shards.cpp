@@ -24,7 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kPartVersion = 2;  // 2: FovVideoVDP scores
+constexpr int kPartVersion = 3;  // 2: FovVideoVDP scores; 3: denoise and metric times
 
 nlohmann::json Vec2Json(const vec2& v) { return {v.x, v.y}; }
 vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(1).get<float>()); }
@@ -40,6 +40,8 @@ void RecordFields(Record& r, Field&& field) {
     field("fingerprint", r.fingerprint);
     field("render_ms", r.renderMs);
     field("reference_ms", r.referenceMs);
+    field("denoise_ms", r.denoiseMs);
+    field("metric_ms", r.metricMs);
     field("reference_hits", r.referenceHits);
     field("reference_lookups", r.referenceLookups);
     field("eye_frames", r.eyeFrames);
@@ -505,6 +507,8 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
             SceneRecord& m = it->second;
             m.renderMs += r.renderMs;
             m.referenceMs += r.referenceMs;
+            m.denoiseMs += r.denoiseMs;
+            m.metricMs += r.metricMs;
             m.referenceHits += r.referenceHits;
             m.referenceLookups += r.referenceLookups;
             m.eyeFrames += r.eyeFrames;

@@ -71,6 +71,7 @@ struct SceneRecord {
     std::string label, requested, source;
     uint64_t fingerprint = 0;
     double renderMs = 0.0, referenceMs = 0.0;
+    double denoiseMs = 0.0, metricMs = 0.0;  // every variant's Denoise(); FovVideoVDP for them
     int referenceHits = 0, referenceLookups = 0, eyeFrames = 0, blinkFrames = 0;
     uint64_t rays = 0, droppedSamples = 0;
     bool hasVisuals = false;  // ran the report's eye under the first seed
