@@ -367,7 +367,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 for (int eye = 0; eye < 2; ++eye) {
                     if (!eyes[size_t(eye)]) continue;
                     EyeFrame& e = frame.eyes[size_t(eye)];
-                    record.renderMs += e.renderMs;
+                    record.times.renderMs += e.renderMs;
                     const EyeCamera& camera = e.camera;
 
                     auto start = std::chrono::steady_clock::now();
@@ -380,11 +380,11 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     record.referenceHits += hit ? 1 : 0;
                     ++record.referenceLookups;
                     ++record.eyeFrames;
-                    record.referenceMs += MsSince(start);
+                    record.times.referenceMs += MsSince(start);
                     if (vdp) {
                         const auto metricStart = std::chrono::steady_clock::now();
                         vdp->AddReference(eye, int(index), camera, reference, e.trueGazePixel);
-                        record.metricMs += MsSince(metricStart);
+                        record.times.metricMs += MsSince(metricStart);
                     }
 
                     EyeFrameImages images;
@@ -406,14 +406,14 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                         Denoiser& denoiser = denoisers.At(v, eye);
                         const auto denoiseStart = std::chrono::steady_clock::now();
                         denoiser.Denoise(e.inputs, outputs[v]);
-                        record.denoiseMs += MsSince(denoiseStart);
+                        record.times.denoiseMs += MsSince(denoiseStart);
                         for (const PassTiming& t : denoiser.LastTimings())
                             part.timings.Add(denoisers.Name(v), t.pass, t.ms);
                         images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
                         if (vdp) {
                             const auto metricStart = std::chrono::steady_clock::now();
                             vdp->AddOutput(eye, denoisers.Name(v), outputs[v]);
-                            record.metricMs += MsSince(metricStart);
+                            record.times.metricMs += MsSince(metricStart);
                         }
                         if (config.output.writeExr)
                             WriteRgbExr(outDir / label / denoisers.Name(v) /
@@ -443,7 +443,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
             if (vdp) {
                 const auto metricStart = std::chrono::steady_clock::now();
                 for (VdpScore& score : vdp->Score(label, config.run.seed)) part.vdp.push_back(std::move(score));
-                record.metricMs += MsSince(metricStart);
+                record.times.metricMs += MsSince(metricStart);
                 part.vdpDisplay = VdpDisplayText(vdp->Display());
                 if (visualsHere) visuals.vdpMaps = vdp->DiffMaps(visuals.eye);
             }
@@ -488,12 +488,12 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                                 {"source", r.source},
                                 {"fingerprint", fmt::format("{:016x}", r.fingerprint)},
                                 {"seeds", seeds},
-                                {"render_ms_per_eye", r.renderMs / eyeFramesDenominator},
-                                {"reference_ms_per_eye", r.referenceMs / eyeFramesDenominator},
+                                {"render_ms_per_eye", r.times.renderMs / eyeFramesDenominator},
+                                {"reference_ms_per_eye", r.times.referenceMs / eyeFramesDenominator},
                                 // Wall time of every variant's Denoise() and of FovVideoVDP for them
                                 // (luminance, filters, pyramid, pooling), per eye-frame.
-                                {"denoise_ms_per_eye", r.denoiseMs / eyeFramesDenominator},
-                                {"metric_ms_per_eye", r.metricMs / eyeFramesDenominator},
+                                {"denoise_ms_per_eye", r.times.denoiseMs / eyeFramesDenominator},
+                                {"metric_ms_per_eye", r.times.metricMs / eyeFramesDenominator},
                                 {"reference_cache_hits", r.referenceHits},
                                 {"reference_lookups", r.referenceLookups},
                                 {"rays", r.rays},
@@ -570,10 +570,10 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     manifest["cpu_s"] = CpuSeconds();
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
-    double renderMs = 0.0, denoiseMs = 0.0, metricMs = 0.0;
-    for (const SceneRecord& r : part.scenes) renderMs += r.renderMs, denoiseMs += r.denoiseMs, metricMs += r.metricMs;
+    SceneTimes times;
+    for (const SceneRecord& r : part.scenes) times += r.times;
     std::fprintf(stderr, "fovrt experiment: tracing %.1f s, denoising %.1f s, FovVideoVDP %.1f s (wall, all scenes and seeds)\n",
-                 renderMs / 1000.0, denoiseMs / 1000.0, metricMs / 1000.0);
+                 times.renderMs / 1000.0, times.denoiseMs / 1000.0, times.metricMs / 1000.0);
     std::fprintf(stderr, "fovrt experiment: done in %.1f s -> %s\n", MsSince(totalStart) / 1000.0,
                  outDir.string().c_str());
     if (base.output.report) std::printf("HTML report: %s\n", (outDir / "report.html").string().c_str());

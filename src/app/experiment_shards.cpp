@@ -38,10 +38,10 @@ void RecordFields(Record& r, Field&& field) {
     field("requested", r.requested);
     field("source", r.source);
     field("fingerprint", r.fingerprint);
-    field("render_ms", r.renderMs);
-    field("reference_ms", r.referenceMs);
-    field("denoise_ms", r.denoiseMs);
-    field("metric_ms", r.metricMs);
+    field("render_ms", r.times.renderMs);
+    field("reference_ms", r.times.referenceMs);
+    field("denoise_ms", r.times.denoiseMs);
+    field("metric_ms", r.times.metricMs);
     field("reference_hits", r.referenceHits);
     field("reference_lookups", r.referenceLookups);
     field("eye_frames", r.eyeFrames);
@@ -505,10 +505,7 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
                 continue;
             }
             SceneRecord& m = it->second;
-            m.renderMs += r.renderMs;
-            m.referenceMs += r.referenceMs;
-            m.denoiseMs += r.denoiseMs;
-            m.metricMs += r.metricMs;
+            m.times += r.times;
             m.referenceHits += r.referenceHits;
             m.referenceLookups += r.referenceLookups;
             m.eyeFrames += r.eyeFrames;

@@ -65,13 +65,22 @@ private:
     std::vector<std::string> order_;
 };
 
+// Wall time a scene's runs spent per stage, summed over its eye-frames (and, merged, its shards).
+struct SceneTimes {
+    double renderMs = 0.0, referenceMs = 0.0;
+    double denoiseMs = 0.0, metricMs = 0.0;  // every variant's Denoise(); FovVideoVDP for them
+    SceneTimes& operator+=(const SceneTimes& o) {
+        renderMs += o.renderMs, referenceMs += o.referenceMs, denoiseMs += o.denoiseMs, metricMs += o.metricMs;
+        return *this;
+    }
+};
+
 // What the runs of one scene measured (the manifest's scene record) and its report images.
 struct SceneRecord {
     size_t index = 0;  // in the experiment's scenes
     std::string label, requested, source;
     uint64_t fingerprint = 0;
-    double renderMs = 0.0, referenceMs = 0.0;
-    double denoiseMs = 0.0, metricMs = 0.0;  // every variant's Denoise(); FovVideoVDP for them
+    SceneTimes times;
     int referenceHits = 0, referenceLookups = 0, eyeFrames = 0, blinkFrames = 0;
     uint64_t rays = 0, droppedSamples = 0;
     bool hasVisuals = false;  // ran the report's eye under the first seed
