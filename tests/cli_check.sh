@@ -214,6 +214,16 @@ expect_error "unknown bench denoiser" "svgf-typo" bench --denoisers --denoiser s
 expect_error "bad bench precision" "fp8" bench --denoisers --precision fp8
 expect_error "unknown denoiser names the nearest" "did you mean 'two-history'" memory --width 64 --height 64 --denoiser two-histroy
 expect_error "bad precision" "expected fp32 or fp16" memory --width 64 --height 64 --denoiser svgf --precision fp8
+# --scored-frames adds FovVideoVDP's frames (4 bytes per pixel and frame, the reference's and each
+# variant's, per eye) to the plan and to the budget.
+if "$fovrt" memory --width 64 --height 64 --eyes 1 --denoiser svgf --scored-frames 10 >mem.txt 2>err.txt; then
+  grep -q "eye0.vdp.svgf_luminance *163840 bytes" mem.txt && grep -q "total 327680 bytes" mem.txt && ! grep -q "eye1.vdp" mem.txt &&
+    ok "memory --scored-frames lists the metric's frames of one eye" || bad "memory --scored-frames: $(tail -4 mem.txt)"
+else
+  bad "memory --scored-frames failed: $(cat err.txt)"
+fi
+expect_error "the metric's frames count against the budget" "vdp.*luminance" memory --width 64 --height 64 --denoiser svgf \
+  --scored-frames 1000 --memory-budget 4MiB
 # info lists every denoiser variant of the table with its summary.
 "$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 10 ]] &&
   grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "denoise/denoiser.h"
 #include "denoise/memory_plan.h"
+#include "pipeline/denoiser_set.h"
 
 namespace fovrt {
 
@@ -27,6 +28,7 @@ struct MemoryOptions {
     std::string precision = "fp32";
     bool filterCombined = false;
     std::string budget;  // bytes for all eyes, "2GiB" style accepted; empty = none
+    int scoredFrames = 0;  // > 0: also FovVideoVDP's frames of a scored run of this many frames
 };
 
 void PrintMemory(const MemoryOptions& o) {
@@ -71,6 +73,22 @@ void PrintMemory(const MemoryOptions& o) {
             b.name = fmt::format("eye{}.{}", eye, b.name);
             all.push_back(b);
         }
+    if (o.scoredFrames > 0) {
+        // The metric keeps each eye's luminance frames of the reference and of every variant
+        // until the sequence is scored (pipeline/denoiser_set.h: PlanVdpMemory).
+        RunConfig scored = DefaultConfig();
+        scored.camera.width = o.width;
+        scored.camera.height = o.height;
+        scored.run.frames = o.scoredFrames;
+        scored.denoise.denoisers = {o.denoiser};
+        std::vector<BufferPlan> vdp;
+        for (BufferPlan& b : PlanVdpMemory(scored, true))  // its eye1 planes only with --eyes 2
+            if (o.eyes == 2 || b.name.rfind("eye0.", 0) == 0) vdp.push_back(std::move(b));
+        std::printf("FovVideoVDP of %d scored frames (run --score, experiment), %d eye(s):\n", o.scoredFrames, o.eyes);
+        for (const BufferPlan& b : vdp) std::printf("  %-40s %12zu bytes\n", b.name.c_str(), b.bytes);
+        std::printf("  total %zu bytes (%.1f MiB)\n", TotalBytes(vdp), double(TotalBytes(vdp)) / 1048576.0);
+        for (BufferPlan& b : vdp) all.push_back(std::move(b));
+    }
     EnforceMemoryBudget(all, budget, o.denoiser);
 }
 
@@ -91,6 +109,9 @@ void RegisterMemoryCommand(CLI::App& app) {
     cmd->add_option("--precision", o->precision, "History storage: fp32 or fp16");
     cmd->add_flag("--filter-combined", o->filterCombined, "Plan for direct+indirect filtered together");
     cmd->add_option("--memory-budget", o->budget, "Fail when all eyes' buffers exceed BYTES (e.g. 1GiB)");
+    cmd->add_option("--scored-frames", o->scoredFrames,
+                    "Also list FovVideoVDP's frames when N frames are scored (run --score, experiment)")
+        ->check(CLI::Range(0, 1000000));
     cmd->callback([o] { PrintMemory(*o); });
 }
 
