@@ -2,7 +2,6 @@
 
 #include <bit>
 #include <chrono>
-#include <cstring>
 #include <utility>
 
 #include "core/check.h"
@@ -293,20 +292,15 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
     const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (ref && DebugViewComponents(view) > 1) {  // a colour history or the moments, in the state
         if (!twoHistoryLayout_) return false;
+        // The state's planes hold their components interleaved, as the Vulkan buffers do.
         const TwoHistoryState& st = CurrentState();
         const size_t c = ChannelIndex(ref->id.channel);
-        const int w = st.wu.width(), h = st.wu.height();
-        Plane<float> reduced(w, h);
-        for (size_t i = 0; i < reduced.size(); ++i) {
-            float values[3] = {};
-            switch (ref->id.kind) {
-                case PlaneKind::Color: std::memcpy(values, &st.iu[c][i], sizeof(vec3)); break;
-                case PlaneKind::WColor: std::memcpy(values, &st.iw[c][i], sizeof(vec3)); break;
-                case PlaneKind::Moments: std::memcpy(values, &st.moments[c][i], sizeof(vec2)); break;
-                default: return false;
-            }
-            reduced[i] = ReduceDebugPixel(view, values);
-        }
+        const float* values = ref->id.kind == PlaneKind::Color    ? &st.iu[c][0].x
+                              : ref->id.kind == PlaneKind::WColor ? &st.iw[c][0].x
+                                                                  : &st.moments[c][0].x;
+        const size_t components = size_t(DebugViewComponents(view));
+        Plane<float> reduced(st.wu.width(), st.wu.height());
+        for (size_t i = 0; i < reduced.size(); ++i) reduced[i] = ReduceDebugPixel(view, values + components * i);
         out = std::move(reduced);
         return true;
     }

@@ -81,9 +81,7 @@ void PrintMemory(const MemoryOptions& o) {
         scored.camera.height = o.height;
         scored.run.frames = o.scoredFrames;
         scored.denoise.denoisers = {o.denoiser};
-        std::vector<BufferPlan> vdp;
-        for (BufferPlan& b : PlanVdpMemory(scored, true))  // its eye1 planes only with --eyes 2
-            if (o.eyes == 2 || b.name.rfind("eye0.", 0) == 0) vdp.push_back(std::move(b));
+        std::vector<BufferPlan> vdp = PlanVdpMemory(scored, true, o.eyes);
         std::printf("FovVideoVDP of %d scored frames (run --score, experiment), %d eye(s):\n", o.scoredFrames, o.eyes);
         for (const BufferPlan& b : vdp) std::printf("  %-40s %12zu bytes\n", b.name.c_str(), b.bytes);
         std::printf("  total %zu bytes (%.1f MiB)\n", TotalBytes(vdp), double(TotalBytes(vdp)) / 1048576.0);

@@ -80,12 +80,12 @@ std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
     return plan;
 }
 
-std::vector<BufferPlan> PlanVdpMemory(const RunConfig& config, bool scored) {
+std::vector<BufferPlan> PlanVdpMemory(const RunConfig& config, bool scored, int eyes) {
     if (!scored || !config.metric.vdp) return {};
     const size_t bytes = size_t(config.camera.width) * size_t(config.camera.height) * sizeof(float) *
                          size_t(std::max(1, config.run.frames));
     std::vector<BufferPlan> plan;
-    for (int eye = 0; eye < 2; ++eye) {
+    for (int eye = 0; eye < eyes; ++eye) {
         const std::string prefix = "eye" + std::to_string(eye) + ".vdp.";
         plan.push_back({prefix + "reference_luminance", bytes, false});
         for (const std::string& name : config.denoise.denoisers)

@@ -42,10 +42,10 @@ private:
 // visibility buffers and, with run.score, the metric's frames (PlanVdpMemory) (for
 // --memory-budget, checked before anything is allocated).
 std::vector<BufferPlan> PlanRunMemory(const RunConfig& config);
-// The luminance frames FovVideoVDP holds until a sequence ends (app/experiment_vdp.h), per eye:
-// the reference's and each variant's, 4 bytes per pixel per frame of run.frames. Empty when
-// nothing is scored: metric.vdp off, or a `run` without run.score (`experiment` passes true).
-std::vector<BufferPlan> PlanVdpMemory(const RunConfig& config, bool scored);
+// The luminance frames FovVideoVDP holds until a sequence ends (app/experiment_vdp.h), for each
+// of `eyes` eyes: the reference's and each variant's, 4 bytes per pixel per frame of run.frames.
+// Empty when nothing is scored: metric.vdp off, or a `run` without run.score (`experiment` passes true).
+std::vector<BufferPlan> PlanVdpMemory(const RunConfig& config, bool scored, int eyes = 2);
 // Throws fovrt::Error when PlanRunMemory exceeds config.memoryBudget (0 = none), naming command
 // `what`: called by every command that renders before it allocates anything large.
 void EnforceRunBudget(const RunConfig& config, const std::string& what);
