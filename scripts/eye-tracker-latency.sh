@@ -8,7 +8,9 @@
 #                                       [--recordings "a.csv b.csv"] [--latencies "0 10 ..."]
 #                                       [--predictions "none cv landing"] [-- extra fovrt options]
 # Recordings default to every ../shared/gaze/*.csv. A point already complete (its manifest.json
-# exists) is not run again, so an interrupted study resumes.
+# exists) is not run again, so an interrupted study resumes. Seeds may run as separate studies
+# (--seeds 2 --out DIR2, side by side on two cores) and be collated together:
+#   python3 scripts/eye_tracker_latency_collate.py DIR1 DIR2 DIR3 --markdown
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

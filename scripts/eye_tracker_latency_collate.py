@@ -1,20 +1,34 @@
 #!/usr/bin/env python3
 """Collates the eye-tracker latency study (scripts/eye-tracker-latency.sh) from each point's
-summary.json: writes latency-study.csv (one row per recording × scene × latency × prediction) and
-latency-study.svg (means over recordings and scenes against latency, one line per predictor:
-foveal relMSE, FovVideoVDP JOD scored at the true gaze, rendered-fovea-to-gaze distance, share of
-frames with the gaze outside the rendered fovea). Standard library only."""
+summary.json and manifest.json: writes latency-study.csv (one row per study folder × recording ×
+scene × latency × prediction) and latency-study.svg (means over recordings, scenes and seed sets
+against latency, one line per predictor: foveal relMSE, FovVideoVDP JOD scored at the true gaze,
+rendered-fovea-to-gaze distance, share of frames with the gaze outside the rendered fovea) into
+the first STUDY_DIR. Several STUDY_DIRs are studies of the same grid under other seeds (e.g.
+--seeds 1, --seeds 2, --seeds 3 into three folders): each point's relMSE and JOD are first taken
+relative to the 0 ms / none point of the same folder, recording and scene (the same seeds), then
+averaged; --markdown prints one table per recording with the mean and the range over the seed
+sets. Standard library only."""
+import argparse
 import csv
 import json
-import sys
 from pathlib import Path
 
-FIELDS = ["recording", "scene", "latency_ms", "prediction", "foveal_relmse", "whole_relmse", "jod",
+FIELDS = ["seeds", "recording", "scene", "latency_ms", "prediction", "foveal_relmse", "whole_relmse", "jod",
           "foveal_relmse_fixation", "foveal_relmse_saccade", "fovea_distance_deg_mean",
           "outside_fovea_share", "saccades", "recovery_ms_mean", "recovery_ms_median", "unrecovered"]
 PANELS = [("foveal_relmse", "foveal relMSE"), ("jod", "FovVideoVDP JOD"), ("fovea_distance_deg_mean", "fovea to true gaze (deg)"),
           ("outside_fovea_share", "gaze outside rendered fovea (share)")]
 COLOURS = {"none": "#d62728", "cv": "#1f77b4", "landing": "#2ca02c"}
+
+
+def seeds_of(point):
+    """The seeds a point ran, from its manifest ("1" or "1 2 3"); the same for every scene."""
+    scenes = json.loads((point / "manifest.json").read_text())["scenes"]
+    seeds = {" ".join(str(s) for s in scene["seeds"]) for scene in scenes}
+    if len(seeds) != 1:
+        raise SystemExit(f"{point}: scenes ran different seeds ({sorted(seeds)})")
+    return seeds.pop()
 
 
 def rows_of(root):
@@ -23,13 +37,14 @@ def rows_of(root):
         latency = float(summary_path.parent.parent.name.split("-", 1)[1])
         recording = summary_path.parent.parent.parent.name
         summary = json.loads(summary_path.read_text())
+        seeds = seeds_of(summary_path.parent)
         for scene, scene_json in summary["scenes"].items():
             variants = scene_json["variants"]
             variant = next(iter(variants))
             gaze = summary["gaze_tracking"].get(scene, {})
             split = gaze.get("foveal_relmse", {}).get(variant, {})
             vdp = summary.get("fovvideovdp", {}).get("scenes", {}).get(scene, {}).get(variant, {})
-            yield {"recording": recording, "scene": scene, "latency_ms": latency, "prediction": prediction,
+            yield {"seeds": seeds, "recording": recording, "scene": scene, "latency_ms": latency, "prediction": prediction,
                    "foveal_relmse": variants[variant]["fovea"]["relmse"]["mean"],
                    "whole_relmse": variants[variant]["whole"]["relmse"]["mean"], "jod": vdp.get("jod"),
                    "foveal_relmse_fixation": split.get("fixation"), "foveal_relmse_saccade": split.get("saccade"),
@@ -39,31 +54,78 @@ def rows_of(root):
                    "unrecovered": gaze["unrecovered"]}
 
 
-def means(rows, key):
-    """{prediction: [(latency, mean over recordings and scenes)]}, relMSE normalised per
-    (recording, scene) by its latency-0 'none' value so scenes of different error weigh alike, JOD
-    as the difference to that value (JOD is a difference scale)."""
+def relative(rows, key):
+    """Yields (row, value): relMSE divided by the latency-0 'none' value of the same seeds,
+    recording and scene, so scenes of different error weigh alike; JOD as the difference to that
+    value (JOD is a difference scale); the gaze columns as they are."""
     base = {}
     for r in rows:
         if r["latency_ms"] == 0 and r["prediction"] == "none":
-            base[(r["recording"], r["scene"])] = r[key]
-    out = {}
+            base[(r["seeds"], r["recording"], r["scene"])] = r[key]
     for r in rows:
         value = r[key]
         if value is None:
             continue
+        b = base.get((r["seeds"], r["recording"], r["scene"]))
         if key == "jod":
-            b = base.get((r["recording"], r["scene"]))
             if b is None:
                 continue
             value = value - b
         elif key.endswith("relmse"):
-            b = base.get((r["recording"], r["scene"]))
             if not b:
                 continue
             value = value / b
+        yield r, value
+
+
+def means(rows, key):
+    """{prediction: [(latency, mean over seed sets, recordings and scenes)]} of relative()."""
+    out = {}
+    for r, value in relative(rows, key):
         out.setdefault(r["prediction"], {}).setdefault(r["latency_ms"], []).append(value)
     return {p: sorted((lat, sum(v) / len(v)) for lat, v in d.items()) for p, d in out.items()}
+
+
+def spread(values, digits, signed=False):
+    """'mean' for one value, 'mean [min, max]' over seed sets for several."""
+    f = (lambda v: f"{v:+.{digits}f}".replace("-", "−")) if signed else (lambda v: f"{v:.{digits}f}")
+    mean = sum(values) / len(values)
+    return f(mean) if len(values) == 1 else f"{f(mean)} [{f(min(values))}, {f(max(values))}]"
+
+
+def markdown(rows):
+    """One table per recording: the gaze columns (the same for every seed and scene) and, per
+    scene, the foveal relMSE and JOD relative to the 0 ms / none point, mean [min, max] over the
+    seed sets."""
+    rel = {key: {} for key in ("foveal_relmse", "jod")}
+    for key in rel:
+        for r, value in relative(rows, key):
+            rel[key].setdefault((r["recording"], r["latency_ms"], r["prediction"], r["scene"]), []).append(value)
+    scenes = sorted({r["scene"] for r in rows})
+    order = {"none": 0, "cv": 1, "landing": 2}
+    points = sorted({(r["recording"], r["latency_ms"], r["prediction"]) for r in rows},
+                    key=lambda k: (k[0], k[1], order.get(k[2], 9), k[2]))
+    first = {}
+    for r in rows:
+        first.setdefault((r["recording"], r["latency_ms"], r["prediction"]), r)
+    lines = []
+    for recording in sorted({k[0] for k in points}):
+        seed_sets = sorted({r["seeds"] for r in rows if r["recording"] == recording})
+        lines += [f"{recording} (seed sets: {', '.join(seed_sets)})", "",
+                  "| latency (ms) | predictor | fovea to true gaze, mean (°) | gaze outside the rendered fovea | "
+                  + " | ".join(f"{s} foveal relMSE / (0 ms, none)" for s in scenes) + " | "
+                  + " | ".join(f"{s} JOD − (0 ms, none)" for s in scenes)
+                  + " | recovery after saccades, mean / median (ms), unrecovered |",
+                  "|---|---|---|---|" + "---|" * (2 * len(scenes)) + "---|"]
+        for key in (k for k in points if k[0] == recording):
+            r = first[key]
+            cells = [f"{key[1]:g}", key[2], f"{r['fovea_distance_deg_mean']:.2f}", f"{100 * r['outside_fovea_share']:.1f} %"]
+            cells += [spread(rel["foveal_relmse"].get(key + (s,), [float("nan")]), 3) for s in scenes]
+            cells += [spread(rel["jod"].get(key + (s,), [float("nan")]), 3, signed=True) for s in scenes]
+            cells.append(f"{r['recovery_ms_mean']:.0f} / {r['recovery_ms_median']:.0f}, {r['unrecovered']} of {r['saccades']}")
+            lines.append("| " + " | ".join(cells) + " |")
+        lines.append("")
+    return "\n".join(lines)
 
 
 def svg(rows):
@@ -103,13 +165,35 @@ def svg(rows):
             f'font-family="sans-serif">\n' + "\n".join(parts) + "\n</svg>\n")
 
 
+def gaze_consistent(rows):
+    """The gaze columns depend on the recording, latency and predictor only; seed sets that
+    disagree were run with different settings and must not be averaged."""
+    seen = {}
+    for r in rows:
+        key = (r["recording"], r["latency_ms"], r["prediction"])
+        gaze = (r["fovea_distance_deg_mean"], r["outside_fovea_share"], r["saccades"], r["unrecovered"])
+        if seen.setdefault(key, (gaze, r["seeds"]))[0] != gaze:
+            raise SystemExit(f"{key[0]}, {key[1]:g} ms, {key[2]}: seeds {seen[key][1]} and {r['seeds']} "
+                             "disagree on the gaze columns (different settings?); not averaged")
+
+
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: eye_tracker_latency_collate.py STUDY_DIR")
-    root = Path(sys.argv[1])
-    rows = list(rows_of(root))
-    if not rows:
-        sys.exit(f"{root}: no runs/*/latency-*/*/summary.json (run scripts/eye-tracker-latency.sh)")
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("study_dirs", nargs="+", type=Path, metavar="STUDY_DIR")
+    parser.add_argument("--markdown", action="store_true", help="print one table per recording")
+    args = parser.parse_args()
+    root = args.study_dirs[0]
+    rows = []
+    for study in args.study_dirs:
+        found = list(rows_of(study))
+        if not found:
+            raise SystemExit(f"{study}: no runs/*/latency-*/*/summary.json (run scripts/eye-tracker-latency.sh)")
+        rows += found
+    seed_sets = [r["seeds"] for r in rows]
+    dup = {(r["seeds"], r["recording"], r["scene"], r["latency_ms"], r["prediction"]) for r in rows}
+    if len(dup) != len(seed_sets):
+        raise SystemExit("two STUDY_DIRs hold the same point under the same seeds; give each seed set once")
+    gaze_consistent(rows)
     with open(root / "latency-study.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=FIELDS)
         writer.writeheader()
@@ -121,6 +205,9 @@ def main():
                        " (difference to latency 0, none)" if key == "jod" else ""))
         for prediction, points in sorted(means(rows, key).items()):
             print(f"  {prediction:<8} " + "  ".join(f"{lat:g} ms: {v:.4g}" for lat, v in points))
+    if args.markdown:
+        print()
+        print(markdown(rows))
 
 
 if __name__ == "__main__":
