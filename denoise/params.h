@@ -38,6 +38,7 @@ struct AsvgfParams {
 struct TwoHistoryParams {
     float gradientBeta = 0.8f;     // β_g
     float qScale = 1.0f;           // S
+    float fireflySigma = 3.0f;     // k of the firefly variants' clamp μ + kσ
 };
 
 // two-history-stable's stabilisation pass (denoise/two_history_stable.md): the stabilised

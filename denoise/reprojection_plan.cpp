@@ -130,10 +130,11 @@ void Reproject(Writer& w, const Family& f) {
     if (th) {
         flags = (f.v.twoHistory ? TH_REPROJECT_FLAG_TWO_HISTORY : 0u) | (f.v.emaGradient ? TH_REPROJECT_FLAG_GRADIENT : 0u) |
                 (f.pair ? 0u : TH_REPROJECT_FLAG_COMBINED) | (f.v.asvgfGradient ? TH_REPROJECT_FLAG_ALPHA_MAP : 0u) |
-                (writeColor ? TH_REPROJECT_FLAG_WRITE_COLOR : 0u) | (f.v.antilag ? TH_REPROJECT_FLAG_ANTILAG : 0u);
+                (writeColor ? TH_REPROJECT_FLAG_WRITE_COLOR : 0u) | (f.v.antilag ? TH_REPROJECT_FLAG_ANTILAG : 0u) |
+                (f.v.suppressFireflies ? TH_REPROJECT_FLAG_FIREFLY : 0u);
         push = PushBlock::Of(TwoHistoryReprojectPush{f.size, f.svgf.alphaColor, f.svgf.alphaMoments,
                                                      f.params.twoHistory.gradientBeta, 0u,
-                                                     f.params.asvgf.antilagPower});
+                                                     f.params.asvgf.antilagPower, f.params.twoHistory.fireflySigma});
         FOVRT_PUSH_PER_FRAME(push, TwoHistoryReprojectPush, has_prev, FrameValue::HasPrevious);
         b = TwoHistoryReprojectBindings(f);
     } else {

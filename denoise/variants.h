@@ -40,6 +40,10 @@ struct DenoiserVariant {
     // Luminance stabilisation of the filtered illumination with its own history, clamped to the
     // neighbourhood's spread (two-history-stable, denoise/two_history_stable.md).
     bool stabilize = false;
+    // Firefly suppression before accumulation: a sample brighter than both μ + kσ of its reprojected
+    // luminance moments and all 8 neighbours' samples is scaled down to the larger bound
+    // (k = denoise.two_history.firefly_sigma; two-history family only).
+    bool suppressFireflies = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device

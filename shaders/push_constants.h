@@ -21,10 +21,11 @@
 #define FOVRT_PUSH_SVGF_ATROUS(F) \
     F(ivec2, size) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance)
 // two_history_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS);
-// antilag_power: the ANTILAG flag's history reduction (1 − a)^power.
+// antilag_power: the ANTILAG flag's history reduction (1 − a)^power; firefly_sigma: the FIREFLY
+// flag's k in μ + kσ.
 #define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F)                                                          \
     F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev) \
-    F(float, antilag_power)
+    F(float, antilag_power) F(float, firefly_sigma)
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
@@ -105,7 +106,7 @@ FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 // 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
 static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
               sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
-              sizeof(TwoHistoryReprojectPush) == 28 && sizeof(TwoHistoryGradientPush) == 24 &&
+              sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryGradientPush) == 24 &&
               sizeof(TwoHistoryStabilizePush) == 20 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
               sizeof(AsvgfAlphaPush) == 24 && sizeof(BandwidthPush) == 8);

@@ -5,6 +5,9 @@
 // Purpose: sanitise the illumination (NaN/Inf → 0, negative → 0, counted); back-project every
 //   history with SVGF's tested taps (common/reprojection.glsl); β = min(1, (1/α − 1)/W_u,prev)
 //   (0 on disocclusion; ANTILAG: α = antilag_alpha of the map's a, W_u,prev and the base α);
+//   FIREFLY: x scaled down to max(μ + kσ of its reprojected moments, its 8 neighbours' largest
+//   sample luminance) where W_u,prev ≥ FOVRT_FIREFLY_MIN_HISTORY (suppress_firefly), before it
+//   enters any history;
 //   W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
 //   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)·lum(Σx − ΣI_u,prev)
 //   over the channels (GRADIENT flag; g is one float, the signed luminance of the gradient).
@@ -47,6 +50,7 @@ const bool kAlphaMap = (kFlags & TH_REPROJECT_FLAG_ALPHA_MAP) != 0u;
 const bool kWriteColor = (kFlags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 const bool kGradient = (kFlags & TH_REPROJECT_FLAG_GRADIENT) != 0u;
 const bool kAntilag = (kFlags & TH_REPROJECT_FLAG_ANTILAG) != 0u;
+const bool kFirefly = (kFlags & TH_REPROJECT_FLAG_FIREFLY) != 0u;
 
 FOVRT_DECLARE_BINDINGS(TH_REPROJECT_BINDING_LIST)  // shaders/bindings/two_history_reproject.h
 #if NCH == 2
@@ -89,19 +93,47 @@ vec3 sanitize(vec3 c) {
 #define GATHER2(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, FETCH2, vec2(0.0), out_)
 #define GATHER3(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, HIST3_LOAD, vec3(0.0), out_)
 
-// Channel k: gathers its histories, accumulates x[k] with the per-pixel W_u/W_w, writes its
-// histories and illumination; leaves the gathered I_u,prev in iu_prev[k] (for g).
+// Channel k's unsanitised input at pixel j (direct + indirect when combined).
+vec3 channel_input(int k, int j) {
+#if NCH == 2
+    return k == 0 ? FETCH3(color_in, j) : FETCH3(color_in2, j);
+#else
+    vec3 c = FETCH3(color_in, j);
+    if (kCombined) c += FETCH3(color_in2, j);
+    return c;
+#endif
+}
+
+// FIREFLY: the largest sample luminance of channel k among pixel i's in-image 8 neighbours.
+float neighbour_max_luminance(int k, int i) {
+    ivec2 p = ivec2(i % pc.size.x, i / pc.size.x);
+    float m = 0.0;
+    for (int d = 0; d < 9; ++d) {
+        ivec2 q = p + ivec2(d % 3 - 1, d / 3 - 1);
+        if (d == 4 || !in_image(q, pc.size)) continue;
+        m = max(m, firefly_neighbour_luminance(channel_input(k, q.y * pc.size.x + q.x)));
+    }
+    return m;
+}
+
+// Channel k: gathers its histories, (FIREFLY) clamps x[k] to its moments and neighbours, accumulates x[k] with
+// the per-pixel W_u/W_w, writes its histories and illumination; leaves the gathered I_u,prev in
+// iu_prev[k] (for g).
 #define ACCUMULATE_CHANNEL(k)                                                                  \
     do {                                                                                       \
-        float l_ = luminance(x[k]);                                                            \
         iu_prev[k] = x[k];                                                                     \
         vec3 iw_prev_ = x[k];                                                                  \
-        vec2 m_prev_ = vec2(l_, l_ * l_);                                                      \
+        vec2 m_prev_ = vec2(0.0);                                                              \
         if (success) {                                                                         \
             GATHER3(prev_iu##k, taps, iu_prev[k]);                                             \
             GATHER2(prev_m##k, taps, m_prev_);                                                 \
             if (kTwo) GATHER3(prev_iw##k, taps, iw_prev_);                                     \
+            if (kFirefly && wu_prev >= FOVRT_FIREFLY_MIN_HISTORY)                              \
+                x[k] = suppress_firefly(x[k], luminance(x[k]), m_prev_, pc.firefly_sigma,      \
+                                        neighbour_max_luminance(k, i));                        \
         }                                                                                      \
+        float l_ = luminance(x[k]);                                                            \
+        if (!success) m_prev_ = vec2(l_, l_ * l_);                                             \
         vec3 iu_ = iu_prev[k] + (x[k] - iu_prev[k]) * (1.0 / wu);                              \
         vec2 m_ = mix(m_prev_, vec2(l_, l_ * l_), am);                                         \
         float variance_ = max(0.0, m_.y - m_.x * m_.x);                                        \

@@ -176,7 +176,7 @@ expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --s
 expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
 # The denoiser bench at a small size: every denoiser has a per-pass byte model and a bound.
 if "$fovrt" bench --denoisers --width 64 --height 48 --frames 1 >bench.txt 2>err.txt; then
-  for name in svgf svgf-weighted asvgf two-history two-history-asvgf asvgf-antilag two-history-asvgf-antilag two-history-stable; do
+  for name in svgf svgf-weighted asvgf two-history two-history-asvgf asvgf-antilag two-history-asvgf-antilag two-history-stable two-history-stable-firefly; do
     grep -q "^$name \[" bench.txt && ok "bench times $name" || bad "bench lacks $name"
   done
   grep -q "no per-pass byte model" bench.txt && bad "bench: a denoiser lacks a byte model" || ok "bench: byte models"

@@ -1,9 +1,9 @@
-// two-history, asvgf, two-history-asvgf, the anti-lag variants and two-history-stable on Vulkan vs the C++
+// two-history, asvgf, two-history-asvgf, the anti-lag variants, two-history-stable and its firefly variant on Vulkan vs the C++
 // reference, pass by pass, on random FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random
 // sample counts, random gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
 // luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
 // two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α or the anti-lag factor, λ),
-// two_history_stabilize (the stabilised luminance), and the final output
+// two_history_stabilize (the stabilised luminance), the firefly clamp in two_history_reproject, and the final output
 // (blend + remaining iterations + modulation); fp32 and fp16 histories; zero validation errors.
 // Also: with constant n the Vulkan two-history equals the Vulkan SVGF.
 // Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) for ≥ 99.5 % of values (lavapipe's exp/pow differ from
@@ -138,6 +138,22 @@ void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int f
     CHECK(ctx->validationErrors() == 0);
 }
 
+// Output pixels (of the last of `frames` frames) where the C++ references of variants a and b differ:
+// shows that a section comparing a's Vulkan passes exercised what sets a apart from b.
+size_t ChangedPixels(const char* a, const char* b, const DenoiserParams& params, int frames, int width = 64,
+                     int height = 64, bool boxFallback = false) {
+    SvgfFamilyReferenceDenoiser refA(FindDenoiserVariant(a), params), refB(FindDenoiserVariant(b), params);
+    Plane<vec3> outA, outB;
+    for (int frame = 0; frame < frames; ++frame) {
+        const FrameInputs f = RandomTwoHistoryFrame(width, height, uint32_t(frame), boxFallback);
+        refA.Denoise(f, outA);
+        refB.Denoise(f, outB);
+    }
+    size_t changed = 0;
+    for (size_t i = 0; i < outA.size(); ++i) changed += outA[i] != outB[i];
+    return changed;
+}
+
 }  // namespace
 
 TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
@@ -234,6 +250,31 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
         params.precision = Precision::Fp16;
         RunPair(FindDenoiserVariant("two-history-stable"), params, 3);
+    }
+    // The firefly clamp (k = 0.5 so that it engages on many pixels once W_u,prev ≥ 4: frames 5, 6).
+    SECTION("two-history-stable-firefly: fp32 separate channels") {
+        params.svgf.atrousIterations = 2;
+        params.twoHistory.fireflySigma = 0.5f;
+        CHECK(ChangedPixels("two-history-stable-firefly", "two-history-stable", params, 6) > 64 * 64 / 10);
+        RunPair(FindDenoiserVariant("two-history-stable-firefly"), params, 6);
+    }
+    SECTION("two-history-stable-firefly: fp32 combined, odd size 67x45") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 3;
+        params.twoHistory.fireflySigma = 0.5f;
+        CHECK(ChangedPixels("two-history-stable-firefly", "two-history-stable", params, 6, 67, 45) > 67 * 45 / 10);
+        RunPair(FindDenoiserVariant("two-history-stable-firefly"), params, 6, 67, 45);
+    }
+    SECTION("two-history-stable-firefly: 3x3 reprojection fallback pixels") {
+        params.svgf.atrousIterations = 1;
+        params.twoHistory.fireflySigma = 0.5f;
+        RunPair(FindDenoiserVariant("two-history-stable-firefly"), params, 6, 64, 64, true);
+    }
+    SECTION("two-history-stable-firefly: fp16 histories") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        params.twoHistory.fireflySigma = 0.5f;
+        RunPair(FindDenoiserVariant("two-history-stable-firefly"), params, 6);
     }
     SECTION("fp16 histories: two-history, asvgf and asvgf-antilag") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");

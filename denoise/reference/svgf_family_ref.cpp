@@ -136,6 +136,8 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     ro.writeColorHistory = writeColor;
     ro.antilag = variant_.antilag;
     ro.antilagPower = params_.asvgf.antilagPower;
+    ro.suppressFireflies = variant_.suppressFireflies;
+    ro.fireflySigma = params_.twoHistory.fireflySigma;
     ro.precision = params_.precision;
     const std::array<const Plane<vec3>*, 2> colors = {&in.direct, &in.indirect};
     TwoHistoryReprojectRef(colors, int(channels_.size()), combined ? &in.indirect : nullptr, in, prevGeometry_.View(),

@@ -55,6 +55,26 @@ inline float AntilagAlpha(float a, float alpha, float wuPrev, float power) {
     return warm + (1.0f - warm) * a;
 }
 
+// Firefly suppression before accumulation (the firefly variants). A sample of luminance l is an
+// outlier when it exceeds both the pixel's own past, μ + kσ of its reprojected luminance moments
+// (μ, μ₂), and every one of its 8 neighbours' samples this frame (`neighbourMax`): the temporal
+// bound alone would lock a pixel out of a real brightening (a light switched on: σ = 0), the
+// spatial one alone (ReBLUR's anti-firefly) would flatten a one-pixel highlight that was always
+// there. The outlier is scaled down to the larger bound, keeping its hue. Applied where the
+// moments span FOVRT_FIREFLY_MIN_HISTORY frames; biased (it removes energy) by design.
+inline vec3 SuppressFirefly(const vec3& x, float l, const vec2& momentsPrev, float k, float neighbourMax) {
+    const float temporal = momentsPrev.x + k * std::sqrt(std::max(momentsPrev.y - momentsPrev.x * momentsPrev.x, 0.0f));
+    const float bound = std::max(temporal, neighbourMax);
+    return l > bound ? x * (bound / l) : x;
+}
+
+// A neighbour's sample luminance for the spatial bound: sanitised as the accumulation sanitises
+// (non-finite → 0, negative components → 0), without counting.
+inline float FireflyNeighbourLuminance(const vec3& c) {
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) return 0.0f;
+    return Luminance(glm::max(c, vec3(0.0f)));
+}
+
 // W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k.
 inline TwoHistoryWeights AccumulateWeights(const TwoHistoryWeights& prev, float beta, float n) {
     TwoHistoryWeights w;

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "denoise/reference/two_history_math.h"
+#include "shaders/common/two_history_constants.glsl"
 #include "shaders/shared_constants.h"
 
 namespace fovrt {
@@ -41,6 +42,19 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
         illumU[size_t(c)].Resize(w, h);
         if (two) illumW[size_t(c)].Resize(w, h);
     }
+    // Firefly variants: the largest sample luminance of channel c among (x, y)'s in-image 8 neighbours.
+    auto NeighbourMaxLuminance = [&](size_t c, int x, int y) {
+        float m = 0.0f;
+        for (int d = 0; d < 9; ++d) {
+            const int qx = x + d % 3 - 1, qy = y + d / 3 - 1;
+            if (d == 4 || qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const size_t j = size_t(qy) * size_t(w) + size_t(qx);
+            vec3 raw = (*colors[c])[j];
+            if (channels == 1 && color2) raw += (*color2)[j];
+            m = std::max(m, FireflyNeighbourLuminance(raw));
+        }
+        return m;
+    };
     // Rows in parallel: pixels are independent; the sample counters are integers, so per-row
     // counts summed in any order equal the serial count.
     std::atomic<uint64_t> nonFinite{0}, negative{0};
@@ -79,10 +93,14 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                 const size_t ch = size_t(c);
                 vec3 raw = (*colors[ch])[i];
                 if (channels == 1 && color2) raw += (*color2)[i];
-                const vec3 xc = SanitizeIllumination(raw, rowStats);
-                const float l = Luminance(xc);
+                vec3 xc = SanitizeIllumination(raw, rowStats);
                 const vec3 iuPrev = success ? GatherTaps(prev.iu[ch], taps) : xc;
-                const vec2 mPrev = success ? GatherTaps(prev.moments[ch], taps) : vec2(l, l * l);
+                const vec2 mGathered = success ? GatherTaps(prev.moments[ch], taps) : vec2(0.0f);
+                if (options.suppressFireflies && success && wPrev.wu >= float(FOVRT_FIREFLY_MIN_HISTORY))
+                    xc = SuppressFirefly(xc, Luminance(xc), mGathered, options.fireflySigma,
+                                         NeighbourMaxLuminance(ch, x, y));
+                const float l = Luminance(xc);
+                const vec2 mPrev = success ? mGathered : vec2(l, l * l);
                 const vec3 iu = AccumulateUnweighted(iuPrev, xc, wNew.wu);
                 const vec2 m = glm::mix(mPrev, vec2(l, l * l), am);
                 const float var = std::max(0.0f, m.y - m.x * m.x);

@@ -70,6 +70,10 @@ struct TwoHistoryReprojectOptions {
     // antilagPower) and α of moments lerp(alphaMoments, 1, a) (two_history_math.h).
     bool antilag = false;
     float antilagPower = 10.0f;
+    // Firefly variants: each sample is clamped to max(μ + fireflySigma·σ of its reprojected moments,
+    // its neighbours' largest sample luminance) before accumulation (SuppressFirefly, two_history_math.h).
+    bool suppressFireflies = false;
+    float fireflySigma = 3.0f;
     Precision precision = Precision::Fp32;
 };
 

@@ -1,5 +1,6 @@
 // Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/reference/two_history_math.h line by
-// line (TwoHistoryDecay, AntilagAlpha, AccumulateWeights, TwoHistoryOptimalBlend, TwoHistoryGradientBlend).
+// line (TwoHistoryDecay, AntilagAlpha, SuppressFirefly, AccumulateWeights, TwoHistoryOptimalBlend,
+// TwoHistoryGradientBlend).
 // Weights are packed as (W_u, W_w) and power sums as (S_{-1}, S_0, S_1).
 #ifndef FOVRT_TWO_HISTORY_GLSL
 #define FOVRT_TWO_HISTORY_GLSL
@@ -18,6 +19,21 @@ float antilag_alpha(float a, float alpha, float wu_prev, float power) {
     float keep = power > 0.0 ? pow(max(1.0 - a, 0.0), power) : 1.0;
     float warm = max(alpha, 1.0 / (wu_prev * keep + 1.0));
     return warm + (1.0 - warm) * a;
+}
+
+// Firefly suppression (FIREFLY flag): a sample of luminance l above both μ + kσ of the
+// reprojected luminance moments (μ, μ₂) and its neighbours' largest sample luminance is scaled
+// down to the larger of the two, hue kept (SuppressFirefly).
+vec3 suppress_firefly(vec3 x, float l, vec2 m_prev, float k, float neighbour_max) {
+    float temporal = m_prev.x + k * sqrt(max(m_prev.y - m_prev.x * m_prev.x, 0.0));
+    float bound = max(temporal, neighbour_max);
+    return l > bound ? x * (bound / l) : x;
+}
+
+// A neighbour's sample luminance, sanitised without counting (FireflyNeighbourLuminance).
+float firefly_neighbour_luminance(vec3 c) {
+    if (any(isnan(c)) || any(isinf(c))) return 0.0;
+    return luminance(max(c, vec3(0.0)));
 }
 
 // p = clamp((a − b)/(a − 2b + c), 0, 1) with a = S_1/W_w², b = S_0/(W_w W_u), c = S_{-1}/W_u².

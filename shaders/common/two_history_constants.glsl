@@ -22,6 +22,12 @@
 #define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
 #define TH_REPROJECT_FLAG_GRADIENT 16u     // accumulate g (two-history; not two-history-asvgf)
 #define TH_REPROJECT_FLAG_ANTILAG 32u      // the map holds the anti-lag factor a (ALPHA_MAP too)
+#define TH_REPROJECT_FLAG_FIREFLY 64u      // clamp each sample to the moments' μ + kσ (firefly variants)
+
+// Firefly suppression clamps a sample only where the reprojected moments span this many frames of
+// history (W_u,prev): younger moments do not yet estimate the pixel's spread (SVGF's own threshold
+// for trusting the temporal variance is 4 frames as well).
+#define FOVRT_FIREFLY_MIN_HISTORY 4.0
 
 // two_history_stabilize: below this luminance the stabilised colour is shifted (c + L_s − L)
 // instead of scaled (c·L_s/L), which would amplify the noise of a near-black pixel's hue.
