@@ -43,7 +43,7 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
         if (two) illumW[size_t(c)].Resize(w, h);
     }
     // Firefly variants: the largest sample luminance of channel c among (x, y)'s in-image 8 neighbours.
-    auto NeighbourMaxLuminance = [&](size_t c, int x, int y) {
+    auto neighbourMaxLuminance = [&](size_t c, int x, int y) {
         float m = 0.0f;
         for (int d = 0; d < 9; ++d) {
             const int qx = x + d % 3 - 1, qy = y + d / 3 - 1;
@@ -98,7 +98,7 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                 const vec2 mGathered = success ? GatherTaps(prev.moments[ch], taps) : vec2(0.0f);
                 if (options.suppressFireflies && success && wPrev.wu >= float(FOVRT_FIREFLY_MIN_HISTORY))
                     xc = SuppressFirefly(xc, Luminance(xc), mGathered, options.fireflySigma,
-                                         NeighbourMaxLuminance(ch, x, y));
+                                         neighbourMaxLuminance(ch, x, y));
                 const float l = Luminance(xc);
                 const vec2 mPrev = success ? mGathered : vec2(l, l * l);
                 const vec3 iu = AccumulateUnweighted(iuPrev, xc, wNew.wu);
