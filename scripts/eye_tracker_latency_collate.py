@@ -181,13 +181,17 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("study_dirs", nargs="+", type=Path, metavar="STUDY_DIR")
     parser.add_argument("--markdown", action="store_true", help="print one table per recording")
+    parser.add_argument("--recording", action="append", metavar="NAME",
+                        help="collate only this recording (repeatable; default: every recording found)")
     args = parser.parse_args()
     root = args.study_dirs[0]
     rows = []
     for study in args.study_dirs:
-        found = list(rows_of(study))
+        found = [r for r in rows_of(study) if not args.recording or r["recording"] in args.recording]
         if not found:
-            raise SystemExit(f"{study}: no runs/*/latency-*/*/summary.json (run scripts/eye-tracker-latency.sh)")
+            raise SystemExit(f"{study}: no runs/*/latency-*/*/summary.json"
+                             + (f" of {', '.join(args.recording)}" if args.recording else "")
+                             + " (run scripts/eye-tracker-latency.sh)")
         rows += found
     seed_sets = [r["seeds"] for r in rows]
     dup = {(r["seeds"], r["recording"], r["scene"], r["latency_ms"], r["prediction"]) for r in rows}

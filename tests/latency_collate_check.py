@@ -76,6 +76,13 @@ write_point(work / "seed3", 3, 40, "none", 1.1e-3, 8.9, distance=4.0)
 result = run(work / "seed1", work / "seed3")
 if result.returncode == 0 or "disagree on the gaze columns" not in result.stderr:
     fail(f"seed sets with different gaze were averaged: rc {result.returncode}, {result.stderr.strip()}")
+# --recording keeps the named recordings only.
+result = run(work / "seed1", "--recording", "rec-b")
+if result.returncode == 0 or "no runs/" not in result.stderr or "rec-b" not in result.stderr:
+    fail(f"--recording of an absent recording was not refused: {result.stderr.strip()}")
+result = run(work / "seed1", work / "seed2", "--recording", "rec-a", "--markdown")
+if result.returncode != 0 or expected not in result.stdout:
+    fail(f"--recording rec-a changed the table: {result.stderr.strip()}")
 result = run(work / "empty")
 if result.returncode == 0 or "no runs/" not in result.stderr:
     fail(f"an empty study was not refused: {result.stderr.strip()}")
