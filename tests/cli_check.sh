@@ -225,7 +225,7 @@ fi
 expect_error "the metric's frames count against the budget" "vdp.*luminance" memory --width 64 --height 64 --denoiser svgf \
   --scored-frames 1000 --memory-budget 4MiB
 # info lists every denoiser variant of the table with its summary.
-"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 10 ]] &&
+"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 11 ]] &&
   grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||
   bad "info: $(cat info.txt err.txt)"
 # config --keys: one line per key from the settings tables (key, default, allowed, meaning).

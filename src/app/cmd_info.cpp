@@ -1,6 +1,7 @@
 // `fovrt info`: versions of fovrt and the libraries it was built with, the Vulkan devices the
 // loader reports (the indices `--set denoise.device=<index>` accepts), the CPU thread count and model, and
 // the denoiser variants with one line each (denoise/variants.cpp).
+#include <algorithm>
 #include <cstdio>
 #include <thread>
 
@@ -23,8 +24,10 @@ void RegisterInfoCommand(CLI::App& app) {
         if (devices.empty()) std::printf("vulkan devices   none (denoisers fall back to the C++ reference)\n");
         for (const VulkanDeviceInfo& d : devices)
             std::printf("vulkan device %u  %s (%s)\n", d.index, d.name.c_str(), d.type.c_str());
+        int nameWidth = 0;  // the names in one column, as wide as the longest
+        for (const DenoiserVariant& v : DenoiserVariants()) nameWidth = std::max(nameWidth, int(v.name.size()));
         for (const DenoiserVariant& v : DenoiserVariants())  // the names denoise.denoisers accepts
-            std::printf("denoiser         %-18.*s %.*s\n", int(v.name.size()), v.name.data(),
+            std::printf("denoiser         %-*.*s %.*s\n", nameWidth, int(v.name.size()), v.name.data(),
                         int(v.summary.size()), v.summary.data());
     });
 }
