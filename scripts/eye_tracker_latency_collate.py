@@ -135,13 +135,16 @@ def svg(rows):
         series = means(rows, key)
         values = [v for s in series.values() for _, v in s] or [0.0]
         latencies = [lat for s in series.values() for lat, _ in s] or [0.0]
-        lo, hi = min(0.0, min(values)), max(values) * 1.1 or 1.0
-        if hi <= lo:  # all at or below 0 (a JOD loss): the axis ends at 0
-            hi = 0.0 if lo < 0.0 else 1.0
+        if key.endswith("relmse") or key == "jod":  # ratios and differences: the data's own range
+            pad = 0.05 * (max(values) - min(values)) or 0.01
+            lo, hi = min(values) - pad, max(values) + pad
+        else:  # distances and shares start at 0
+            lo, hi = 0.0, max(values) * 1.1 or 1.0
         x_max = max(latencies) or 1.0
         ox = i * (width + 20)
+        top = 30  # below the panel's title
         fx = lambda lat: ox + margin + (width - margin - 10) * lat / x_max
-        fy = lambda v: height - margin + (margin + 10 - height) * (v - lo) / (hi - lo)
+        fy = lambda v: height - margin + (top - (height - margin)) * (v - lo) / (hi - lo)
         title = label + (" / latency-0 none" if key.endswith("relmse") else
                          " − latency-0 none" if key == "jod" else "")
         parts.append(f'<text x="{ox + width / 2}" y="14" text-anchor="middle" font-size="12">{title}</text>')
@@ -159,7 +162,8 @@ def svg(rows):
             path = " ".join(f"{fx(lat):.1f},{fy(v):.1f}" for lat, v in points)
             parts.append(f'<polyline points="{path}" fill="none" stroke="{colour}" stroke-width="2"/>')
             if i == 0:
-                parts.append(f'<text x="{fx(0) + 8}" y="{32 + 14 * n}" font-size="11" fill="{colour}">{prediction}</text>')
+                parts.append(f'<text x="{fx(x_max) - 50}" y="{fy(lo) - 36 + 14 * n}" font-size="11" '
+                             f'fill="{colour}">{prediction}</text>')
     total = len(PANELS) * (width + 20)
     return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{total}" height="{height}" '
             f'font-family="sans-serif">\n' + "\n".join(parts) + "\n</svg>\n")
