@@ -9,8 +9,8 @@
 #                                       [--predictions "none cv landing"] [-- extra fovrt options]
 # Recordings default to every ../shared/gaze/*.csv. A point already complete (its manifest.json
 # exists) is not run again, so an interrupted study resumes. Seeds may run as separate studies
-# (--seeds 2 --out DIR2, side by side on two cores) and be collated together:
-#   python3 scripts/eye_tracker_latency_collate.py DIR1 DIR2 DIR3 --markdown
+# (--out DIR3 -- --set 'experiment.seeds=[3]'; --seeds N is a count: seeds 1..N) and be collated
+# together, each seed once: python3 scripts/eye_tracker_latency_collate.py DIR1 DIR3 --markdown
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -1,20 +1,20 @@
 #!/usr/bin/env python3
-"""Collates the eye-tracker latency study (scripts/eye-tracker-latency.sh) from each point's
-summary.json and manifest.json: writes latency-study.csv (one row per study folder × recording ×
-scene × latency × prediction) and latency-study.svg (means over recordings, scenes and seed sets
-against latency, one line per predictor: foveal relMSE, FovVideoVDP JOD scored at the true gaze,
-rendered-fovea-to-gaze distance, share of frames with the gaze outside the rendered fovea) into
-the first STUDY_DIR. Several STUDY_DIRs are studies of the same grid under other seeds (e.g.
---seeds 1, --seeds 2, --seeds 3 into three folders): each point's relMSE and JOD are first taken
-relative to the 0 ms / none point of the same folder, recording and scene (the same seeds), then
-averaged; --markdown prints one table per recording with the mean and the range over the seed
-sets. Standard library only."""
+"""Collates the eye-tracker latency study (scripts/eye-tracker-latency.sh): writes
+latency-study.csv (one row per recording × scene × latency × prediction × seed) and
+latency-study.svg (means over seeds, recordings and scenes against latency, one line per predictor:
+foveal relMSE, FovVideoVDP JOD scored at the true gaze, rendered-fovea-to-gaze distance, share of
+frames with the gaze outside the rendered fovea) into the first STUDY_DIR. Each seed's values come
+from the point's per-frame files (frames-<scene>.csv, gaze-<scene>.csv, jod.csv), so studies of the
+same grid under other seeds combine (e.g. `-- --set 'experiment.seeds=[3]'` into another folder): a
+seed found in two folders must carry the same values and is kept once; each seed's relMSE and JOD
+are taken relative to the same seed's 0 ms / none point, then averaged; --markdown prints one
+table per recording with the mean and the range over the seeds. Standard library only."""
 import argparse
 import csv
 import json
 from pathlib import Path
 
-FIELDS = ["seeds", "recording", "scene", "latency_ms", "prediction", "foveal_relmse", "whole_relmse", "jod",
+FIELDS = ["seed", "recording", "scene", "latency_ms", "prediction", "foveal_relmse", "whole_relmse", "jod",
           "foveal_relmse_fixation", "foveal_relmse_saccade", "fovea_distance_deg_mean",
           "outside_fovea_share", "saccades", "recovery_ms_mean", "recovery_ms_median", "unrecovered"]
 PANELS = [("foveal_relmse", "foveal relMSE"), ("jod", "FovVideoVDP JOD"), ("fovea_distance_deg_mean", "fovea to true gaze (deg)"),
@@ -22,51 +22,89 @@ PANELS = [("foveal_relmse", "foveal relMSE"), ("jod", "FovVideoVDP JOD"), ("fove
 COLOURS = {"none": "#d62728", "cv": "#1f77b4", "landing": "#2ca02c"}
 
 
-def seeds_of(point):
-    """The seeds a point ran, from its manifest ("1" or "1 2 3"); the same for every scene."""
-    scenes = json.loads((point / "manifest.json").read_text())["scenes"]
-    seeds = {" ".join(str(s) for s in scene["seeds"]) for scene in scenes}
-    if len(seeds) != 1:
-        raise SystemExit(f"{point}: scenes ran different seeds ({sorted(seeds)})")
-    return seeds.pop()
+def mean(values):
+    return sum(values) / len(values) if values else None
+
+
+def per_seed(point, scene, variant):
+    """{seed: {column: value}} from a point's per-frame files: foveal and whole-image relMSE (mean
+    over eyes and frames), the foveal relMSE of fixation and of saccade frames (gaze-<scene>.csv's
+    saccade flag) and FovVideoVDP's JOD (mean over eyes; None without jod.csv)."""
+    saccade = {r["frame"]: r["saccade"] == "1" for r in csv.DictReader(open(point / f"gaze-{scene}.csv"))}
+    values = {}
+    for r in csv.DictReader(open(point / f"frames-{scene}.csv")):
+        if r["variant"] != variant or r["metric"] != "relmse" or r["region"] not in ("fovea", "whole"):
+            continue
+        v = values.setdefault(int(r["seed"]), {"fovea": [], "whole": [], "fixation": [], "saccade": [], "jod": []})
+        v[r["region"]].append(float(r["value"]))
+        if r["region"] == "fovea":
+            v["saccade" if saccade[r["frame"]] else "fixation"].append(float(r["value"]))
+    if (point / "jod.csv").exists():
+        for r in csv.DictReader(open(point / "jod.csv")):
+            if r["scene"] == scene and r["variant"] == variant:
+                values[int(r["seed"])]["jod"].append(float(r["jod"]))
+    return {seed: {"foveal_relmse": mean(v["fovea"]), "whole_relmse": mean(v["whole"]), "jod": mean(v["jod"]),
+                   "foveal_relmse_fixation": mean(v["fixation"]), "foveal_relmse_saccade": mean(v["saccade"])}
+            for seed, v in values.items()}
 
 
 def rows_of(root):
+    """One row per point, scene and seed of the study folder `root`."""
     for summary_path in sorted((root / "runs").glob("*/latency-*/*/summary.json")):
-        prediction = summary_path.parent.name
-        latency = float(summary_path.parent.parent.name.split("-", 1)[1])
-        recording = summary_path.parent.parent.parent.name
+        point = summary_path.parent
+        prediction = point.name
+        latency = float(point.parent.name.split("-", 1)[1])
+        recording = point.parent.parent.name
         summary = json.loads(summary_path.read_text())
-        seeds = seeds_of(summary_path.parent)
         for scene, scene_json in summary["scenes"].items():
             variants = scene_json["variants"]
             variant = next(iter(variants))
             gaze = summary["gaze_tracking"].get(scene, {})
-            split = gaze.get("foveal_relmse", {}).get(variant, {})
-            vdp = summary.get("fovvideovdp", {}).get("scenes", {}).get(scene, {}).get(variant, {})
-            yield {"seeds": seeds, "recording": recording, "scene": scene, "latency_ms": latency, "prediction": prediction,
-                   "foveal_relmse": variants[variant]["fovea"]["relmse"]["mean"],
-                   "whole_relmse": variants[variant]["whole"]["relmse"]["mean"], "jod": vdp.get("jod"),
-                   "foveal_relmse_fixation": split.get("fixation"), "foveal_relmse_saccade": split.get("saccade"),
-                   "fovea_distance_deg_mean": gaze["fovea_distance_deg"]["mean"],
-                   "outside_fovea_share": gaze["outside_fovea_share"], "saccades": gaze["saccades"],
-                   "recovery_ms_mean": gaze["recovery_ms"]["mean"], "recovery_ms_median": gaze["recovery_ms"]["median"],
-                   "unrecovered": gaze["unrecovered"]}
+            seeds = per_seed(point, scene, variant)
+            if len(seeds) == 1:  # the files and the summary must tell the same story
+                only = next(iter(seeds.values()))
+                summary_relmse = variants[variant]["fovea"]["relmse"]["mean"]
+                if abs(only["foveal_relmse"] - summary_relmse) > 1e-6 * abs(summary_relmse):
+                    raise SystemExit(f"{point}: frames-{scene}.csv disagrees with summary.json on the foveal relMSE")
+            for seed, values in sorted(seeds.items()):
+                yield {"seed": seed, "study": str(root), "recording": recording, "scene": scene, "latency_ms": latency,
+                       "prediction": prediction, **values,
+                       "fovea_distance_deg_mean": gaze["fovea_distance_deg"]["mean"],
+                       "outside_fovea_share": gaze["outside_fovea_share"], "saccades": gaze["saccades"],
+                       "recovery_ms_mean": gaze["recovery_ms"]["mean"], "recovery_ms_median": gaze["recovery_ms"]["median"],
+                       "unrecovered": gaze["unrecovered"]}
+
+
+def merge_seeds(rows):
+    """Each (point, scene, seed) once: a seed found in two study folders must carry the same values
+    (the same seed under the same settings renders the same frames), else the folders differ in
+    settings or build and are not combined."""
+    kept = {}
+    for r in rows:
+        key = (r["recording"], r["scene"], r["latency_ms"], r["prediction"], r["seed"])
+        if key in kept:
+            other = kept[key]
+            if any(other[c] != r[c] for c in ("foveal_relmse", "whole_relmse", "jod")):
+                raise SystemExit(f"{key[0]}, {key[1]}, {key[2]:g} ms, {key[3]}: seed {key[4]} differs between "
+                                 f"{other['study']} and {r['study']} (other settings or build?); not combined")
+            continue
+        kept[key] = r
+    return list(kept.values())
 
 
 def relative(rows, key):
-    """Yields (row, value): relMSE divided by the latency-0 'none' value of the same seeds,
+    """Yields (row, value): relMSE divided by the latency-0 'none' value of the same seed,
     recording and scene, so scenes of different error weigh alike; JOD as the difference to that
     value (JOD is a difference scale); the gaze columns as they are."""
     base = {}
     for r in rows:
         if r["latency_ms"] == 0 and r["prediction"] == "none":
-            base[(r["seeds"], r["recording"], r["scene"])] = r[key]
+            base[(r["seed"], r["recording"], r["scene"])] = r[key]
     for r in rows:
         value = r[key]
         if value is None:
             continue
-        b = base.get((r["seeds"], r["recording"], r["scene"]))
+        b = base.get((r["seed"], r["recording"], r["scene"]))
         if key == "jod":
             if b is None:
                 continue
@@ -79,7 +117,7 @@ def relative(rows, key):
 
 
 def means(rows, key):
-    """{prediction: [(latency, mean over seed sets, recordings and scenes)]} of relative()."""
+    """{prediction: [(latency, mean over seeds, recordings and scenes)]} of relative()."""
     out = {}
     for r, value in relative(rows, key):
         out.setdefault(r["prediction"], {}).setdefault(r["latency_ms"], []).append(value)
@@ -87,7 +125,7 @@ def means(rows, key):
 
 
 def spread(values, digits, signed=False):
-    """'mean' for one value, 'mean [min, max]' over seed sets for several."""
+    """'mean' for one value, 'mean [min, max]' over seeds for several."""
     f = (lambda v: f"{v:+.{digits}f}".replace("-", "−")) if signed else (lambda v: f"{v:.{digits}f}")
     mean = sum(values) / len(values)
     return f(mean) if len(values) == 1 else f"{f(mean)} [{f(min(values))}, {f(max(values))}]"
@@ -95,8 +133,8 @@ def spread(values, digits, signed=False):
 
 def markdown(rows):
     """One table per recording: the gaze columns (the same for every seed and scene) and, per
-    scene, the foveal relMSE and JOD relative to the 0 ms / none point, mean [min, max] over the
-    seed sets."""
+    scene, the foveal relMSE and JOD relative to the 0 ms / none point of the same seed, mean
+    [min, max] over the seeds."""
     rel = {key: {} for key in ("foveal_relmse", "jod")}
     for key in rel:
         for r, value in relative(rows, key):
@@ -110,8 +148,8 @@ def markdown(rows):
         first.setdefault((r["recording"], r["latency_ms"], r["prediction"]), r)
     lines = []
     for recording in sorted({k[0] for k in points}):
-        seed_sets = sorted({r["seeds"] for r in rows if r["recording"] == recording})
-        lines += [f"{recording} (seed sets: {', '.join(seed_sets)})", "",
+        seeds = sorted({r["seed"] for r in rows if r["recording"] == recording})
+        lines += [f"{recording} (seeds {', '.join(map(str, seeds))})", "",
                   "| latency (ms) | predictor | fovea to true gaze, mean (°) | gaze outside the rendered fovea | "
                   + " | ".join(f"{s} foveal relMSE / (0 ms, none)" for s in scenes) + " | "
                   + " | ".join(f"{s} JOD − (0 ms, none)" for s in scenes)
@@ -176,8 +214,8 @@ def gaze_consistent(rows):
     for r in rows:
         key = (r["recording"], r["latency_ms"], r["prediction"])
         gaze = (r["fovea_distance_deg_mean"], r["outside_fovea_share"], r["saccades"], r["unrecovered"])
-        if seen.setdefault(key, (gaze, r["seeds"]))[0] != gaze:
-            raise SystemExit(f"{key[0]}, {key[1]:g} ms, {key[2]}: seeds {seen[key][1]} and {r['seeds']} "
+        if seen.setdefault(key, (gaze, r["study"]))[0] != gaze:
+            raise SystemExit(f"{key[0]}, {key[1]:g} ms, {key[2]}: {seen[key][1]} and {r['study']} "
                              "disagree on the gaze columns (different settings?); not averaged")
 
 
@@ -197,13 +235,10 @@ def main():
                              + (f" of {', '.join(args.recording)}" if args.recording else "")
                              + " (run scripts/eye-tracker-latency.sh)")
         rows += found
-    seed_sets = [r["seeds"] for r in rows]
-    dup = {(r["seeds"], r["recording"], r["scene"], r["latency_ms"], r["prediction"]) for r in rows}
-    if len(dup) != len(seed_sets):
-        raise SystemExit("two STUDY_DIRs hold the same point under the same seeds; give each seed set once")
     gaze_consistent(rows)
+    rows = merge_seeds(rows)
     with open(root / "latency-study.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=FIELDS)
+        writer = csv.DictWriter(f, fieldnames=FIELDS, extrasaction="ignore")
         writer.writeheader()
         writer.writerows(rows)
     (root / "latency-study.svg").write_text(svg(rows))
