@@ -22,7 +22,7 @@
 #define TH_REPROJECT_FLAG_WRITE_COLOR 8u   // feed back the unfiltered accumulation
 #define TH_REPROJECT_FLAG_GRADIENT 16u     // accumulate g (two-history; not two-history-asvgf)
 #define TH_REPROJECT_FLAG_ANTILAG 32u      // the map holds the anti-lag factor a (ALPHA_MAP too)
-#define TH_REPROJECT_FLAG_FIREFLY 64u      // clamp each sample to the moments' μ + kσ (firefly variants)
+#define TH_REPROJECT_FLAG_FIREFLY 64u      // clamp a sample above μ + kσ and its neighbours (firefly variants)
 
 // Firefly suppression clamps a sample only where the reprojected moments span this many frames of
 // history (W_u,prev): younger moments do not yet estimate the pixel's spread (SVGF's own threshold
