@@ -187,13 +187,9 @@ bool reproject_pixel(int i) {
     float am = success ? max(alpha_m, 1.0 / wu) : 1.0;
 
     vec3 x[NCH], iu_prev[NCH];
+    x[0] = sanitize(channel_input(0, i));
 #if NCH == 2
-    x[0] = sanitize(FETCH3(color_in, i));
-    x[1] = sanitize(FETCH3(color_in2, i));
-#else
-    vec3 raw = FETCH3(color_in, i);
-    if (kCombined) raw += FETCH3(color_in2, i);
-    x[0] = sanitize(raw);
+    x[1] = sanitize(channel_input(1, i));
 #endif
     ACCUMULATE_CHANNEL(0);
 #if NCH == 2
