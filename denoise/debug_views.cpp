@@ -46,7 +46,7 @@ const std::vector<DebugView>& DebugViewTable() {
         {.id = DebugViewId::P,
          .name = "p",
          .meaning = "two-history's variance-optimal blend factor: I_opt = lerp(I_w, I_u, p)",
-         .offeredBy = [](const V& v) { return v.twoHistory; }},
+         .offeredBy = [](const V& v) { return v.twoHistory && !v.clampHistory; }},  // the clamp replaces p
         {.id = DebugViewId::Q,
          .name = "q",
          .meaning = "two-history's gradient-guided blend factor: I_b = lerp(I_opt, I_u, q) "
@@ -56,7 +56,7 @@ const std::vector<DebugView>& DebugViewTable() {
          .name = "t",
          .meaning = "two-history's history choice t = p + q - pq: I_b = lerp(I_w, I_u, t), 1 takes "
                     "the unweighted history",
-         .offeredBy = [](const V& v) { return v.twoHistory; }},
+         .offeredBy = [](const V& v) { return v.twoHistory && !v.clampHistory; }},
         {.id = DebugViewId::HistoryU,
          .name = "historyU",
          .meaning = "luminance of the unweighted colour history I_u (after the a-trous feedback; "

@@ -53,7 +53,9 @@ constexpr std::array<ParamRow<AsvgfParams>, 4> kAsvgfRows{{
 
 // firefly_sigma: 0 clamps a sample to max(history mean, brightest neighbour); 3 leaves a Gaussian's
 // samples alone 99.9 % of the time; large values switch the suppression off.
-constexpr std::array<ParamRow<TwoHistoryParams>, 3> kTwoHistoryRows{{
+// clamp_sigma: 0 clamps I_u to the segment between I_w's 3×3 mean and I_w; large values keep I_u
+// (the blend then follows q alone).
+constexpr std::array<ParamRow<TwoHistoryParams>, 4> kTwoHistoryRows{{
     {{"denoise.two_history.gradient_beta", Closed(0, 1), "β_g of the gradient EMA"},
      &TwoHistoryParams::gradientBeta},
     {{"denoise.two_history.q_scale", Closed(0, 1e6), "S in q = clamp(S·|lum g| / std(lum I_u), 0, 1)"},
@@ -61,6 +63,9 @@ constexpr std::array<ParamRow<TwoHistoryParams>, 3> kTwoHistoryRows{{
     {{"denoise.two_history.firefly_sigma", Closed(0, 1e6),
       "k: the firefly variants clamp a sample above mu + k sigma of its moments history and above its 8 neighbours"},
      &TwoHistoryParams::fireflySigma},
+    {{"denoise.two_history.clamp_sigma", Closed(0, 1e6),
+      "k: the clamp variants keep I_u inside I_w's 3x3 mean +- k sigma (widened to hold I_w) instead of the choice p"},
+     &TwoHistoryParams::clampSigma},
 }};
 
 // Ranges: α_s = 1 passes the filtered frame through (no stabilisation); small α_s averages over

@@ -107,7 +107,7 @@ void EmaGradient(Writer& w, const Family& f) {
 }
 
 // two_history_blend per channel, in place on I_u: lerp(I_w, I_u, lerp(q, 1, p)) with p from W_u
-// (channel 0's length), W_w and S.
+// (channel 0's length), W_w and S; the clamp variants' box in place of p.
 void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted) {
     using K = PlaneKind;
     BlendStage stage{{}, BlendQPlane(f.v)};
@@ -121,7 +121,8 @@ void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted)
             .Read(TH_BLEND_B_WW, This(K::WWeight))
             .Read(TH_BLEND_B_S, This(K::PowerSums))
             .Read(TH_BLEND_B_Q, Shared(stage.q.kind));
-        w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryBlend), std::move(b), PushBlock::Of(ImageSizePush{f.size})));
+        const TwoHistoryBlendPush push{f.size, f.params.twoHistory.clampSigma, f.v.clampHistory ? 1u : 0u};
+        w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryBlend), std::move(b), PushBlock::Of(push)));
     }
     w.Barrier();
 }

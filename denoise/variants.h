@@ -44,6 +44,10 @@ struct DenoiserVariant {
     // luminance moments and all 8 neighbours' samples is scaled down to the larger bound
     // (k = denoise.two_history.firefly_sigma; two-history family only).
     bool suppressFireflies = false;
+    // History clamping in place of the variance-optimal choice p (NRD ReLAX's clamp of one history
+    // to the other's neighbourhood): the blend keeps I_u inside the box of I_w's 3×3 mean ± kσ,
+    // widened to hold I_w, then q pulls it back to I_u (k = denoise.two_history.clamp_sigma).
+    bool clampHistory = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device

@@ -10,7 +10,7 @@
 // svgf_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS).
 // has_prev 0: no previous frame (first frame, reset): nothing reprojects.
 #define FOVRT_PUSH_SVGF_REPROJECT(F) F(ivec2, size) F(float, alpha_color) F(float, alpha_moments) F(uint, has_prev)
-// svgf_pack_guide, svgf_modulate, two_history_blend: the image size alone.
+// svgf_pack_guide, svgf_modulate: the image size alone.
 #define FOVRT_PUSH_IMAGE_SIZE(F) F(ivec2, size)
 // svgf_moments_classify: threshold = history length below which the spatial estimate is used.
 #define FOVRT_PUSH_SVGF_CLASSIFY(F) F(ivec2, size) F(float, threshold)
@@ -26,6 +26,8 @@
 #define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F)                                                          \
     F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev) \
     F(float, antilag_power) F(float, firefly_sigma)
+// two_history_blend: clamp_history 1 for the clamp variants (the box of k = clamp_sigma in place of p).
+#define FOVRT_PUSH_TWO_HISTORY_BLEND(F) F(ivec2, size) F(float, clamp_sigma) F(uint, clamp_history)
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
@@ -91,6 +93,7 @@ FOVRT_DECLARE_PUSH(SvgfClassifyPush, FOVRT_PUSH_SVGF_CLASSIFY);
 FOVRT_DECLARE_PUSH(SvgfFilterMomentsPush, FOVRT_PUSH_SVGF_FILTER_MOMENTS);
 FOVRT_DECLARE_PUSH(SvgfAtrousPush, FOVRT_PUSH_SVGF_ATROUS);
 FOVRT_DECLARE_PUSH(TwoHistoryReprojectPush, FOVRT_PUSH_TWO_HISTORY_REPROJECT);
+FOVRT_DECLARE_PUSH(TwoHistoryBlendPush, FOVRT_PUSH_TWO_HISTORY_BLEND);
 FOVRT_DECLARE_PUSH(TwoHistoryGradientPush, FOVRT_PUSH_TWO_HISTORY_GRADIENT);
 FOVRT_DECLARE_PUSH(TwoHistoryStabilizePush, FOVRT_PUSH_TWO_HISTORY_STABILIZE);
 FOVRT_DECLARE_PUSH(AsvgfSamplesPush, FOVRT_PUSH_ASVGF_SAMPLES);
@@ -106,7 +109,8 @@ FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 // 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
 static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
               sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
-              sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryGradientPush) == 24 &&
+              sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryBlendPush) == 16 &&
+              sizeof(TwoHistoryGradientPush) == 24 &&
               sizeof(TwoHistoryStabilizePush) == 20 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
               sizeof(AsvgfAlphaPush) == 24 && sizeof(BandwidthPush) == 8);

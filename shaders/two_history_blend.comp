@@ -3,6 +3,8 @@
 // two_history_blend — the variance-optimal, gradient-guided blend of the two histories after
 // à-trous iteration 1 (SPEC §5). Mirrors TwoHistoryBlendRef.
 // Purpose: p from (W_u, W_w, S_k); t = p + q − pq; out = lerp((I_w, Var_w), (I_u, Var_u), t).
+// The clamp variants (pc.clamp_history) replace p by the box of I_w's 3×3 mean ± kσ
+// (two_history_clamp_blend); I_w is read-only, so the neighbours' reads race with no write.
 // Reads:  filtered (I_u, Var) and (I_w, Var), W_u, W_w, power sums, q.
 // Writes: the blend, in place over (I_u, Var) (the input of the remaining iterations).
 #include "shared_constants.h"
@@ -21,12 +23,35 @@ FOVRT_DECLARE_BINDINGS(TH_BLEND_BINDING_LIST)  // shaders/bindings/two_history_b
 #define LOAD_S(i) FETCH3(s, i)
 #endif
 
-FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_IMAGE_SIZE);  // shaders/push_constants.h
+FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_BLEND);  // shaders/push_constants.h
+
+// Mean and σ per component of I_w over p's in-image 3×3 neighbourhood (NeighbourhoodMeanSigma).
+void neighbourhood_mean_sigma(ivec2 p, out vec3 mean, out vec3 sigma) {
+    vec3 sum = vec3(0.0), sum_sq = vec3(0.0);
+    float count = 0.0;
+    for (int d = 0; d < 9; ++d) {
+        ivec2 n = p + ivec2(d % 3 - 1, d / 3 - 1);
+        if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, pc.size))) continue;
+        vec3 c = FETCH4(illum_w, n.y * pc.size.x + n.x).rgb;
+        sum += c;
+        sum_sq += c * c;
+        count += 1.0;
+    }
+    mean = sum / count;
+    sigma = sqrt(max(sum_sq / count - mean * mean, vec3(0.0)));
+}
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
+    if (pc.clamp_history != 0u) {
+        vec3 mean, sigma;
+        neighbourhood_mean_sigma(p, mean, sigma);
+        illum_u[i] = two_history_clamp_blend(illum_u[i], FETCH4(illum_w, i), mean, sigma, pc.clamp_sigma,
+                                             FETCH1(q, i));
+        return;
+    }
     float pb = two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, i), LOAD_S(i));
     float qi = FETCH1(q, i);
     float t = pb + qi - pb * qi;

@@ -92,6 +92,8 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
         {"two-history-stable-firefly",
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
+        {"two-history-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance"}},
+        {"two-history-stable-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance", "stableLum"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show
         {"rae-spp", {}},
     };
@@ -154,7 +156,7 @@ TEST_CASE("C++ reference debug views: valid ranges, refusals, A-SVGF's alpha and
                 }
             }
         }
-        if (v.twoHistory) {  // the history choice is the blend's t = p + q − pq, pixel by pixel
+        if (v.twoHistory && !v.clampHistory) {  // the history choice is the blend's t = p + q − pq, pixel by pixel
             Plane<float> p, q, t;
             REQUIRE(d->ReadDebugView("p", p));
             REQUIRE(d->ReadDebugView("q", q));

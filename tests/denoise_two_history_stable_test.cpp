@@ -10,6 +10,7 @@
 
 #include "denoise/denoiser_factory.h"
 #include "denoise/reference/two_history_stable_ref.h"
+#include "denoise_moving_fovea.h"
 #include "denoise_two_history_scene.h"
 #include "metrics/image_metrics.h"
 #include "test_support.h"
@@ -102,40 +103,11 @@ struct FoveaRun {
     double temporal[3] = {}, relMse[3] = {};  // svgf, two-history, two-history-stable
 };
 
-// The thesis protocol scaled to 64×64 (denoise_two_history_scene.h): foveal temporal error (mean
-// |Δlum| over the disc, the experiments' measure) and relMSE, frames 30..119.
 FoveaRun MovingFovea(const DenoiserParams& params) {
-    const char* names[3] = {"svgf", "two-history", "two-history-stable"};
-    std::unique_ptr<Denoiser> denoisers[3];
-    for (int v = 0; v < 3; ++v) denoisers[v] = CreateDenoiser(names[v], "cpu", params);
-    Plane<vec3> truth(kFoveaW, kFoveaH);
-    for (int y = 0; y < kFoveaH; ++y)
-        for (int x = 0; x < kFoveaW; ++x) truth(x, y) = vec3(1.5f * Truth(x, y));
-    std::mt19937 rng(2024);
-    FrameInputs f;
-    Plane<vec3> out[3], prev[3];
-    Plane<uint8_t> fovea(kFoveaW, kFoveaH);
+    std::printf("alpha_s %.2f: ", params.twoHistoryStable.alpha);
+    const FoveaScores s = MovingFoveaScores({"svgf", "two-history", "two-history-stable"}, params);
     FoveaRun r;
-    for (int frame = 0; frame < kFoveaFrames; ++frame) {
-        auto inFovea = [&](int x, int y) { return InMovingFovea(frame, x, y); };
-        for (int y = 0; y < kFoveaH; ++y)
-            for (int x = 0; x < kFoveaW; ++x) fovea(x, y) = inFovea(x, y) ? 1 : 0;
-        NoisyFrame(f, kFoveaW, kFoveaH, uint32_t(frame), 1.0f, [&](int x, int y) { return inFovea(x, y) ? 8 : 1; },
-                   rng);
-        for (int v = 0; v < 3; ++v) {
-            denoisers[v]->Denoise(f, out[v]);
-            if (frame >= kFoveaWarmup) {
-                r.temporal[v] += TemporalError(out[v], prev[v], &fovea);
-                r.relMse[v] += test::RelMse(out[v], truth, inFovea);
-            }
-            prev[v] = out[v];
-        }
-    }
-    std::printf("moving fovea 64x64 (thesis protocol), alpha_s %.2f, fovea frames %d..%d: temporal error svgf %.5f "
-                "two-history %.5f two-history-stable %.5f; relMSE svgf %.6f two-history %.6f two-history-stable "
-                "%.6f\n",
-                params.twoHistoryStable.alpha, kFoveaWarmup, kFoveaFrames - 1, r.temporal[0], r.temporal[1],
-                r.temporal[2], r.relMse[0], r.relMse[1], r.relMse[2]);
+    for (int v = 0; v < 3; ++v) r.temporal[v] = s.temporal[size_t(v)], r.relMse[v] = s.relMse[size_t(v)];
     return r;
 }
 

@@ -1,10 +1,10 @@
-// two-history, asvgf, two-history-asvgf, the anti-lag variants, two-history-stable and its firefly variant on Vulkan vs the C++
+// two-history, asvgf, two-history-asvgf, the anti-lag variants, two-history-stable, its firefly variant and the clamp variants on Vulkan vs the C++
 // reference, pass by pass, on random FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random
 // sample counts, random gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
 // luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
 // two_history_gradient (q), asvgf_gradient_* ((δ̂, Δ̂)), asvgf_alpha (α or the anti-lag factor, λ),
 // two_history_stabilize (the stabilised luminance), the firefly clamp in two_history_reproject, and the final output
-// (blend + remaining iterations + modulation); fp32 and fp16 histories; zero validation errors.
+// (blend, or the clamp variants' box, + remaining iterations + modulation); fp32 and fp16 histories; zero validation errors.
 // Also: with constant n the Vulkan two-history equals the Vulkan SVGF.
 // Tolerance: |vk − ref| ≤ 2e-3·(1 + |ref|) for ≥ 99.5 % of values (lavapipe's exp/pow differ from
 // libm in the last bits, so a few taps near a threshold may flip); fp16 histories 1e-2.
@@ -275,6 +275,33 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.precision = Precision::Fp16;
         params.twoHistory.fireflySigma = 0.5f;
         RunPair(FindDenoiserVariant("two-history-stable-firefly"), params, 6);
+    }
+    // The clamp variants' box in two_history_blend (k = 0.5: I_u clamped on many pixels).
+    SECTION("two-history-clamp: fp32 separate channels") {
+        params.svgf.atrousIterations = 2;
+        params.twoHistory.clampSigma = 0.5f;
+        CHECK(ChangedPixels("two-history-clamp", "two-history", params, 4) > 64 * 64 / 10);
+        RunPair(FindDenoiserVariant("two-history-clamp"), params, 4);
+    }
+    SECTION("two-history-clamp: fp32 combined, odd size 67x45, blend without a-trous") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 0;
+        params.twoHistory.clampSigma = 0.5f;
+        CHECK(ChangedPixels("two-history-clamp", "two-history", params, 4, 67, 45) > 67 * 45 / 10);
+        RunPair(FindDenoiserVariant("two-history-clamp"), params, 4, 67, 45);
+    }
+    SECTION("two-history-stable-clamp: fp32 combined, odd size 67x45, 3 iterations") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 3;
+        params.twoHistory.clampSigma = 0.5f;
+        RunPair(FindDenoiserVariant("two-history-stable-clamp"), params, 4, 67, 45);
+    }
+    SECTION("two-history-clamp and two-history-stable-clamp: fp16 histories") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        params.twoHistory.clampSigma = 0.5f;
+        RunPair(FindDenoiserVariant("two-history-clamp"), params, 3);
+        RunPair(FindDenoiserVariant("two-history-stable-clamp"), params, 3);
     }
     SECTION("fp16 histories: two-history, asvgf and asvgf-antilag") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");

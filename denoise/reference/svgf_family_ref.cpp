@@ -164,7 +164,8 @@ void SvgfFamilyReferenceDenoiser::Run(const BlendStage& s, const FrameInputs&, P
     const TwoHistoryState& st = state_[SideIndex(HistorySide::This, parity_)];
     const Plane<float>& q = *ScalarPlane({s.q, HistorySide::None}, parity_);
     for (const StagePlane& p : s.planes) {  // in place on I_u
-        TwoHistoryBlendRef(Illum(p.out), Illum(p.in), st.wu, st.ww, st.powerSums, q, blendScratch_);
+        TwoHistoryBlendRef(Illum(p.out), Illum(p.in), st.wu, st.ww, st.powerSums, q, blendScratch_,
+                           {variant_.clampHistory, params_.twoHistory.clampSigma});
         std::swap(Illum(p.out), blendScratch_);
     }
 }

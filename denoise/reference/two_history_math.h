@@ -150,4 +150,25 @@ inline float TwoHistoryGradientBlend(float g, float varianceLumIu, float scale) 
 // I_b = lerp(I_opt, I_u, q) = lerp(I_w, I_u, t) with t = p + q − pq.
 inline float TwoHistoryFinalBlend(float p, float q) { return p + q - p * q; }
 
+// The clamp variants' blend in place of p (NRD ReLAX clamps one history to the other's local
+// mean ± kσ): I_u is kept where it lies inside the box of I_w's 3×3 neighbourhood, mean ± kσ per
+// component (`mean`, `sigma`), and moved to the box's face otherwise. The box is widened to hold
+// I_w itself, so where the histories agree (every sample had the same count) I_u passes
+// unchanged. No per-pixel choice that flips when the sample count does: I_u moves only by its
+// excess over the neighbourhood's spread.
+inline vec3 ClampToHistoryBox(const vec3& iu, const vec3& iw, const vec3& mean, const vec3& sigma, float k) {
+    const vec3 lo = glm::min(mean - k * sigma, iw);
+    const vec3 hi = glm::max(mean + k * sigma, iw);
+    return glm::clamp(iu, lo, hi);
+}
+
+// The clamp variants' output: lerp(clamped I_u, I_u, q) for colour (q still hands a changing pixel
+// to I_u, as in t = p + q − pq), lerp(Var_w, Var_u, q) for the variance (the clamped estimate's
+// spread is the weighted history's where q = 0).
+inline vec4 TwoHistoryClampBlend(const vec4& iu, const vec4& iw, const vec3& mean, const vec3& sigma, float k,
+                                 float q) {
+    const vec3 c = ClampToHistoryBox(vec3(iu), vec3(iw), mean, sigma, k);
+    return vec4(glm::mix(c, vec3(iu), q), glm::mix(iw.w, iu.w, q));
+}
+
 }  // namespace fovrt

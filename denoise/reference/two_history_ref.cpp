@@ -181,13 +181,36 @@ void TwoHistoryGradientRef(const Plane<float>& gradient, const std::array<Plane<
     });
 }
 
+void NeighbourhoodMeanSigma(const Plane<vec4>& plane, int x, int y, vec3& mean, vec3& sigma) {
+    vec3 sum(0.0f), sumSq(0.0f);
+    float count = 0.0f;
+    for (int d = 0; d < 9; ++d) {
+        const int qx = x + d % 3 - 1, qy = y + d / 3 - 1;
+        if (qx < 0 || qy < 0 || qx >= plane.width() || qy >= plane.height()) continue;
+        const vec3 c = vec3(plane(qx, qy));
+        sum += c;
+        sumSq += c * c;
+        count += 1.0f;
+    }
+    mean = sum / count;
+    sigma = glm::sqrt(glm::max(sumSq / count - mean * mean, vec3(0.0f)));
+}
+
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
-                        const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out) {
-    const size_t width = size_t(illumU.width());
+                        const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out,
+                        const TwoHistoryClampOptions& clamp) {
+    const int width = illumU.width();
     out.Resize(illumU.width(), illumU.height());
     tbb::parallel_for(0, illumU.height(), [&](int y) {
-        for (size_t i = size_t(y) * width, end = i + width; i < end; ++i) {
+        for (int x = 0; x < width; ++x) {
+            const size_t i = size_t(y) * size_t(width) + size_t(x);
+            if (clamp.enabled) {
+                vec3 mean, sigma;
+                NeighbourhoodMeanSigma(illumW, x, y, mean, sigma);
+                out[i] = TwoHistoryClampBlend(illumU[i], illumW[i], mean, sigma, clamp.sigma, q[i]);
+                continue;
+            }
             const float p =
                 TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums[i]));
             const float t = TwoHistoryFinalBlend(p, q[i]);

@@ -103,11 +103,23 @@ template <typename T>
 T FilterTwoHistoryGradient(const Plane<T>& gradient, const FrameInputs& frame,
                            const SvgfParams& svgf, int x, int y);
 
+// The clamp variants' blend (TwoHistoryClampBlend): k of the box, off by default.
+struct TwoHistoryClampOptions {
+    bool enabled = false;
+    float sigma = 2.0f;
+};
+
 // Stage two_history_blend: p from (W_u, W_w, S_k), t = p + q − pq,
 // out = lerp(illumW, illumU, t) for colour and variance (lerp of variances bounds the variance of
-// the lerp of correlated estimates from above).
+// the lerp of correlated estimates from above). With `clamp` enabled, the clamp variants' blend
+// replaces p: TwoHistoryClampBlend with the mean and σ of illumW's in-image 3×3 neighbourhood.
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
-                        const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out);
+                        const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out,
+                        const TwoHistoryClampOptions& clamp = {});
+
+// Mean and standard deviation per component of `plane`'s colour over (x, y)'s in-image 3×3
+// neighbourhood (the clamp variants' box).
+void NeighbourhoodMeanSigma(const Plane<vec4>& plane, int x, int y, vec3& mean, vec3& sigma);
 
 }  // namespace fovrt

@@ -1,6 +1,6 @@
 // Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/reference/two_history_math.h line by
 // line (TwoHistoryDecay, AntilagAlpha, SuppressFirefly, AccumulateWeights, TwoHistoryOptimalBlend,
-// TwoHistoryGradientBlend).
+// TwoHistoryGradientBlend, ClampToHistoryBox, TwoHistoryClampBlend).
 // Weights are packed as (W_u, W_w) and power sums as (S_{-1}, S_0, S_1).
 #ifndef FOVRT_TWO_HISTORY_GLSL
 #define FOVRT_TWO_HISTORY_GLSL
@@ -53,6 +53,17 @@ float two_history_gradient_blend(float g, float variance_lum_iu, float scale) {
     float sd = sqrt(max(variance_lum_iu, 0.0));
     if (abs_g <= 0.0) return 0.0;
     return clamp(scale * abs_g / max(sd, 1e-8), 0.0, 1.0);
+}
+
+// The clamp variants: I_u kept inside I_w's 3×3 mean ± kσ, the box widened to hold I_w
+// (ClampToHistoryBox); then lerp(clamped, I_u, q) and lerp(Var_w, Var_u, q) (TwoHistoryClampBlend).
+vec3 clamp_to_history_box(vec3 iu, vec3 iw, vec3 mean, vec3 sigma, float k) {
+    return clamp(iu, min(mean - k * sigma, iw), max(mean + k * sigma, iw));
+}
+
+vec4 two_history_clamp_blend(vec4 iu, vec4 iw, vec3 mean, vec3 sigma, float k, float q) {
+    vec3 c = clamp_to_history_box(iu.rgb, iw.rgb, mean, sigma, k);
+    return vec4(mix(c, iu.rgb, q), mix(iw.w, iu.w, q));
 }
 
 #endif
