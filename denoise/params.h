@@ -39,7 +39,7 @@ struct TwoHistoryParams {
     float gradientBeta = 0.8f;     // β_g
     float qScale = 1.0f;           // S
     float fireflySigma = 3.0f;     // k of the firefly variants' clamp μ + kσ
-    float clampSigma = 2.0f;       // k of the clamp variants' box: I_w's 3×3 mean ± kσ
+    float clampSigma = 0.5f;       // k of the clamp variants' box: I_w's 3×3 mean ± kσ
 };
 
 // two-history-stable's stabilisation pass (denoise/two_history_stable.md): the stabilised

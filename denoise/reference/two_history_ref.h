@@ -73,7 +73,7 @@ struct TwoHistoryReprojectOptions {
     // Firefly variants: each sample is clamped to max(μ + fireflySigma·σ of its reprojected moments,
     // its neighbours' largest sample luminance) before accumulation (SuppressFirefly, two_history_math.h).
     bool suppressFireflies = false;
-    float fireflySigma = 3.0f;
+    float fireflySigma = TwoHistoryParams{}.fireflySigma;
     Precision precision = Precision::Fp32;
 };
 
@@ -106,7 +106,7 @@ T FilterTwoHistoryGradient(const Plane<T>& gradient, const FrameInputs& frame,
 // The clamp variants' blend (TwoHistoryClampBlend): k of the box, off by default.
 struct TwoHistoryClampOptions {
     bool enabled = false;
-    float sigma = 2.0f;
+    float sigma = TwoHistoryParams{}.clampSigma;
 };
 
 // Stage two_history_blend: p from (W_u, W_w, S_k), t = p + q − pq,
