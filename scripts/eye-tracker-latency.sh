@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The eye-tracker latency study (docs/eye-tracking.md): presets/eye-tracker-latency.toml for every
 # headset recording × tracker latency × predictor, one `fovrt experiment` per point (--set), then
-# scripts/eye_tracker_latency_collate.py writes latency-study.csv and latency-study.svg (foveal
-# relMSE, fovea-to-gaze distance and miss rate against latency, one line per predictor).
+# scripts/eye_tracker_latency_collate.py writes latency-study.csv, latency-study.svg (foveal relMSE,
+# JOD, fovea-to-gaze distance and miss rate against latency, one line per predictor) and the
+# report latency-study.html (the plot, then per recording its plot and table).
 #
 # Usage: scripts/eye-tracker-latency.sh [--quick] [--seeds N|LIST] [--out DIR] [--fovrt PATH]
 #                                       [--recordings "a.csv b.csv"] [--latencies "0 10 ..."]

@@ -3,7 +3,8 @@
 latency-study.csv (one row per recording × scene × latency × prediction × seed) and
 latency-study.svg (means over seeds, recordings and scenes against latency, one line per predictor:
 foveal relMSE, FovVideoVDP JOD scored at the true gaze, rendered-fovea-to-gaze distance, share of
-frames with the gaze outside the rendered fovea) into the first STUDY_DIR. Each seed's values come
+frames with the gaze outside the rendered fovea) and latency-study.html (that plot, then per
+recording its own plot and table) into the first STUDY_DIR. Each seed's values come
 from the point's per-frame files (frames-<scene>.csv, gaze-<scene>.csv, jod.csv), so studies of the
 same grid under other seeds combine (e.g. `-- --set 'experiment.seeds=[3]'` into another folder): a
 seed found in two folders must carry the same values and is kept once; each seed's relMSE and JOD
@@ -131,10 +132,10 @@ def spread(values, digits, signed=False):
     return f(mean) if len(values) == 1 else f"{f(mean)} [{f(min(values))}, {f(max(values))}]"
 
 
-def markdown(rows):
-    """One table per recording: the gaze columns (the same for every seed and scene) and, per
-    scene, the foveal relMSE and JOD relative to the 0 ms / none point of the same seed, mean
-    [min, max] over the seeds."""
+def recording_tables(rows):
+    """Per recording: (recording, seeds, header, body rows) of its table: the gaze columns (the same
+    for every seed and scene) and, per scene, the foveal relMSE and JOD relative to the 0 ms / none
+    point of the same seed, mean [min, max] over the seeds."""
     rel = {key: {} for key in ("foveal_relmse", "jod")}
     for key in rel:
         for r, value in relative(rows, key):
@@ -146,24 +147,55 @@ def markdown(rows):
     first = {}
     for r in rows:
         first.setdefault((r["recording"], r["latency_ms"], r["prediction"]), r)
-    lines = []
+    header = (["latency (ms)", "predictor", "fovea to true gaze, mean (°)", "gaze outside the rendered fovea"]
+              + [f"{s} foveal relMSE / (0 ms, none)" for s in scenes] + [f"{s} JOD − (0 ms, none)" for s in scenes]
+              + ["recovery after saccades, mean / median (ms), unrecovered"])
+    tables = []
     for recording in sorted({k[0] for k in points}):
         seeds = sorted({r["seed"] for r in rows if r["recording"] == recording})
-        lines += [f"{recording} (seeds {', '.join(map(str, seeds))})", "",
-                  "| latency (ms) | predictor | fovea to true gaze, mean (°) | gaze outside the rendered fovea | "
-                  + " | ".join(f"{s} foveal relMSE / (0 ms, none)" for s in scenes) + " | "
-                  + " | ".join(f"{s} JOD − (0 ms, none)" for s in scenes)
-                  + " | recovery after saccades, mean / median (ms), unrecovered |",
-                  "|---|---|---|---|" + "---|" * (2 * len(scenes)) + "---|"]
+        body = []
         for key in (k for k in points if k[0] == recording):
             r = first[key]
             cells = [f"{key[1]:g}", key[2], f"{r['fovea_distance_deg_mean']:.2f}", f"{100 * r['outside_fovea_share']:.1f} %"]
             cells += [spread(rel["foveal_relmse"].get(key + (s,), [float("nan")]), 3) for s in scenes]
             cells += [spread(rel["jod"].get(key + (s,), [float("nan")]), 3, signed=True) for s in scenes]
             cells.append(f"{r['recovery_ms_mean']:.0f} / {r['recovery_ms_median']:.0f}, {r['unrecovered']} of {r['saccades']}")
-            lines.append("| " + " | ".join(cells) + " |")
+            body.append(cells)
+        tables.append((recording, seeds, header, body))
+    return tables
+
+
+def markdown(rows):
+    """One table per recording (recording_tables)."""
+    lines = []
+    for recording, seeds, header, body in recording_tables(rows):
+        lines += [f"{recording} (seeds {', '.join(map(str, seeds))})", "",
+                  "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+        lines += ["| " + " | ".join(cells) + " |" for cells in body]
         lines.append("")
     return "\n".join(lines)
+
+
+def html(rows, studies):
+    """latency-study.html, self-contained (inline SVG, no script): the plot over every recording,
+    then per recording its own plot and table."""
+    esc = lambda t: str(t).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8"><title>Eye-tracker latency study</title>',
+             "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;font-size:13px}"
+             "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right;white-space:nowrap}th{background:#f4f4f4}</style></head><body>",
+             "<h1>Eye-tracker latency study</h1>",
+             "<p>Collated from " + ", ".join(f"<code>{esc(s)}</code>" for s in studies) + ". relMSE and JOD are relative "
+             "to the same seed's 0 ms / no-prediction point of each scene, mean [min, max] over the seeds; the plots "
+             "show means over seeds and scenes (and, in the first, recordings).</p>",
+             "<h2>All recordings</h2>", svg(rows)]
+    for recording, seeds, header, body in recording_tables(rows):
+        parts += [f"<h2>{esc(recording)} (seeds {', '.join(map(str, seeds))})</h2>",
+                  svg([r for r in rows if r["recording"] == recording]),
+                  "<table><tr>" + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>"]
+        parts += ["<tr>" + "".join(f"<td>{esc(c)}</td>" for c in cells) + "</tr>" for cells in body]
+        parts.append("</table>")
+    parts.append("</body></html>")
+    return "\n".join(parts) + "\n"
 
 
 def svg(rows):
@@ -242,7 +274,9 @@ def main():
         writer.writeheader()
         writer.writerows(rows)
     (root / "latency-study.svg").write_text(svg(rows))
-    print(f"{root / 'latency-study.csv'}: {len(rows)} rows; plot {root / 'latency-study.svg'}")
+    (root / "latency-study.html").write_text(html(rows, args.study_dirs))
+    print(f"{root / 'latency-study.csv'}: {len(rows)} rows; plot {root / 'latency-study.svg'}; "
+          f"report {root / 'latency-study.html'}")
     for key, label in PANELS:
         print(label + (" (relative to latency 0, none)" if key.endswith("relmse") else
                        " (difference to latency 0, none)" if key == "jod" else ""))

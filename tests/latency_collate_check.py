@@ -81,6 +81,10 @@ if "| 0 | none | 0.20 | 0.0 % | 1.000 [1.000, 1.000] | +0.000 [+0.000, +0.000] |
     fail(f"the 0 ms / none row is not its own baseline:\n{result.stdout}")
 if not (work / "seed1" / "latency-study.svg").read_text().startswith("<svg"):
     fail("no plot written")
+report = (work / "seed1" / "latency-study.html").read_text()
+if report.count("<svg") != 2 or "<h2>rec-a (seeds 1, 2)</h2>" not in report or \
+        "<td>1.300 [1.200, 1.400]</td><td>−0.200 [−0.300, −0.100]</td>" not in report:
+    fail(f"the HTML report lacks the plots, the recording or its row:\n{report}")
 
 # A seed whose values differ between folders, folders that disagree on the gaze, and a summary
 # that disagrees with its frames are refused.
