@@ -70,14 +70,18 @@ constexpr std::array<ParamRow<TwoHistoryParams>, 4> kTwoHistoryRows{{
 
 // Ranges: α_s = 1 passes the filtered frame through (no stabilisation); small α_s averages over
 // ~1/α_s frames. k = 0 pins the history to the neighbourhood mean; large k (≥ 4) leaves it
-// unclamped wherever the variance estimate is honest.
-constexpr std::array<ParamRow<TwoHistoryStableParams>, 2> kTwoHistoryStableRows{{
+// unclamped wherever the variance estimate is honest. antilag_q: q of a static view's noise stays
+// below ~0.5 (denoise/two_history_stable.md), a change drives it to 1.
+constexpr std::array<ParamRow<TwoHistoryStableParams>, 3> kTwoHistoryStableRows{{
     {{"denoise.two_history_stable.alpha", OpenMin(0, 1),
       "stabilisation weight alpha_s of this frame's luminance (two-history-stable)"},
      &TwoHistoryStableParams::alpha},
     {{"denoise.two_history_stable.sigma_scale", Closed(0, 1e6),
       "k: stabilised history clamped to the 3x3 mean +- k sigma (two-history-stable)"},
      &TwoHistoryStableParams::sigmaScale},
+    {{"denoise.two_history_stable.antilag_q", OpenMax(0, 1),
+      "q0: two-history-stable-antilag raises alpha_s to (q - q0)/(1 - q0) where q > q0"},
+     &TwoHistoryStableParams::antilagQ},
 }};
 
 constexpr std::array<SettingRow<RaeParams>, 2> kRaeRows{{

@@ -48,6 +48,7 @@ struct TwoHistoryParams {
 struct TwoHistoryStableParams {
     float alpha = 0.2f;       // α_s: weight of this frame's luminance
     float sigmaScale = 1.0f;  // k: history clamp half-width in standard deviations
+    float antilagQ = 0.2f;    // two-history-stable-antilag: q above which the weight rises to 1
 };
 
 // The recurrent denoising autoencoder (SPEC §12): which trained network to run. A relative path

@@ -186,7 +186,8 @@ PlaneKind Stabilize(Writer& w, const Family& f, PlaneKind filtered) {
     for (Channel ch : f.channels) stage.planes.push_back({ch, {filtered, ch}, {out, ch}, This(K::StableLum, ch)});
     w.Pass("two_history_stabilize", "two_history_stabilize", stage);
     const TwoHistoryStableParams& s = f.params.twoHistoryStable;
-    PushBlock push = PushBlock::Of(TwoHistoryStabilizePush{f.size, s.alpha, s.sigmaScale, 0u});
+    PushBlock push = PushBlock::Of(TwoHistoryStabilizePush{f.size, s.alpha, s.sigmaScale, 0u, s.antilagQ,
+                                                           f.v.stabilizeAntilag ? 1u : 0u});
     FOVRT_PUSH_PER_FRAME(push, TwoHistoryStabilizePush, has_prev, FrameValue::HasPrevious);
     for (const StagePlane& p : stage.planes) {
         Bindings b;
@@ -203,6 +204,7 @@ PlaneKind Stabilize(Writer& w, const Family& f, PlaneKind filtered) {
             .Read(TH_STABILIZE_B_WU, This(K::Length, f.First()))
             .Read(TH_STABILIZE_B_PREV_STABLE, Previous(K::StableLum, p.channel))
             .Write(TH_STABILIZE_B_CUR_STABLE, This(K::StableLum, p.channel));
+        b.ReadIf(f.v.stabilizeAntilag, TH_STABILIZE_B_Q, Shared(BlendQPlane(f.v).kind));
         w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryStabilize), std::move(b), push));
     }
     w.Barrier();

@@ -48,6 +48,9 @@ struct DenoiserVariant {
     // to the other's neighbourhood): the blend keeps I_u inside the box of I_w's 3×3 mean ± kσ,
     // widened to hold I_w, then q pulls it back to I_u (k = denoise.two_history.clamp_sigma).
     bool clampHistory = false;
+    // With stabilize: the stabilisation weight rises to 1 where two-history's change detector q
+    // exceeds denoise.two_history_stable.antilag_q, so the stabilised history follows changing light.
+    bool stabilizeAntilag = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device

@@ -31,9 +31,10 @@
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
-// two_history_stabilize: alpha = α_s, sigma_scale = k (TwoHistoryStableParams).
+// two_history_stabilize: alpha = α_s, sigma_scale = k, antilag_q = q0 (TwoHistoryStableParams);
+// antilag 1 for two-history-stable-antilag.
 #define FOVRT_PUSH_TWO_HISTORY_STABILIZE(F) \
-    F(ivec2, size) F(float, alpha) F(float, sigma_scale) F(uint, has_prev)
+    F(ivec2, size) F(float, alpha) F(float, sigma_scale) F(uint, has_prev) F(float, antilag_q) F(uint, antilag)
 // asvgf_gradient_claim, asvgf_gradient_gather: image size, stratum grid, uploaded samples.
 #define FOVRT_PUSH_ASVGF_SAMPLES(F) F(ivec2, size) F(ivec2, grid) F(uint, count)
 // asvgf_gradient_atrous: step in strata.
@@ -111,7 +112,7 @@ static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && s
               sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
               sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryBlendPush) == 16 &&
               sizeof(TwoHistoryGradientPush) == 24 &&
-              sizeof(TwoHistoryStabilizePush) == 20 &&
+              sizeof(TwoHistoryStabilizePush) == 28 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&
               sizeof(AsvgfAlphaPush) == 24 && sizeof(BandwidthPush) == 8);
 // Seven ivec2 first, then the scalars: 80 bytes, within the 128 every device allows.

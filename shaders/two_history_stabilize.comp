@@ -5,7 +5,8 @@
 // Purpose: L = lum(filtered); m, σ² = the 3×3 mean and variance of L over object pixels plus the
 //   filtered variance estimate; L_s,prev reprojected with the bilinear taps of
 //   common/reprojection.glsl (no 3×3 fallback: where they fail the stabilisation restarts);
-//   L_s = lerp(clamp(L_s,prev, m ± kσ), L, max(α_s, 1/W_u)); out = the colour with luminance L_s.
+//   L_s = lerp(clamp(L_s,prev, m ± kσ), L, max(α_s, 1/W_u, the antilag variant's change weight
+//   from q)); out = the colour with luminance L_s.
 // Reads:  filtered (illumination, variance), geometry of both frames, depth gradient, previous
 //         pixel, W_u, the previous stabilised luminance.
 // Writes: the stabilised (illumination, variance), this frame's stabilised luminance.
@@ -58,7 +59,9 @@ void main() {
         if (taps.count > 0) {
             float history;
             REPROJ_GATHER(prev_stable, taps, pc.size, FETCH1, 0.0, history);
-            ls = stabilized_luminance(history, l, mean, sigma, pc.sigma_scale, pc.alpha, FETCH1(wu, i));
+            float change = pc.antilag != 0u ? stabilization_change_weight(FETCH1(q, i), pc.antilag_q) : 0.0;
+            ls = stabilized_luminance(history, l, mean, sigma, pc.sigma_scale,
+                                      stabilization_weight(pc.alpha, FETCH1(wu, i), change));
         }
     }
     cur_stable[i] = hfloat(to_history(ls));

@@ -92,6 +92,8 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
         {"two-history-stable-firefly",
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
+        {"two-history-stable-antilag",
+         {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
         {"two-history-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance"}},
         {"two-history-stable-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance", "stableLum"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show

@@ -1,4 +1,4 @@
-// two-history, asvgf, two-history-asvgf, the anti-lag variants, two-history-stable, its firefly variant and the clamp variants on Vulkan vs the C++
+// two-history, asvgf, two-history-asvgf, the anti-lag variants, two-history-stable, its firefly and antilag variants and the clamp variants on Vulkan vs the C++
 // reference, pass by pass, on random FrameInputs (64×64 and 67×45, sub-pixel motion, random objects, per-frame random
 // sample counts, random gradient samples incl. duplicates per stratum): two_history_reproject (W_u, W_w, S_k, the
 // luminance gradient g, moments), the colour histories fed back by à-trous iteration 1,
@@ -281,6 +281,23 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.precision = Precision::Fp16;
         params.twoHistory.fireflySigma = 0.5f;
         RunPair(FindDenoiserVariant("two-history-stable-firefly"), params, 6);
+    }
+    // The stabilisation weight driven by q (q0 = 0: every pixel's weight follows its q; α_s = 0.02 and
+    // 8 frames, so that q rather than α_s or the warm-up sets the weight on many pixels).
+    SECTION("two-history-stable-antilag: fp32 separate channels") {
+        params.svgf.atrousIterations = 2;
+        params.twoHistoryStable.antilagQ = 0.0f;
+        params.twoHistoryStable.alpha = 0.02f;
+        RunPairChanging("two-history-stable-antilag", "two-history-stable", params, 8);
+    }
+    SECTION("two-history-stable-antilag: fp32 combined, odd size 67x45, fp16 histories") {
+        params.svgf.filterCombined = true;
+        params.twoHistoryStable.antilagQ = 0.0f;
+        params.twoHistoryStable.alpha = 0.02f;
+        RunPairChanging("two-history-stable-antilag", "two-history-stable", params, 8, 67, 45);
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        RunPair(FindDenoiserVariant("two-history-stable-antilag"), params, 3);
     }
     // The clamp variants' box in two_history_blend (k = 0.5: I_u clamped on many pixels).
     SECTION("two-history-clamp: fp32 separate channels") {

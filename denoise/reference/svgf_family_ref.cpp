@@ -198,10 +198,11 @@ void SvgfFamilyReferenceDenoiser::Run(const AsvgfAlphaStage& s, const FrameInput
 void SvgfFamilyReferenceDenoiser::Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&) {
     const size_t cur = SideIndex(HistorySide::This, parity_), prev = SideIndex(HistorySide::Previous, parity_);
     const Plane<float>& wu = *ScalarPlane({{PlaneKind::Length, channels_.front()}, HistorySide::This}, parity_);
+    const Plane<float>* q = variant_.stabilizeAntilag ? ScalarPlane({BlendQPlane(variant_), HistorySide::None}, parity_) : nullptr;
     for (const StagePlane& p : s.planes) {
         const size_t c = ChannelIndex(p.channel);
         TwoHistoryStabilizeRef(Illum(p.in), in, prevGeometry_.View(), hasPrev_, stable_[prev][c], wu,
-                               params_.twoHistoryStable, params_.precision, stable_[cur][c], Illum(p.out));
+                               params_.twoHistoryStable, params_.precision, stable_[cur][c], Illum(p.out), q);
     }
 }
 

@@ -11,7 +11,7 @@ namespace fovrt {
 void TwoHistoryStabilizeRef(const Plane<vec4>& filtered, const FrameInputs& frame, const SvgfGeometry& prevGeometry,
                             bool hasPrev, const Plane<float>& prevStable, const Plane<float>& wu,
                             const TwoHistoryStableParams& params, Precision precision, Plane<float>& curStable,
-                            Plane<vec4>& out) {
+                            Plane<vec4>& out, const Plane<float>* q) {
     const int w = frame.width(), h = frame.height();
     out.Resize(w, h);
     curStable.Resize(w, h, 0.0f);
@@ -37,8 +37,10 @@ void TwoHistoryStabilizeRef(const Plane<vec4>& filtered, const FrameInputs& fram
                 // Bilinear taps only: where they all fail the stabilisation restarts (no 3×3 fallback).
                 const ReprojectionTaps taps = FindReprojectionTaps(frame, prevGeometry, x, y);
                 if (taps.count > 0 && !taps.box)
-                    ls = StabilizedLuminance(GatherTaps(prevStable, taps), l, mean, sigma, params.sigmaScale,
-                                             params.alpha, wu(x, y));
+                    ls = StabilizedLuminance(
+                        GatherTaps(prevStable, taps), l, mean, sigma, params.sigmaScale,
+                        StabilizationWeight(params.alpha, wu(x, y),
+                                            q ? StabilizationChangeWeight((*q)(x, y), params.antilagQ) : 0.0f));
             }
             curStable(x, y) = QuantizeHistory(ls, precision);
             out(x, y) = vec4(StabilizedColor(vec3(c), l, ls), c.a);

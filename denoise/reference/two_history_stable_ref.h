@@ -17,11 +17,22 @@
 
 namespace fovrt {
 
-// L_s = lerp(clamp(L_s,prev, m − kσ, m + kσ), L, max(α_s, 1/W_u)).
-inline float StabilizedLuminance(float history, float l, float mean, float sigma, float k, float alphaS,
-                                 float wu) {
+// The stabilisation weight: α_s, raised to 1/W_u while the accumulation warms up. `changeWeight`
+// (two-history-stable-antilag's StabilizationChangeWeight, else 0) raises it where the light changes.
+inline float StabilizationWeight(float alphaS, float wu, float changeWeight) {
+    return std::max(std::max(alphaS, 1.0f / std::max(wu, 1.0f)), changeWeight);
+}
+
+// two-history-stable-antilag: (q − q0)/(1 − q0), clamped to [0, 1]. q, two-history's change
+// detector (S·|g| / std(lum I_u)), stays below ~0.5 on a static view's noise and reaches 1 where
+// the light changes faster than the noise hides (a sliding penumbra).
+inline float StabilizationChangeWeight(float q, float q0) {
+    return std::clamp((q - q0) / (1.0f - q0), 0.0f, 1.0f);
+}
+
+// L_s = lerp(clamp(L_s,prev, m − kσ, m + kσ), L, a), a the StabilizationWeight.
+inline float StabilizedLuminance(float history, float l, float mean, float sigma, float k, float a) {
     const float h = std::clamp(history, mean - k * sigma, mean + k * sigma);
-    const float a = std::max(alphaS, 1.0f / std::max(wu, 1.0f));
     return h * (1.0f - a) + l * a;  // GLSL mix()
 }
 
@@ -31,10 +42,11 @@ inline vec3 StabilizedColor(const vec3& c, float l, float ls) {
 }
 
 // Stage two_history_stabilize for one channel: `filtered` (illumination, variance) → `out`;
-// `prevStable` (the previous frame's L_s, ignored without hasPrev) → `curStable`; `wu` this frame's W_u.
+// `prevStable` (the previous frame's L_s, ignored without hasPrev) → `curStable`; `wu` this frame's W_u;
+// `q` two-history's change detector for two-history-stable-antilag (nullptr: the weight ignores change).
 void TwoHistoryStabilizeRef(const Plane<vec4>& filtered, const FrameInputs& frame, const SvgfGeometry& prevGeometry,
                             bool hasPrev, const Plane<float>& prevStable, const Plane<float>& wu,
                             const TwoHistoryStableParams& params, Precision precision, Plane<float>& curStable,
-                            Plane<vec4>& out);
+                            Plane<vec4>& out, const Plane<float>* q = nullptr);
 
 }  // namespace fovrt
