@@ -94,6 +94,9 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
         {"two-history-stable-antilag",
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
+        {"two-history-asvgf-stable-antilag",
+         {"historyLength", "historySamples", "antilag", "lambda", "p", "q", "t", "historyU", "historyW", "variance",
+          "stableLum"}},
         {"two-history-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance"}},
         {"two-history-stable-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance", "stableLum"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show

@@ -149,9 +149,11 @@ TEST_CASE("anti-lag A-SVGF follows a light switched off within 3 frames", "[asvg
         auto svgf = test::MakeSvgf(params.svgf);
         auto antilag = CreateDenoiser("asvgf-antilag", "cpu", params);
         auto thAntilag = CreateDenoiser("two-history-asvgf-antilag", "cpu", params);
+        auto stableAntilag = CreateDenoiser("two-history-asvgf-stable-antilag", "cpu", params);
         const auto mSvgf = RegionMeans([&](const FrameInputs& f, Plane<vec3>& o) { svgf.Denoise(f, o); });
         const auto mAntilag = RunLag(*antilag);
         const auto mThAntilag = RunLag(*thAntilag);
+        const auto mStableAntilag = RunLag(*stableAntilag);  // its stabilisation follows λ too
         std::printf("base alpha %.2f; region mean per frame after the switch:\n", alpha);
         std::printf("  t   svgf    asvgf-antilag  2h-asvgf-antilag\n");
         for (int t = kSwitch - 1; t < kSwitch + 6; ++t)
@@ -160,13 +162,16 @@ TEST_CASE("anti-lag A-SVGF follows a light switched off within 3 frames", "[asvg
         const int vSvgf = FramesToSettle(mSvgf, kValueTolerance);
         const int vAntilag = FramesToSettle(mAntilag, kValueTolerance);
         const int vThAntilag = FramesToSettle(mThAntilag, kValueTolerance);
+        const int vStableAntilag = FramesToSettle(mStableAntilag, kValueTolerance);
         std::printf("base alpha %.2f: frames until within 10%% of the new value: svgf %d, asvgf-antilag %d, "
-                    "two-history-asvgf-antilag %d\n",
-                    alpha, vSvgf, vAntilag, vThAntilag);
+                    "two-history-asvgf-antilag %d, two-history-asvgf-stable-antilag %d\n",
+                    alpha, vSvgf, vAntilag, vThAntilag, vStableAntilag);
         INFO("base alpha " << alpha);
         CHECK(mAntilag[kSwitch - 1] == Approx(kLitBefore).epsilon(0.05));
         CHECK(mThAntilag[kSwitch - 1] == Approx(kLitBefore).epsilon(0.05));
+        CHECK(mStableAntilag[kSwitch - 1] == Approx(kLitBefore).epsilon(0.05));
         CHECK(vAntilag <= 3);
         CHECK(vThAntilag <= 3);
+        CHECK(vStableAntilag <= 3);
     }
 }

@@ -64,7 +64,8 @@ Run Denoise(const std::string& name, const DenoiserParams& params, int threads) 
 TEST_CASE("asvgf and two-history references: one thread and many give the same bits", "[asvgf][two_history]") {
     for (const char* name :
          {"asvgf", "two-history", "two-history-asvgf", "asvgf-antilag", "two-history-stable", "two-history-stable-firefly",
-          "two-history-stable-antilag", "two-history-clamp", "two-history-stable-clamp"})
+          "two-history-stable-antilag", "two-history-asvgf-stable-antilag", "two-history-clamp",
+          "two-history-stable-clamp"})
         for (bool combined : {false, true}) {
             CAPTURE(name, combined);
             DenoiserParams params;

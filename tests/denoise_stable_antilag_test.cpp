@@ -94,3 +94,4 @@ TEST_CASE("two-history-stable-antilag: follows changing light, keeps the static 
         CHECK(s.temporal[Antilag] < 1.1 * s.temporal[Stable]);
     }
 }
+

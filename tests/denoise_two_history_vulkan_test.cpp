@@ -299,6 +299,16 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.precision = Precision::Fp16;
         RunPair(FindDenoiserVariant("two-history-stable-antilag"), params, 3);
     }
+    // The same weight driven by A-SVGF's λ (the anti-lag family's q), against the variant without it.
+    SECTION("two-history-asvgf-stable-antilag: fp32 separate channels and fp16") {
+        params.svgf.atrousIterations = 2;
+        params.twoHistoryStable.antilagQ = 0.0f;
+        params.twoHistoryStable.alpha = 0.02f;
+        RunPair(FindDenoiserVariant("two-history-asvgf-stable-antilag"), params, 6);
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        RunPair(FindDenoiserVariant("two-history-asvgf-stable-antilag"), params, 3);
+    }
     // The clamp variants' box in two_history_blend (k = 0.5: I_u clamped on many pixels).
     SECTION("two-history-clamp: fp32 separate channels") {
         params.svgf.atrousIterations = 2;
