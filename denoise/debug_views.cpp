@@ -45,7 +45,8 @@ const std::vector<DebugView>& DebugViewTable() {
          .offeredBy = [](const V& v) { return v.asvgfGradient; }},
         {.id = DebugViewId::P,
          .name = "p",
-         .meaning = "two-history's variance-optimal blend factor: I_opt = lerp(I_w, I_u, p)",
+         .meaning = "two-history's variance-optimal blend factor: I_opt = lerp(I_w, I_u, p) (the hysteresis "
+                    "variants: the held choice the blend uses)",
          .offeredBy = [](const V& v) { return v.twoHistory && !v.clampHistory; }},  // the clamp replaces p
         {.id = DebugViewId::Q,
          .name = "q",

@@ -55,7 +55,9 @@ constexpr std::array<ParamRow<AsvgfParams>, 4> kAsvgfRows{{
 // samples alone 99.9 % of the time; large values switch the suppression off.
 // clamp_sigma: 0 clamps I_u to the segment between I_w's 3×3 mean and I_w; large values keep I_u
 // (the blend then follows q alone).
-constexpr std::array<ParamRow<TwoHistoryParams>, 4> kTwoHistoryRows{{
+// choice_rate 1 with choice_band 0 is two-history's p; a small rate spreads a flip of p over
+// ~1/rate frames, and a band holds p against its frame-to-frame jitter.
+constexpr std::array<ParamRow<TwoHistoryParams>, 6> kTwoHistoryRows{{
     {{"denoise.two_history.gradient_beta", Closed(0, 1), "β_g of the gradient EMA"},
      &TwoHistoryParams::gradientBeta},
     {{"denoise.two_history.q_scale", Closed(0, 1e6), "S in q = clamp(S·|lum g| / std(lum I_u), 0, 1)"},
@@ -66,6 +68,12 @@ constexpr std::array<ParamRow<TwoHistoryParams>, 4> kTwoHistoryRows{{
     {{"denoise.two_history.clamp_sigma", Closed(0, 1e6),
       "k: the clamp variants keep I_u inside I_w's 3x3 mean +- k sigma (widened to hold I_w) instead of the choice p"},
      &TwoHistoryParams::clampSigma},
+    {{"denoise.two_history.choice_rate", OpenMin(0, 1),
+      "r: the hysteresis variants' held choice moves by r times p's excess over the band each frame"},
+     &TwoHistoryParams::choiceRate},
+    {{"denoise.two_history.choice_band", Closed(0, 1),
+      "h: the hysteresis variants hold their choice while p stays within +- h of it"},
+     &TwoHistoryParams::choiceBand},
 }};
 
 // Ranges: α_s = 1 passes the filtered frame through (no stabilisation); small α_s averages over

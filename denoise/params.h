@@ -40,6 +40,8 @@ struct TwoHistoryParams {
     float qScale = 1.0f;           // S
     float fireflySigma = 3.0f;     // k of the firefly variants' clamp μ + kσ
     float clampSigma = 0.5f;       // k of the clamp variants' box: I_w's 3×3 mean ± kσ
+    float choiceRate = 0.25f;      // hysteresis variants: rate at which the held choice follows p
+    float choiceBand = 0.3f;       // hysteresis variants: changes of p within ± band are held
 };
 
 // two-history-stable's stabilisation pass (denoise/two_history_stable.md): the stabilised

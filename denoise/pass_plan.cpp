@@ -255,7 +255,9 @@ std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& v, const DenoiserP
         case DebugViewId::Q:
             if (v.twoHistory) return PlaneRef{BlendQPlane(v), HistorySide::None};
             return std::nullopt;
-        case DebugViewId::P:  // evaluated from W_u, W_w and S, as the blend does
+        case DebugViewId::P:  // the hysteresis variants' held choice; else evaluated from W_u, W_w and S
+            if (v.hystereticChoice) return PlaneRef{{PlaneKind::Choice, Channel::None}, HistorySide::This};
+            return std::nullopt;
         case DebugViewId::T:  // from P and Q (Denoiser::ReadDebugView)
             return std::nullopt;
         case DebugViewId::HistoryU:  // the first channel's two colour histories and its moments

@@ -202,6 +202,7 @@ struct BlendStage {  // TwoHistoryBlendRef per plane: `out` blended in place wit
     std::vector<StagePlane> planes;
     PlaneId q;
 };
+struct ChoiceStage {};  // TwoHistoryChoiceRef: the hysteresis variants' held choice from the state
 struct EmaGradientStage {  // TwoHistoryGradientRef: the filtered gradient and these → q
     std::vector<PlaneId> illumination;
 };
@@ -220,7 +221,8 @@ struct AsvgfAlphaStage {  // AsvgfAlphaRef: α and λ from the reconstructed gra
 };
 using ReferenceStage =
     std::variant<std::monostate, ReprojectStage, FilterMomentsStage, AtrousStage, BlendStage,
-                 EmaGradientStage, ModulateStage, AsvgfGradientStage, AsvgfAlphaStage, StabilizeStage>;
+                 EmaGradientStage, ModulateStage, AsvgfGradientStage, AsvgfAlphaStage, StabilizeStage,
+                 ChoiceStage>;
 
 // ---- Passes ---------------------------------------------------------------------------------
 

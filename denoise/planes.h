@@ -72,6 +72,8 @@ namespace fovrt {
     X(Q, "q", Shared, Scratch, PIXELS(4), NONE)                                                     \
     /* two-history-stable: the stabilised luminance of each channel's filtered illumination */   \
     X(StableLum, "stableLum", PerChannel, History, HISTORY(1), NONE)                                \
+    /* two-history hysteresis variants: the held history choice p (HystereticChoice) */          \
+    X(Choice, "choice", Shared, History, HISTORY(1), NONE)                                          \
     /* A-SVGF: samples, stratum claims, (δ, Δ) ping-pong, stratum guide, σ_l·std, α, λ */          \
     X(AsvgfSamples, "asvgf.samples", Shared, Scratch, GRADIENT_SAMPLES, WHEN_READ(gradientSamples)) \
     X(AsvgfClaim, "asvgf.claim", Shared, Scratch, STRATA(4), NONE)                                  \

@@ -26,6 +26,7 @@ namespace fovrt {
       TH_REPROJECT_PAIR_ALL_BINDING_LIST)                                                        \
     X(TwoHistoryGradient, "two_history_gradient", TH_GRADIENT_BINDING_LIST,                      \
       TH_GRADIENT_BINDING_LIST)                                                                  \
+    X(TwoHistoryChoice, "two_history_choice", TH_CHOICE_BINDING_LIST, TH_CHOICE_BINDING_LIST)    \
     X(TwoHistoryBlend, "two_history_blend", TH_BLEND_BINDING_LIST, TH_BLEND_BINDING_LIST)        \
     X(TwoHistoryStabilize, "two_history_stabilize", TH_STABILIZE_BINDING_LIST,                   \
       TH_STABILIZE_BINDING_LIST)                                                                 \

@@ -107,21 +107,52 @@ void EmaGradient(Writer& w, const Family& f) {
 }
 
 // two_history_blend per channel, in place on I_u: lerp(I_w, I_u, lerp(q, 1, p)) with p from W_u
-// (channel 0's length), W_w and S; the clamp variants' box in place of p.
+// (channel 0's length), W_w and S; the clamp variants' box in place of p; the hysteresis variants
+// read their held choice (two_history_choice, run first) in place of p.
+// two_history_choice (the hysteresis variants), once per frame before the blend: p from W_u, W_w
+// and S, held against the reprojected previous choice (HystereticChoice) → this frame's choice.
+void Choice(Writer& w, const Family& f) {
+    using K = PlaneKind;
+    w.Pass("two_history_choice", "two_history_choice", ChoiceStage{});
+    const TwoHistoryParams& t = f.params.twoHistory;
+    PushBlock push = PushBlock::Of(TwoHistoryChoicePush{f.size, t.choiceRate, t.choiceBand, 0u});
+    FOVRT_PUSH_PER_FRAME(push, TwoHistoryChoicePush, has_prev, FrameValue::HasPrevious);
+    Bindings b;
+    b.Read(TH_CHOICE_B_DEPTH, This(K::Depth))
+        .Read(TH_CHOICE_B_NORMAL, This(K::Normal))
+        .Read(TH_CHOICE_B_OBJECT, This(K::ObjectId))
+        .Read(TH_CHOICE_B_PREV_DEPTH, Previous(K::Depth))
+        .Read(TH_CHOICE_B_PREV_NORMAL, Previous(K::Normal))
+        .Read(TH_CHOICE_B_PREV_OBJECT, Previous(K::ObjectId))
+        .Read(TH_CHOICE_B_DEPTH_GRAD, Shared(K::DepthGradient))
+        .Read(TH_CHOICE_B_PREV_PIXEL, Shared(K::PrevPixel))
+        .Read(TH_CHOICE_B_WU, This(K::Length, f.First()))
+        .Read(TH_CHOICE_B_WW, This(K::WWeight))
+        .Read(TH_CHOICE_B_S, This(K::PowerSums))
+        .Read(TH_CHOICE_B_PREV_CHOICE, Previous(K::Choice))
+        .Write(TH_CHOICE_B_CUR_CHOICE, This(K::Choice));
+    w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryChoice), std::move(b), push));
+    w.Barrier();
+}
+
 void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted) {
     using K = PlaneKind;
     BlendStage stage{{}, BlendQPlane(f.v)};
+    if (f.v.hystereticChoice) Choice(w, f);
     for (Channel ch : f.channels) stage.planes.push_back({ch, {weighted, ch}, {unweighted, ch}, std::nullopt});
     w.Pass("two_history_blend", "atrous_blend", stage);
+    const bool held = f.v.hystereticChoice;
     for (const StagePlane& p : stage.planes) {
         Bindings b;
         b.ReadWrite(TH_BLEND_B_ILLUM_U, Scratch(unweighted, p.channel))
             .Read(TH_BLEND_B_ILLUM_W, Scratch(weighted, p.channel))
-            .Read(TH_BLEND_B_WU, This(K::Length, f.First()))
-            .Read(TH_BLEND_B_WW, This(K::WWeight))
-            .Read(TH_BLEND_B_S, This(K::PowerSums))
-            .Read(TH_BLEND_B_Q, Shared(stage.q.kind));
-        const TwoHistoryBlendPush push{f.size, f.params.twoHistory.clampSigma, f.v.clampHistory ? 1u : 0u};
+            .ReadIf(!held, TH_BLEND_B_WU, This(K::Length, f.First()))
+            .ReadIf(!held, TH_BLEND_B_WW, This(K::WWeight))
+            .ReadIf(!held, TH_BLEND_B_S, This(K::PowerSums))
+            .Read(TH_BLEND_B_Q, Shared(stage.q.kind))
+            .ReadIf(held, TH_BLEND_B_CHOICE, This(K::Choice));
+        const TwoHistoryBlendPush push{f.size, f.params.twoHistory.clampSigma, f.v.clampHistory ? 1u : 0u,
+                                       held ? 1u : 0u};
         w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryBlend), std::move(b), PushBlock::Of(push)));
     }
     w.Barrier();

@@ -51,6 +51,10 @@ struct DenoiserVariant {
     // With stabilize: the stabilisation weight rises to 1 where two-history's change detector q
     // exceeds denoise.two_history_stable.antilag_q, so the stabilised history follows changing light.
     bool stabilizeAntilag = false;
+    // A temporally filtered, hysteretic history choice in place of p (two_history_choice): the held
+    // choice follows p only by its excess over a dead band, at a rate (denoise.two_history.choice_rate,
+    // choice_band); q still passes unfiltered.
+    bool hystereticChoice = false;
     // What the renderer must produce for it (FrameInputs):
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device

@@ -26,8 +26,12 @@
 #define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F)                                                          \
     F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev) \
     F(float, antilag_power) F(float, firefly_sigma)
-// two_history_blend: clamp_history 1 for the clamp variants (the box of k = clamp_sigma in place of p).
-#define FOVRT_PUSH_TWO_HISTORY_BLEND(F) F(ivec2, size) F(float, clamp_sigma) F(uint, clamp_history)
+// two_history_blend: clamp_history 1 for the clamp variants (the box of k = clamp_sigma in place of p);
+// held_choice 1 for the hysteresis variants (two_history_choice's held choice in place of p).
+#define FOVRT_PUSH_TWO_HISTORY_BLEND(F) \
+    F(ivec2, size) F(float, clamp_sigma) F(uint, clamp_history) F(uint, held_choice)
+// two_history_choice: rate, band = choice_rate, choice_band (TwoHistoryParams).
+#define FOVRT_PUSH_TWO_HISTORY_CHOICE(F) F(ivec2, size) F(float, rate) F(float, band) F(uint, has_prev)
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
@@ -95,6 +99,7 @@ FOVRT_DECLARE_PUSH(SvgfFilterMomentsPush, FOVRT_PUSH_SVGF_FILTER_MOMENTS);
 FOVRT_DECLARE_PUSH(SvgfAtrousPush, FOVRT_PUSH_SVGF_ATROUS);
 FOVRT_DECLARE_PUSH(TwoHistoryReprojectPush, FOVRT_PUSH_TWO_HISTORY_REPROJECT);
 FOVRT_DECLARE_PUSH(TwoHistoryBlendPush, FOVRT_PUSH_TWO_HISTORY_BLEND);
+FOVRT_DECLARE_PUSH(TwoHistoryChoicePush, FOVRT_PUSH_TWO_HISTORY_CHOICE);
 FOVRT_DECLARE_PUSH(TwoHistoryGradientPush, FOVRT_PUSH_TWO_HISTORY_GRADIENT);
 FOVRT_DECLARE_PUSH(TwoHistoryStabilizePush, FOVRT_PUSH_TWO_HISTORY_STABILIZE);
 FOVRT_DECLARE_PUSH(AsvgfSamplesPush, FOVRT_PUSH_ASVGF_SAMPLES);
@@ -110,7 +115,8 @@ FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 // 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
 static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
               sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
-              sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryBlendPush) == 16 &&
+              sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryBlendPush) == 20 &&
+              sizeof(TwoHistoryChoicePush) == 20 &&
               sizeof(TwoHistoryGradientPush) == 24 &&
               sizeof(TwoHistoryStabilizePush) == 28 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&

@@ -5,7 +5,8 @@
 // Purpose: p from (W_u, W_w, S_k); t = p + q − pq; out = lerp((I_w, Var_w), (I_u, Var_u), t).
 // The clamp variants (pc.clamp_history) replace p by the box of I_w's 3×3 mean ± kσ
 // (two_history_clamp_blend); I_w is read-only, so the neighbours' reads race with no write.
-// Reads:  filtered (I_u, Var) and (I_w, Var), W_u, W_w, power sums, q.
+// The hysteresis variants (pc.held_choice) read p from two_history_choice's held choice.
+// Reads:  filtered (I_u, Var) and (I_w, Var), W_u, W_w, power sums, q, the held choice.
 // Writes: the blend, in place over (I_u, Var) (the input of the remaining iterations).
 #include "shared_constants.h"
 #include "push_constants.h"
@@ -52,7 +53,8 @@ void main() {
                                              FETCH1(q, i));
         return;
     }
-    float pb = two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, i), LOAD_S(i));
+    float pb = pc.held_choice != 0u ? FETCH1(choice, i)
+                                    : two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, i), LOAD_S(i));
     float qi = FETCH1(q, i);
     float t = pb + qi - pb * qi;
     illum_u[i] = mix(FETCH4(illum_w, i), illum_u[i], t);

@@ -398,7 +398,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 91);
+    CHECK(keys.size() == 93);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -427,7 +427,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 92);  // the 91 table rows and denoise.precision
+    CHECK(listed.size() == 94);  // the 93 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {

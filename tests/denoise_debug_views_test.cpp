@@ -99,6 +99,10 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
           "stableLum"}},
         {"two-history-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance"}},
         {"two-history-stable-clamp", {"historyLength", "historySamples", "q", "historyU", "historyW", "variance", "stableLum"}},
+        {"two-history-hysteresis",
+         {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance"}},
+        {"two-history-stable-hysteresis",
+         {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show
         {"rae-spp", {}},
     };

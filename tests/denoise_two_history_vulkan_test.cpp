@@ -334,6 +334,34 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         RunPair(FindDenoiserVariant("two-history-clamp"), params, 3);
         RunPair(FindDenoiserVariant("two-history-stable-clamp"), params, 3);
     }
+    // The hysteresis variants' held choice (two_history_choice, then the blend reading it): band
+    // 0.05 and rate 0.25, so the held choice differs from p on many pixels.
+    SECTION("two-history-hysteresis: fp32 separate channels") {
+        params.svgf.atrousIterations = 2;
+        params.twoHistory.choiceBand = 0.05f;
+        RunPairChanging("two-history-hysteresis", "two-history", params, 6);
+    }
+    SECTION("two-history-hysteresis: fp32 combined, odd size 67x45, blend without a-trous") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 0;
+        params.twoHistory.choiceBand = 0.05f;
+        RunPairChanging("two-history-hysteresis", "two-history", params, 6, 67, 45);
+    }
+    SECTION("two-history-hysteresis: 3x3 reprojection fallback pixels") {
+        params.svgf.atrousIterations = 1;
+        params.twoHistory.choiceBand = 0.05f;
+        RunPair(FindDenoiserVariant("two-history-hysteresis"), params, 6, 64, 64, true);
+    }
+    SECTION("two-history-stable-hysteresis: fp32 combined, 3 iterations; both hysteresis variants fp16") {
+        params.svgf.filterCombined = true;
+        params.svgf.atrousIterations = 3;
+        params.twoHistory.choiceBand = 0.05f;
+        RunPair(FindDenoiserVariant("two-history-stable-hysteresis"), params, 6, 67, 45);
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        RunPair(FindDenoiserVariant("two-history-hysteresis"), params, 4);
+        RunPair(FindDenoiserVariant("two-history-stable-hysteresis"), params, 4);
+    }
     SECTION("fp16 histories: two-history, asvgf and asvgf-antilag") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
         params.precision = Precision::Fp16;

@@ -71,6 +71,8 @@ void SvgfFamilyReferenceDenoiser::Allocate(int width, int height) {
         for (size_t c = 0; c < side.size(); ++c)
             side[c].Resize(variant_.stabilize && c < channels_.size() ? width : 0,
                            variant_.stabilize && c < channels_.size() ? height : 0, 0.0f);
+    for (Plane<float>& side : choice_)
+        side.Resize(variant_.hystereticChoice ? width : 0, variant_.hystereticChoice ? height : 0, 0.0f);
     prevGeometry_.Allocate(width, height);  // background: nothing reprojects
     if (variant_.asvgfGradient) {  // what a reset leaves in α and λ: the gradient needs a previous frame
         alpha_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfAlpha)));
@@ -165,7 +167,8 @@ void SvgfFamilyReferenceDenoiser::Run(const BlendStage& s, const FrameInputs&, P
     const Plane<float>& q = *ScalarPlane({s.q, HistorySide::None}, parity_);
     for (const StagePlane& p : s.planes) {  // in place on I_u
         TwoHistoryBlendRef(Illum(p.out), Illum(p.in), st.wu, st.ww, st.powerSums, q, blendScratch_,
-                           {variant_.clampHistory, params_.twoHistory.clampSigma});
+                           {variant_.clampHistory, params_.twoHistory.clampSigma},
+                           variant_.hystereticChoice ? &choice_[SideIndex(HistorySide::This, parity_)] : nullptr);
         std::swap(Illum(p.out), blendScratch_);
     }
 }
@@ -193,6 +196,13 @@ void SvgfFamilyReferenceDenoiser::Run(const AsvgfAlphaStage& s, const FrameInput
     reconstructed_ = s.reconstructed;
     AsvgfAlphaRef(Gradient(s.reconstructed), in.width(), in.height(), params_.asvgf.alpha, alpha_, lambda_,
                   variant_.antilag ? std::optional(params_.asvgf.antilagGain) : std::nullopt);
+}
+
+void SvgfFamilyReferenceDenoiser::Run(const ChoiceStage&, const FrameInputs& in, Plane<vec3>&) {
+    const size_t cur = SideIndex(HistorySide::This, parity_), prev = SideIndex(HistorySide::Previous, parity_);
+    const TwoHistoryState& st = state_[cur];
+    TwoHistoryChoiceRef(in, prevGeometry_.View(), hasPrev_, choice_[prev], st.wu, st.ww, st.powerSums,
+                        params_.twoHistory, params_.precision, choice_[cur]);
 }
 
 void SvgfFamilyReferenceDenoiser::Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&) {
@@ -250,6 +260,7 @@ const Plane<float>* SvgfFamilyReferenceDenoiser::ScalarPlane(const PlaneRef& ref
         case PlaneKind::AsvgfAlpha: return &alpha_;
         case PlaneKind::AsvgfLambda: return &lambda_;
         case PlaneKind::StableLum: return variant_.stabilize ? &stable_[side][ChannelIndex(ref.id.channel)] : nullptr;
+        case PlaneKind::Choice: return variant_.hystereticChoice ? &choice_[side] : nullptr;
         default: return nullptr;
     }
 }
@@ -284,7 +295,7 @@ const Plane<vec2>& SvgfFamilyReferenceDenoiser::ReconstructedGradient() const { 
 bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
     if (!hasFrame_) return false;
     const int lastParity = parity_ ^ 1;
-    if (view == DebugViewId::P) {  // not stored: the blend evaluates it from the state, as here
+    if (view == DebugViewId::P && !variant_.hystereticChoice) {  // the blend evaluates it from the state, as here
         if (!twoHistoryLayout_ || !variant_.twoHistory) return false;
         const TwoHistoryState& st = CurrentState();
         Plane<float> p(st.wu.width(), st.wu.height());

@@ -18,6 +18,7 @@
 #include "denoise/reference/asvgf_ref.h"
 #include "denoise/reference/svgf_ref.h"
 #include "denoise/reference/two_history_ref.h"
+#include "denoise/reference/two_history_choice_ref.h"
 #include "denoise/reference/two_history_stable_ref.h"
 
 namespace fovrt {
@@ -67,6 +68,7 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     void Run(const AsvgfGradientStage& s, const FrameInputs& in, Plane<vec3>&);
     void Run(const AsvgfAlphaStage& s, const FrameInputs& in, Plane<vec3>&);
     void Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&);
+    void Run(const ChoiceStage&, const FrameInputs& in, Plane<vec3>&);
 
     // The planes a stage names, in this reference's storage; `parity` 0 writes histories to
     // side A (this frame's parity_ during Denoise()).
@@ -99,6 +101,7 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     PlaneId reconstructed_;
     Plane<float> alpha_, lambda_, q_;
     std::array<std::array<Plane<float>, 2>, 2> stable_;  // [side][channel]: L_s of two_history_stabilize
+    std::array<Plane<float>, 2> choice_;                 // [side]: the held choice of two_history_choice
     std::vector<PassTiming> timings_;
     DenoiseStats stats_;
 };

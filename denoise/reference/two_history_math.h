@@ -150,6 +150,18 @@ inline float TwoHistoryGradientBlend(float g, float varianceLumIu, float scale) 
 // I_b = lerp(I_opt, I_u, q) = lerp(I_w, I_u, t) with t = p + q − pq.
 inline float TwoHistoryFinalBlend(float p, float q) { return p + q - p * q; }
 
+// The hysteresis variants' held choice (a temporally filtered, hysteretic p): the reprojected
+// previous choice moves towards this frame's p by `rate` times p's excess over a dead band of
+// ± `band`, so a p that jitters within the band is held and a flip (a fovea entering: p jumps by
+// ~0.6) is spread over ~1/rate frames. rate 1 with band 0 returns p; the result stays between
+// the previous choice and p. q is not filtered: t = held + q − held·q still hands a changing
+// pixel to I_u at once.
+inline float HystereticChoice(float prev, float p, float rate, float band) {
+    const float d = p - prev;
+    const float excess = std::max(std::abs(d) - band, 0.0f);
+    return prev + rate * (d < 0.0f ? -excess : excess);
+}
+
 // The clamp variants' blend in place of p (NRD ReLAX clamps one history to the other's local
 // mean ± kσ): I_u is kept where it lies inside the box of I_w's 3×3 neighbourhood, mean ± kσ per
 // component (`mean`, `sigma`), and moved to the box's face otherwise. The box is widened to hold

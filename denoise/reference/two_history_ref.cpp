@@ -199,7 +199,7 @@ void NeighbourhoodMeanSigma(const Plane<vec4>& plane, int x, int y, vec3& mean, 
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
                         const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out,
-                        const TwoHistoryClampOptions& clamp) {
+                        const TwoHistoryClampOptions& clamp, const Plane<float>* heldChoice) {
     const int width = illumU.width();
     out.Resize(illumU.width(), illumU.height());
     tbb::parallel_for(0, illumU.height(), [&](int y) {
@@ -211,8 +211,8 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                 out[i] = TwoHistoryClampBlend(illumU[i], illumW[i], mean, sigma, clamp.sigma, q[i]);
                 continue;
             }
-            const float p =
-                TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums[i]));
+            const float p = heldChoice ? (*heldChoice)[i]
+                                       : TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums[i]));
             const float t = TwoHistoryFinalBlend(p, q[i]);
             out[i] = glm::mix(illumW[i], illumU[i], t);
         }

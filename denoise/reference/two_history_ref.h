@@ -113,10 +113,11 @@ struct TwoHistoryClampOptions {
 // out = lerp(illumW, illumU, t) for colour and variance (lerp of variances bounds the variance of
 // the lerp of correlated estimates from above). With `clamp` enabled, the clamp variants' blend
 // replaces p: TwoHistoryClampBlend with the mean and σ of illumW's in-image 3×3 neighbourhood.
+// With `heldChoice` (the hysteresis variants: TwoHistoryChoiceRef's output) it is p.
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
                         const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out,
-                        const TwoHistoryClampOptions& clamp = {});
+                        const TwoHistoryClampOptions& clamp = {}, const Plane<float>* heldChoice = nullptr);
 
 // Mean and standard deviation per component of `plane`'s colour over (x, y)'s in-image 3×3
 // neighbourhood (the clamp variants' box).

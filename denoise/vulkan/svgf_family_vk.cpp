@@ -201,7 +201,7 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
     if (!hasFrame_) return false;
     const int lastParity = parity_ ^ 1;
     auto scalarBytes = [&](PlaneKind kind) { return IsHistory(kind) ? HistoryScalarBytes(params_.precision) : 4; };
-    if (view == DebugViewId::P) {
+    if (view == DebugViewId::P && !variant_.hystereticChoice) {
         // Not stored: the blend evaluates p from this frame's state, and so does this, with the
         // shader's formula (two_history_math.h, mirrored by common/two_history.glsl).
         if (!variant_.twoHistory) return false;

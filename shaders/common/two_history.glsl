@@ -1,6 +1,6 @@
 // Two-history SVGF per-pixel maths (SPEC §5, Tu 2024); mirrors denoise/reference/two_history_math.h line by
 // line (TwoHistoryDecay, AntilagAlpha, SuppressFirefly, AccumulateWeights, TwoHistoryOptimalBlend,
-// TwoHistoryGradientBlend, ClampToHistoryBox, TwoHistoryClampBlend).
+// HystereticChoice, TwoHistoryGradientBlend, ClampToHistoryBox, TwoHistoryClampBlend).
 // Weights are packed as (W_u, W_w) and power sums as (S_{-1}, S_0, S_1).
 #ifndef FOVRT_TWO_HISTORY_GLSL
 #define FOVRT_TWO_HISTORY_GLSL
@@ -45,6 +45,14 @@ float two_history_optimal_blend(float wu, float ww, vec3 s) {
     float den = a - 2.0 * b + c;
     if (!(den > 1e-6 * (a + c))) return a < c ? 0.0 : 1.0;
     return clamp((a - b) / den, 0.0, 1.0);
+}
+
+// The hysteresis variants' held choice: prev moves towards p by rate × p's excess over ± band
+// (HystereticChoice).
+float hysteretic_choice(float prev, float p, float rate, float band) {
+    float d = p - prev;
+    float excess = max(abs(d) - band, 0.0);
+    return prev + rate * (d < 0.0 ? -excess : excess);
 }
 
 // q = clamp(S · |g| / std(lum I_u), 0, 1), g the filtered signed luminance gradient.

@@ -42,6 +42,7 @@
 #include "../bindings/asvgf_gradient_gather.h"
 #include "../bindings/asvgf_stratum_sigma.h"
 #include "../bindings/two_history_blend.h"
+#include "../bindings/two_history_choice.h"
 #include "../bindings/two_history_gradient.h"
 #include "../bindings/two_history_reproject.h"
 #include "../bindings/two_history_stabilize.h"
@@ -50,6 +51,7 @@ FOVRT_PASS_BINDINGS(TH_REPROJECT)  // one channel ("two_history_reproject")
 FOVRT_PAIR_BINDINGS(TH_REPROJECT)  // "two_history_reproject_pair"
 FOVRT_PASS_BINDINGS(TH_GRADIENT)
 FOVRT_PASS_BINDINGS(TH_BLEND)
+FOVRT_PASS_BINDINGS(TH_CHOICE)
 FOVRT_PASS_BINDINGS(TH_STABILIZE)
 FOVRT_PASS_BINDINGS(ASVGF_CLAIM)
 FOVRT_PASS_BINDINGS(ASVGF_GATHER)
