@@ -109,6 +109,31 @@ void EmaGradient(Writer& w, const Family& f) {
 // two_history_blend per channel, in place on I_u: lerp(I_w, I_u, lerp(q, 1, p)) with p from W_u
 // (channel 0's length), W_w and S; the clamp variants' box in place of p; the hysteresis variants
 // read their held choice (two_history_choice, run first) in place of p.
+// The eight planes a pass's own bilinear reprojection reads (common/reprojection.glsl): this
+// frame's and the previous frame's depth, normal and object id, the depth gradient and the
+// previous pixel, at consecutive slots from `depthSlot` in that order (the binding lists of
+// two_history_stabilize and two_history_choice; checked below).
+#define FOVRT_REPROJECTION_GEOMETRY_SLOTS(P)                                                        \
+    static_assert(P##_B_NORMAL == P##_B_DEPTH + 1 && P##_B_OBJECT == P##_B_DEPTH + 2 &&             \
+                  P##_B_PREV_DEPTH == P##_B_DEPTH + 3 && P##_B_PREV_NORMAL == P##_B_DEPTH + 4 &&    \
+                  P##_B_PREV_OBJECT == P##_B_DEPTH + 5 && P##_B_DEPTH_GRAD == P##_B_DEPTH + 6 &&    \
+                  P##_B_PREV_PIXEL == P##_B_DEPTH + 7)
+FOVRT_REPROJECTION_GEOMETRY_SLOTS(TH_STABILIZE);
+FOVRT_REPROJECTION_GEOMETRY_SLOTS(TH_CHOICE);
+#undef FOVRT_REPROJECTION_GEOMETRY_SLOTS
+
+void ReadReprojectionGeometry(Bindings& b, int depthSlot) {
+    using K = PlaneKind;
+    b.Read(depthSlot, This(K::Depth))
+        .Read(depthSlot + 1, This(K::Normal))
+        .Read(depthSlot + 2, This(K::ObjectId))
+        .Read(depthSlot + 3, Previous(K::Depth))
+        .Read(depthSlot + 4, Previous(K::Normal))
+        .Read(depthSlot + 5, Previous(K::ObjectId))
+        .Read(depthSlot + 6, Shared(K::DepthGradient))
+        .Read(depthSlot + 7, Shared(K::PrevPixel));
+}
+
 // two_history_choice (the hysteresis variants), once per frame before the blend: p from W_u, W_w
 // and S, held against the reprojected previous choice (HystereticChoice) → this frame's choice.
 void Choice(Writer& w, const Family& f) {
@@ -118,15 +143,8 @@ void Choice(Writer& w, const Family& f) {
     PushBlock push = PushBlock::Of(TwoHistoryChoicePush{f.size, t.choiceRate, t.choiceBand, 0u});
     FOVRT_PUSH_PER_FRAME(push, TwoHistoryChoicePush, has_prev, FrameValue::HasPrevious);
     Bindings b;
-    b.Read(TH_CHOICE_B_DEPTH, This(K::Depth))
-        .Read(TH_CHOICE_B_NORMAL, This(K::Normal))
-        .Read(TH_CHOICE_B_OBJECT, This(K::ObjectId))
-        .Read(TH_CHOICE_B_PREV_DEPTH, Previous(K::Depth))
-        .Read(TH_CHOICE_B_PREV_NORMAL, Previous(K::Normal))
-        .Read(TH_CHOICE_B_PREV_OBJECT, Previous(K::ObjectId))
-        .Read(TH_CHOICE_B_DEPTH_GRAD, Shared(K::DepthGradient))
-        .Read(TH_CHOICE_B_PREV_PIXEL, Shared(K::PrevPixel))
-        .Read(TH_CHOICE_B_WU, This(K::Length, f.First()))
+    ReadReprojectionGeometry(b, TH_CHOICE_B_DEPTH);
+    b.Read(TH_CHOICE_B_WU, This(K::Length, f.First()))
         .Read(TH_CHOICE_B_WW, This(K::WWeight))
         .Read(TH_CHOICE_B_S, This(K::PowerSums))
         .Read(TH_CHOICE_B_PREV_CHOICE, Previous(K::Choice))
@@ -222,16 +240,9 @@ PlaneKind Stabilize(Writer& w, const Family& f, PlaneKind filtered) {
     FOVRT_PUSH_PER_FRAME(push, TwoHistoryStabilizePush, has_prev, FrameValue::HasPrevious);
     for (const StagePlane& p : stage.planes) {
         Bindings b;
+        ReadReprojectionGeometry(b, TH_STABILIZE_B_DEPTH);
         b.Read(TH_STABILIZE_B_ILLUM_IN, Scratch(filtered, p.channel))
             .Write(TH_STABILIZE_B_ILLUM_OUT, Scratch(out, p.channel))
-            .Read(TH_STABILIZE_B_DEPTH, This(K::Depth))
-            .Read(TH_STABILIZE_B_NORMAL, This(K::Normal))
-            .Read(TH_STABILIZE_B_OBJECT, This(K::ObjectId))
-            .Read(TH_STABILIZE_B_PREV_DEPTH, Previous(K::Depth))
-            .Read(TH_STABILIZE_B_PREV_NORMAL, Previous(K::Normal))
-            .Read(TH_STABILIZE_B_PREV_OBJECT, Previous(K::ObjectId))
-            .Read(TH_STABILIZE_B_DEPTH_GRAD, Shared(K::DepthGradient))
-            .Read(TH_STABILIZE_B_PREV_PIXEL, Shared(K::PrevPixel))
             .Read(TH_STABILIZE_B_WU, This(K::Length, f.First()))
             .Read(TH_STABILIZE_B_PREV_STABLE, Previous(K::StableLum, p.channel))
             .Write(TH_STABILIZE_B_CUR_STABLE, This(K::StableLum, p.channel));
