@@ -4,7 +4,10 @@
 // kFoveaWarmup..kFoveaFrames − 1. Every variant sees the same frames.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <random>
 #include <vector>
@@ -50,6 +53,27 @@ inline FoveaScores MovingFoveaScores(const std::vector<const char*>& names, cons
     for (size_t v = 0; v < count; ++v) std::printf(" %s temporal %.5f relMSE %.6f;", names[v], r.temporal[v], r.relMse[v]);
     std::printf("\n");
     return r;
+}
+
+// The largest |a − b| / (1 + |a|) between two variants' outputs over 8 noisy 32×32 frames
+// (NoisyFrame, σ = 1, one random sequence); `spp(x, frame)` gives column x's sample count.
+inline double WorstOutputDifference(const char* nameA, const char* nameB, const DenoiserParams& params,
+                                    const std::function<int(int, int)>& spp) {
+    std::unique_ptr<Denoiser> da = CreateDenoiser(nameA, "cpu", params);
+    std::unique_ptr<Denoiser> db = CreateDenoiser(nameB, "cpu", params);
+    std::mt19937 rng(7);
+    FrameInputs f;
+    Plane<vec3> a, b;
+    double worst = 0.0;
+    for (int frame = 0; frame < 8; ++frame) {
+        NoisyFrame(f, 32, 32, uint32_t(frame), 1.0f, [&](int x, int) { return spp(x, frame); }, rng);
+        da->Denoise(f, a);
+        db->Denoise(f, b);
+        for (size_t i = 0; i < a.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, double(std::abs(a[i][c] - b[i][c]) / (1.0f + std::abs(a[i][c]))));
+    }
+    return worst;
 }
 
 }  // namespace fovrt::test
