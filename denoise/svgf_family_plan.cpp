@@ -106,9 +106,6 @@ void EmaGradient(Writer& w, const Family& f) {
     w.Barrier();
 }
 
-// two_history_blend per channel, in place on I_u: lerp(I_w, I_u, lerp(q, 1, p)) with p from W_u
-// (channel 0's length), W_w and S; the clamp variants' box in place of p; the hysteresis variants
-// read their held choice (two_history_choice, run first) in place of p.
 // The eight planes a pass's own bilinear reprojection reads (common/reprojection.glsl): this
 // frame's and the previous frame's depth, normal and object id, the depth gradient and the
 // previous pixel, at consecutive slots from `depthSlot` in that order (the binding lists of
@@ -153,6 +150,9 @@ void Choice(Writer& w, const Family& f) {
     w.Barrier();
 }
 
+// two_history_blend per channel, in place on I_u: lerp(I_w, I_u, lerp(q, 1, p)) with p from W_u
+// (channel 0's length), W_w and S; the clamp variants' box in place of p; the hysteresis variants
+// read their held choice (two_history_choice, run first) in place of p.
 void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted) {
     using K = PlaneKind;
     BlendStage stage{{}, BlendQPlane(f.v)};
