@@ -1,5 +1,6 @@
 // two_history_blend: t = p + q − pq from (W_u, W_w, S_k) (the hysteresis variants: the held
-// choice) and q, (I_u, Var) ← lerp(I_w, I_u, t) in place. The fp16 power sums stay a storage buffer (RGB16F texel buffers are rarely supported).
+// choice) and q, (I_u, Var) ← lerp(I_w, I_u, t) in place. The fp16 power sums stay a storage
+// buffer (RGB16F texel buffers are rarely supported).
 #define TH_BLEND_BINDING_LIST(B)                       \
     B(TH_BLEND, ILLUM_U, 0, RW, vec4, illum_u)         \
     B(TH_BLEND, ILLUM_W, 1, TEXEL, RGBA32F, illum_w)   \
