@@ -176,7 +176,7 @@ expect_error "memory budget" "budget" run "${small[@]}" --memory-budget 1KiB --s
 expect_error "reference memory budget" "budget" reference "${small[@]}" --memory-budget 1KiB
 # The denoiser bench at a small size: every denoiser has a per-pass byte model and a bound.
 if "$fovrt" bench --denoisers --width 64 --height 48 --frames 1 >bench.txt 2>err.txt; then
-  for name in svgf svgf-weighted asvgf two-history two-history-asvgf asvgf-antilag two-history-asvgf-antilag two-history-stable two-history-stable-firefly two-history-stable-antilag two-history-asvgf-stable-antilag two-history-clamp two-history-stable-clamp two-history-hysteresis two-history-stable-hysteresis; do
+  for name in svgf svgf-weighted asvgf two-history two-history-asvgf asvgf-antilag two-history-asvgf-antilag two-history-stable two-history-stable-firefly two-history-stable-antilag two-history-asvgf-stable-antilag two-history-clamp two-history-stable-clamp two-history-hysteresis two-history-stable-hysteresis two-history-asvgf-stable-hysteresis; do
     grep -q "^$name \[" bench.txt && ok "bench times $name" || bad "bench lacks $name"
   done
   grep -q "no per-pass byte model" bench.txt && bad "bench: a denoiser lacks a byte model" || ok "bench: byte models"
@@ -225,7 +225,7 @@ fi
 expect_error "the metric's frames count against the budget" "vdp.*luminance" memory --width 64 --height 64 --denoiser svgf \
   --scored-frames 1000 --memory-budget 4MiB
 # info lists every denoiser variant of the table with its summary.
-"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 17 ]] &&
+"$fovrt" info >info.txt 2>err.txt && [[ $(grep -c "^denoiser " info.txt) -eq 18 ]] &&
   grep -q "^denoiser  *two-history-asvgf  *two-history SVGF" info.txt && ok "info lists the denoisers" ||
   bad "info: $(cat info.txt err.txt)"
 # config --keys: one line per key from the settings tables (key, default, allowed, meaning).

@@ -103,6 +103,9 @@ TEST_CASE("each variant offers the debug views of the passes its row runs", "[de
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance"}},
         {"two-history-stable-hysteresis",
          {"historyLength", "historySamples", "p", "q", "t", "historyU", "historyW", "variance", "stableLum"}},
+        {"two-history-asvgf-stable-hysteresis",
+         {"historyLength", "historySamples", "antilag", "lambda", "p", "q", "t", "historyU", "historyW", "variance",
+          "stableLum"}},
         {"rae", {}},      // a network's hidden state has no per-pixel meaning to show
         {"rae-spp", {}},
     };

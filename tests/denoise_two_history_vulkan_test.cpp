@@ -362,6 +362,11 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         RunPair(FindDenoiserVariant("two-history-hysteresis"), params, 4);
         RunPair(FindDenoiserVariant("two-history-stable-hysteresis"), params, 4);
     }
+    SECTION("two-history-asvgf-stable-hysteresis: fp32 separate channels") {
+        params.svgf.atrousIterations = 2;
+        params.twoHistory.choiceBand = 0.05f;
+        RunPairChanging("two-history-asvgf-stable-hysteresis", "two-history-asvgf-stable-antilag", params, 6);
+    }
     SECTION("fp16 histories: two-history, asvgf and asvgf-antilag") {
         if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
         params.precision = Precision::Fp16;

@@ -153,13 +153,14 @@ inline float TwoHistoryFinalBlend(float p, float q) { return p + q - p * q; }
 // The hysteresis variants' held choice (a temporally filtered, hysteretic p): the reprojected
 // previous choice moves towards this frame's p by `rate` times p's excess over a dead band of
 // ± `band`, so a p that jitters within the band is held and a flip (a fovea entering: p jumps by
-// ~0.6) is spread over ~1/rate frames. rate 1 with band 0 returns p; the result stays between
-// the previous choice and p. q is not filtered: t = held + q − held·q still hands a changing
-// pixel to I_u at once.
+// ~0.6) is spread over ~1/rate frames. rate 1 with band 0 returns p; the result lies between
+// the previous choice and p, clamped to [0, 1] (a bilinearly reprojected previous choice may
+// round a hair outside). q is not filtered: t = held + q − held·q still hands a changing pixel
+// to I_u at once.
 inline float HystereticChoice(float prev, float p, float rate, float band) {
     const float d = p - prev;
     const float excess = std::max(std::abs(d) - band, 0.0f);
-    return prev + rate * (d < 0.0f ? -excess : excess);
+    return std::clamp(prev + rate * (d < 0.0f ? -excess : excess), 0.0f, 1.0f);
 }
 
 // The clamp variants' blend in place of p (NRD ReLAX clamps one history to the other's local

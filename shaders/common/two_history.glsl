@@ -47,12 +47,12 @@ float two_history_optimal_blend(float wu, float ww, vec3 s) {
     return clamp((a - b) / den, 0.0, 1.0);
 }
 
-// The hysteresis variants' held choice: prev moves towards p by rate × p's excess over ± band
-// (HystereticChoice).
+// The hysteresis variants' held choice: prev moves towards p by rate × p's excess over ± band,
+// clamped to [0, 1] (HystereticChoice).
 float hysteretic_choice(float prev, float p, float rate, float band) {
     float d = p - prev;
     float excess = max(abs(d) - band, 0.0);
-    return prev + rate * (d < 0.0 ? -excess : excess);
+    return clamp(prev + rate * (d < 0.0 ? -excess : excess), 0.0, 1.0);
 }
 
 // q = clamp(S · |g| / std(lum I_u), 0, 1), g the filtered signed luminance gradient.
