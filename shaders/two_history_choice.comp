@@ -3,9 +3,9 @@
 // two_history_choice — the hysteresis variants' temporally filtered, hysteretic history choice
 // (denoise/two_history_stable.md). Mirrors TwoHistoryChoiceRef.
 // Purpose: p from (W_u, W_w, S_k) as two_history_blend evaluates it; the previous held choice
-//   reprojected with the bilinear taps of common/reprojection.glsl; held = hysteretic_choice(prev,
-//   p, rate, band). Where the taps fail, on the first frame, or where the accumulation restarted
-//   (W_u ≤ 1) the held choice restarts at p.
+//   reprojected with the bilinear taps of common/own_history_reprojection.glsl; held =
+//   hysteretic_choice(prev, p, rate, band). Where the taps fail, on the first frame, or where the
+//   accumulation restarted (W_u ≤ 1) the held choice restarts at p.
 // Reads:  geometry of both frames, depth gradient, previous pixel, W_u, W_w, power sums, the
 //         previous held choice.
 // Writes: this frame's held choice (two_history_blend reads it in place of p).
@@ -14,7 +14,6 @@
 #include "common/two_history_constants.glsl"
 #include "common/packing.glsl"
 #include "common/access.glsl"
-#include "common/reprojection.glsl"
 #include "common/two_history.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
@@ -28,9 +27,7 @@ FOVRT_DECLARE_BINDINGS(TH_CHOICE_BINDING_LIST)  // shaders/bindings/two_history_
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_CHOICE);  // shaders/push_constants.h
 
-float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
-vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
-uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
+#include "common/own_history_reprojection.glsl"
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -40,9 +37,7 @@ void main() {
     float pb = two_history_optimal_blend(wu, FETCH1(ww, i), LOAD_S(i));
     float held = pb;
     if (pc.has_prev != 0u && wu > 1.0) {
-        vec2 dzv = FETCH2(depth_grad, i);
-        ReprojTaps taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i),
-                                                 FETCH3(normal, i), FETCH1(object_id, i), max(abs(dzv.x), abs(dzv.y)));
+        ReprojTaps taps = own_history_taps(i, pc.size);
         if (taps.count > 0) {
             float prev;
             REPROJ_GATHER(prev_choice, taps, pc.size, FETCH1, 0.0, prev);

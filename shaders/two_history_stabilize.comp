@@ -4,7 +4,7 @@
 // (two-history-stable, denoise/two_history_stable.md). Mirrors TwoHistoryStabilizeRef.
 // Purpose: L = lum(filtered); m, σ² = the 3×3 mean and variance of L over object pixels plus the
 //   filtered variance estimate; L_s,prev reprojected with the bilinear taps of
-//   common/reprojection.glsl (no 3×3 fallback: where they fail the stabilisation restarts);
+//   common/own_history_reprojection.glsl (no 3×3 fallback: where they fail the stabilisation restarts);
 //   L_s = lerp(clamp(L_s,prev, m ± kσ), L, max(α_s, 1/W_u, the antilag variant's change weight
 //   from q)); out = the colour with luminance L_s.
 // Reads:  filtered (illumination, variance), geometry of both frames, depth gradient, previous
@@ -16,7 +16,6 @@
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/luminance.glsl"
-#include "common/reprojection.glsl"
 #include "common/two_history_stable.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
@@ -25,9 +24,7 @@ FOVRT_DECLARE_BINDINGS(TH_STABILIZE_BINDING_LIST)  // shaders/bindings/two_histo
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_STABILIZE);  // shaders/push_constants.h
 
-float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
-vec3 reproj_prev_normal(int i) { return FETCH3(prev_normal, i); }
-uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
+#include "common/own_history_reprojection.glsl"
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -53,9 +50,7 @@ void main() {
 
     float ls = l;
     if (pc.has_prev != 0u) {
-        vec2 dzv = FETCH2(depth_grad, i);
-        ReprojTaps taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i),
-                                                 FETCH3(normal, i), FETCH1(object_id, i), max(abs(dzv.x), abs(dzv.y)));
+        ReprojTaps taps = own_history_taps(i, pc.size);
         if (taps.count > 0) {
             float history;
             REPROJ_GATHER(prev_stable, taps, pc.size, FETCH1, 0.0, history);

@@ -295,7 +295,8 @@ const Plane<vec2>& SvgfFamilyReferenceDenoiser::ReconstructedGradient() const { 
 bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
     if (!hasFrame_) return false;
     const int lastParity = parity_ ^ 1;
-    if (view == DebugViewId::P && !variant_.hystereticChoice) {  // the blend evaluates it from the state, as here
+    const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
+    if (view == DebugViewId::P && !ref) {  // not stored: the blend evaluates it from the state, as here
         if (!twoHistoryLayout_ || !variant_.twoHistory) return false;
         const TwoHistoryState& st = CurrentState();
         Plane<float> p(st.wu.width(), st.wu.height());
@@ -304,7 +305,6 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
         out = std::move(p);
         return true;
     }
-    const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (ref && DebugViewComponents(view) > 1) {  // a colour history or the moments, in the state
         if (!twoHistoryLayout_) return false;
         // The state's planes hold their components interleaved, as the Vulkan buffers do.

@@ -201,7 +201,8 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
     if (!hasFrame_) return false;
     const int lastParity = parity_ ^ 1;
     auto scalarBytes = [&](PlaneKind kind) { return IsHistory(kind) ? HistoryScalarBytes(params_.precision) : 4; };
-    if (view == DebugViewId::P && !variant_.hystereticChoice) {
+    const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
+    if (view == DebugViewId::P && !ref) {
         // Not stored: the blend evaluates p from this frame's state, and so does this, with the
         // shader's formula (two_history_math.h, mirrored by common/two_history.glsl).
         if (!variant_.twoHistory) return false;
@@ -221,7 +222,6 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
         out = std::move(p);
         return true;
     }
-    const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (!ref) return false;
     const BufferKey key = ResolveSide(*ref, lastParity);
     const int components = DebugViewComponents(view);
