@@ -41,6 +41,7 @@
 #include "pipeline/build_info.h"
 #include "pipeline/denoiser_set.h"
 #include "pipeline/frame_pipeline.h"
+#include "loop/frame_loop.h"
 #include "render/visibility_buffer.h"
 
 namespace fovrt {
@@ -135,6 +136,121 @@ struct RunOptions {
     bool score = false;      // --score: run.score = true
 };
 
+// The run's files, as the loop hands it each step: frames.jsonl (one line per frame, written as
+// the frame completes), the inputs' EXRs and noisy PNGs, each variant's outputs and debug views,
+// the counters and timing aggregates of the manifest; with run.score the scorer's calls, timed.
+class RunFiles : public FrameLoopObserver {
+public:
+    RunFiles(const RunConfig& config, const std::filesystem::path& outDir, FrameLoop& loop, RunScorer* scorer,
+             int frames)
+        : config_(config), outDir_(outDir), loop_(loop), scorer_(scorer), frameLog_(outDir / "frames.jsonl"),
+          progress_("rendering", frames) {}
+
+    void Frame(const StereoFrame& frame) override {
+        record_ = nlohmann::json();
+        record_["frame"] = frame.frame;
+        record_["time_s"] = frame.timeSeconds;
+        record_["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y, frame.gaze.direction.z};
+        if (!frame.gaze.valid) {
+            record_["blink"] = config_.gaze.blink;
+            ++blinkFrames;
+        }
+        if (tracked_) {
+            record_["true_gaze_head"] = {frame.trueGaze.direction.x, frame.trueGaze.direction.y,
+                                         frame.trueGaze.direction.z};
+            if (!frame.trueGaze.valid) record_["true_blink"] = true;
+        }
+    }
+
+    void Eye(const StereoFrame& frame, int eye) override {
+        const EyeFrame& e = frame.eyes[size_t(eye)];
+        eyeRecord_ = nlohmann::json();
+        eyeRecord_["gaze_pixel"] = {e.gazePixel.x, e.gazePixel.y};
+        if (tracked_) eyeRecord_["true_gaze_pixel"] = {e.trueGazePixel.x, e.trueGazePixel.y};
+        eyeRecord_["spp_ms"] = e.sppMs;
+        eyeRecord_["render_ms"] = e.renderMs;
+        timings.Add({"spp"}, e.sppMs);
+        timings.Add({"render"}, e.renderMs);
+        uint64_t samples = 0;
+        for (size_t p = 0; p < e.sppMap.size(); ++p) samples += e.sppMap[p];
+        totalSamples += samples;
+        for (size_t p = 0; p < e.inputs.sampleCount.size(); ++p) recordedSamples += e.inputs.sampleCount[p];
+        eyeRecord_["samples"] = samples;
+
+        const auto writeStart = std::chrono::steady_clock::now();
+        stem_ = FrameOutputStem(frame.frame, eye);
+        if (config_.output.writeInputs)
+            WriteFrameInputsExr(outDir_ / "inputs" / (stem_ + ".exr"), e.inputs, e.sppMap,
+                                PlaneLayers(loop_.Pipeline().GetRenderer().Visibility(eye)));
+        if (config_.output.writePng)
+            WritePng(outDir_ / "noisy" / (stem_ + ".png"), e.inputs.NoisyImage(), config_.output.exposure);
+        eyeRecord_["write_inputs_ms"] = MsSince(writeStart);
+        timings.Add({"write_inputs"}, eyeRecord_["write_inputs_ms"].get<double>());
+        denoiseRecord_ = nlohmann::json::object();
+        record_[kEyeNames[eye]] = eyeRecord_;
+    }
+
+    void Reference(const StereoFrame& frame, int eye, const ReferenceLookup& reference) override {
+        const auto scoreStart = std::chrono::steady_clock::now();
+        scorer_->Reference(frame, eye, reference);
+        timings.Add({"score_reference"}, reference.ms + MsSince(scoreStart));
+    }
+
+    void Output(const StereoFrame& frame, int eye, const DenoisedOutput& output) override {
+        const std::string& name = *output.name;
+        nlohmann::json passes = nlohmann::json::object();
+        for (const PassTiming& t : output.denoiser->LastTimings()) {
+            passes[t.pass] = t.ms;
+            timings.Add({"denoise", name, "passes", t.pass}, t.ms);
+        }
+        timings.Add({"denoise", name, "wall"}, output.wallMs);
+        denoiseRecord_[name] = {{"wall_ms", output.wallMs}, {"passes_ms", passes}};
+        record_[kEyeNames[eye]]["denoise"] = denoiseRecord_;
+        if (scorer_) {
+            const auto scoreStart = std::chrono::steady_clock::now();
+            scorer_->Output(frame, eye, output);
+            timings.Add({"score_metrics"}, MsSince(scoreStart));
+        }
+        const std::filesystem::path dir = outDir_ / "denoised" / name;
+        if (config_.output.writePng) WritePng(dir / (stem_ + ".png"), *output.image, config_.output.exposure);
+        if (config_.output.writeExr) WriteRgbExr(dir / (stem_ + ".exr"), *output.image);
+        if (config_.output.writeDebugViews) WriteDebugViewsExr(dir / (stem_ + ".debug.exr"), *output.denoiser);
+    }
+
+    void EndFrame(const StereoFrame& frame) override {
+        for (int eye = 0; eye < 2; ++eye)
+            if (!record_[kEyeNames[eye]].contains("denoise")) record_[kEyeNames[eye]]["denoise"] = nlohmann::json::object();
+        frameLog_.Write(record_);
+        if (framesRendered++ == 0) firstIndex = frame.frame;
+        lastIndex = frame.frame;
+        progress_.Step(fmt::format("frame {}", frame.frame));
+    }
+
+    void SetTracked(bool tracked) { tracked_ = tracked; }
+    void Close() {
+        progress_.Finish();
+        frameLog_.Close();
+    }
+
+    TimingStats timings;
+    uint64_t totalSamples = 0;
+    uint64_t recordedSamples = 0;  // Σ FrameInputs::sampleCount: A-SVGF gradient pixels trace n_prev
+    int framesRendered = 0;
+    int blinkFrames = 0;  // frames whose gaze sample was invalid (gaze.blink says how rendered)
+    uint32_t firstIndex = 0, lastIndex = 0;
+
+private:
+    const RunConfig& config_;
+    std::filesystem::path outDir_;
+    FrameLoop& loop_;
+    RunScorer* scorer_;
+    FrameLog frameLog_;
+    Progress progress_;
+    bool tracked_ = false;  // a modelled tracker: the frame's true gaze is recorded beside it
+    nlohmann::json record_, eyeRecord_, denoiseRecord_;
+    std::string stem_;
+};
+
 // `config` is the job's config; `replay` (optional) the recording it re-renders.
 void RunFrames(const RunConfig& config, Replay* replay, const std::string& recordPath) {
     namespace fs = std::filesystem;
@@ -146,16 +262,19 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
     const fs::path outDir = out.Path();
 
     auto totalStart = std::chrono::steady_clock::now();
-    FramePipeline pipeline(replay ? ReplayPipelineConfig(config) : config);
+    if (config.run.score && config.denoise.denoisers.empty())
+        Fail("run.score: denoise.denoisers is empty (nothing to score)");
+    const RunConfig pipelineConfig = replay ? ReplayPipelineConfig(config) : config;
+    FrameLoop loop(config, config.run.score, &pipelineConfig);
+    FramePipeline& pipeline = loop.Pipeline();
     if (replay) CheckReplayScene(*replay, pipeline);
     FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
-    DenoiserSet denoisers(config.denoise);
+    DenoiserSet& denoisers = loop.Denoisers();
     std::optional<OutputDir> cacheDir;  // before any rendering, as the experiment's
     std::optional<RunScorer> scorer;
     if (config.run.score) {
-        if (config.denoise.denoisers.empty()) Fail("run.score: denoise.denoisers is empty (nothing to score)");
         cacheDir.emplace(config.reference.cacheDir, "reference.cache_dir");
-        scorer.emplace(config, pipeline);
+        scorer.emplace(config, loop);
     }
     std::optional<SessionRecorder> recorder;
     if (!recordPath.empty()) recorder.emplace(recordPath, ConfigToJson(config), SessionHeaderExtra(pipeline));
@@ -164,106 +283,20 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                  replay ? (" replayed from " + replay->file.string()).c_str() : "", config.camera.width,
                  config.camera.height, denoisers.DeviceDescription().c_str(), outDir.string().c_str());
 
-    FrameLog frameLog(outDir / "frames.jsonl");
-    TimingStats timings;
-    Progress progress("rendering", sequence.Count());
-    RecordedFrame request;
-    StereoFrame frame;
-    Plane<vec3> denoised;
-    uint64_t totalSamples = 0;
-    uint64_t recordedSamples = 0;  // Σ FrameInputs::sampleCount: A-SVGF gradient pixels trace n_prev
-    int framesRendered = 0;
-    int blinkFrames = 0;  // frames whose gaze sample was invalid (gaze.blink says how rendered)
-    uint32_t firstIndex = 0, lastIndex = 0;
+    RunFiles files(config, outDir, loop, scorer ? &*scorer : nullptr, sequence.Count());
+    loop.Attach(files);
+    RecordedFrame recorded;
+    auto next = [&](FrameRequest& request) {
+        if (!sequence.Next(recorded)) return false;
+        if (recorder) recorder->Append(recorded);
+        files.SetTracked(recorded.request.trueGaze.has_value());
+        request = recorded.request;
+        return true;
+    };
     try {
-        while (sequence.Next(request)) {
-            ThrowIfInterrupted();
-            const uint32_t index = request.request.frame;
-            pipeline.Render(request.request, frame);
-            if (recorder) recorder->Append(request);
-
-            nlohmann::json record;
-            record["frame"] = index;
-            record["time_s"] = frame.timeSeconds;
-            record["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y,
-                                   frame.gaze.direction.z};
-            if (!frame.gaze.valid) {
-                record["blink"] = config.gaze.blink;
-                ++blinkFrames;
-            }
-            const bool tracked = request.request.trueGaze.has_value();  // a modelled tracker: where the eye was
-            if (tracked) {
-                record["true_gaze_head"] = {frame.trueGaze.direction.x, frame.trueGaze.direction.y,
-                                            frame.trueGaze.direction.z};
-                if (!frame.trueGaze.valid) record["true_blink"] = true;
-            }
-            for (int eye = 0; eye < 2; ++eye) {
-                EyeFrame& e = frame.eyes[size_t(eye)];
-                nlohmann::json eyeRecord;
-                eyeRecord["gaze_pixel"] = {e.gazePixel.x, e.gazePixel.y};
-                if (tracked) eyeRecord["true_gaze_pixel"] = {e.trueGazePixel.x, e.trueGazePixel.y};
-                eyeRecord["spp_ms"] = e.sppMs;
-                eyeRecord["render_ms"] = e.renderMs;
-                timings.Add({"spp"}, e.sppMs);
-                timings.Add({"render"}, e.renderMs);
-                uint64_t samples = 0;
-                for (size_t p = 0; p < e.sppMap.size(); ++p) samples += e.sppMap[p];
-                totalSamples += samples;
-                for (size_t p = 0; p < e.inputs.sampleCount.size(); ++p) recordedSamples += e.inputs.sampleCount[p];
-                eyeRecord["samples"] = samples;
-
-                auto writeStart = std::chrono::steady_clock::now();
-                std::string stem = FrameOutputStem(index, eye);
-                if (config.output.writeInputs)
-                    WriteFrameInputsExr(outDir / "inputs" / (stem + ".exr"), e.inputs, e.sppMap,
-                                        PlaneLayers(pipeline.GetRenderer().Visibility(eye)));
-                if (config.output.writePng) {
-                    WritePng(outDir / "noisy" / (stem + ".png"), e.inputs.NoisyImage(),
-                             config.output.exposure);
-                }
-                eyeRecord["write_inputs_ms"] = MsSince(writeStart);
-                timings.Add({"write_inputs"}, eyeRecord["write_inputs_ms"].get<double>());
-
-                if (scorer) {
-                    const auto scoreStart = std::chrono::steady_clock::now();
-                    scorer->BeginEye(frame, eye);
-                    timings.Add({"score_reference"}, MsSince(scoreStart));
-                }
-                nlohmann::json denoiseRecord = nlohmann::json::object();
-                for (size_t v = 0; v < denoisers.size(); ++v) {
-                    Denoiser& denoiser = denoisers.At(v, eye);
-                    auto start = std::chrono::steady_clock::now();
-                    denoiser.Denoise(e.inputs, denoised);
-                    const double wallMs = MsSince(start);
-                    nlohmann::json passes = nlohmann::json::object();
-                    for (const PassTiming& t : denoiser.LastTimings()) {
-                        passes[t.pass] = t.ms;
-                        timings.Add({"denoise", denoisers.Name(v), "passes", t.pass}, t.ms);
-                    }
-                    timings.Add({"denoise", denoisers.Name(v), "wall"}, wallMs);
-                    denoiseRecord[denoisers.Name(v)] = {{"wall_ms", wallMs}, {"passes_ms", passes}};
-                    if (scorer) {
-                        const auto scoreStart = std::chrono::steady_clock::now();
-                        scorer->AddOutput(denoisers.Name(v), denoised);
-                        timings.Add({"score_metrics"}, MsSince(scoreStart));
-                    }
-                    fs::path dir = outDir / "denoised" / denoisers.Name(v);
-                    if (config.output.writePng)
-                        WritePng(dir / (stem + ".png"), denoised, config.output.exposure);
-                    if (config.output.writeExr) WriteRgbExr(dir / (stem + ".exr"), denoised);
-                    if (config.output.writeDebugViews) WriteDebugViewsExr(dir / (stem + ".debug.exr"), denoiser);
-                }
-                eyeRecord["denoise"] = denoiseRecord;
-                record[kEyeNames[eye]] = eyeRecord;
-            }
-            frameLog.Write(record);
-            if (framesRendered++ == 0) firstIndex = index;
-            lastIndex = index;
-            progress.Step(fmt::format("frame {}", index));
-        }
+        loop.RunSeed(0, SeedWork{config.run.seed, {}}, next);
         ThrowIfInterrupted();
-        progress.Finish();
-        frameLog.Close();
+        files.Close();
         if (recorder) recorder->Close();
 
         RenderStats stats = pipeline.GetRenderer().Stats();
@@ -279,8 +312,8 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
         if (replay) manifest["replay"] = replay->ToJson();
         if (recorder) manifest["recorded_to"] = recorder->Path().string();
         manifest["denoise_device"] = denoisers.DeviceDescription();
-        manifest["counters"] = {{"samples", totalSamples},
-                                {"recorded_samples", recordedSamples},
+        manifest["counters"] = {{"samples", files.totalSamples},
+                                {"recorded_samples", files.recordedSamples},
                                 {"traced_samples", stats.samples},
                                 {"rays", stats.Rays()},
                                 {"primary_rays", stats.primaryRays},
@@ -288,7 +321,7 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                                 {"shadow_rays_reused", stats.shadowRaysReused},
                                 {"bounce_rays", stats.bounceRays},
                                 {"dropped_nonfinite_samples", stats.droppedSamples},
-                                {"blink_frames", blinkFrames}};
+                                {"blink_frames", files.blinkFrames}};
         nlohmann::json replaced = nlohmann::json::object();
         for (size_t v = 0; v < denoisers.size(); ++v) {
             uint64_t nonFinite = 0, negative = 0;
@@ -301,24 +334,24 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
         manifest["counters"]["denoiser_replaced_samples"] = replaced;
         // Per-frame records are frames.jsonl's lines; the manifest keeps their count and the timings'
         // aggregates (per eye and frame), so it stays the same size however long the run.
-        manifest["frames"] = {{"count", framesRendered},
-                              {"first", firstIndex},
-                              {"last", lastIndex},
+        manifest["frames"] = {{"count", files.framesRendered},
+                              {"first", files.firstIndex},
+                              {"last", files.lastIndex},
                               {"records", "frames.jsonl"}};
         if (scorer) manifest["score"] = scorer->Finish(outDir, denoisers.Name(0));
-        manifest["timings_ms"] = timings.ToJson();
+        manifest["timings_ms"] = files.timings.ToJson();
         manifest["total_s"] = MsSince(totalStart) / 1000.0;
         WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
         out.Keep();
         if (cacheDir) cacheDir->Keep();
         std::fprintf(stderr, "fovrt run: %d frames in %.1f s, %.2f Mrays, manifest %s\n",
-                     framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
+                     files.framesRendered, MsSince(totalStart) / 1000.0, double(stats.Rays()) * 1e-6,
                      (outDir / "manifest.json").string().c_str());
     } catch (const Interrupted& e) {
         out.Keep();  // the frames written so far stay, and the message says so
         if (cacheDir) cacheDir->Keep();  // every cache entry is complete (written atomically)
         throw Interrupted(e.Signal(), fmt::format("{}: {} of {} frames written in {}; no manifest", e.what(),
-                                                  framesRendered, sequence.Count(), outDir.string()));
+                                                  files.framesRendered, sequence.Count(), outDir.string()));
     }
 }
 

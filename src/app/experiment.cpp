@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "app/experiment_pass.h"
 #include "app/experiment_shards.h"
 #include "app/experiment_stats.h"
 #include "app/experiment_vdp.h"
@@ -73,21 +74,6 @@ std::string SeedsText(const std::vector<uint32_t>& seeds) {
     std::string out;
     for (uint32_t s : seeds) out += (out.empty() ? "" : ", ") + std::to_string(s);
     return out;
-}
-
-// Blink, and the gaze's angular speed since the previous valid sample (head space), for the
-// report's per-frame plots.
-GazeMark GazeMarkOf(int frame, const GazeSample& gaze, const std::optional<GazeSample>& previous) {
-    GazeMark mark;
-    mark.frame = frame;
-    mark.blink = !gaze.valid;
-    if (gaze.valid && previous && previous->valid && gaze.timeSeconds > previous->timeSeconds) {
-        const double cosine = std::clamp(double(glm::dot(glm::normalize(gaze.direction),
-                                                         glm::normalize(previous->direction))), -1.0, 1.0);
-        mark.speedDegPerSecond = std::acos(cosine) * 180.0 / 3.14159265358979 /
-                                 (gaze.timeSeconds - previous->timeSeconds);
-    }
-    return mark;
 }
 
 ReportTable MemoryTable(const RunConfig& config) {
@@ -250,9 +236,10 @@ bool Owns(const std::vector<RunUnit>& units, size_t scene, size_t seed, int eye,
     return false;
 }
 
-// Computes the runs in `units` (all of them for a single machine): per scene and run seed that has
-// a run, the frames are rendered once (stereo) and fed to the runs' denoisers; the references of the
-// runs' eyes come from the shared cache.
+// Computes the runs in `units` (all of them for a single machine): per scene, one frame loop (the
+// scene and its BVH built once, the references from the shared cache); per run seed that has a
+// run, the frames are rendered once (stereo) and fed to the runs' denoisers. What is kept of them
+// comes from the observers of app/experiment_pass.h.
 ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit>& units, const fs::path& outDir) {
     const RunConfig& base = spec.config;
     const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
@@ -268,16 +255,8 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                 }
     Progress progress("experiment", int(seedRuns) * base.run.frames);
     for (size_t sceneIndex = 0; sceneIndex < spec.scenes.size(); ++sceneIndex) {
-        const std::string& sceneName = spec.scenes[sceneIndex];
-        RunConfig sceneConfig = base;
-        sceneConfig.scene.name = sceneName;
-
-        SceneRecord record;
-        record.index = sceneIndex;
-        record.requested = sceneName;
-        SceneVisuals& visuals = record.visuals;
-        bool touched = false;
-        ReferenceCache cache(sceneConfig.reference.cacheDir);  // shared by every seed
+        RunConfig config = base;
+        config.scene.name = spec.scenes[sceneIndex];
         // The denoisers' pipelines are built once per scene (on lavapipe each one is compiled);
         // their histories are reset for every seed. Only the variants of this part's runs.
         std::vector<std::string> sceneVariants;
@@ -288,170 +267,65 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
                     break;
                 }
         if (sceneVariants.empty()) continue;
-        sceneConfig.denoise.denoisers = sceneVariants;
-        DenoiserSet denoisers(sceneConfig.denoise);
-        part.deviceDescription = denoisers.DeviceDescription();
-        // One full pass per run seed: a fresh pipeline (the tracer samples with the seed) and fresh
-        // denoiser histories, as a separate run with that seed would have.
+        config.denoise.denoisers = sceneVariants;
+        // One pass per run seed, as a separate run with that seed would render it.
+        std::vector<std::pair<size_t, SeedWork>> passes;
         for (size_t seedIndex = 0; seedIndex < seeds.size(); ++seedIndex) {
-            // The runs of this scene and seed: which eyes, which variants.
-            std::vector<std::string> variants;
-            std::array<bool, 2> eyes{false, false};
-            for (size_t v = 0; v < spec.variants.size(); ++v)
+            SeedWork work{seeds[seedIndex], std::vector<std::array<bool, 2>>(sceneVariants.size(), {false, false})};
+            bool any = false;
+            for (size_t v = 0; v < sceneVariants.size(); ++v) {
+                const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(), sceneVariants[v]) -
+                                              spec.variants.begin());
                 for (int eye = 0; eye < 2; ++eye)
-                    if (Owns(units, sceneIndex, seedIndex, eye, v)) {
-                        eyes[size_t(eye)] = true;
-                        if (std::find(variants.begin(), variants.end(), spec.variants[v]) == variants.end())
-                            variants.push_back(spec.variants[v]);
-                    }
-            if (variants.empty()) continue;
-            RunConfig config = sceneConfig;
-            config.run.seed = seeds[seedIndex];
-            const bool firstSeed = seedIndex == 0;
-            FramePipeline pipeline(spec.replay ? ReplayPipelineConfig(config) : config);
-            std::optional<Replay> replay = spec.replay;
-            if (replay) {
-                CheckReplayScene(*replay, pipeline);
-                part.replayRecord = replay->ToJson();
+                    any |= work.runs[v][size_t(eye)] = Owns(units, sceneIndex, seedIndex, eye, variant);
             }
-            FrameSequence sequence = replay ? FrameSequence(pipeline, *replay) : FrameSequence(pipeline);
-            if (!touched) {
-                record.label = SceneLabel(pipeline.GetScene().name, labels);
-                record.fingerprint = SceneFingerprint(pipeline.GetScene());
-                record.source = pipeline.GetScene().sourcePath.string();
-                touched = true;
-            }
-            const std::string& label = record.label;
-            denoisers.Reset();
-            MetricsCollector collector(part.results);
-            const std::vector<uint8_t> detailInstances = InstancesWithMaterialMaps(pipeline.GetScene());
-            const FoveaRadius fovea = MetricFovea(config.foveation, config.camera.width);
-            const int visualFrame = spec.visualFrame >= 0 ? spec.visualFrame : int(sequence.LastFrame());
-            const bool visualsHere = firstSeed && eyes[0];  // the report shows eye 0 of the first seed
-            if (visualsHere) {
-                record.hasVisuals = true;
-                visuals.scene = label;
-                visuals.width = config.camera.width;
-                visuals.height = config.camera.height;
-                visuals.eye = 0;
-                visuals.seed = config.run.seed;
-                visuals.foveaRadiusPixels = fovea.RadiusPixels(pipeline.RigAt(0).Eye(0));
-                visuals.exposure = config.output.exposure;
-            }
-            std::optional<VdpExperimentScorer> vdp;
-            if (config.metric.vdp) vdp.emplace(config, pipeline.FramesPerSecond(), visualsHere ? visualFrame : -1);
-
-            RecordedFrame request;
-            StereoFrame frame;
-            std::optional<GazeSample> previousGaze;
-            std::vector<Plane<vec3>> outputs(denoisers.size());
-            while (sequence.Next(request)) {
-                ThrowIfInterrupted();
-                const uint32_t index = request.request.frame;
-                pipeline.Render(request.request, frame);
-                if (firstSeed) {
-                    record.blinkFrames += frame.gaze.valid ? 0 : 1;
-                    if (visualsHere) {
-                        GazeMark mark = GazeMarkOf(int(index), frame.trueGaze, previousGaze);
-                        // The rendered fovea (tracked gaze) against the true gaze, on the report's eye;
-                        // a blink rendered uniform has no fovea.
-                        const EyeFrame& shown = frame.eyes[size_t(visuals.eye)];
-                        mark.timeSeconds = frame.timeSeconds;
-                        mark.foveaDistanceDeg = AngleBetweenDeg(frame.gaze.direction, frame.trueGaze.direction);
-                        mark.outsideFovea = shown.uniformForBlink || glm::length(shown.gazePixel - shown.trueGazePixel) >
-                                                                         visuals.foveaRadiusPixels;
-                        visuals.gazeMarks.push_back(mark);
-                    }
-                    previousGaze = frame.trueGaze;
-                }
-                for (int eye = 0; eye < 2; ++eye) {
-                    if (!eyes[size_t(eye)]) continue;
-                    EyeFrame& e = frame.eyes[size_t(eye)];
-                    record.times.renderMs += e.renderMs;
-                    const EyeCamera& camera = e.camera;
-
-                    auto start = std::chrono::steady_clock::now();
-                    ReferenceKey key = MakeReferenceKey(pipeline.GetScene(), record.fingerprint, index,
-                                                        frame.timeSeconds, eye, camera,
-                                                        config.reference.spp, config.run.maxDepth,
-                                                        config.reference.seed);
-                    bool hit = false;
-                    Plane<vec3> reference = cache.GetOrRender(key, pipeline.GetRenderer(), &hit);
-                    record.referenceHits += hit ? 1 : 0;
-                    ++record.referenceLookups;
-                    ++record.eyeFrames;
-                    record.times.referenceMs += MsSince(start);
-                    if (vdp) {
-                        const auto metricStart = std::chrono::steady_clock::now();
-                        vdp->AddReference(eye, int(index), camera, reference, e.trueGazePixel);
-                        record.times.metricMs += MsSince(metricStart);
-                    }
-
-                    EyeFrameImages images;
-                    images.scene = label;
-                    images.seed = config.run.seed;
-                    images.frame = int(index);
-                    images.eye = eye;
-                    images.camera = camera;
-                    images.gazeEye = e.trueGazeEye;  // errors are scored where the eye was
-                    images.fovea = fovea;
-                    images.cameraCut = e.inputs.cameraCut;
-                    images.reference = &reference;
-                    const Plane<uint8_t> detail = DetailMask(detailInstances, e.inputs);
-                    images.detailMask = &detail;
-                    for (size_t v = 0; v < denoisers.size(); ++v) {
-                        const size_t variant = size_t(std::find(spec.variants.begin(), spec.variants.end(),
-                                                                denoisers.Name(v)) - spec.variants.begin());
-                        if (!Owns(units, sceneIndex, seedIndex, eye, variant)) continue;
-                        Denoiser& denoiser = denoisers.At(v, eye);
-                        const auto denoiseStart = std::chrono::steady_clock::now();
-                        denoiser.Denoise(e.inputs, outputs[v]);
-                        record.times.denoiseMs += MsSince(denoiseStart);
-                        for (const PassTiming& t : denoiser.LastTimings())
-                            part.timings.Add(denoisers.Name(v), t.pass, t.ms);
-                        images.outputs.emplace_back(denoisers.Name(v), &outputs[v]);
-                        if (vdp) {
-                            const auto metricStart = std::chrono::steady_clock::now();
-                            vdp->AddOutput(eye, denoisers.Name(v), outputs[v]);
-                            record.times.metricMs += MsSince(metricStart);
-                        }
-                        if (config.output.writeExr)
-                            WriteRgbExr(outDir / label / denoisers.Name(v) /
-                                            fmt::format("{}f{:05d}_{}.exr",
-                                                        seeds.size() > 1 ? fmt::format("s{}_", config.run.seed) : "",
-                                                        index, eye == 0 ? "left" : "right"),
-                                        outputs[v]);
-                    }
-                    collector.Add(images);
-
-                    if (visualsHere && eye == visuals.eye) {
-                        visuals.gazePath.push_back(e.trueGazePixel);
-                        if (int(index) == visualFrame) {
-                            visuals.frame = int(index);
-                            visuals.gazePixel = e.trueGazePixel;
-                            visuals.sppMap = e.sppMap;
-                            visuals.reference = reference;
-                            visuals.noisy = e.inputs.NoisyImage();
-                            visuals.variants.clear();
-                            for (const auto& [name, image] : images.outputs) visuals.variants.emplace_back(name, *image);
-                        }
-                    }
-                }
-                progress.Step(seeds.size() > 1 ? fmt::format("{} seed {} frame {}", label, config.run.seed, index)
-                                               : fmt::format("{} frame {}", label, index));
-            }
-            if (vdp) {
-                const auto metricStart = std::chrono::steady_clock::now();
-                for (VdpScore& score : vdp->Score(label, config.run.seed)) part.vdp.push_back(std::move(score));
-                record.times.metricMs += MsSince(metricStart);
-                part.vdpDisplay = VdpDisplayText(vdp->Display());
-                if (visualsHere) visuals.vdpMaps = vdp->DiffMaps(visuals.eye);
-            }
-            RenderStats stats = pipeline.GetRenderer().Stats();
-            record.rays += stats.Rays();
-            record.droppedSamples += stats.droppedSamples;
+            if (any) passes.emplace_back(seedIndex, std::move(work));
         }
-        if (touched) part.scenes.push_back(std::move(record));
+        if (passes.empty()) continue;
+        config.run.seed = passes.front().second.seed;
+
+        const RunConfig pipelineConfig = spec.replay ? ReplayPipelineConfig(config) : config;
+        FrameLoop loop(config, true, &pipelineConfig);  // the scene and its BVH, once
+        part.deviceDescription = loop.Denoisers().DeviceDescription();
+        std::optional<Replay> replay = spec.replay;
+        if (replay) {
+            CheckReplayScene(*replay, loop.Pipeline());
+            part.replayRecord = replay->ToJson();
+        }
+        SceneRecord record;
+        record.index = sceneIndex;
+        record.requested = spec.scenes[sceneIndex];
+        record.label = SceneLabel(loop.Pipeline().GetScene().name, labels);
+        record.fingerprint = loop.SceneFingerprint();
+        record.source = loop.Pipeline().GetScene().sourcePath.string();
+
+        const int visualFrame =
+            spec.visualFrame >= 0 ? spec.visualFrame
+                                  : int((replay ? FrameSequence(loop.Pipeline(), *replay) : FrameSequence(loop.Pipeline()))
+                                            .LastFrame());
+        ExperimentScoring scoring(config, loop, record, part, visualFrame);
+        ReportVisuals visuals(config, loop, record, visualFrame);
+        PassCosts costs(record, part, progress, seeds.size() > 1);
+        std::optional<ExperimentExr> exr;
+        loop.Attach(visuals);
+        loop.Attach(scoring);
+        if (config.output.writeExr) loop.Attach(exr.emplace(outDir / record.label, seeds.size() > 1));
+        loop.Attach(costs);
+        for (auto& [seedIndex, work] : passes) {
+            visuals.Prepare(seedIndex, work);
+            scoring.SetVisualsHere(ReportVisuals::ShownIn(seedIndex, work));
+            // A fresh sequence per pass: the pipeline restarts with the seed before the first frame.
+            std::optional<FrameSequence> sequence;
+            RecordedFrame recorded;
+            auto next = [&](FrameRequest& request) {
+                if (!sequence) sequence.emplace(replay ? FrameSequence(loop.Pipeline(), *replay) : FrameSequence(loop.Pipeline()));
+                if (!sequence->Next(recorded)) return false;
+                request = recorded.request;
+                return true;
+            };
+            loop.RunSeed(seedIndex, work, next);
+        }
+        part.scenes.push_back(std::move(record));
     }
     progress.Finish();
     return part;
@@ -490,8 +364,8 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                                 {"seeds", seeds},
                                 {"render_ms_per_eye", r.times.renderMs / eyeFramesDenominator},
                                 {"reference_ms_per_eye", r.times.referenceMs / eyeFramesDenominator},
-                                // Wall time of every variant's Denoise() and of FovVideoVDP for them
-                                // (luminance, filters, pyramid, pooling), per eye-frame.
+                                // Wall time of every variant's Denoise() and of scoring them (the
+                                // per-region errors and FovVideoVDP), per eye-frame.
                                 {"denoise_ms_per_eye", r.times.denoiseMs / eyeFramesDenominator},
                                 {"metric_ms_per_eye", r.times.metricMs / eyeFramesDenominator},
                                 {"reference_cache_hits", r.referenceHits},

@@ -68,7 +68,7 @@ private:
 // Wall time a scene's runs spent per stage, summed over its eye-frames (and, merged, its shards).
 struct SceneTimes {
     double renderMs = 0.0, referenceMs = 0.0;
-    double denoiseMs = 0.0, metricMs = 0.0;  // every variant's Denoise(); FovVideoVDP for them
+    double denoiseMs = 0.0, metricMs = 0.0;  // every variant's Denoise(); scoring them (errors, FovVideoVDP)
     SceneTimes& operator+=(const SceneTimes& o) {
         renderMs += o.renderMs, referenceMs += o.referenceMs, denoiseMs += o.denoiseMs, metricMs += o.metricMs;
         return *this;

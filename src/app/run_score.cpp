@@ -5,12 +5,12 @@
 #include <fmt/format.h>
 
 #include "app/experiment.h"
-#include "pipeline/metric_fovea.h"
 #include "app/experiment_stats.h"
 #include "app/report_summary.h"
 #include "core/atomic_file.h"
 #include "core/check.h"
 #include "core/error.h"
+#include "pipeline/metric_fovea.h"
 
 namespace fovrt {
 
@@ -23,59 +23,69 @@ std::string FirstLabel(const Scene& scene) {
 
 }  // namespace
 
-RunScorer::RunScorer(const RunConfig& config, FramePipeline& pipeline)
+PassScorer::PassScorer(const RunConfig& config, const Scene& scene, std::string label, double fps,
+                       Results& results, int visualFrame)
     : config_(config),
-      pipeline_(pipeline),
-      cache_(config.reference.cacheDir),
-      fingerprint_(SceneFingerprint(pipeline.GetScene())),
-      label_(FirstLabel(pipeline.GetScene())),
       fovea_(MetricFovea(config.foveation, config.camera.width)),
-      detailInstances_(InstancesWithMaterialMaps(pipeline.GetScene())),
-      collector_(results_) {
-    if (config.metric.vdp) vdp_.emplace(config, pipeline.FramesPerSecond());
+      detailInstances_(InstancesWithMaterialMaps(scene)),
+      collector_(results) {
+    images_.scene = std::move(label);
+    if (config.metric.vdp) vdp_.emplace(config, fps, visualFrame);
 }
 
-void RunScorer::BeginEye(const StereoFrame& frame, int eye) {
+void PassScorer::BeginEye(const StereoFrame& frame, int eye, const Plane<vec3>& reference) {
     const EyeFrame& e = frame.eyes[size_t(eye)];
-    const ReferenceKey key = MakeReferenceKey(pipeline_.GetScene(), fingerprint_, frame.frame, frame.timeSeconds, eye,
-                                              e.camera, config_.reference.spp, config_.run.maxDepth,
-                                              config_.reference.seed);
-    bool hit = false;
-    const uint64_t raysBefore = pipeline_.GetRenderer().Stats().Rays();
-    reference_ = cache_.GetOrRender(key, pipeline_.GetRenderer(), &hit);
-    referenceRays_ += pipeline_.GetRenderer().Stats().Rays() - raysBefore;
-    referenceHits_ += hit ? 1 : 0;
-    ++referenceLookups_;
-    if (vdp_) vdp_->AddReference(eye, int(frame.frame), e.camera, reference_, e.trueGazePixel);
-    // As the experiment's images of this eye (experiment.cpp): errors are scored where the eye was.
+    if (vdp_) vdp_->AddReference(eye, int(frame.frame), e.camera, reference, e.trueGazePixel);
     detail_ = DetailMask(detailInstances_, e.inputs);
-    images_ = EyeFrameImages{};
-    images_.scene = label_;
+    reference_ = &reference;
     images_.seed = config_.run.seed;
     images_.frame = int(frame.frame);
     images_.eye = eye;
     images_.camera = e.camera;
-    images_.gazeEye = e.trueGazeEye;
+    images_.gazeEye = e.trueGazeEye;  // errors are scored where the eye was
     images_.fovea = fovea_;
     images_.cameraCut = e.inputs.cameraCut;
-    images_.reference = &reference_;
+    images_.reference = reference_;
     images_.detailMask = &detail_;
 }
 
-void RunScorer::AddOutput(const std::string& variant, const Plane<vec3>& output) {
-    FOVRT_CHECK(images_.reference != nullptr);
-    EyeFrameImages one = images_;
-    one.outputs = {{variant, &output}};
-    collector_.Add(one);
+void PassScorer::AddOutput(const std::string& variant, const Plane<vec3>& output) {
+    FOVRT_CHECK(reference_ != nullptr);
+    images_.outputs = {{variant, &output}};
+    collector_.Add(images_);
+    images_.outputs.clear();
     if (vdp_) vdp_->AddOutput(images_.eye, variant, output);
+}
+
+std::vector<VdpScore> PassScorer::ScoreVdp() {
+    return vdp_ ? vdp_->Score(images_.scene, config_.run.seed) : std::vector<VdpScore>{};
+}
+
+RunScorer::RunScorer(const RunConfig& config, FrameLoop& loop)
+    : config_(config),
+      scorer_(config, loop.Pipeline().GetScene(), FirstLabel(loop.Pipeline().GetScene()),
+              loop.Pipeline().FramesPerSecond(), results_) {
+    FOVRT_CHECK(loop.HasReferences());
+}
+
+void RunScorer::Reference(const StereoFrame& frame, int eye, const ReferenceLookup& reference) {
+    referenceRays_ += reference.rays;
+    referenceHits_ += reference.cacheHit ? 1 : 0;
+    ++referenceLookups_;
+    scorer_.BeginEye(frame, eye, *reference.image);
+}
+
+void RunScorer::Output(const StereoFrame&, int, const DenoisedOutput& output) {
+    scorer_.AddOutput(*output.name, *output.image);
 }
 
 nlohmann::json RunScorer::Finish(const std::filesystem::path& outDir, const std::string& baseline) {
     const std::vector<std::string>& variants = config_.denoise.denoisers;
+    const std::string& label = scorer_.Label();
     const ExperimentStats stats(results_, baseline);
     nlohmann::json summary = SummaryJson(results_, stats);
-    const std::string csv = fmt::format("frames-{}.csv", label_);
-    WriteFrameCsv(outDir / csv, results_, label_);
+    const std::string csv = fmt::format("frames-{}.csv", label);
+    WriteFrameCsv(outDir / csv, results_, label);
 
     nlohmann::json block;
     block["reference"] = {{"cache_dir", config_.reference.cacheDir},
@@ -88,13 +98,13 @@ nlohmann::json RunScorer::Finish(const std::filesystem::path& outDir, const std:
     nlohmann::json relMse = nlohmann::json::object();
     for (const std::string& variant : variants)
         for (const std::string& region : ComparedRegions())
-            if (auto mean = results_.Mean(label_, variant, region, "relmse")) relMse[variant][region] = mean->mean;
+            if (auto mean = results_.Mean(label, variant, region, "relmse")) relMse[variant][region] = mean->mean;
     block["relmse"] = relMse;
 
     std::string vdpTable;
-    if (vdp_) {
-        const std::vector<VdpScore> scores = vdp_->Score(label_, config_.run.seed);
-        const std::string display = VdpDisplayText(vdp_->Display());
+    if (VdpExperimentScorer* vdp = scorer_.Vdp()) {
+        const std::vector<VdpScore> scores = scorer_.ScoreVdp();
+        const std::string display = VdpDisplayText(vdp->Display());
         const auto summarized = SummarizeVdp(scores, variants, baseline);
         WriteTextAtomically(outDir / "jod.csv", VdpCsv(scores));
         summary["fovvideovdp"] = VdpSummaryJson(summarized, display);

@@ -1,11 +1,12 @@
-// RunScorer: `fovrt run` with run.score (or --score) scores every variant's output against the
-// reference `fovrt experiment` would use for the same frame and eye (app/reference_cache.h, the
-// same key: read from reference.cache_dir, rendered and stored there when missing), with the
-// experiment's own code: MetricsCollector per frame (relMSE, SSIM, FLIP, temporal error per
-// region, fovea at the true gaze) and VdpExperimentScorer per eye sequence (FovVideoVDP JOD,
-// foveated at the true gaze of each frame). Same config, seed and variants ⇒ the experiment's
-// numbers. Outputs in the run's folder, named and laid out as the experiment's: the per-frame CSV
-// frames-<scene>.csv, jod.csv, summary.json, and a "score" block for the manifest.
+// Scoring a pass over the frames (one scene, one run seed) against the references, with the same
+// code in `fovrt run --score` and `fovrt experiment`:
+// - PassScorer: per eye and frame, MetricsCollector (relMSE, SSIM, FLIP, temporal error per region,
+//   fovea at the true gaze) on every variant's output, and VdpExperimentScorer per eye sequence
+//   (FovVideoVDP JOD, foveated at the true gaze of each frame).
+// - RunScorer: `fovrt run` with run.score (or --score), a FrameLoopObserver over one PassScorer
+//   that writes, named and laid out as the experiment's, frames-<scene>.csv, jod.csv,
+//   summary.json, and returns a "score" block for the manifest. Same config, seed and variants ⇒
+//   the experiment's numbers.
 #pragma once
 
 #include <filesystem>
@@ -16,22 +17,46 @@
 #include <nlohmann/json.hpp>
 
 #include "app/experiment_vdp.h"
-#include "pipeline/frame_pipeline.h"
-#include "pipeline/reference_cache.h"
 #include "app/report.h"
 #include "app/report_collect.h"
+#include "loop/frame_loop.h"
 
 namespace fovrt {
 
-class RunScorer {
+class PassScorer {
 public:
-    // `pipeline`: the run's (its renderer renders missing references at the current frame).
-    RunScorer(const RunConfig& config, FramePipeline& pipeline);
+    // Rows go to `results` under scene label `label` and the config's run.seed; `visualFrame`: the
+    // frame whose FovVideoVDP difference map is kept (-1: none).
+    PassScorer(const RunConfig& config, const Scene& scene, std::string label, double fps, Results& results,
+               int visualFrame = -1);
 
-    // One eye of the frame `pipeline` just rendered: its reference (cached or rendered now).
-    void BeginEye(const StereoFrame& frame, int eye);
-    // A variant's output for that eye (call once per variant, in the run's order).
+    // One eye of `frame`: its reference (errors are scored where the eye really was).
+    void BeginEye(const StereoFrame& frame, int eye, const Plane<vec3>& reference);
+    // A variant's output for that eye.
     void AddOutput(const std::string& variant, const Plane<vec3>& output);
+    // FovVideoVDP of every (eye, variant) sequence (empty with metric.vdp off).
+    std::vector<VdpScore> ScoreVdp();
+    VdpExperimentScorer* Vdp() { return vdp_ ? &*vdp_ : nullptr; }
+    const std::string& Label() const { return images_.scene; }
+
+private:
+    const RunConfig& config_;
+    FoveaRadius fovea_;
+    std::vector<uint8_t> detailInstances_;
+    MetricsCollector collector_;
+    std::optional<VdpExperimentScorer> vdp_;
+    EyeFrameImages images_;  // the eye being scored
+    const Plane<vec3>* reference_ = nullptr;
+    Plane<uint8_t> detail_;
+};
+
+class RunScorer : public FrameLoopObserver {
+public:
+    // `loop`: the run's (references on); its scene names the rows.
+    RunScorer(const RunConfig& config, FrameLoop& loop);
+
+    void Reference(const StereoFrame& frame, int eye, const ReferenceLookup& reference) override;
+    void Output(const StereoFrame& frame, int eye, const DenoisedOutput& output) override;
 
     // Scores the eye sequences, writes the CSVs and summary.json under `outDir`, prints the
     // tables on stdout and returns the manifest's "score" block.
@@ -39,21 +64,10 @@ public:
 
 private:
     const RunConfig& config_;
-    FramePipeline& pipeline_;
-    ReferenceCache cache_;
-    uint64_t fingerprint_;
-    std::string label_;
-    FoveaRadius fovea_;
-    std::vector<uint8_t> detailInstances_;
     Results results_;
-    MetricsCollector collector_;
-    std::optional<VdpExperimentScorer> vdp_;
+    PassScorer scorer_;
     int referenceHits_ = 0, referenceLookups_ = 0;
     uint64_t referenceRays_ = 0;  // traced for references missing from the cache
-    // The eye being scored.
-    EyeFrameImages images_;
-    Plane<vec3> reference_;
-    Plane<uint8_t> detail_;
 };
 
 }  // namespace fovrt

@@ -57,9 +57,22 @@ FramePipeline::FramePipeline(const RunConfig& config)
     settings.fbetaPlane = needs.fbetaPlane;
     ParseDemodulation(config.render.demodulation, settings.demodulation);  // validated by the config
     renderer_ = CreateRenderer(scene_, settings);
-    sppModel_ = CreateSppModel(config.foveation);
-    gaze_ = CreateGazeSource(config.gaze, ResolveFov(config, scene_));
-    tracked_ = std::make_unique<TrackedGaze>(*gaze_, config.gaze.tracker);
+    MakeGazeAndFoveation();
+}
+
+void FramePipeline::MakeGazeAndFoveation() {
+    sppModel_ = CreateSppModel(config_.foveation);
+    tracked_.reset();
+    gaze_ = CreateGazeSource(config_.gaze, ResolveFov(config_, scene_));
+    tracked_ = std::make_unique<TrackedGaze>(*gaze_, config_.gaze.tracker);
+}
+
+void FramePipeline::Restart(uint32_t seed) {
+    config_.run.seed = seed;
+    renderer_->Restart(seed);
+    MakeGazeAndFoveation();
+    hasPrevious_ = false;
+    previousFrame_ = 0;
 }
 
 void FramePipeline::SetFoveation(const FoveationParams& params) {

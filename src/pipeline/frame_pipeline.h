@@ -74,10 +74,17 @@ public:
     // The next Render() is a camera cut (a teleport, a denoiser switch, a resumed recording).
     void Cut() { hasPrevious_ = false; }
 
+    // Starts over with run seed `seed`, as a FramePipeline built from the config with that
+    // run.seed would start, but on the same scene and BVH (loaded and built once per scene): the
+    // renderer restarts (render/renderer.h), the gaze sources and the spp model are made anew.
+    void Restart(uint32_t seed);
+
     // Moves the scene to `frame` without rendering noisy inputs (for reference-only work).
     void SetFrame(uint32_t frame);
 
 private:
+    void MakeGazeAndFoveation();
+
     RunConfig config_;
     Scene scene_;
     std::unique_ptr<Renderer> renderer_;

@@ -101,6 +101,7 @@ public:
         lights_.Build(scene_, *embree_);
     }
     void SetGradientSamples(bool on) { settings_.gradientSamples = on; }
+    void SetSeed(uint32_t seed) { settings_.seed = seed; }
     void SetFbetaPlane(bool on) {
         settings_.fbetaPlane = on;
         // The table (seconds to build) only once some frame needs F_β.

@@ -116,6 +116,17 @@ public:
     RenderStats Stats() const override { return counters_.Stats(); }
     void ResetStats() override { counters_.Reset(); }
 
+    void Restart(uint32_t seed) override {
+        integrator_.SetSeed(seed);
+        counters_.Reset();
+        for (int eye = 0; eye < 2; ++eye) {
+            history_[eye] = EyeHistory{};
+            visibility_[eye] = EyeVisibility{};
+        }
+        hasFrame_ = false;
+        SetFrame(0);  // as the constructor: frame 0's state is also the first previous frame's
+    }
+
 protected:
     Integrator<Rays> integrator_;
     mutable tbb::task_arena arena_;

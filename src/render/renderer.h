@@ -92,6 +92,10 @@ public:
 
     virtual RenderStats Stats() const = 0;
     virtual void ResetStats() = 0;
+    // Starts over with run seed `seed` on the same scene and BVH: frame 0, no previous frame, no
+    // eye history, counters at zero — the state CreateRenderer with that seed starts in, without
+    // loading the scene or building its BVH again (an experiment's seeds share one renderer).
+    virtual void Restart(uint32_t seed) = 0;
 };
 
 std::unique_ptr<Renderer> CreateRenderer(const Scene& scene, const RenderSettings& settings);
