@@ -208,13 +208,14 @@ BjontegaardResult BjontegaardDelta(const RateQualityCurve& anchor, const RateQua
     Axes(sortedTest, delta, xt, yt);
     const double from = std::max(xa.front(), xt.front()), to = std::min(xa.back(), xt.back());
     if (!(to > from)) {
+        // The ranges as measured (rays, not ln rays).
         const bool jod = delta == RateQualityDelta::kRaysSaved;
-        const auto range = [jod](const std::vector<double>& x) {
-            return jod ? fmt::format("[{}, {}]", x.front(), x.back())
-                       : fmt::format("[{}, {}]", std::exp(x.front()), std::exp(x.back()));
+        const auto range = [jod](const RateQualityCurve& c) {
+            return jod ? fmt::format("[{}, {}]", c.front().jod, c.back().jod)
+                       : fmt::format("[{}, {}]", c.front().rays, c.back().rays);
         };
         result.reason = fmt::format("the curves' {} do not overlap: anchor {}, test {}", jod ? "JOD" : "rays",
-                                    range(xa), range(xt));
+                                    range(sortedAnchor), range(sortedTest));
         return result;
     }
     const double meanDifference =
