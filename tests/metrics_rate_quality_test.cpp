@@ -92,7 +92,8 @@ TEST_CASE("a curve c JOD higher at the same rays gains c JOD", "[rate_quality]")
         for (double r : rays) out.push_back({r, 4.0 + 1.3 * std::log(r) + offset});
         return out;
     };
-    const BjontegaardResult r = JodGainAtEqualRays(jodLinear({1, 2, 4, 8}, 0.0), jodLinear({3, 5, 6, 12, 30}, 0.4));
+    const BjontegaardResult r =
+        JodGainAtEqualRays(jodLinear({1, 2, 4, 8}, 0.0), jodLinear({3, 5, 6, 12, 30}, 0.4));
     REQUIRE(r.Ok());
     CHECK(Near(r.value, 0.4));
     CHECK(Near(r.from, std::log(3.0)));
@@ -134,8 +135,10 @@ TEST_CASE("a curve that is not a rate-quality curve gives no result, naming the 
         {{{0, 5.0}, {2, 6.0}}, "test curve: point 0 has rays 0; rays must be > 0"},
         {{{-1, 5.0}, {2, 6.0}}, "rays must be > 0"},
         {{{1, 5.0}, {2, 6.0}, {2, 6.5}}, "test curve: two points at 2 rays"},
-        {{{1, 5.0}, {2, 6.0}, {4, 6.0}}, "test curve: not monotone: JOD 6 at 4 rays is not above JOD 6 at 2 rays"},
-        {{{4, 5.5}, {1, 5.0}, {2, 6.0}}, "test curve: not monotone: JOD 5.5 at 4 rays is not above JOD 6 at 2 rays"},
+        {{{1, 5.0}, {2, 6.0}, {4, 6.0}},
+         "test curve: not monotone: JOD 6 at 4 rays is not above JOD 6 at 2 rays"},
+        {{{4, 5.5}, {1, 5.0}, {2, 6.0}},
+         "test curve: not monotone: JOD 5.5 at 4 rays is not above JOD 6 at 2 rays"},
     };
     for (const auto& [curve, reason] : bad)
         for (RateQualityDelta delta : {RateQualityDelta::kRaysSaved, RateQualityDelta::kJodGain}) {
@@ -274,5 +277,6 @@ TEST_CASE("the bootstrap refuses mismatched seeds and curves that resampling mak
     CHECK(noInterval.estimate.value == 1.0);
     CHECK(noInterval.failedReplicates > 300);
     CHECK(std::isnan(noInterval.lower));
-    CHECK(Contains(noInterval.intervalReason, "seed resamples give no result (more than 2.5 %), e.g. anchor curve: not monotone"));
+    CHECK(Contains(noInterval.intervalReason,
+                   "seed resamples give no result (more than 2.5 %), e.g. anchor curve: not monotone"));
 }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <optional>
 
 #include <fmt/format.h>
 
@@ -131,8 +130,9 @@ std::string SharedSeedCount(const SeededRateQualityCurve& anchor, const SeededRa
             if (n == 0) return fmt::format("{} curve: point {} has no seeds", name, i);
             if (seeds == 0) seeds = n;
             if (n != seeds)
-                return fmt::format("{} curve: point {} has {} seeds, the first point {}; every point needs the same seeds",
-                                   name, i, n, seeds);
+                return fmt::format(
+                    "{} curve: point {} has {} seeds, the first point {}; every point needs the same seeds", name,
+                    i, n, seeds);
         }
     return {};
 }
