@@ -258,7 +258,7 @@ TEST_CASE("equal seeds give a degenerate interval; seeds resampled in pairs canc
     CHECK(Near(paired.upper, 2.0));
 }
 
-TEST_CASE("the bootstrap refuses mismatched seeds and curves that resampling makes non-monotone",
+TEST_CASE("the bootstrap refuses mismatched or non-finite seeds and curves resampling makes non-monotone",
           "[rate_quality]") {
     SeededRateQualityCurve anchor = Seeded(kShapes[0], 4, 0.05, 1);
     const SeededRateQualityCurve test = Seeded(FewerRays(kShapes[0], 2.0), 4, 0.05, 2);
@@ -266,6 +266,11 @@ TEST_CASE("the bootstrap refuses mismatched seeds and curves that resampling mak
     const BjontegaardInterval mismatched = BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kRaysSaved);
     CHECK(Contains(mismatched.estimate.reason, "anchor curve: point 2 has 3 seeds, the first point 4"));
     CHECK(std::isnan(mismatched.lower));
+    SeededRateQualityCurve nonFinite = test;
+    nonFinite[1].jodPerSeed[3] = std::nan("");
+    const BjontegaardInterval nan = BootstrapBjontegaardDelta(test, nonFinite, RateQualityDelta::kJodGain);
+    CHECK(Contains(nan.estimate.reason, "test curve: point 1 is not finite"));
+    CHECK(nan.intervalReason == "no estimate");
 
     // Seed 1 swaps two points' order in JOD: the mean is monotone, a quarter of the resamples
     // (seed 1 drawn twice) are not, more than the 2.5 % the interval's tail can lose.
