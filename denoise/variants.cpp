@@ -206,6 +206,43 @@ RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string
     return needs;
 }
 
+namespace {
+
+struct MechanismName {
+    bool DenoiserVariant::*flag;
+    std::string_view name;
+};
+// One row per mechanism flag of DenoiserVariant, in the order a frame runs them.
+constexpr MechanismName kMechanismNames[] = {
+    {&DenoiserVariant::weightBySampleCount, "temporal weights x sample count (svgf-weighted)"},
+    {&DenoiserVariant::asvgfGradient, "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)"},
+    {&DenoiserVariant::antilag, "anti-lag: lambda shortens the history (Q2RTX)"},
+    {&DenoiserVariant::suppressFireflies, "firefly suppression before accumulation"},
+    {&DenoiserVariant::twoHistory, "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)"},
+    {&DenoiserVariant::emaGradient, "EMA luminance gradient -> q (Tu 2024)"},
+    {&DenoiserVariant::hystereticChoice, "held history choice (band and rate)"},
+    {&DenoiserVariant::clampHistory, "history clamp to the weighted history's neighbourhood"},
+    {&DenoiserVariant::stabilize, "luminance stabilisation pass"},
+    {&DenoiserVariant::stabilizeAntilag, "stabilisation weight driven by the change detector"},
+    {&DenoiserVariant::raeSampleCount, "sample count as an extra network input"},
+};
+
+}  // namespace
+
+std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant) {
+    std::vector<std::string> names;
+    for (const MechanismName& m : kMechanismNames)
+        if (variant.*m.flag) names.emplace_back(m.name);
+    return names;
+}
+
+std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant) {
+    std::vector<std::string> needs;
+    if (variant.needsGradientSamples) needs.emplace_back("A-SVGF gradient samples (forward-projected, re-shaded)");
+    if (variant.needsSampleCount) needs.emplace_back("per-pixel sample counts");
+    return needs;
+}
+
 const std::vector<std::string>& DenoiserNames() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n;

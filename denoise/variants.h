@@ -86,6 +86,13 @@ struct RendererNeeds {
 // fovrt::Error naming the key `what` on an unknown name.
 RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string_view what);
 
+// The mechanisms a row turns on, by name, in the order the frame runs them ("weighted history",
+// "A-SVGF gradient", …; none for plain SVGF): what `fovrt info --denoiser` prints. Read from the
+// row's flags through one table (kMechanismNames in variants.cpp).
+std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant);
+// What the renderer must produce for the row, in words (empty: the noisy inputs alone).
+std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant);
+
 // Names accepted by CreateDenoiser, in table order.
 const std::vector<std::string>& DenoiserNames();
 
