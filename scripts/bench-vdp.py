@@ -88,6 +88,7 @@ def main():
             write(f"{d}/ref", ref)
             fix = [w * 0.3, h * 0.4]
             with open(f"{d}/gaze.csv", "w") as g:
+                g.write("frame,x,y\n")
                 g.writelines(f"{f},{fix[0]},{fix[1]}\n" for f in range(n))
             secs, cpu, line, cmd = time_fovrt(a.fovrt, d, n, f"{d}/gaze.csv", a.repeats)
             print(f"{w}x{h} x {n} frames, fovrt vdp (incl. PNG reading): {secs:.2f} s wall, {cpu:.2f} s CPU  [{line}]")
