@@ -109,10 +109,10 @@ inline double TwoHistoryBlendVariance(const TwoHistoryWeights& w, double p) {
 }
 
 // p = clamp((W_u²S_1 − W_uW_wS_0) / (W_u²S_1 − 2W_uW_wS_0 + W_w²S_{−1}), 0, 1) (Tu 2024, slides
-// "First Phase of Blending": the boxed formula swaps S_0 and S_1; this one follows from the proof). Evaluated as (a − b)/(a − 2b + c) with the terms
-// of V(p) above, which keeps the magnitudes near 1/W. The denominator is Σβ²(1/W_u − n/W_w)²/n ≥ 0
-// and vanishes only when every n is equal (I_w = I_u, any p is right); when it is lost in
-// rounding V(p) is linear and the smaller end wins.
+// "First Phase of Blending": the boxed formula swaps S_0 and S_1; this one follows from the proof).
+// Evaluated as (a − b)/(a − 2b + c) with the terms of V(p) above, which keeps the magnitudes near
+// 1/W. The denominator is Σβ²(1/W_u − n/W_w)²/n ≥ 0 and vanishes only when every n is equal (I_w =
+// I_u, any p is right); when it is lost in rounding V(p) is linear and the smaller end wins.
 inline float TwoHistoryOptimalBlend(const TwoHistoryWeights& w) {
     if (w.wu <= 0.0f || w.ww <= 0.0f) return 1.0f;
     const float a = w.s1 / (w.ww * w.ww);
