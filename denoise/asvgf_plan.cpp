@@ -1,4 +1,4 @@
-// A-SVGF's temporal gradient (Schied 2018 §3, SPEC §4) as planned passes.
+// A-SVGF's temporal gradient (Schied et al. 2018, §3) as planned passes.
 #include "denoise/plan_writer.h"
 
 namespace fovrt::plan {

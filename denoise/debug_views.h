@@ -1,6 +1,6 @@
 // Debug views: a denoiser's internal per-pixel planes of its last Denoise() call, one float per
 // pixel (A-SVGF's α and λ̂, two-history's p and q, the temporal history length …), for the live
-// preview panel and for debugging (issue #11).
+// preview panel and for debugging.
 //
 // The one table of views: each row names a view, says what it means and its valid range, and
 // which variants offer it, decided by the flags of their row in DenoiserVariants()

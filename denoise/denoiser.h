@@ -1,4 +1,5 @@
-// Denoiser: reconstruction of one eye's noisy FrameInputs into an HDR image (SPEC §3–§5).
+// Denoiser: reconstruction of one eye's noisy FrameInputs into an HDR image (the methods and
+// their papers: docs/algorithms.md, docs/papers.bib).
 // Each eye owns its own Denoiser (histories are per eye). Implementations come in two backends
 // with the same maths: Vulkan compute (shaders/) and the plain C++ reference (denoise/*_ref.cpp).
 #pragma once

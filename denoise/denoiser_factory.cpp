@@ -51,8 +51,8 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
         std::unique_ptr<Denoiser> rae;
         if (ctx) rae = std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);
         else rae = std::make_unique<RaeReferenceDenoiser>(name, p);
-        // Its features and remodulation are the albedo's (SPEC §12) whatever render.demodulation the
-        // frame was traced with (a no-op on albedo-demodulated frames).
+        // Its features and remodulation are the albedo's (Chaitanya et al. 2017, §3.2) whatever
+        // render.demodulation the frame was traced with (a no-op on albedo-demodulated frames).
         return WithDemodulation(std::move(rae), Demodulation::Albedo, name);
     }
     // svgf, svgf-weighted, asvgf, two-history, two-history-asvgf: one host per backend runs the

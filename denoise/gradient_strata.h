@@ -1,6 +1,6 @@
-// The A-SVGF stratum grid (SPEC §4): 3×3-pixel strata, one forward-projected gradient sample
-// kept per stratum. Shared by the renderer's sample layout, the references, the Vulkan passes and
-// the memory plan.
+// The A-SVGF stratum grid (Schied et al. 2018, §3.3, "Constructing Gradient Samples"): 3×3-pixel
+// strata, one forward-projected gradient sample kept per stratum. Shared by the renderer's sample
+// layout, the references, the Vulkan passes and the memory plan.
 #pragma once
 
 #include <cstddef>

@@ -1,7 +1,8 @@
-// The recurrent denoising autoencoder's trained weights (SPEC §12) as the training code exports
-// them (.raew; layout documented in training/rae_net.py): parsing, the conv order, parameter and
-// FLOP counts, hidden-state and memory plans. No inference here (denoise/reference/rae_net.h,
-// denoise/vulkan/rae_vk.h), so the memory plan and the bench can read a network's shape.
+// The recurrent denoising autoencoder's trained weights (Chaitanya et al. 2017) as the training
+// code exports them (.raew; layout documented in training/rae_net.py): parsing, the conv order,
+// parameter and FLOP counts, hidden-state and memory plans. No inference here
+// (denoise/reference/rae_net.h, denoise/vulkan/rae_vk.h), so the memory plan and the bench can read
+// a network's shape.
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,8 @@
 #include "denoise/plan_writer.h"
 
-// Temporal accumulation (SPEC §3–§5): svgf_reproject for the SVGF family, two_history_reproject
-// for the two-history family; their bindings, and the two passes that record either.
+// Temporal accumulation (Schied et al. 2017, §4.1; Tu 2024): svgf_reproject for the SVGF family,
+// two_history_reproject for the two-history family; their bindings, and the two passes that record
+// either.
 namespace fovrt::plan {
 
 namespace {

@@ -12,7 +12,7 @@ namespace fovrt {
 // The 1-based à-trous iteration whose output becomes the colour history; 0 = the unfiltered
 // temporal accumulation is fed back (also when there is no à-trous iteration). The two-history
 // family blends its two histories after iteration 1, so a later feedback would feed the blend
-// back: it feeds back iteration 1 at the latest (SPEC §5).
+// back: it feeds back iteration 1 at the latest (Tu 2024, slide "Why Not Blend Earlier").
 inline int FeedbackIteration(const SvgfParams& p, bool twoHistory) {
     if (p.atrousIterations <= 0 || p.feedbackIteration <= 0) return 0;
     return std::min(p.feedbackIteration, twoHistory ? 1 : p.atrousIterations);

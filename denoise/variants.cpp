@@ -183,8 +183,8 @@ std::string UnknownDenoiserMessage(std::string_view name) {
 std::optional<std::string> DenoiserNameProblem(std::string_view name) {
     const DenoiserVariant* v = LookupDenoiserVariant(name);
     if (!v) return UnknownDenoiserMessage(name);
-    // The network's weights were trained on albedo-demodulated illumination (SPEC §12); F_β input
-    // would need weights trained on it.
+    // The network's weights were trained on albedo-demodulated illumination (Chaitanya et al. 2017,
+    // §3.2); F_β input would need weights trained on it.
     if (v->family == DenoiserFamily::Rae && DenoiserDemodulation(name) == Demodulation::Brdf)
         return fmt::format("'{}': the RAE's weights were trained on albedo-demodulated illumination; use '{}' "
                            "(it re-divides an F_β-demodulated frame by the albedo itself)",

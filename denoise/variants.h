@@ -19,11 +19,13 @@
 
 namespace fovrt {
 
-// The pass family a variant runs. Svgf: reproject → moments → à-trous → modulate (SPEC §3).
+// The pass family a variant runs.
+// Svgf: reproject → moments → à-trous → modulate (Schied et al. 2017, §4).
 // TwoHistory: the same stages composed with A-SVGF's temporal gradient and/or two-history's
-// second history (SPEC §4–§5).
-// Rae: the recurrent denoising autoencoder (SPEC §12): features → U-Net with recurrent blocks →
-// remodulation; its weights come from denoise.rae.weights (denoise/rae_weights.h).
+// second history (Schied et al. 2018; Tu 2024).
+// Rae: the recurrent denoising autoencoder (Chaitanya et al. 2017): features → U-Net with
+// recurrent blocks → remodulation; its weights come from denoise.rae.weights
+// (denoise/rae_weights.h).
 enum class DenoiserFamily { Svgf, TwoHistory, Rae };
 
 struct DenoiserVariant {

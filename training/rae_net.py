@@ -1,4 +1,4 @@
-"""The recurrent denoising autoencoder (Chaitanya et al. 2017; SPEC §12) and its weight file.
+"""The recurrent denoising autoencoder (Chaitanya et al. 2017) and its weight file.
 
 Network (per frame, hidden state carried between frames):
   encoder level l = 0..L-1 (width w_l, resolution 1/2^l):
@@ -11,8 +11,9 @@ Network (per frame, hidden state carried between frames):
   output: conv 3x3 to 3 channels, linear.
   C = conv 3x3 (zero padding 1) + leaky ReLU 0.1.
   R(I, h) = C(C(cat([C(I), h])))      (paper eq. 2: h_i = C(C(C(I_i) ∪ h_{i-1})))
-With widths (32, 43, 57, 76, 101) and 7 inputs: 2.03M parameters (SPEC: 2.04M); quarter widths
-(8, 11, 14, 19, 25): 127k (SPEC: 127k). Frame sizes must be multiples of 2^L (pad_to_multiple).
+With widths (32, 43, 57, 76, 101) and 7 inputs: 2.03M parameters (widths as in the paper's
+§5.1, 32 then ×4/3 per level; its §5.2 counts 3.2M for its own network); quarter widths
+(8, 11, 14, 19, 25): 127k. Frame sizes must be multiples of 2^L (pad_to_multiple).
 
 Inputs (channel order), all produced by fovrt (denoise/reference/rae_features.*):
   0-2 noisy illumination demodulated by albedo (direct + indirect), linear; the network sees

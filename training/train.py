@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Trains the recurrent denoising autoencoder (training/rae_net.py) on a `fovrt dataset` folder.
 
-Paper recipe (Chaitanya 2017 §4.3-4.4, §5.3; SPEC §12): 7-frame sequences, 128² crops, batch 4;
+Paper recipe (Chaitanya et al. 2017, §4.3-4.4, §5.3): 7-frame sequences, 128² crops, batch 4;
 loss 0.8 L1 + 0.1 HFEN (L1 of LoG σ 1.5) + 0.1 temporal (L1 of frame differences), per-frame
 weights exp(-(6-t)²/8); augmentations: playback direction, camera stops, 90° rotations (view-space
 normals rotated too), per-channel colour scale U[0, 2]; Adam 1e-3, β (0.9, 0.99), learning rate

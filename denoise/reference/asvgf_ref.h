@@ -1,4 +1,4 @@
-// C++ reference of the A-SVGF temporal-gradient stages (Schied 2018 §3, SPEC §4), one function
+// C++ reference of the A-SVGF temporal-gradient stages (Schied et al. 2018, §3), one function
 // per stage with the inputs and outputs of its shader (shaders/asvgf_*.comp):
 //   asvgf_gradient_scatter  gradient samples → per 3×3 stratum (δ, Δ) + stratum guide
 //   asvgf_gradient_atrous   5 iterations of a joint-bilateral 3×3-box à-trous on (δ, Δ)

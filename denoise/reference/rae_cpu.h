@@ -1,6 +1,6 @@
-// RaeReferenceDenoiser: the `rae` variant on the CPU (SPEC §12) — FrameInputs → features →
-// RaeForward → remodulated colour, with one eye's hidden state kept between frames and dropped on
-// Reset() and on camera cuts. The Vulkan host (denoise/vulkan/rae_vk.*) is held to it.
+// RaeReferenceDenoiser: the `rae` variant on the CPU (Chaitanya et al. 2017) — FrameInputs →
+// features → RaeForward → remodulated colour, with one eye's hidden state kept between frames and
+// dropped on Reset() and on camera cuts. The Vulkan host (denoise/vulkan/rae_vk.*) is held to it.
 #pragma once
 
 #include <filesystem>

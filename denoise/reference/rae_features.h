@@ -1,6 +1,6 @@
 // What the recurrent denoising autoencoder sees of a frame and how its output becomes a colour
-// (SPEC §12, paper §3.2 and §4.4). One definition for `fovrt dataset` (training files), the C++
-// reference and the Vulkan host, so training and inference read identical inputs.
+// (Chaitanya et al. 2017, §3.2 and §4.4). One definition for `fovrt dataset` (training files), the
+// C++ reference and the Vulkan host, so training and inference read identical inputs.
 //
 // Feature channels (kRaeFeatureChannels, in this order; the .raew header says how many a network
 // reads: 7, or 8 with the sample-count extension):

@@ -1,4 +1,4 @@
-// The recurrent denoising autoencoder (Chaitanya et al. 2017, SPEC §12): its weights as the
+// The recurrent denoising autoencoder (Chaitanya et al. 2017, §4.1–4.2): its weights as the
 // training code exports them (.raew, layout documented in training/rae_net.py), and the C++
 // reference of inference that the Vulkan host (denoise/vulkan/rae_vk.*) and PyTorch are held to.
 //

@@ -1,4 +1,4 @@
-// C++ reference of the SVGF stages (paper §4, SPEC §3): one scalar function per stage with the
+// C++ reference of the SVGF stages (Schied et al. 2017, §4): one scalar function per stage with the
 // same inputs and outputs as its shader (shaders/svgf_*.comp). Also the CPU fallback backend.
 // Other denoisers (svgf-weighted, two-history, A-SVGF) compose these stages; their signatures are
 // stable. Loops are plain scalar code, rows in parallel with TBB (identical results to serial).
@@ -42,9 +42,10 @@ struct SvgfHistory {
     void Allocate(int width, int height, bool weighted);
 };
 
-// Back-projection taps (SPEC §3): 2×2 bilinear with per-tap consistency tests (object id,
-// |z_prev − z|/(dz + 0.01) ≤ 10, dot(n_prev, n) ≥ 0.9), weights renormalised; if none is valid,
-// every valid pixel of the 3×3 block around the nearest previous pixel, equal weights; else none.
+// Back-projection taps (Schied et al. 2017, §4.1; thresholds of Falcor's SVGFPass): 2×2 bilinear
+// with per-tap consistency tests (object id, |z_prev − z|/(dz + 0.01) ≤ 10, dot(n_prev, n) ≥ 0.9),
+// weights renormalised; if none is valid, every valid pixel of the 3×3 block around the nearest
+// previous pixel, equal weights; else none.
 struct ReprojectionTaps {
     int count = 0;
     bool box = false;               // from the 3×3 fallback (no bilinear tap was valid)

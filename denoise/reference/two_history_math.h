@@ -1,4 +1,4 @@
-// Two-history SVGF per-pixel maths (SPEC §5, Tu 2024): the unweighted (I_u, W_u) and
+// Two-history SVGF per-pixel maths (Tu 2024): the unweighted (I_u, W_u) and
 // sample-count-weighted (I_w, W_w) exponential histories, the power sums S_k of the sample counts,
 // the variance-optimal blend factor p, the (luminance) gradient EMA and the gradient-guided
 // factor q.
@@ -32,8 +32,8 @@ inline TwoHistoryWeights StoredTwoHistoryWeights(float wu, float ww, const vec3&
     return w;
 }
 
-// Decay β of this frame for temporal weight α. The steady state is β = 1 − α (SPEC §5); during
-// warm-up SVGF uses α' = max(α, 1/historyLength) (SPEC §3, Falcor). In weight form that is "W_u
+// Decay β of this frame for temporal weight α. The steady state is β = 1 − α (Tu 2024); during
+// warm-up SVGF uses α' = max(α, 1/historyLength) (Falcor's SVGFPass). In weight form that is "W_u
 // grows by one per frame but never beyond 1/α": β = min(1, (1/α − 1) / W_u,prev). With a
 // constant α this reproduces SVGF's effective α exactly (1, 1/2, …, 1/len, then α), and the
 // recursions below stay exact for a time-varying β, so the blend formula keeps holding.
@@ -108,11 +108,11 @@ inline double TwoHistoryBlendVariance(const TwoHistoryWeights& w, double p) {
     return (1 - p) * (1 - p) * a + 2 * p * (1 - p) * b + p * p * c;
 }
 
-// p = clamp((W_u²S_1 − W_uW_wS_0) / (W_u²S_1 − 2W_uW_wS_0 + W_w²S_{−1}), 0, 1) (SPEC §5 erratum:
-// the slides' boxed formula swaps S_0 and S_1). Evaluated as (a − b)/(a − 2b + c) with the terms
-// of V(p) above, which keeps the magnitudes near 1/W. The denominator is Σβ²(1/W_u − n/W_w)²/n ≥ 0
-// and vanishes only when every n is equal (I_w = I_u, any p is right); when it is lost in
-// rounding V(p) is linear and the smaller end wins.
+// p = clamp((W_u²S_1 − W_uW_wS_0) / (W_u²S_1 − 2W_uW_wS_0 + W_w²S_{−1}), 0, 1) (Tu 2024, slides
+// "First Phase of Blending": the boxed formula swaps S_0 and S_1; this one follows from the proof).
+// Evaluated as (a − b)/(a − 2b + c) with the terms of V(p) above, which keeps the magnitudes near
+// 1/W. The denominator is Σβ²(1/W_u − n/W_w)²/n ≥ 0 and vanishes only when every n is equal (I_w =
+// I_u, any p is right); when it is lost in rounding V(p) is linear and the smaller end wins.
 inline float TwoHistoryOptimalBlend(const TwoHistoryWeights& w) {
     if (w.wu <= 0.0f || w.ww <= 0.0f) return 1.0f;
     const float a = w.s1 / (w.ww * w.ww);
@@ -136,7 +136,7 @@ T AccumulateGradient(const T& gPrev, const T& x, const T& iuPrev, float betaG, b
 // The stored gradient's per-frame input: lum(x − I_u,prev), signed.
 inline float LuminanceGradient(const vec3& x, const vec3& iuPrev) { return Luminance(x - iuPrev); }
 
-// q = clamp(S · |g| / std(lum(I_u)), 0, 1) with g the (filtered) luminance gradient. SPEC §5 writes
+// q = clamp(S · |g| / std(lum(I_u)), 0, 1) with g the (filtered) luminance gradient. Tu 2024 writes
 // lum(|g|) for an RGB g; |lum(g)| equals it where the R, G, B gradients share a sign (e.g. a light
 // switching on or off) and is smaller otherwise (a hue change at constant luminance
 // gives q ≈ 0).

@@ -1,4 +1,4 @@
-// C++ reference stages of two-history SVGF (Tu 2024, SPEC §5), A-SVGF (Schied 2018, SPEC §4) and
+// C++ reference stages of two-history SVGF (Tu 2024), A-SVGF (Schied et al. 2018, §3) and
 // their combination two-history-asvgf. One function per new stage, each mirroring a shader
 // (shaders/two_history_*.comp); the SVGF stages (variance estimate, à-trous, modulation) are the
 // svgf_ref ones. The pass plan (denoise/svgf_family_plan.cpp) composes them, and
@@ -18,7 +18,7 @@
 //   variance is lerp(Var_w, Var_u, t), an upper bound of the variance of the lerp.
 // - g is one EMA of the summed illumination (direct + indirect); q uses Σ_c Var_c. g is stored
 //   as one float, the signed luminance of the gradient (exact for the EMA and the linear filter,
-//   lum() being linear); q uses |lum(g)| for the SPEC's lum(|g|) (equal where R, G, B change
+//   lum() being linear); q uses |lum(g)| for the thesis's lum(|g|) (equal where R, G, B change
 //   with one sign, smaller otherwise). This keeps the extra history at the thesis's 88 B/pixel
 //   with direct and indirect filtered separately.
 // - two-history-asvgf does not keep g (its q is λ̂).
@@ -98,7 +98,7 @@ void TwoHistoryGradientRef(const Plane<float>& gradient, const std::array<Plane<
                            float qScale, Plane<float>& qOut);
 
 // The filter of that stage at pixel (x, y) (not a background pixel). Instantiated for float (the
-// stored luminance gradient) and vec3 (tests: the RGB gradient the SPEC writes).
+// stored luminance gradient) and vec3 (tests: the RGB gradient of Tu 2024's q).
 template <typename T>
 T FilterTwoHistoryGradient(const Plane<T>& gradient, const FrameInputs& frame,
                            const SvgfParams& svgf, int x, int y);

@@ -1,10 +1,11 @@
-// The recurrent denoising autoencoder on Vulkan compute (SPEC §12): shaders/rae_conv.comp (one
-// dispatch per 3×3 conv; concatenation and 2×2 upsampling by addressing) and rae_pool.comp (2×2
-// max-pool), all tensors in one activation buffer laid out by RaeTensorLayout, the hidden state an
-// A/B pair per level selected by frame parity. The features and the remodulation run on the host
-// (the C++ reference's RaeFeatures / RaeRemodulate: O(pixels), no network work). Held to the C++
-// reference (RaeForward) by tests/denoise_rae_vulkan_test.cpp, layer by layer and end to end.
-// Precision::Fp16 stores activations (not weights, not the accumulation) as float16.
+// The recurrent denoising autoencoder on Vulkan compute (Chaitanya et al. 2017, §4):
+// shaders/rae_conv.comp (one dispatch per 3×3 conv; concatenation and 2×2 upsampling by addressing)
+// and rae_pool.comp (2×2 max-pool), all tensors in one activation buffer laid out by
+// RaeTensorLayout, the hidden state an A/B pair per level selected by frame parity. The features
+// and the remodulation run on the host (the C++ reference's RaeFeatures / RaeRemodulate: O(pixels),
+// no network work). Held to the C++ reference (RaeForward) by tests/denoise_rae_vulkan_test.cpp,
+// layer by layer and end to end. Precision::Fp16 stores activations (not weights, not the
+// accumulation) as float16.
 #pragma once
 
 #include <memory>
