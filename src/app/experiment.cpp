@@ -318,6 +318,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
             if (!touched) {
                 record.label = SceneLabel(pipeline.GetScene().name, labels);
                 record.fingerprint = SceneFingerprint(pipeline.GetScene());
+                record.files = SceneFileHashes(pipeline.GetScene());
                 record.source = pipeline.GetScene().sourcePath.string();
                 touched = true;
             }
