@@ -123,11 +123,15 @@ TEST_CASE("scene file hashes: every file the scene loaded, once; an MTL edit nam
     // The cube, instanced twice, read once.
     CHECK(names == std::vector<std::string>{"cornell.toml", "cornell_room.obj", "cornell_room.mtl", "cube.obj", "cube.mtl"});
     CHECK(hashes.size() == 5);
+    CHECK(hashes.count("cornell_room.mtl") == 1);  // by its path beside the scene file
+    // The same scene in another folder (another machine's checkout): the same map.
+    fs::copy(dir, dir / "elsewhere");
+    CHECK(SceneFileHashes(LoadScene(dir / "elsewhere" / "cornell.toml")) == hashes);
 
     std::string mtl = test::ReadFile(dir / "cornell_room.mtl");
     const size_t kd = mtl.find("Kd ");
     REQUIRE(kd != std::string::npos);
-    mtl.replace(kd, mtl.find('\n', kd) - kd, "Kd 0.9 0.2 0.2");
+    mtl.replace(kd, mtl.find('\n', kd) - kd, "Kd 0.9 0.2 0.2");  // one Kd line edited
     std::ofstream(dir / "cornell_room.mtl", std::ios::binary) << mtl;
     const Scene after = LoadScene(dir / "cornell.toml");
     CHECK(SceneFingerprint(after) != SceneFingerprint(before));

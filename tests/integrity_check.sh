@@ -111,7 +111,7 @@ mx=(--set reference.cache_dir=\"$work/cache\" --set output.dir=\"$work/mixed\")
 sed -i '0,/^Kd .*/s//Kd 0.9 0.2 0.2/' scene/cornell_room.mtl
 "$fovrt" experiment mixed.toml "${mx[@]}" --shard 1/2 >/dev/null 2>mixed.err || bad "mixed shard 1/2: $(tail -1 mixed.err)"
 if "$fovrt" experiment mixed.toml "${mx[@]}" --merge >/dev/null 2>mixed.err; then bad "merge of shards of two scene contents exited 0"
-elif one_line mixed.err "scene 'cornell' changed between shard-0-of-2 and shard-1-of-2 (files that differ: .*scene/cornell_room.mtl)" \
+elif one_line mixed.err "scene 'cornell' (.*scene/cornell.toml) changed between shard-0-of-2 and shard-1-of-2: files that differ: cornell_room.mtl (" \
      && [[ ! -e mixed/manifest.json ]]; then ok "shards of two scene contents refused: $(cut -c1-220 mixed.err)..."
 else bad "shards of two scene contents: $(cat mixed.err)"; fi
 

@@ -465,7 +465,8 @@ std::string SceneContentProblem(const std::vector<LoadedPart>& parts) {
                 if (!r.files.count(file) || r.files.at(file) != hash) changed.insert(file);
             for (const auto& [file, hash] : r.files)
                 if (!f.files.count(file)) changed.insert(file);
-            return fmt::format("scene '{}' changed between {} and {} ({})", r.label, it->second.first, shard,
+            return fmt::format("scene '{}' ({}) changed between {} and {}: {}", r.label, r.source, it->second.first,
+                               shard,
                                changed.empty() ? std::string("its loaded content differs")
                                                : fmt::format("files that differ: {}", fmt::join(changed, ", ")));
         }

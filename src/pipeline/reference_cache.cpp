@@ -22,11 +22,13 @@ uint64_t SceneFingerprint(const Scene& scene) {
 
 std::map<std::string, std::string> SceneFileHashes(const Scene& scene) {
     std::map<std::string, std::string> hashes;
+    const std::filesystem::path base = scene.sourcePath.parent_path().empty() ? "." : scene.sourcePath.parent_path();
     for (const std::filesystem::path& file : scene.files) {
         std::ifstream in(file, std::ios::binary);
         std::ostringstream bytes;
         bytes << in.rdbuf();
-        hashes[file.string()] = in ? HashHex(bytes.str()) : "unreadable";
+        const std::filesystem::path relative = file.lexically_relative(base);
+        hashes[(relative.empty() ? file : relative).generic_string()] = in ? HashHex(bytes.str()) : "unreadable";
     }
     return hashes;
 }
