@@ -1,5 +1,7 @@
 #include "app/earlier_outputs.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -8,6 +10,8 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include "core/error.h"
 
 namespace fovrt {
 
@@ -71,12 +75,13 @@ std::set<std::string> StringSet(const nlohmann::json& list) {
     return set;
 }
 
-// Moves `from` to `to`, creating `to`'s parents; false (and nothing moved) when it cannot.
-bool MoveFile(const fs::path& from, const fs::path& to) {
+// Moves `from` to `to`, creating `to`'s parents; fovrt::Error naming both and the reason when it
+// cannot (a stale file left beside the new outputs is what moving aside prevents).
+void MoveFile(const fs::path& from, const fs::path& to) {
     std::error_code ec;
     fs::create_directories(to.parent_path(), ec);
-    fs::rename(from, to, ec);
-    return !ec;
+    if (!ec) fs::rename(from, to, ec);
+    if (ec) Fail("cannot move the earlier output '{}' to '{}': {}", from.string(), to.string(), ec.message());
 }
 
 }  // namespace
@@ -118,7 +123,10 @@ EarlierRun FindEarlierRun(const fs::path& dir) {
         run = FindByName(dir);
         run.ledger = true;
     }
-    if (run.started.empty() || run.started.find('/') != std::string::npos) run.started = StartTimeNow();
+    // It names a folder: only what StartTimeNow writes.
+    const bool plain = std::all_of(run.started.begin(), run.started.end(),
+                                   [](unsigned char c) { return std::isalnum(c) || c == '-'; });
+    if (run.started.empty() || !plain) run.started = StartTimeNow();
     return run;
 }
 
@@ -126,12 +134,19 @@ void AddFolder(const fs::path& dir, const std::string& name, EarlierRun& run) { 
 
 void MoveAside(const fs::path& dir, const EarlierRun& run) {
     std::error_code ec;
+    // Its directories, deepest first, once nothing is left in them (a user's file keeps its folder).
+    auto removeEmptyDirectories = [&] {
+        for (auto it = run.paths.rbegin(); it != run.paths.rend(); ++it)
+            if (fs::is_directory(fs::symlink_status(dir / *it, ec)) && fs::is_empty(dir / *it, ec))
+                fs::remove(dir / *it, ec);
+    };
     std::vector<std::string> files;
     for (const std::string& path : run.paths)
         if (fs::exists(fs::symlink_status(dir / path, ec)) && !fs::is_directory(fs::symlink_status(dir / path, ec)))
             files.push_back(path);
-    if (files.empty()) {
-        if (run.ledger) fs::remove(dir / kOutputsLedger, ec);  // a run that left nothing (it failed)
+    if (files.empty()) {  // a run that left nothing (it failed): nothing to keep
+        removeEmptyDirectories();
+        if (run.ledger) fs::remove(dir / kOutputsLedger, ec);
         return;
     }
     // A run is complete when it wrote its manifest (the last thing `run` and `experiment` write).
@@ -140,19 +155,17 @@ void MoveAside(const fs::path& dir, const EarlierRun& run) {
     for (int n = 1;; ++n) {
         previous = dir / fmt::format("{}{}{}{}", kPreviousRunPrefix, run.started, n > 1 ? fmt::format("-{}", n) : "",
                                      complete ? "" : "-partial");
-        if (!fs::exists(previous, ec) && fs::create_directory(previous, ec)) break;
-        if (n > 1000) return;  // no folder of its own to be had: leave everything where it is
+        if (fs::create_directory(previous, ec)) break;  // false without an error: taken already
+        if (ec) Fail("cannot move the earlier outputs aside: cannot create '{}': {}", previous.string(), ec.message());
     }
     std::set<std::string> moved;  // top-level names, as the message lists them
     for (const std::string& file : files) {
-        if (!MoveFile(dir / file, previous / file)) continue;
+        MoveFile(dir / file, previous / file);
         const size_t slash = file.find('/');
         moved.insert(slash == std::string::npos ? file : file.substr(0, slash + 1));
     }
     if (run.ledger) MoveFile(dir / kOutputsLedger, previous / kOutputsLedger);
-    // Its directories, deepest first, once nothing is left in them (a user's file keeps its folder).
-    for (auto it = run.paths.rbegin(); it != run.paths.rend(); ++it)
-        if (fs::is_directory(fs::symlink_status(dir / *it, ec)) && fs::is_empty(dir / *it, ec)) fs::remove(dir / *it, ec);
+    removeEmptyDirectories();
     std::fprintf(stderr, "fovrt: moved the earlier outputs in %s (%s) to %s/%s\n", dir.c_str(),
                  fmt::format("{}", fmt::join(moved, ", ")).c_str(), previous.c_str(),
                  complete ? "" : " (a partial run: it left no manifest)");

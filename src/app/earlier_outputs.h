@@ -40,7 +40,8 @@ EarlierRun FindEarlierRun(const std::filesystem::path& dir);
 void AddFolder(const std::filesystem::path& dir, const std::string& name, EarlierRun& run);
 
 // Moves `run`'s files into a new previous-run-<start>[-partial]/ in `dir` (complete: its
-// manifest.json is among them) and removes its directories left empty. Says what moved on stderr.
+// manifest.json is among them) and removes its directories left empty. Says what moved on stderr;
+// fovrt::Error naming the file and the reason when something cannot be moved.
 // A run that wrote nothing only has its ledger removed.
 void MoveAside(const std::filesystem::path& dir, const EarlierRun& run);
 
