@@ -4,6 +4,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -106,6 +107,39 @@ TEST_CASE("reference keys: identical scenes give identical keys, any content cha
         CAPTURE(what);
         CHECK(KeyOf(changed) != key);
     }
+}
+
+TEST_CASE("scene file hashes: every file the scene loaded, once; an MTL edit names that file alone", "[app]") {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "fovrt-scene-file-hashes";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char* file : {"cornell.toml", "cornell_room.obj", "cornell_room.mtl", "cube.obj", "cube.mtl"})
+        fs::copy_file(test::SourceDir() / "scenes" / file, dir / file);
+    const Scene before = LoadScene(dir / "cornell.toml");
+    const std::map<std::string, std::string> hashes = SceneFileHashes(before);
+    std::vector<std::string> names;
+    for (const fs::path& file : before.files) names.push_back(file.filename().string());
+    // The cube, instanced twice, read once.
+    CHECK(names == std::vector<std::string>{"cornell.toml", "cornell_room.obj", "cornell_room.mtl", "cube.obj", "cube.mtl"});
+    CHECK(hashes.size() == 5);
+    CHECK(hashes.count("cornell_room.mtl") == 1);  // by its path beside the scene file
+    // The same scene in another folder (another machine's checkout): the same map.
+    fs::copy(dir, dir / "elsewhere");
+    CHECK(SceneFileHashes(LoadScene(dir / "elsewhere" / "cornell.toml")) == hashes);
+
+    std::string mtl = test::ReadFile(dir / "cornell_room.mtl");
+    const size_t kd = mtl.find("Kd ");
+    REQUIRE(kd != std::string::npos);
+    mtl.replace(kd, mtl.find('\n', kd) - kd, "Kd 0.9 0.2 0.2");  // one Kd line edited
+    std::ofstream(dir / "cornell_room.mtl", std::ios::binary) << mtl;
+    const Scene after = LoadScene(dir / "cornell.toml");
+    CHECK(SceneFingerprint(after) != SceneFingerprint(before));
+    std::vector<std::string> changed;
+    for (const auto& [file, hash] : SceneFileHashes(after))
+        if (hashes.at(file) != hash) changed.push_back(fs::path(file).filename().string());
+    CHECK(changed == std::vector<std::string>{"cornell_room.mtl"});
+    fs::remove_all(dir);
 }
 
 // Cornell's renderer at frame 0 and an empty cache folder, removed again at the end.

@@ -4,11 +4,13 @@
 # shard at once; one writer per output folder; an earlier run's outputs are moved aside, never
 # left beside a new manifest; SIGINT / SIGTERM stop with one line, no temporaries and no manifest;
 # an unwritable output.dir gives the system's reason; a full disk (a file-size limit, a small tmpfs)
-# leaves nothing of the failed command's.
+# leaves nothing of the failed command's; shards rendered from different contents of a scene are
+# refused by --merge; a rerun moves aside exactly what the previous command wrote, each earlier run
+# into a folder of its own (a killed one marked partial); the filesystem root and $HOME are refused.
 # Every wait is for an event (a line in frames.jsonl, a process's exit), never a fixed time.
 # Usage: integrity_check.sh FOVRT WORK_DIR
 set -uo pipefail
-fovrt=$(realpath "$1"); work=$(realpath -m "$2")
+fovrt=$(realpath "$1"); work=$(realpath -m "$2"); scenes=$(realpath "$(dirname "$0")/../scenes")
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 passed=0; failed=0
 ok() { echo "ok: $1"; passed=$((passed + 1)); }
@@ -101,6 +103,18 @@ restore
 merge && cmp -s intact.csv sharded/frames-cornell.csv && ok "restored shards merge to the same CSV" \
   || bad "restored merge: $(cat merge.err)"
 
+# --- Shards rendered from different contents of their scene: eye 0 before a Kd edit, eye 1 after ---
+mkdir scene; cp "$scenes"/{cornell.toml,cornell_room.obj,cornell_room.mtl,cube.obj,cube.mtl} scene/
+sed "s|^scenes = .*|scenes = [\"$work/scene/cornell.toml\"]|; s|^variants = .*|variants = [\"svgf\"]|" exp.toml >mixed.toml
+mx=(--set reference.cache_dir=\"$work/cache\" --set output.dir=\"$work/mixed\")
+"$fovrt" experiment mixed.toml "${mx[@]}" --shard 0/2 >/dev/null 2>mixed.err || bad "mixed shard 0/2: $(tail -1 mixed.err)"
+sed -i '0,/^Kd .*/s//Kd 0.9 0.2 0.2/' scene/cornell_room.mtl
+"$fovrt" experiment mixed.toml "${mx[@]}" --shard 1/2 >/dev/null 2>mixed.err || bad "mixed shard 1/2: $(tail -1 mixed.err)"
+if "$fovrt" experiment mixed.toml "${mx[@]}" --merge >/dev/null 2>mixed.err; then bad "merge of shards of two scene contents exited 0"
+elif one_line mixed.err "scene 'cornell' (.*scene/cornell.toml) changed between shard-0-of-2 and shard-1-of-2: files that differ: cornell_room.mtl (" \
+     && [[ ! -e mixed/manifest.json ]]; then ok "shards of two scene contents refused: $(cut -c1-220 mixed.err)..."
+else bad "shards of two scene contents: $(cat mixed.err)"; fi
+
 # --- Reference-cache entries carry their key and a pixel checksum ---
 ref=(--set scene.name=cornell --set camera.width=48 --set camera.height=32 --set run.frames=1 --set reference.spp=16
      --set reference.cache_dir=\"$work/refs\")
@@ -121,12 +135,18 @@ else bad "flipped entry: $(cat ref.out ref.err)"; fi
 
 # --- One writer per output folder; an earlier run's outputs are moved aside ---
 "$fovrt" run "${small[@]}" --set run.frames=3 --set output.dir=out >/dev/null 2>run.err || bad "run: $(cat run.err)"
-echo "mine" > out/notes.txt
+echo "mine" > out/notes.txt; echo "mine" > out/inputs/mydata.txt
 "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=out >/dev/null 2>run.err || bad "rerun: $(cat run.err)"
-[[ $(ls out/inputs | wc -l) -eq 2 && $(ls out/previous-run/inputs | wc -l) -eq 6 && -f out/notes.txt \
-   && $(grep -c . out/frames.jsonl) -eq 1 ]] && grep -q "moved the earlier outputs" run.err \
-  && ok "a 1-frame rerun over 3 frames: 2 EXRs beside its manifest, the earlier 6 in previous-run/, notes.txt untouched" \
+first=(out/previous-run-*)
+[[ ${#first[@]} -eq 1 && $(ls out/inputs | wc -l) -eq 3 && $(ls "${first[0]}"/inputs | wc -l) -eq 6 && -f out/notes.txt \
+   && -f out/inputs/mydata.txt && $(grep -c . out/frames.jsonl) -eq 1 ]] && grep -q "moved the earlier outputs" run.err \
+  && ok "a 1-frame rerun over 3 frames: 2 EXRs beside its manifest, the earlier 6 in ${first[0]#out/}/, notes.txt and inputs/mydata.txt untouched" \
   || bad "stale outputs: $(ls out out/inputs) $(cat run.err)"
+"$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=out >/dev/null 2>run.err || bad "third run: $(cat run.err)"
+runs=(out/previous-run-*)
+[[ ${#runs[@]} -eq 2 && $(cat out/inputs/mydata.txt) == mine && $(ls "${first[0]}"/inputs | wc -l) -eq 6 ]] \
+  && ok "a third run: both earlier runs kept apart, inputs/mydata.txt still in place" \
+  || bad "third run: $(ls out out/inputs) $(cat run.err)"
 
 # The lock held by another process (flock(1) here, holding it until we release it).
 exec 9>out/.fovrt.lock
@@ -172,10 +192,48 @@ if [[ $rc -eq 130 && $(find refsINT -name '*.tmp-*' | wc -l) -eq 0 && $(grep -c 
   ok "reference, SIGINT: exit 130, no temporaries: $last"
 else bad "reference SIGINT: exit $rc, $(find refsINT -name '*.tmp-*' | wc -l) temporaries: $(cat refsINT.err)"; fi
 
+# A complete run, a run killed (SIGKILL) after its first frame, a third run: the first and the
+# killed one each kept in a folder of their own, the killed one named partial.
+"$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=k9 >/dev/null 2>k9.err || bad "run before the kill: $(cat k9.err)"
+"$fovrt" run "${small[@]}" --set run.frames=100000 --set output.dir=k9 >/dev/null 2>k9.err &
+pid=$!
+# until its own first frame: its ledger (no "added" yet) is written once the first run moved aside
+until { [[ -s k9/frames.jsonl ]] && ! grep -q '"added"' k9/.fovrt-outputs.json 2>/dev/null; } || ! kill -0 $pid 2>/dev/null; do
+  sleep 0.05
+done
+kill -KILL $pid; wait $pid 2>/dev/null
+"$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=k9 >/dev/null 2>k9.err || bad "run after the kill: $(cat k9.err)"
+complete=(k9/previous-run-*[0-9]Z); partial=(k9/previous-run-*-partial)
+if [[ ${#complete[@]} -eq 1 && -f ${complete[0]}/manifest.json && ${#partial[@]} -eq 1 && -s ${partial[0]}/frames.jsonl \
+      && ! -e ${partial[0]}/manifest.json && -f k9/manifest.json && $(grep -c . k9/frames.jsonl) -eq 1 ]]; then
+  ok "complete, killed, rerun: ${complete[0]#k9/}/ and ${partial[0]#k9/}/ kept, the rerun's outputs at the top"
+else bad "killed run: $(ls k9) $(cat k9.err)"; fi
+
+# An experiment of room, then one of cornell, into one folder: room's CSVs move aside with the rest.
+for scene in room cornell; do
+  "$fovrt" experiment exp.toml --scene $scene --set experiment.variants='["svgf"]' --set run.frames=1 \
+    --set reference.cache_dir=\"$work/cache\" --set output.dir=\"$work/scenes\" >/dev/null 2>scenes.err \
+    || bad "experiment --scene $scene: $(tail -1 scenes.err)"
+done
+if [[ -f scenes/gaze-cornell.csv && ! -e scenes/gaze-room.csv && ! -e scenes/frames-room.csv ]] && compgen -G "scenes/previous-run-*/gaze-room.csv" >/dev/null; then
+  ok "experiment --scene room, then --scene cornell: gaze-room.csv moved aside with room's outputs"
+else bad "stale scene CSVs: $(ls scenes)"; fi
+
 # --- Unwritable folders and a full disk ---
 if "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=/proc/x >/dev/null 2>proc.err; then bad "output.dir=/proc/x exited 0"
 elif one_line proc.err "cannot write to '/proc/x'" && ! grep -q Success proc.err; then ok "$(cat proc.err)"
 else bad "/proc/x: $(cat proc.err)"; fi
+# The filesystem root and the home folder: refused in one line, before anything is written. As
+# root a regression would write into / itself, so there only app_output_dir_test checks the root.
+if [[ $(id -u) -eq 0 ]]; then echo "skipped: output.dir=/ (running as root)"
+elif "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=/ >/dev/null 2>root.err; then bad "output.dir=/ exited 0"
+elif one_line root.err "config key 'output.dir': '/' is the filesystem root"; then ok "$(cat root.err)"
+else bad "output.dir=/: $(cat root.err)"; fi
+mkdir home
+if HOME=$work/home "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=\"$work/home\" >/dev/null 2>home.err; then
+  bad "output.dir=\$HOME exited 0"
+elif one_line home.err "is the home folder (\$HOME)" && [[ -z $(ls -A home) ]]; then ok "$(cat home.err)"
+else bad "output.dir=\$HOME: $(cat home.err); left $(ls -A home)"; fi
 # RLIMIT_FSIZE 0 (SIGXFSZ ignored): every write to a file fails with EFBIG, as on a full disk.
 # (stderr goes through a pipe, which the limit does not cover.)
 err=$( (trap '' XFSZ; ulimit -f 0; exec "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=full/out 2>&1 >/dev/null) )
@@ -207,11 +265,13 @@ else
   # the disk; the earlier run stays whole in previous-run/, the new run leaves nothing at the top.
   on_full_disk 300k "'$fovrt' run ${small[*]} --set run.frames=1 --set output.dir=disk >/dev/null 2>&1; echo mine >disk/notes.txt" \
     "'$fovrt' run ${small[*]} --set run.frames=8 --set output.dir=disk"
-  top=$(grep -v '^\./previous-run/' disk.ls | tr '\n' ' ')
+  # (the failed run's ledger, saying it left nothing, stays where the disk had room for it)
+  top=$(grep -v '^\./previous-run-[^/]*/\|^\./\.fovrt-outputs\.json$' disk.ls | sed 's|^\./previous-run-.*|./previous-run-*|' | tr '\n' ' ')
   if [[ $(cat disk.rc) -eq 0 ]]; then bad "a run filling the disk exited 0"
-  elif [[ $top == "./.fovrt.lock ./notes.txt ./previous-run " ]] && grep -q '^\./previous-run/manifest.json$' disk.ls &&
+  elif [[ $top == "./.fovrt.lock ./notes.txt ./previous-run-* " ]] &&
+       grep -q '^\./previous-run-[0-9TZ]*/manifest.json$' disk.ls &&
        [[ $(grep -c "error" disk.err) -eq 1 ]] && tail -1 disk.err | grep -q "No space left on device"; then
-    ok "disk full during a run in a folder that existed: only the lock, the user's file and previous-run/ left ($(tail -1 disk.err | cut -c1-80)...)"
+    ok "disk full during a run in a folder that existed: only the lock, the user's file and previous-run-*/ left ($(tail -1 disk.err | cut -c1-80)...)"
   else bad "disk full in an existing folder: exit $(cat disk.rc), top: $top; $(cat disk.err)"; fi
 fi
 

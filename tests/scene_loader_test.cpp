@@ -4,7 +4,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <filesystem>
 #include <string>
+#include <vector>
 #include <tuple>
 #include <unistd.h>
 
@@ -286,6 +288,11 @@ TEST_CASE("shared Cornell box and glTF samples", "[scene][shared]") {
     REQUIRE(m.metallicRoughnessTexture >= 0);
     CHECK(suzanne.textures[size_t(m.baseColorTexture)].width == 1024);
     CHECK(suzanne.textures[size_t(m.metallicRoughnessTexture)].height == 1024);
+    // The files it read, each once: the scene file, the glTF, its buffer and its two images.
+    std::vector<std::string> files;
+    for (const std::filesystem::path& file : suzanne.files) files.push_back(file.filename().string());
+    CHECK(files == std::vector<std::string>{"suzanne.toml", "Suzanne.gltf", "Suzanne.bin", "Suzanne_BaseColor.png",
+                                            "Suzanne_MetallicRoughness.png"});
     const Mesh& mesh = suzanne.meshes[0];
     CHECK(mesh.uvs.size() == mesh.positions.size());
     CHECK(mesh.normals.size() == mesh.positions.size());

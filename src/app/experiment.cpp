@@ -297,6 +297,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
         record.requested = spec.scenes[sceneIndex];
         record.label = SceneLabel(loop.Pipeline().GetScene().name, labels);
         record.fingerprint = loop.SceneFingerprint();
+        record.files = SceneFileHashes(loop.Pipeline().GetScene());
         record.source = loop.Pipeline().GetScene().sourcePath.string();
 
         const int visualFrame =

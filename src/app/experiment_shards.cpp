@@ -24,7 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kPartVersion = 3;  // 2: FovVideoVDP scores; 3: denoise and metric times
+// 2: FovVideoVDP scores; 3: denoise and metric times; 4: the hash of each file a scene loaded
+constexpr int kPartVersion = 4;
 
 nlohmann::json Vec2Json(const vec2& v) { return {v.x, v.y}; }
 vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(1).get<float>()); }
@@ -38,6 +39,7 @@ void RecordFields(Record& r, Field&& field) {
     field("requested", r.requested);
     field("source", r.source);
     field("fingerprint", r.fingerprint);
+    field("files", r.files);
     field("render_ms", r.times.renderMs);
     field("reference_ms", r.times.referenceMs);
     field("denoise_ms", r.times.denoiseMs);
@@ -447,6 +449,31 @@ LoadedPart LoadPart(const fs::path& dir, const ShardSelection& selection, const 
     return part;
 }
 
+// "" when every shard that rendered a scene loaded the same content for it; else, for the first
+// scene that differs, the shards and the files whose hashes differ between them.
+std::string SceneContentProblem(const std::vector<LoadedPart>& parts) {
+    std::map<size_t, std::pair<std::string, const SceneRecord*>> first;  // scene -> (shard, record)
+    for (const LoadedPart& part : parts) {
+        const std::string shard =
+            ShardSelection{part.meta.at("index").get<int>(), part.meta.at("count").get<int>()}.Name();
+        for (const SceneRecord& r : part.scenes) {
+            const auto [it, inserted] = first.try_emplace(r.index, shard, &r);
+            const SceneRecord& f = *it->second.second;
+            if (inserted || (f.fingerprint == r.fingerprint && f.files == r.files)) continue;
+            std::set<std::string> changed;
+            for (const auto& [file, hash] : f.files)
+                if (!r.files.count(file) || r.files.at(file) != hash) changed.insert(file);
+            for (const auto& [file, hash] : r.files)
+                if (!f.files.count(file)) changed.insert(file);
+            return fmt::format("scene '{}' ({}) changed between {} and {}: {}", r.label, r.source, it->second.first,
+                               shard,
+                               changed.empty() ? std::string("its loaded content differs")
+                                               : fmt::format("files that differ: {}", fmt::join(changed, ", ")));
+        }
+    }
+    return "";
+}
+
 }  // namespace
 
 ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fingerprint,
@@ -487,6 +514,10 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
         for (const std::string& b : bad) problems += (problems.empty() ? "" : "; ") + b;
         Fail("--merge: cannot merge {}: {} (rerun those shards: {})", shardsDir.string(), problems, rerunCommand);
     }
+
+    if (const std::string problem = SceneContentProblem(loaded); !problem.empty())
+        Fail("--merge: cannot merge {}: {} (rerun the shards of the scene as it is now: {})", shardsDir.string(), problem,
+             rerunCommand);
 
     ExperimentPart merged;
     std::map<size_t, SceneRecord> scenes;

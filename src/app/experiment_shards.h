@@ -6,7 +6,8 @@
 //
 // A shard's part is a directory <output.dir>/shards/shard-I-of-N/, built under a temporary name
 // and renamed into place when complete, so a killed shard leaves nothing that looks finished:
-//   part.json     the experiment's fingerprint, the runs, per-scene records, pass timings
+//   part.json     the experiment's fingerprint, the runs, per-scene records (with the content hash
+//                 of the scene and of each file it loaded), pass timings
 //   rows.tsv      every result row, values as %.17g (exact)
 //   visuals-K/    scene K's report images (EXR) when the shard ran the report's eye and seed
 #pragma once
@@ -79,7 +80,8 @@ struct SceneTimes {
 struct SceneRecord {
     size_t index = 0;  // in the experiment's scenes
     std::string label, requested, source;
-    uint64_t fingerprint = 0;
+    uint64_t fingerprint = 0;                  // SceneFingerprint: the loaded content
+    std::map<std::string, std::string> files;  // SceneFileHashes: each file it loaded -> its hash
     SceneTimes times;
     int referenceHits = 0, referenceLookups = 0, eyeFrames = 0, blinkFrames = 0;
     uint64_t rays = 0, droppedSamples = 0;
@@ -111,7 +113,8 @@ std::string ExperimentFingerprint(const ExperimentSpec& spec);
 void WriteShardPart(const std::filesystem::path& shardsDir, const ShardSelection& selection,
                     const std::string& fingerprint, const ExperimentPart& part);
 // Reads and combines every part under `shardsDir`. Refuses a set that is incomplete (naming the
-// missing shards and the command that makes them), mixed (different N or experiment), or corrupt.
+// missing shards and the command that makes them), mixed (different N or experiment), corrupt, or
+// rendered from different contents of a scene (naming the files that differ).
 ExperimentPart MergeShardParts(const std::filesystem::path& shardsDir, const std::string& fingerprint,
                                const std::string& rerunCommand);
 

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "app/earlier_outputs.h"
 #include "core/error.h"
 
 namespace fovrt {
@@ -24,12 +26,6 @@ namespace fovrt {
 namespace fs = std::filesystem;
 
 namespace {
-
-// What an earlier run or experiment writes at the top of its folder (cmd_run.cpp,
-// experiment.cpp); shards/ is not among them (a merge reads it).
-const char* const kEarlierOutputs[] = {"manifest.json", "frames.jsonl", "inputs",      "noisy",
-                                       "denoised",      "summary.json", "report.html", "jod.csv"};
-constexpr const char* kCsvPrefix = "frames-";  // frames-<scene>.csv
 
 // The holder written into the lock file: "pid 12 on host, started 2026-01-01 10:00:00 UTC: fovrt run ...".
 std::string HolderText() {
@@ -44,10 +40,26 @@ std::string HolderText() {
                        command);
 }
 
+// The filesystem root and the user's home hold the user's own files, which the earlier-outputs
+// rules (moving aside, removal after a failure) must never act on: refused, before anything is made.
+void RefuseSharedFolder(const fs::path& path, const std::string& key) {
+    std::error_code ec;
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (ec) return;  // the constructor's own checks give the reason
+    if (resolved == resolved.root_path())
+        Fail("config key '{}': '{}' is the filesystem root; name a folder of its own for the outputs", key,
+             path.string());
+    const char* home = std::getenv("HOME");
+    if (home && *home && fs::equivalent(resolved, fs::path(home), ec))
+        Fail("config key '{}': '{}' is the home folder ($HOME); name a folder of its own for the outputs", key,
+             path.string());
+}
+
 }  // namespace
 
 OutputDir::OutputDir(fs::path path, std::string key) : path_(std::move(path)), key_(std::move(key)) {
     if (path_.empty()) Fail("config key '{}': must not be empty", key_);
+    RefuseSharedFolder(path_, key_);
     // Remember which of the path's directories do not exist yet: those are the run's to remove.
     std::error_code ec;
     for (fs::path p = path_; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
@@ -113,12 +125,7 @@ void OutputDir::Lock(const std::string& lockName) {
 }
 
 void OutputDir::MoveAsideEarlierOutputs(bool sceneDirs) {
-    std::error_code ec;
-    std::vector<std::string> names(std::begin(kEarlierOutputs), std::end(kEarlierOutputs));
-    for (const auto& entry : fs::directory_iterator(path_, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind(kCsvPrefix, 0) == 0 && entry.path().extension() == ".csv") names.push_back(name);
-    }
+    EarlierRun earlier = FindEarlierRun(path_);
     if (sceneDirs && fs::exists(path_ / "manifest.json")) {
         try {
             std::ifstream in(path_ / "manifest.json");
@@ -126,40 +133,46 @@ void OutputDir::MoveAsideEarlierOutputs(bool sceneDirs) {
             if (manifest.value("command", "") == "experiment")
                 for (const auto& scene : manifest.at("scenes")) {
                     const std::string label = scene.at("scene");
-                    if (!label.empty() && label.find('/') == std::string::npos && label[0] != '.') names.push_back(label);
+                    if (!label.empty() && label.find('/') == std::string::npos && label[0] != '.')
+                        AddFolder(path_, label, earlier);
                 }
         } catch (const std::exception&) {
             // Not an experiment's manifest: its scene folders are unknown, leave them.
         }
     }
-    std::vector<std::string> moved;
-    const fs::path previous = path_ / kPreviousRun;
-    for (const std::string& name : names) {
-        if (!fs::exists(path_ / name, ec)) continue;
-        if (moved.empty()) {
-            fs::remove_all(previous);  // only ever holds what an earlier call moved there
-            fs::create_directory(previous);
-        }
-        fs::rename(path_ / name, previous / name);
-        moved.push_back(fs::is_directory(previous / name, ec) ? name + "/" : name);
-    }
-    if (!moved.empty())
-        std::fprintf(stderr, "fovrt: moved the earlier outputs in %s (%s) to %s/\n", path_.c_str(),
-                     fmt::format("{}", fmt::join(moved, ", ")).c_str(), previous.c_str());
-    if (folderLocked_ && created_.empty()) {  // a new folder goes whole on failure (RemoveCreated)
-        kept_.emplace();
-        for (const auto& entry : fs::directory_iterator(path_, ec)) kept_->insert(entry.path().filename().string());
-    }
+    MoveAside(path_, earlier);
+    // This command's ledger: what the folder holds now is not its own.
+    started_ = StartTimeNow();
+    before_ = FolderContents(path_);
+    if (!WriteLedger(path_, started_, *before_, std::nullopt))
+        Fail("config key '{}': cannot write '{}': {}", key_, (path_ / kOutputsLedger).string(), std::strerror(errno));
+}
+
+void OutputDir::Keep() {
+    created_.clear();
+    if (!before_) return;
+    // What it added, for the next command to move aside. Should the disk refuse even this, the
+    // start's ledger stays and the next command takes everything added since (the killed-run rule).
+    std::set<std::string> added;
+    for (const std::string& path : FolderContents(path_))
+        if (!before_->count(path)) added.insert(path);
+    WriteLedger(path_, started_, *before_, added);
+    before_.reset();
 }
 
 void OutputDir::RemoveAdded() {
-    if (!kept_) return;
+    if (!before_) return;
     std::error_code ec;
-    std::vector<fs::path> added;
-    for (const auto& entry : fs::directory_iterator(path_, ec))
-        if (!kept_->count(entry.path().filename().string())) added.push_back(entry.path());
-    for (const fs::path& p : added) fs::remove_all(p, ec);
-    kept_.reset();
+    if (fs::exists(path_, ec)) {
+        // The topmost of the paths it added (a directory goes whole), then a ledger saying it left nothing.
+        for (const std::string& path : FolderContents(path_)) {
+            if (before_->count(path)) continue;
+            const size_t slash = path.rfind('/');
+            if (slash == std::string::npos || before_->count(path.substr(0, slash))) fs::remove_all(path_ / path, ec);
+        }
+        if (!WriteLedger(path_, started_, *before_, std::set<std::string>{})) fs::remove(path_ / kOutputsLedger, ec);
+    }
+    before_.reset();
 }
 
 void OutputDir::RemoveCreated() {

@@ -1,6 +1,8 @@
 #include "pipeline/reference_cache.h"
 
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -16,6 +18,19 @@ uint64_t SceneFingerprint(const Scene& scene) {
     ContentHash h;
     SerializeScene(scene, [&](const void* data, size_t size) { h.Bytes(data, size); });
     return h.Digest();
+}
+
+std::map<std::string, std::string> SceneFileHashes(const Scene& scene) {
+    std::map<std::string, std::string> hashes;
+    const std::filesystem::path base = scene.sourcePath.parent_path().empty() ? "." : scene.sourcePath.parent_path();
+    for (const std::filesystem::path& file : scene.files) {
+        std::ifstream in(file, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        const std::filesystem::path relative = file.lexically_relative(base);
+        hashes[(relative.empty() ? file : relative).generic_string()] = in ? HashHex(bytes.str()) : "unreadable";
+    }
+    return hashes;
 }
 
 ReferenceKey MakeReferenceKey(const Scene& scene, uint64_t fingerprint, uint32_t frame,

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -25,6 +26,11 @@ namespace fovrt {
 // A content fingerprint of a scene: the hash of SerializeScene's stream (scene/scene_serialize.h),
 // so everything that can change the image is in it.
 uint64_t SceneFingerprint(const Scene& scene);
+// The content hash (ContentHash, hex) of each file the scene loaded (Scene::files), by its path
+// relative to the scene file's folder (so a copy of the scene elsewhere, another machine's
+// checkout, gives the same map), naming what changed between two loads file by file;
+// "unreadable" for a file gone since.
+std::map<std::string, std::string> SceneFileHashes(const Scene& scene);
 
 struct ReferenceKey {
     uint64_t sceneFingerprint = 0;

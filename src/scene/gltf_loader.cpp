@@ -216,6 +216,13 @@ std::vector<MeshPart> LoadGltf(const std::filesystem::path& path, LoadContext& c
         std::string first = err.substr(0, err.find('\n'));
         Fail("{}: cannot load glTF: {}", file, first.empty() ? "parse error" : first);
     }
+    // The files it read: itself, and the buffers and images it names by a relative URI (not data: URIs).
+    context.Read(path);
+    auto readUri = [&](const std::string& uri) {
+        if (!uri.empty() && uri.rfind("data:", 0) != 0) context.Read(path.parent_path() / uri);
+    };
+    for (const auto& buffer : model.buffers) readUri(buffer.uri);
+    for (const auto& image : model.images) readUri(image.uri);
     GltfReader reader{model, file};
 
     // Which nodes to instantiate: the default scene's roots, else every node that is nobody's child.

@@ -1,6 +1,7 @@
 // Internal to fovrt_scene: mesh-file and texture loaders that append to a Scene under load.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -24,6 +25,12 @@ struct LoadContext {
     Scene& scene;
     std::map<std::pair<std::string, bool>, int> textures;      // (path, srgb) -> index
     std::map<std::string, std::vector<MeshPart>> meshFiles;     // path -> parts
+
+    // Records a file the load reads (Scene::files), once.
+    void Read(const std::filesystem::path& file) {
+        const std::filesystem::path normal = file.lexically_normal();
+        if (std::find(scene.files.begin(), scene.files.end(), normal) == scene.files.end()) scene.files.push_back(normal);
+    }
 };
 
 std::vector<MeshPart> LoadObj(const std::filesystem::path& file, LoadContext& context);

@@ -232,8 +232,12 @@ struct CornerHash {
 std::vector<MeshPart> LoadObj(const std::filesystem::path& path, LoadContext& context) {
     const std::string file = path.lexically_normal().string();
     const std::string text = ReadWholeFile(path, "OBJ file");
+    context.Read(path);
     ObjScan scan = ScanObj(text, file);
-    for (std::string_view name : Tokens(scan.mtllibs)) ScanMtl(path.parent_path() / name);
+    for (std::string_view name : Tokens(scan.mtllibs)) {
+        ScanMtl(path.parent_path() / name);
+        context.Read(path.parent_path() / name);
+    }
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

@@ -120,6 +120,9 @@ struct CameraKey {
 struct Scene {
     std::string name;
     std::filesystem::path sourcePath;   // the scene file it came from
+    // Every file the load read (scene file, meshes, MTLs, glTF buffers and images, textures), once
+    // each, in the order read: what a content check of the scene's files hashes.
+    std::vector<std::filesystem::path> files;
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<Texture> textures;

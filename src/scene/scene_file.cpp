@@ -523,6 +523,7 @@ Scene LoadScene(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     SceneFileLoader loader{path, path.string(), scene, LoadContext{scene, {}, {}}};
+    if (ext == ".toml") loader.context.Read(path);  // a bare mesh is recorded by its loader
     try {
         if (ext == ".toml") {
             loader.Load();

@@ -169,10 +169,11 @@ void WriteAll(StreamWriter& out, const std::vector<T>& items) {
 void SerializeScene(const Scene& scene, const ByteSink& sink) {
     StreamWriter out(sink);
     out.Tag("fovrt-scene-v1");
-    const auto& [name, sourcePath, meshes, materials, textures, instances, lights, emissionSwitches,
+    const auto& [name, sourcePath, files, meshes, materials, textures, instances, lights, emissionSwitches,
                  cameraPath, cameraLoop, horizontalFovDegrees, frameRate, background] = scene;
     (void)name;
     (void)sourcePath;
+    (void)files;  // their content is what the fields here hold
     WriteAll(out, meshes);
     WriteAll(out, materials);
     WriteAll(out, textures);

@@ -80,6 +80,7 @@ int LoadTextureFile(const std::filesystem::path& file, bool srgb, const std::str
     if (auto it = context.textures.find({key, srgb}); it != context.textures.end()) return it->second;
     if (!std::filesystem::is_regular_file(file))
         Fail("{}: texture file {} not found", referrer, file.string());
+    context.Read(file);
     Texture texture;
     int width = 0, height = 0, channels = 0;
     if (stbi_is_hdr(file.c_str())) {
