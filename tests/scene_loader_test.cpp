@@ -382,6 +382,20 @@ TEST_CASE("bad scene files give one fovrt::Error naming file and key", "[scene][
         CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "out of range"});
         dir.Write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
         CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "malformed"});
+        // tinyobjloader reads "-1.0x" as -1 and ignores a fourth (or seventh) token.
+        dir.Write("b.obj", "v 0 0 0\nv -1.0x 0 1\nv 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:2", "malformed number '-1.0x'"});
+        dir.Write("b.obj", "v 0 0 0\nv -1 0 1 junk\nv 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:2", "malformed number 'junk'"});
+        dir.Write("b.obj", "v 0 0 0\nv 1 0 0 1 1\nv 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:2", "'v' has 5 numbers"});
+        dir.Write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "'vn' has 4 numbers"});
+        dir.Write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5 0.5e\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "malformed number '0.5e'"});
+        // The forms tinyobjloader reads stay accepted: w, vertex colours, a trailing comment.
+        dir.Write("b.obj", "v 0 0 0 1\nv 1 0 0 0.5 0.5 0.5\nv 0 1 0 # top\nvt 0.5\nf 1 2 3\n");
+        CHECK_NOTHROW(LoadScene(scene));
         dir.Write("b.obj", "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nope\nf 1 2 3\n");
         CheckMessage(ErrorOf(scene), scene, {"b.obj:5", "usemtl 'nope'"});
         dir.Write("b.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
