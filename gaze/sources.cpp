@@ -1,8 +1,10 @@
 #include "gaze/sources.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -56,7 +58,6 @@ GazeSample LissajousGaze::At(double t) const {
 // ---- Trace -----------------------------------------------------------------------------------
 
 using csv::IsNanToken;
-using csv::Lower;
 using csv::ParseDouble;
 using csv::Trim;
 
@@ -69,16 +70,18 @@ std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::stri
     bool anyValid = false;
     while (std::getline(in, line)) {
         ++lineNumber;
-        std::string_view view = Trim(line);
+        std::string_view view = Trim(haveHeader ? line : csv::SkipByteOrderMark(line));
         if (view.empty() || view.front() == '#') continue;
         std::vector<std::string_view> fields = csv::Split(view);
         if (!haveHeader) {
-            for (size_t i = 0; i < fields.size(); ++i) {
-                std::string f = Lower(fields[i]);
-                if ((f == "n" || f == "time_ms") && columnTime < 0) columnTime = int(i);
-                else if (f == "x" && columnX < 0) columnX = int(i);
-                else if (f == "y" && columnY < 0) columnY = int(i);
-            }
+            static constexpr std::array<const char*, 4> kNames = {"n", "time_ms", "x", "y"};
+            const std::vector<int> found = csv::HeaderColumns(fields, kNames, name, lineNumber);
+            if (found[0] >= 0 && found[1] >= 0)
+                Fail("{}:{}: gaze trace header names both n and time_ms (fields {} and {}); keep one time column",
+                     name, lineNumber, found[0] + 1, found[1] + 1);
+            columnTime = std::max(found[0], found[1]);
+            columnX = found[2];
+            columnY = found[3];
             if (columnTime < 0 || columnX < 0 || columnY < 0)
                 Fail("{}:{}: gaze trace header must name columns n (time in ms), x and y (degrees); got '{}'",
                      name, lineNumber, std::string(view.substr(0, 80)));

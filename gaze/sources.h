@@ -42,7 +42,8 @@ struct GazeTraceSample {
 
 // Parses a gaze CSV. `name` is used in error messages ("name:line: ..."). Rules: '#' lines and
 // blank lines are skipped; the first other line is the header (comma-separated, names trimmed,
-// case-insensitive) and must contain n (or time_ms), x and y; extra columns are ignored. Each
+// case-insensitive, a UTF-8 byte-order mark before it skipped) and must contain n (or time_ms),
+// x and y, each once; extra columns are ignored. Each
 // data row needs finite, non-decreasing n; x/y empty or NaN marks an invalid sample, otherwise
 // they must be finite with |angle| < 90. At least one valid sample is required.
 std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::string& name);
