@@ -44,6 +44,7 @@ Fov ResolveFov(const RunConfig& config, const Scene& scene) {
 
 FramePipeline::FramePipeline(const RunConfig& config)
     : config_(config), scene_(LoadScene(ResolveSceneName(config.scene.name))) {
+    RequireSceneLight(scene_);
     // One clock for everything: the config's fps (when given) overrides the scene's frame rate,
     // so gaze, animation and motion vectors agree on what "frame i" means.
     if (config.run.fps > 0.0f) scene_.frameRate = config.run.fps;
