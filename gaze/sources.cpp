@@ -133,8 +133,8 @@ std::vector<GazeTraceSample> LoadGazeTraceCsv(const std::filesystem::path& path)
     return ParseGazeTraceCsv(in, path.string());
 }
 
-TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs)
-    : samples_(std::move(samples)), startMs_(startMs) {
+TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs, bool loop)
+    : samples_(std::move(samples)), startMs_(startMs), loop_(loop) {
     FOVRT_CHECK(!samples_.empty());
     lastValid_.resize(samples_.size());
     int last = -1;
@@ -149,8 +149,15 @@ TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs)
     FOVRT_CHECK(firstValid_ >= 0);
 }
 
+double TraceGaze::EndSeconds() const {
+    if (loop_ && DurationMs() > 0.0) return std::numeric_limits<double>::infinity();
+    return (DurationMs() - startMs_) / 1000.0;
+}
+
 GazeSample TraceGaze::At(double timeSeconds) const {
-    const double ms = samples_.front().timeMs + startMs_ + timeSeconds * 1000.0;
+    double fromFirstMs = startMs_ + timeSeconds * 1000.0;
+    if (loop_ && DurationMs() > 0.0 && fromFirstMs > DurationMs()) fromFirstMs = std::fmod(fromFirstMs, DurationMs());
+    const double ms = samples_.front().timeMs + fromFirstMs;
     auto direction = [&](const GazeTraceSample& s) { return GazeDirectionFromAngles(s.yawDeg, s.pitchDeg); };
     auto invalidAt = [&](size_t i) {
         int v = lastValid_[i] >= 0 ? lastValid_[i] : firstValid_;
@@ -185,9 +192,16 @@ std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov
              "trace, recording or static, or replay a recorded session with --replay)");
     if (params.source == "lissajous") return std::make_unique<LissajousGaze>(params, referenceFov);
     if (params.source == "static") return std::make_unique<StaticGaze>(params.yawDeg, params.pitchDeg);
-    if (params.source == "recording")
-        return std::make_unique<TraceGaze>(LoadGazeRecordingCsv(params.recordingPath), params.traceStartMs);
-    return std::make_unique<TraceGaze>(LoadGazeTraceCsv(params.tracePath), params.traceStartMs);
+    const bool recording = params.source == "recording";
+    auto trace = std::make_unique<TraceGaze>(
+        recording ? LoadGazeRecordingCsv(params.recordingPath) : LoadGazeTraceCsv(params.tracePath),
+        params.traceStartMs, params.traceEnd == "loop");
+    // Outside the file every frame would freeze on its first or last row.
+    if (!(params.traceStartMs >= 0.0 && params.traceStartMs <= trace->DurationMs()))
+        Fail("gaze.trace_start_ms: {} ms is outside {} '{}', which lasts {} ms from its first row", params.traceStartMs,
+             recording ? "gaze.recording_path" : "gaze.trace_path",
+             recording ? params.recordingPath : params.tracePath, trace->DurationMs());
+    return trace;
 }
 
 }  // namespace fovrt

@@ -51,13 +51,17 @@ std::vector<GazeTraceSample> LoadGazeTraceCsv(const std::filesystem::path& path)
 
 class TraceGaze final : public GazeSource {
 public:
-    // Samples must be as ParseGazeTraceCsv returns them (non-empty, sorted, one valid).
-    TraceGaze(std::vector<GazeTraceSample> samples, double startMs = 0.0);
+    // Samples must be as ParseGazeTraceCsv returns them (non-empty, sorted, one valid). Time t
+    // plays the trace at its first row + startMs + t·1000; `loop`: past the last row, from the
+    // first row again.
+    TraceGaze(std::vector<GazeTraceSample> samples, double startMs = 0.0, bool loop = false);
     std::string Name() const override { return "trace"; }
     // Linear interpolation of the angles between the bracketing samples; clamped to the first /
     // last sample outside the trace. If a bracketing sample is invalid the result is invalid and
     // carries the direction of the nearest valid sample at or before it (else after it).
     GazeSample At(double timeSeconds) const override;
+    double EndSeconds() const override;
+    double DurationMs() const { return samples_.back().timeMs - samples_.front().timeMs; }
     const std::vector<GazeTraceSample>& samples() const { return samples_; }
 
 private:
@@ -65,6 +69,7 @@ private:
     std::vector<int> lastValid_;  // index of the last valid sample at or before i, -1 if none
     int firstValid_ = 0;
     double startMs_ = 0.0;
+    bool loop_ = false;
 };
 
 }  // namespace fovrt

@@ -187,6 +187,7 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
             record["time_s"] = frame.timeSeconds;
             record["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y,
                                    frame.gaze.direction.z};
+            if (pipeline.GazeHeld(index)) record["gaze_held"] = true;
             if (!frame.gaze.valid) {
                 record["blink"] = config.gaze.blink;
                 ++blinkFrames;
