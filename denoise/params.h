@@ -53,8 +53,9 @@ struct TwoHistoryStableParams {
     float antilagQ = 0.2f;    // two-history-stable-antilag: q above which the weight rises to 1
 };
 
-// The recurrent denoising autoencoder (SPEC §12): which trained network to run. A relative path
-// is looked up in the working directory, then in the source tree (the committed weights).
+// The recurrent denoising autoencoder (SPEC §12): which trained network to run. A path from a
+// config file or --set arrives absolute (the config reader resolves it); a relative one (the
+// defaults) is looked up in the working directory, then in the source tree (the committed weights).
 struct RaeParams {
     std::string weights = "training/weights/rae-quarter.raew";           // variant rae
     std::string weightsSpp = "training/weights/rae-quarter-spp.raew";    // variant rae-spp
