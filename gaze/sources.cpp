@@ -198,8 +198,8 @@ std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov
         params.traceStartMs, params.traceEnd == "loop");
     // Outside the file every frame would freeze on its first or last row.
     if (!(params.traceStartMs >= 0.0 && params.traceStartMs <= trace->DurationMs()))
-        Fail("gaze.trace_start_ms: {} ms is outside {} '{}', which lasts {} ms from its first row", params.traceStartMs,
-             recording ? "gaze.recording_path" : "gaze.trace_path",
+        Fail("gaze.trace_start_ms: {} ms is outside {} '{}', which lasts {:.6g} ms from its first row",
+             params.traceStartMs, recording ? "gaze.recording_path" : "gaze.trace_path",
              recording ? params.recordingPath : params.tracePath, trace->DurationMs());
     return trace;
 }

@@ -20,6 +20,7 @@ TEST_CASE("the frame pipeline refuses a scene with no emitter, no light and a bl
     CHECK_THROWS_WITH(FramePipeline(config), Catch::Contains("scene 'dark'") && Catch::Contains("dark.toml") &&
                                                  Catch::Contains("has no light"));
     // The same geometry under a grey sky renders.
-    std::ofstream(dir / "dark.toml") << "name = \"dark\"\nbackground = [0.2, 0.2, 0.2]\n[[mesh]]\nfile = \"quad.obj\"\n";
+    std::ofstream(dir / "dark.toml") << "name = \"dark\"\nbackground = [0.2, 0.2, 0.2]\n"
+                                        "[[mesh]]\nfile = \"quad.obj\"\n";
     CHECK_NOTHROW(FramePipeline(config));
 }

@@ -82,7 +82,7 @@ void FramePipeline::CheckGazeCovers(uint32_t firstFrame, int frames) const {
                                          recording ? gaze.recordingPath : gaze.tracePath);
     if (gaze.traceEnd == "refuse")
         Fail("gaze.trace_end = \"refuse\": frames {}..{} (run.first_frame, run.frames at {} fps) need {} frames of "
-             "gaze but {} from gaze.trace_start_ms = {} has {} ({} s); lower run.frames, or set gaze.trace_end = "
+             "gaze but {} from gaze.trace_start_ms = {} has {} ({:.6g} s); lower run.frames, or set gaze.trace_end = "
              "\"hold\" or \"loop\"",
              firstFrame, needed - 1, scene_.frameRate, needed, file, gaze.traceStartMs, available,
              gaze_->EndSeconds());
