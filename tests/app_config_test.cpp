@@ -455,7 +455,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 93);
+    CHECK(keys.size() == 94);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);

@@ -85,7 +85,7 @@ void ResolvePathsFromFile(toml::table& table, const std::string& prefix, const s
         if (toml::table* sub = node.as_table()) {
             ResolvePathsFromFile(*sub, path, file);
         } else if (std::optional<std::string> absolute = PathFrom(file.parent_path(), path, node)) {
-            *node.as_string() = *absolute;
+            node.as_string()->get() = *absolute;
         }
     }
 }
