@@ -94,9 +94,10 @@ constexpr std::array<ParamRow<TwoHistoryStableParams>, 3> kTwoHistoryStableRows{
 
 constexpr std::array<SettingRow<RaeParams>, 2> kRaeRows{{
     {{.key = "denoise.rae.weights", .doc = "RAE network weights (.raew, training/rae_net.py), variant rae",
-      .nonEmpty = true},
+      .nonEmpty = true, .path = true},
      &RaeParams::weights},
-    {{.key = "denoise.rae.weights_spp", .doc = "RAE network weights of variant rae-spp", .nonEmpty = true},
+    {{.key = "denoise.rae.weights_spp", .doc = "RAE network weights of variant rae-spp", .nonEmpty = true,
+      .path = true},
      &RaeParams::weightsSpp},
 }};
 

@@ -54,8 +54,9 @@ struct TwoHistoryStableParams {
 };
 
 // The recurrent denoising autoencoder (Chaitanya et al. 2017): which trained network to run. A
-// relative path is looked up in the working directory, then in the source tree (the committed
-// weights).
+// path from a config file or --set arrives absolute (the config reader resolves it); a relative
+// one (the defaults) is looked up in the working directory, then in the source tree (the
+// committed weights).
 struct RaeParams {
     std::string weights = "training/weights/rae-quarter.raew";           // variant rae
     std::string weightsSpp = "training/weights/rae-quarter-spp.raew";    // variant rae-spp

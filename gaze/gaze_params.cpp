@@ -22,11 +22,12 @@ constexpr ParamRange kAheadSlider = Closed(-60, 60);
 
 constexpr std::array<const char*, 5> kSources = {"lissajous", "trace", "recording", "static", "mouse"};
 constexpr std::array<const char*, 2> kUnits = {"px", "deg"};
+constexpr std::array<const char*, 3> kTraceEnds = {"refuse", "hold", "loop"};
 constexpr std::array<const char*, 2> kBlinkModes = {"hold", "uniform"};
 constexpr std::array<const char*, 3> kPredictions = {"none", "cv", "landing"};
 
 using G = GazeParams;
-constexpr std::array<SettingRow<GazeParams>, 14> kGazeRows{{
+constexpr std::array<SettingRow<GazeParams>, 15> kGazeRows{{
     {{.key = "gaze.source", .doc = "where the eye looks (mouse: live windows only)", .names = GazeSourceNames},
      &G::source},
     {{.key = "gaze.units", .doc = "lissajous: px on a reference_width × reference_height image, or deg (yaw, pitch)",
@@ -44,14 +45,20 @@ constexpr std::array<SettingRow<GazeParams>, 14> kGazeRows{{
      &G::referenceWidth},
     {{.key = "gaze.reference_height", .range = Closed(1, 16384), .doc = "lissajous px: reference image height"},
      &G::referenceHeight},
-    {{.key = "gaze.trace_path", .doc = "trace: CSV with columns n (ms), x, y (degrees)"}, &G::tracePath},
+    {{.key = "gaze.trace_path", .doc = "trace: CSV with columns n (ms), x, y (degrees)", .path = true},
+     &G::tracePath},
     {{.key = "gaze.trace_start_ms", .range = kFinite, .doc = "trace, recording: start offset after the first row"},
      &G::traceStartMs},
+    {{.key = "gaze.trace_end",
+      .doc = "trace, recording: a run longer than the file from trace_start_ms is refused, holds the last row "
+             "(frames marked gaze_held) or loops",
+      .names = TraceEndNames},
+     &G::traceEnd},
     {{.key = "gaze.yaw_deg", .range = kAheadDeg, .doc = "static: yaw (+ = right)", .slider = kAheadSlider},
      &G::yawDeg},
     {{.key = "gaze.pitch_deg", .range = kAheadDeg, .doc = "static: pitch (+ = up)", .slider = kAheadSlider},
      &G::pitchDeg},
-    {{.key = "gaze.recording_path", .doc = "recording: headset recording CSV (gaze/recording.h)"},
+    {{.key = "gaze.recording_path", .doc = "recording: headset recording CSV (gaze/recording.h)", .path = true},
      &G::recordingPath},
     {{.key = "gaze.blink", .doc = "an invalid sample: hold the last direction, or a uniform map at the mean spp",
       .names = BlinkModeNames},
@@ -104,6 +111,7 @@ std::optional<ParamProblem> TrackerParamConflict(const TrackerParams& p) {
 
 NameList GazeSourceNames() { return kSources; }
 NameList GazeUnitNames() { return kUnits; }
+NameList TraceEndNames() { return kTraceEnds; }
 NameList BlinkModeNames() { return kBlinkModes; }
 NameList PredictionNames() { return kPredictions; }
 

@@ -3,6 +3,7 @@
 // EyeCamera (foveation/, metrics regions).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -25,6 +26,9 @@ public:
     virtual ~GazeSource() = default;
     virtual std::string Name() const = 0;
     virtual GazeSample At(double timeSeconds) const = 0;
+    // The last time (s) with gaze of its own; At() later repeats the sample there. Infinite for
+    // sources without an end (Lissajous, static, a looped trace).
+    virtual double EndSeconds() const { return std::numeric_limits<double>::infinity(); }
 };
 
 // Gaze angles <-> head-space direction (Fick convention, as eye trackers report): yaw about the
@@ -77,9 +81,13 @@ struct GazeParams {
     // sample time = first row's time + startMs + t·1000.
     // recording: a headset recording (gaze/recording.h: time in s, dir_x/y/z head-frame unit
     // vectors); played like a trace, from its first row + traceStartMs.
+    // traceStartMs must lie within the file. A run longer than the file from there is refused
+    // unless traceEnd (one of TraceEndNames()) is "hold" (the last row's gaze, the frames marked)
+    // or "loop" (from the first row again).
     std::string tracePath;
     std::string recordingPath;
     double traceStartMs = 0.0;
+    std::string traceEnd = "refuse";
 
     // static: fixed angles.
     float yawDeg = 0.0f;
@@ -94,9 +102,11 @@ struct GazeParams {
     TrackerParams tracker;
 };
 
-// The names gaze.source, gaze.units, gaze.blink and gaze.prediction take (gaze_params.cpp).
+// The names gaze.source, gaze.units, gaze.trace_end, gaze.blink and gaze.prediction take
+// (gaze_params.cpp).
 NameList GazeSourceNames();
 NameList GazeUnitNames();
+NameList TraceEndNames();
 NameList BlinkModeNames();
 NameList PredictionNames();
 // [gaze]: key, member, range, meaning of every GazeParams member, and of its TrackerParams

@@ -20,16 +20,15 @@ struct Columns {
     bool HasOrigin() const { return ori[0] >= 0 && ori[1] >= 0 && ori[2] >= 0; }
 };
 
-Columns FindColumns(const std::vector<std::string_view>& header) {
-    static const std::array<const char*, 3> kAxes = {"x", "y", "z"};
+Columns FindColumns(const std::vector<std::string_view>& header, const std::string& name, int line) {
+    static constexpr std::array<const char*, 7> kNames = {"time",  "dir_x", "dir_y", "dir_z",
+                                                          "ori_x", "ori_y", "ori_z"};
+    const std::vector<int> found = csv::HeaderColumns(header, kNames, name, line);
     Columns c;
-    for (size_t i = 0; i < header.size(); ++i) {
-        const std::string f = csv::Lower(header[i]);
-        if (f == "time" && c.time < 0) c.time = int(i);
-        for (size_t a = 0; a < 3; ++a) {
-            if (f == std::string("dir_") + kAxes[a] && c.dir[a] < 0) c.dir[a] = int(i);
-            if (f == std::string("ori_") + kAxes[a] && c.ori[a] < 0) c.ori[a] = int(i);
-        }
+    c.time = found[0];
+    for (size_t a = 0; a < 3; ++a) {
+        c.dir[a] = found[1 + a];
+        c.ori[a] = found[4 + a];
     }
     return c;
 }
@@ -45,11 +44,11 @@ std::vector<GazeTraceSample> ParseGazeRecordingCsv(std::istream& in, const std::
     double firstTime = 0.0;
     while (std::getline(in, line)) {
         ++lineNumber;
-        const std::string_view view = csv::Trim(line);
+        const std::string_view view = csv::Trim(haveHeader ? line : csv::SkipByteOrderMark(line));
         if (view.empty()) continue;
         const std::vector<std::string_view> fields = csv::Split(view);
         if (!haveHeader) {
-            columns = FindColumns(fields);
+            columns = FindColumns(fields, name, lineNumber);
             if (columns.time < 0 || columns.dir[0] < 0 || columns.dir[1] < 0 || columns.dir[2] < 0)
                 Fail("{}:{}: gaze recording header must name columns time (s), dir_x, dir_y and dir_z; got '{}'",
                      name, lineNumber, std::string(view.substr(0, 80)));

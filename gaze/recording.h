@@ -20,8 +20,9 @@ namespace fovrt {
 vec3 HeadDirectionFromHeadset(const vec3& headsetDirection);
 
 // Parses a recording. `name` is used in error messages ("name:line: ..."). Rules: the first
-// non-blank line is the header; columns are found by name (case-insensitive, any order, extra
-// columns ignored): time, dir_x, dir_y, dir_z required, ori_x, ori_y, ori_z optional. Times are
+// non-blank line is the header (a UTF-8 byte-order mark before it is skipped); columns are found
+// by name (case-insensitive, any order, extra columns ignored, a known name given twice refused):
+// time, dir_x, dir_y, dir_z required, ori_x, ori_y, ori_z optional. Times are
 // finite seconds, non-decreasing, and become milliseconds from the first row. A row is invalid
 // (blink, tracking loss) when its direction is empty / NaN, or exactly (0, 0, 1) with the
 // origin exactly (0, 0, 0) (or no origin columns) — the Vive's "no sample" row. Other

@@ -1,8 +1,10 @@
 #include "gaze/sources.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -56,7 +58,6 @@ GazeSample LissajousGaze::At(double t) const {
 // ---- Trace -----------------------------------------------------------------------------------
 
 using csv::IsNanToken;
-using csv::Lower;
 using csv::ParseDouble;
 using csv::Trim;
 
@@ -69,16 +70,18 @@ std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::stri
     bool anyValid = false;
     while (std::getline(in, line)) {
         ++lineNumber;
-        std::string_view view = Trim(line);
+        std::string_view view = Trim(haveHeader ? line : csv::SkipByteOrderMark(line));
         if (view.empty() || view.front() == '#') continue;
         std::vector<std::string_view> fields = csv::Split(view);
         if (!haveHeader) {
-            for (size_t i = 0; i < fields.size(); ++i) {
-                std::string f = Lower(fields[i]);
-                if ((f == "n" || f == "time_ms") && columnTime < 0) columnTime = int(i);
-                else if (f == "x" && columnX < 0) columnX = int(i);
-                else if (f == "y" && columnY < 0) columnY = int(i);
-            }
+            static constexpr std::array<const char*, 4> kNames = {"n", "time_ms", "x", "y"};
+            const std::vector<int> found = csv::HeaderColumns(fields, kNames, name, lineNumber);
+            if (found[0] >= 0 && found[1] >= 0)
+                Fail("{}:{}: gaze trace header names both n and time_ms (fields {} and {}); keep one time column",
+                     name, lineNumber, found[0] + 1, found[1] + 1);
+            columnTime = std::max(found[0], found[1]);
+            columnX = found[2];
+            columnY = found[3];
             if (columnTime < 0 || columnX < 0 || columnY < 0)
                 Fail("{}:{}: gaze trace header must name columns n (time in ms), x and y (degrees); got '{}'",
                      name, lineNumber, std::string(view.substr(0, 80)));
@@ -130,8 +133,8 @@ std::vector<GazeTraceSample> LoadGazeTraceCsv(const std::filesystem::path& path)
     return ParseGazeTraceCsv(in, path.string());
 }
 
-TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs)
-    : samples_(std::move(samples)), startMs_(startMs) {
+TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs, bool loop)
+    : samples_(std::move(samples)), startMs_(startMs), loop_(loop) {
     FOVRT_CHECK(!samples_.empty());
     lastValid_.resize(samples_.size());
     int last = -1;
@@ -146,8 +149,15 @@ TraceGaze::TraceGaze(std::vector<GazeTraceSample> samples, double startMs)
     FOVRT_CHECK(firstValid_ >= 0);
 }
 
+double TraceGaze::EndSeconds() const {
+    if (loop_ && DurationMs() > 0.0) return std::numeric_limits<double>::infinity();
+    return (DurationMs() - startMs_) / 1000.0;
+}
+
 GazeSample TraceGaze::At(double timeSeconds) const {
-    const double ms = samples_.front().timeMs + startMs_ + timeSeconds * 1000.0;
+    double fromFirstMs = startMs_ + timeSeconds * 1000.0;
+    if (loop_ && DurationMs() > 0.0 && fromFirstMs > DurationMs()) fromFirstMs = std::fmod(fromFirstMs, DurationMs());
+    const double ms = samples_.front().timeMs + fromFirstMs;
     auto direction = [&](const GazeTraceSample& s) { return GazeDirectionFromAngles(s.yawDeg, s.pitchDeg); };
     auto invalidAt = [&](size_t i) {
         int v = lastValid_[i] >= 0 ? lastValid_[i] : firstValid_;
@@ -182,9 +192,16 @@ std::unique_ptr<GazeSource> CreateGazeSource(const GazeParams& params, const Fov
              "trace, recording or static, or replay a recorded session with --replay)");
     if (params.source == "lissajous") return std::make_unique<LissajousGaze>(params, referenceFov);
     if (params.source == "static") return std::make_unique<StaticGaze>(params.yawDeg, params.pitchDeg);
-    if (params.source == "recording")
-        return std::make_unique<TraceGaze>(LoadGazeRecordingCsv(params.recordingPath), params.traceStartMs);
-    return std::make_unique<TraceGaze>(LoadGazeTraceCsv(params.tracePath), params.traceStartMs);
+    const bool recording = params.source == "recording";
+    auto trace = std::make_unique<TraceGaze>(
+        recording ? LoadGazeRecordingCsv(params.recordingPath) : LoadGazeTraceCsv(params.tracePath),
+        params.traceStartMs, params.traceEnd == "loop");
+    // Outside the file every frame would freeze on its first or last row.
+    if (!(params.traceStartMs >= 0.0 && params.traceStartMs <= trace->DurationMs()))
+        Fail("gaze.trace_start_ms: {} ms is outside {} '{}', which lasts {:.6g} ms from its first row",
+             params.traceStartMs, recording ? "gaze.recording_path" : "gaze.trace_path",
+             recording ? params.recordingPath : params.tracePath, trace->DurationMs());
+    return trace;
 }
 
 }  // namespace fovrt

@@ -42,7 +42,8 @@ struct GazeTraceSample {
 
 // Parses a gaze CSV. `name` is used in error messages ("name:line: ..."). Rules: '#' lines and
 // blank lines are skipped; the first other line is the header (comma-separated, names trimmed,
-// case-insensitive) and must contain n (or time_ms), x and y; extra columns are ignored. Each
+// case-insensitive, a UTF-8 byte-order mark before it skipped) and must contain n (or time_ms),
+// x and y, each once; extra columns are ignored. Each
 // data row needs finite, non-decreasing n; x/y empty or NaN marks an invalid sample, otherwise
 // they must be finite with |angle| < 90. At least one valid sample is required.
 std::vector<GazeTraceSample> ParseGazeTraceCsv(std::istream& in, const std::string& name);
@@ -50,13 +51,17 @@ std::vector<GazeTraceSample> LoadGazeTraceCsv(const std::filesystem::path& path)
 
 class TraceGaze final : public GazeSource {
 public:
-    // Samples must be as ParseGazeTraceCsv returns them (non-empty, sorted, one valid).
-    TraceGaze(std::vector<GazeTraceSample> samples, double startMs = 0.0);
+    // Samples must be as ParseGazeTraceCsv returns them (non-empty, sorted, one valid). Time t
+    // plays the trace at its first row + startMs + t·1000; `loop`: past the last row, from the
+    // first row again.
+    TraceGaze(std::vector<GazeTraceSample> samples, double startMs = 0.0, bool loop = false);
     std::string Name() const override { return "trace"; }
     // Linear interpolation of the angles between the bracketing samples; clamped to the first /
     // last sample outside the trace. If a bracketing sample is invalid the result is invalid and
     // carries the direction of the nearest valid sample at or before it (else after it).
     GazeSample At(double timeSeconds) const override;
+    double EndSeconds() const override;
+    double DurationMs() const { return samples_.back().timeMs - samples_.front().timeMs; }
     const std::vector<GazeTraceSample>& samples() const { return samples_; }
 
 private:
@@ -64,6 +69,7 @@ private:
     std::vector<int> lastValid_;  // index of the last valid sample at or before i, -1 if none
     int firstValid_ = 0;
     double startMs_ = 0.0;
+    bool loop_ = false;
 };
 
 }  // namespace fovrt

@@ -284,6 +284,66 @@ TEST_CASE("Experiment files: ignored tables, overlay tables, and the shipped pre
     if (presets == 0) WARN("no presets/*.toml found");
 }
 
+TEST_CASE("Paths written in a config file are from its folder; --set paths from the working directory",
+          "[config]") {
+    const fs::path dir = test::ScratchDir("fovrt-config-paths");
+    fs::create_directories(dir / "cfg");
+    const fs::path file = dir / "cfg" / "run.toml";
+    std::ofstream(file) << "[scene]\nname = \"../scenes/lab.toml\"\n"
+                           "[gaze]\nsource = \"recording\"\nrecording_path = \"../gaze/rec.csv\"\n"
+                           "trace_path = \"/abs/t.csv\"\n"
+                           "[denoise.rae]\nweights = \"w.raew\"\n"
+                           "[output]\ndir = \"out/x\"\n"
+                           "[experiment]\nscenes = [\"cornell\"]\n"
+                           "[experiment.quick.denoise.rae]\nweights_spp = \"q.raew\"\n";
+    auto normal = [](const fs::path& p) { return fs::absolute(p).lexically_normal().string(); };
+    ConfigOptions options;
+    options.configPath = file.string();
+    ExperimentTable experiment;
+    RunConfig c = ResolveExperimentConfig(options, true, experiment);
+    CHECK(c.scene.name == normal(dir / "scenes/lab.toml"));
+    CHECK(c.gaze.recordingPath == normal(dir / "gaze/rec.csv"));
+    CHECK(c.gaze.tracePath == "/abs/t.csv");  // absolute: as written
+    CHECK(c.denoise.params.rae.weights == normal(dir / "cfg/w.raew"));
+    CHECK(c.denoise.params.rae.weightsSpp == normal(dir / "cfg/q.raew"));  // inside an overlay table
+    CHECK(c.output.dir == "out/x");  // where to write: from the working directory (docs/usage.md)
+    // A built-in scene name stays a name; --set paths are from the working directory.
+    options.sets = {"scene.name=cornell", "gaze.recording_path=here.csv"};
+    c = ResolveExperimentConfig(options, false, experiment);
+    CHECK(c.scene.name == "cornell");
+    CHECK(c.gaze.recordingPath == normal(fs::current_path() / "here.csv"));
+
+    // A run manifest's config (JSON) names the same files when re-read; so does the resolved
+    // config written as TOML and read from another folder, for every path it was given.
+    options.sets.clear();
+    c = ResolveExperimentConfig(options, false, experiment);
+    CHECK(ConfigToJson(ConfigFromJson(ConfigToJson(c))) == ConfigToJson(c));
+    fs::create_directories(dir / "elsewhere");
+    std::ofstream(dir / "elsewhere/config.toml") << ConfigToToml(c);
+    const RunConfig back = LoadConfigFile((dir / "elsewhere/config.toml").string());
+    CHECK(back.scene.name == c.scene.name);
+    CHECK(back.gaze.recordingPath == c.gaze.recordingPath);
+    CHECK(back.denoise.params.rae.weights == c.denoise.params.rae.weights);
+}
+
+TEST_CASE("A shipped preset names its recording and weights from any working directory", "[config]") {
+    const fs::path presets = test::SourceDir() / "presets";
+    const fs::path elsewhere = test::ScratchDir("fovrt-config-cwd");
+    const fs::path before = fs::current_path();
+    fs::current_path(elsewhere);
+    ConfigOptions options;
+    options.ignoredTables = {"experiment"};
+    options.configPath = (presets / "eye-tracker-latency.toml").string();
+    const RunConfig latency = ResolveConfig(options);
+    options.configPath = (presets / "rae.toml").string();
+    const RunConfig rae = ResolveConfig(options);
+    fs::current_path(before);
+    CHECK(latency.gaze.recordingPath ==
+          (test::SourceDir().parent_path() / "shared/gaze/vr-kitchen-p10.csv").lexically_normal().string());
+    CHECK(fs::exists(rae.denoise.params.rae.weights));
+    CHECK(fs::exists(rae.denoise.params.rae.weightsSpp));
+}
+
 TEST_CASE("The eye FOV: camera.fov_deg when given, else symmetric from the scene", "[config]") {
     RunConfig config = DefaultConfig();  // 640×360, no explicit FOV
     Scene scene;
@@ -398,7 +458,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 93);
+    CHECK(keys.size() == 94);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -427,7 +487,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 94);  // the 93 table rows and denoise.precision
+    CHECK(listed.size() == 95);  // the 94 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {

@@ -292,8 +292,36 @@ elif [[ $(grep -c "error" stderr.txt) -eq 1 ]] &&
 else bad "out of memory (run): $(cat stderr.txt)"; fi
 fovrt=$real_fovrt
 [[ -e e37/manifest.json ]] && bad "e37 has a manifest after running out of memory"
+
+# A trace that ends: a start past its end, or a run longer than it, is refused before rendering
+# (gaze.trace_end = "refuse"); "hold" renders the frames past the end on its last row, with a
+# warning, and marks them in frames.jsonl. 100 ms of trace: frames 0..3 at 30 fps.
+printf 'n,x,y\n0,0,0\n50,5,0\n100,10,0\n' > short.csv
+ends=(--set run.fps=30 --set gaze.source=trace --set gaze.trace_path=short.csv --set denoise.device=cpu)
+expect_error "run longer than its trace" 'gaze.trace_end = "refuse": frames 0..4 .*need 5 frames of gaze .*has 4' \
+  run "${small[@]}" "${ends[@]}" --set run.frames=5 --set output.dir=e40
+expect_error "trace_start_ms past the trace" "gaze.trace_start_ms: 500 ms is outside gaze.trace_path '.*short.csv', which lasts 100 ms" \
+  run "${small[@]}" "${ends[@]}" --set gaze.trace_start_ms=500 --set output.dir=e41
+if "$fovrt" run "${small[@]}" "${ends[@]}" --set run.frames=5 --set gaze.trace_end=hold --set output.dir=held1 \
+    >/dev/null 2>err.txt; then
+  [[ $(grep -c '"gaze_held":true' held1/frames.jsonl) -eq 1 ]] && grep '"frame":4,' held1/frames.jsonl | grep -q '"gaze_held":true' &&
+    grep -q 'frames 4..4 are past the end' err.txt && ok "trace_end hold: frame 4 marked gaze_held, with a warning" ||
+    bad "trace_end hold: frames.jsonl or warning: $(cat err.txt)"
+else
+  bad "trace_end hold run failed: $(cat err.txt)"
+fi
+# A scene with no light would score as perfect: refused naming it.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > tri.obj
+printf 'name = "dark"\n[[mesh]]\nfile = "tri.obj"\n' > dark.toml
+expect_error "scene with no light" "scene 'dark' (.*dark.toml): has no light" run "${small[@]}" --set scene.name=dark.toml --set output.dir=e42
+# A preset's paths are from its folder: the latency preset finds its recording from any folder.
+mkdir -p elsewhere
+(cd elsewhere && "$fovrt" config --experiment -c "$src/presets/eye-tracker-latency.toml") > latency.toml 2>err.txt &&
+  grep -qx "recording_path = [\"']$(cd "$src/.." && pwd)/shared/gaze/vr-kitchen-p10.csv[\"']" latency.toml &&
+  ok "preset paths from the preset's folder" || bad "preset paths: $(grep recording_path latency.toml) $(cat err.txt)"
+
 left=""
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19 e30 e31 e32-$'\xff' e33 e34 e35 e36c; do
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19 e30 e31 e32-$'\xff' e33 e34 e35 e36c e40 e41 e42; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
   [[ -e $d ]] && left="$left $d"
 done

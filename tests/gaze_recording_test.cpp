@@ -65,6 +65,14 @@ TEST_CASE("recording: straight ahead with a real origin is a valid sample", "[ga
     CHECK(samples[0].yawDeg == 0.0f);
 }
 
+TEST_CASE("recording: a UTF-8 byte-order mark before the header is skipped", "[gaze]") {
+    // Spreadsheets save CSV with one; the header's first name would otherwise read "\xEF\xBB\xBFtime".
+    const auto samples = Parse("\xEF\xBB\xBFtime,dir_x,dir_y,dir_z\n0,0,0,1\n0.1,0,0.0871557,0.9961947\n");
+    REQUIRE(samples.size() == 2);
+    CHECK(samples[1].timeMs == Approx(100.0));
+    CHECK(samples[1].pitchDeg == Approx(5.0f).margin(1e-3));
+}
+
 TEST_CASE("recording: bad files give one line naming file:line", "[gaze]") {
     const std::string header = "time,dir_x,dir_y,dir_z\n";
     struct Case {
@@ -81,6 +89,9 @@ TEST_CASE("recording: bad files give one line naming file:line", "[gaze]") {
         {header + "0,0,0,1\n", "rec.csv: gaze recording has no valid sample"},
         {header, "rec.csv: gaze recording has a header but no samples"},
         {"", "rec.csv: empty gaze recording"},
+        // Which of two dir_x columns is the gaze? Reading the first would be a guess.
+        {"time,dir_x,dir_y,dir_z,DIR_X\n0,0,0,1,0.5\n", "rec.csv:1: column 'dir_x' appears twice (fields 2 and 5)"},
+        {"\ntime,dir_x,dir_y,dir_z,time\n0,0,0,1,3\n", "rec.csv:2: column 'time' appears twice (fields 1 and 5)"},
     };
     for (const Case& c : cases) {
         INFO(c.text);

@@ -154,6 +154,15 @@ TEST_CASE("Trace errors name the file and line", "[gaze]") {
     CHECK_THROWS_WITH(Parse("n,x,y\n"), Catch::Contains("no samples"));
     CHECK_THROWS_WITH(Parse(""), Catch::Contains("trace.csv"));
     CHECK_THROWS_WITH(Parse("n,x,y\n0,nan,nan\n"), Catch::Contains("no valid sample"));
+    // A column named twice (or both time columns): reading the first would be a guess.
+    CHECK_THROWS_WITH(Parse("n,x,y,x\n0,1,2,3\n"),
+                      Catch::Contains("trace.csv:1: column 'x' appears twice (fields 2 and 4)"));
+    CHECK_THROWS_WITH(Parse("# rig\ntime_ms,x,y,n\n0,1,2,3\n"),
+                      Catch::Contains("trace.csv:2: gaze trace header names both n and time_ms"));
+    // A UTF-8 byte-order mark (spreadsheets write one) is skipped, not read into the first name.
+    auto marked = Parse("\xEF\xBB\xBFn,x,y\n0,1,2\n");
+    REQUIRE(marked.size() == 1);
+    CHECK(marked[0].yawDeg == 1.0f);
 
     // Through the factory, from a file: the message carries the path.
     fs::path dir = fs::temp_directory_path() / fmt::format("fovrt_gaze_test_{}", ::getpid());

@@ -296,6 +296,7 @@ TEST_CASE("shared Cornell box and glTF samples", "[scene][shared]") {
     const Mesh& mesh = suzanne.meshes[0];
     CHECK(mesh.uvs.size() == mesh.positions.size());
     CHECK(mesh.normals.size() == mesh.positions.size());
+    for (const Scene* scene : {&cornell, &box, &suzanne}) CHECK_NOTHROW(RequireSceneLight(*scene));
 }
 
 TEST_CASE("shared Veach Ajar", "[scene][shared]") {
@@ -325,6 +326,7 @@ TEST_CASE("shared Veach Ajar", "[scene][shared]") {
     const Material* light = FindMaterial(scene, "Light");
     REQUIRE(light);
     CHECK(light->emission.r == 300.0f);
+    CHECK_NOTHROW(RequireSceneLight(scene));
 }
 
 TEST_CASE("bad scene files give one fovrt::Error naming file and key", "[scene][errors]") {
@@ -389,6 +391,20 @@ TEST_CASE("bad scene files give one fovrt::Error naming file and key", "[scene][
         CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "out of range"});
         dir.Write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
         CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "malformed"});
+        // tinyobjloader reads "-1.0x" as -1 and ignores a fourth (or seventh) token.
+        dir.Write("b.obj", "v 0 0 0\nv -1.0x 0 1\nv 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:2", "malformed number '-1.0x'"});
+        dir.Write("b.obj", "v 0 0 0\nv -1 0 1 junk\nv 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:2", "malformed number 'junk'"});
+        dir.Write("b.obj", "v 0 0 0\nv 1 0 0 1 1\nv 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:2", "'v' has 5 numbers"});
+        dir.Write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1 0\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "'vn' has 4 numbers"});
+        dir.Write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5 0.5e\nf 1 2 3\n");
+        CheckMessage(ErrorOf(scene), scene, {"b.obj:4", "malformed number '0.5e'"});
+        // The forms tinyobjloader reads stay accepted: w, vertex colours, a trailing comment.
+        dir.Write("b.obj", "v 0 0 0 1\nv 1 0 0 0.5 0.5 0.5\nv 0 1 0 # top\nvt 0.5\nf 1 2 3\n");
+        CHECK_NOTHROW(LoadScene(scene));
         dir.Write("b.obj", "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nope\nf 1 2 3\n");
         CheckMessage(ErrorOf(scene), scene, {"b.obj:5", "usemtl 'nope'"});
         dir.Write("b.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -496,6 +512,35 @@ TEST_CASE("bad scene files give one fovrt::Error naming file and key", "[scene][
         dir.Write("q.gltf", bad);
         CheckMessage(ErrorOf(scene), scene, {"q.gltf", "exceeds"});
     }
+}
+
+TEST_CASE("a scene with no light is refused for rendering, naming the scene; every shipped scene has light",
+          "[scene][errors]") {
+    TempDir dir;
+    dir.Write("a.obj", kCubeObj);
+    dir.Write("a.mtl", kCubeMtl);
+    const fs::path dark = dir.Write("dark.toml", kMinimalScene);
+    const Scene unlit = LoadScene(dark);  // loading alone asks for no light
+    try {
+        RequireSceneLight(unlit);
+        FAIL("an unlit scene passed");
+    } catch (const Error& e) {
+        CheckMessage(e.what(), dark, {"scene 't'", "has no light"});
+    }
+    // A light that gives nothing is no light either; any one source of radiance is enough.
+    const std::string off = "\n[[light]]\ntype = \"point\"\nposition = [0, 2, 0]\nintensity = 0\n";
+    CHECK_THROWS_WITH(RequireSceneLight(LoadScene(dir.Write("off.toml", kMinimalScene + off))),
+                      Catch::Contains("has no light"));
+    const std::string on = "\n[[light]]\ntype = \"point\"\nposition = [0, 2, 0]\nintensity = 1\n";
+    CHECK_NOTHROW(RequireSceneLight(LoadScene(dir.Write("on.toml", kMinimalScene + on))));
+    CHECK_NOTHROW(RequireSceneLight(LoadScene(dir.Write("sky.toml", "background = [0, 0, 0.1]\n" +
+                                                                          std::string(kMinimalScene)))));
+    dir.Write("a.mtl", "newmtl m\nKd 0.5 0.5 0.5\nKe 1 1 1\n");
+    CHECK_NOTHROW(RequireSceneLight(LoadScene(dark)));
+
+    for (const char* name : {"cornell", "pillars", "room", "brdf-detail", "brdf-detail-moving"})
+        CHECK_NOTHROW(RequireSceneLight(LoadScene(ResolveSceneName(name))));
+    CHECK_NOTHROW(RequireSceneLight(LoadScene(BuiltinScenesDir() / "cube.obj")));  // a bare mesh gets a sky
 }
 
 TEST_CASE("glTF non-finite vertices and out-of-range indices are rejected", "[scene][errors]") {

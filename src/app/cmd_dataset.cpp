@@ -94,6 +94,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
                 config.foveation.uniformSpp = 1;
             }
             FramePipeline pipeline(config);
+            pipeline.CheckGazeCovers(uint32_t(config.run.firstFrame), config.run.frames);
             ReferenceCache cache(config.reference.cacheDir);
             const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
             const int w = config.camera.width, h = config.camera.height, T = config.run.frames;

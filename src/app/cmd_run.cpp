@@ -151,6 +151,7 @@ public:
         record_["frame"] = frame.frame;
         record_["time_s"] = frame.timeSeconds;
         record_["gaze_head"] = {frame.gaze.direction.x, frame.gaze.direction.y, frame.gaze.direction.z};
+        if (loop_.Pipeline().GazeHeld(frame.frame)) record_["gaze_held"] = true;
         if (!frame.gaze.valid) {
             record_["blink"] = config_.gaze.blink;
             ++blinkFrames;

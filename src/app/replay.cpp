@@ -234,6 +234,7 @@ void CheckReplayScene(Replay& replay, const FramePipeline& pipeline) {
 FrameSequence::FrameSequence(const FramePipeline& pipeline)
     : pipeline_(pipeline), count_(pipeline.Config().run.frames) {
     lastFrame_ = uint32_t(pipeline.Config().run.firstFrame + count_ - 1);
+    pipeline.CheckGazeCovers(uint32_t(pipeline.Config().run.firstFrame), count_);
 }
 
 FrameSequence::FrameSequence(const FramePipeline& pipeline, const Replay& replay)

@@ -48,6 +48,48 @@ const std::set<std::string>& KnownSections() {
     return sections;
 }
 
+// The rows whose value is a path (ParamInfo::path), by key.
+const std::map<std::string, const ParamInfo*>& PathRows() {
+    static const std::map<std::string, const ParamInfo*> rows = [] {
+        std::map<std::string, const ParamInfo*> byKey;
+        const RunConfig defaults;
+        ForEachSetting(defaults, [&](const ParamInfo& info, const auto&) {
+            if (info.path) byKey.emplace(info.key, &info);
+        });
+        return byKey;
+    }();
+    return rows;
+}
+
+// The value `key` (a setting's key, or one inside an overlay table: experiment.quick.gaze.trace_path)
+// should hold when `value` was written relative to `base`: the absolute path, for a path row's
+// relative string that is not a name (ParamInfo::orName); nullopt otherwise (kept as written).
+std::optional<std::string> PathFrom(const std::filesystem::path& base, const std::string& key,
+                                    const toml::node& value) {
+    const std::string* text = value.is_string() ? &value.as_string()->get() : nullptr;
+    if (text == nullptr || text->empty() || std::filesystem::path(*text).is_absolute()) return std::nullopt;
+    for (const auto& [rowKey, info] : PathRows()) {
+        const bool matches = key == rowKey || (key.size() > rowKey.size() && key.ends_with("." + rowKey));
+        if (!matches) continue;
+        if (info->orName && text->find_first_of("/.") == std::string::npos) return std::nullopt;
+        return std::filesystem::absolute(base / *text).lexically_normal().string();
+    }
+    return std::nullopt;
+}
+
+// Every path written relative in the config file `file` made absolute from the file's folder,
+// so a preset names its recordings and weights wherever it is run from.
+void ResolvePathsFromFile(toml::table& table, const std::string& prefix, const std::filesystem::path& file) {
+    for (auto&& [key, node] : table) {
+        const std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (toml::table* sub = node.as_table()) {
+            ResolvePathsFromFile(*sub, path, file);
+        } else if (std::optional<std::string> absolute = PathFrom(file.parent_path(), path, node)) {
+            node.as_string()->get() = *absolute;
+        }
+    }
+}
+
 std::string TypeName(const toml::node& node) {
     switch (node.type()) {
         case toml::node_type::table: return "table";
@@ -473,6 +515,7 @@ toml::table ParseTomlFile(const std::string& path, Origins& origins) {
     try {
         toml::table table = toml::parse_file(path);
         RecordOrigins(table, "", path, origins);
+        ResolvePathsFromFile(table, "", path);
         return table;
     } catch (const toml::parse_error& e) {
         Fail("{}:{}:{}: {}", path, e.source().begin.line, e.source().begin.column, e.description());
@@ -579,13 +622,18 @@ void ApplySet(const std::string& set, toml::table& root, Origins& origins) {
                  shown.substr(1, shown.size() - 2), text == &key ? "key" : "value");
         }
     }
+    toml::table parsed;
     try {
-        toml::table parsed = toml::parse("v = " + value);
-        SetPath(root, key, *parsed.get("v"), origin, origins);
+        parsed = toml::parse("v = " + value);
     } catch (const toml::parse_error&) {
         // Not a TOML value: take it as a bare string (paths, scene names).
-        SetPath(root, key, toml::value<std::string>(value), origin, origins);
+        parsed.insert("v", value);
     }
+    // A relative path on the command line is from the working directory; stored absolute, so a
+    // manifest re-read from elsewhere names the same file.
+    if (std::optional<std::string> absolute = PathFrom(std::filesystem::current_path(), key, *parsed.get("v")))
+        parsed.insert_or_assign("v", *absolute);
+    SetPath(root, key, *parsed.get("v"), origin, origins);
 }
 
 // True when `set` names a key inside one of `tables` (e.g. --set experiment.quick.run.frames=2).

@@ -35,7 +35,11 @@ constexpr std::array<SettingRow<RunConfig>, 1> kRunConfigRows{{
 }};
 
 constexpr std::array<SettingRow<SceneConfig>, 1> kSceneRows{{
-    {{.key = "scene.name", .doc = "a scene name (scenes/) or a path to a scene file", .nonEmpty = true},
+    {{.key = "scene.name",
+      .doc = "a scene name (scenes/) or a path to a scene file",
+      .nonEmpty = true,
+      .path = true,
+      .orName = true},
      &SceneConfig::name},
 }};
 

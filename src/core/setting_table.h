@@ -52,6 +52,13 @@ struct ParamInfo {
     NameList (*names)() = nullptr;  // strings: the values allowed; nullptr = any
     bool nonEmpty = false;          // strings: must not be empty
     ParamRange slider = {};         // the preview panel's slider span (inside `range`); empty = none
+    // strings: the path of a file the run reads. Written relative in a config file it is taken
+    // from that file's folder, given relative to --set from the working directory; the reader
+    // stores it absolute (config.cpp).
+    bool path = false;
+    // path strings that may also be a name (scene.name: a built-in scene): a bare word, without
+    // '/' or '.', is a name and stays as written (every loadable file has an extension).
+    bool orName = false;
 };
 
 // A value that breaks a rule: the key to blame and why ("9 is out of range [0, 8]").

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -44,6 +47,7 @@ Fov ResolveFov(const RunConfig& config, const Scene& scene) {
 
 FramePipeline::FramePipeline(const RunConfig& config)
     : config_(config), scene_(LoadScene(ResolveSceneName(config.scene.name))) {
+    RequireSceneLight(scene_);
     // One clock for everything: the config's fps (when given) overrides the scene's frame rate,
     // so gaze, animation and motion vectors agree on what "frame i" means.
     if (config.run.fps > 0.0f) scene_.frameRate = config.run.fps;
@@ -73,6 +77,33 @@ void FramePipeline::Restart(uint32_t seed) {
     MakeGazeAndFoveation();
     hasPrevious_ = false;
     previousFrame_ = 0;
+}
+
+int64_t FramePipeline::GazeFrames() const {
+    const double end = gaze_->EndSeconds();
+    if (!(end < 1e12)) return std::numeric_limits<int64_t>::max();
+    // Frame i is at i / fps; the slack keeps a frame that lands on the last row (rounding).
+    return int64_t(std::floor(end * double(scene_.frameRate) + 1e-6)) + 1;
+}
+
+void FramePipeline::CheckGazeCovers(uint32_t firstFrame, int frames) const {
+    const int64_t needed = int64_t(firstFrame) + frames, available = GazeFrames();
+    if (needed <= available) return;
+    const GazeParams& gaze = config_.gaze;
+    const bool recording = gaze.source == "recording";
+    const std::string file = fmt::format("{} '{}'", recording ? "gaze.recording_path" : "gaze.trace_path",
+                                         recording ? gaze.recordingPath : gaze.tracePath);
+    if (gaze.traceEnd == "refuse")
+        Fail("gaze.trace_end = \"refuse\": frames {}..{} (run.first_frame, run.frames at {} fps) need {} frames of "
+             "gaze but {} from gaze.trace_start_ms = {} has {} ({:.6g} s); lower run.frames, or set gaze.trace_end = "
+             "\"hold\" or \"loop\"",
+             firstFrame, needed - 1, scene_.frameRate, needed, file, gaze.traceStartMs, available,
+             gaze_->EndSeconds());
+    std::fprintf(stderr,
+                 "fovrt: warning: gaze.trace_end = \"hold\": frames %lld..%lld are past the end of %s and hold its "
+                 "last row (frames.jsonl marks them gaze_held)\n",
+                 static_cast<long long>(std::max<int64_t>(available, firstFrame)), static_cast<long long>(needed - 1),
+                 file.c_str());
 }
 
 void FramePipeline::SetFoveation(const FoveationParams& params) {

@@ -52,6 +52,15 @@ public:
     float FramesPerSecond() const { return scene_.frameRate; }
     double TimeOf(uint32_t frame) const { return double(frame) / double(scene_.frameRate); }
 
+    // Frames 0 .. GazeFrames() - 1 have gaze of their own; later ones are past the end of a trace
+    // or recording (gaze.trace_end = "hold" repeats its last row there). Unbounded: INT64_MAX.
+    int64_t GazeFrames() const;
+    bool GazeHeld(uint32_t frame) const { return int64_t(frame) >= GazeFrames(); }
+    // A headless run of `frames` frames from `firstFrame` (run, experiment, dataset), before it
+    // renders: refused in one line when it outlasts its trace or recording (gaze.trace_end =
+    // "refuse"), a warning with "hold".
+    void CheckGazeCovers(uint32_t firstFrame, int frames) const;
+
     // The stereo rig (head pose from the scene's camera path, IPD and FOV from the config).
     StereoRig RigAt(uint32_t frame) const { return RigAtTime(TimeOf(frame)); }
     StereoRig RigAtTime(double timeSeconds) const;

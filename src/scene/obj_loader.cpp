@@ -43,11 +43,12 @@ std::vector<std::string_view> Tokens(std::string_view line) {
     return out;
 }
 
+// The whole token as a number ("1.0x" is not one, as the MTL scan holds too).
 bool ParseFloat(std::string_view token, double& value) {
     std::string s(token);
     char* end = nullptr;
     value = std::strtod(s.c_str(), &end);
-    return end != s.c_str();
+    return end != s.c_str() && end == s.c_str() + s.size();
 }
 
 // The usemtl names seen in the OBJ and the first line each appears on.
@@ -82,16 +83,23 @@ ObjScan ScanObj(const std::string& text, const std::string& file) {
         std::vector<std::string_view> tokens = Tokens(line);
         std::string_view kind = tokens[0];
         if (kind == "v" || kind == "vn" || kind == "vt") {
-            size_t need = kind == "vt" ? 1 : 3;
-            if (tokens.size() < need + 1)
-                Fail("{}:{}: '{}' needs {} numbers", file, lineNumber, kind, need);
-            for (size_t k = 1; k <= need; ++k) {
+            // The counts tinyobjloader reads: v x y z [w | r g b], vn x y z, vt u [v [w]]. It
+            // ignores anything further, so a stray token is refused here (a '#' comment may follow).
+            size_t values = 0;
+            while (values + 1 < tokens.size() && tokens[values + 1][0] != '#') ++values;
+            const bool countOk = kind == "v" ? values == 3 || values == 4 || values == 6
+                                 : kind == "vn" ? values == 3
+                                                : values >= 1 && values <= 3;
+            for (size_t k = 1; k <= values; ++k) {
                 double v = 0.0;
                 if (!ParseFloat(tokens[k], v))
                     Fail("{}:{}: '{}' has a malformed number '{}'", file, lineNumber, kind, tokens[k]);
                 if (!std::isfinite(v) || std::fabs(v) > 3.0e38)
                     Fail("{}:{}: '{}' coordinate is not finite ({})", file, lineNumber, kind, tokens[k]);
             }
+            if (!countOk)
+                Fail("{}:{}: '{}' has {} numbers (expected {})", file, lineNumber, kind, values,
+                     kind == "v" ? "x y z, x y z w or x y z r g b" : kind == "vn" ? "x y z" : "1 to 3");
             counts[kind == "v" ? 0 : kind == "vt" ? 1 : 2]++;
         } else if (kind == "f") {
             if (tokens.size() < 4) Fail("{}:{}: face needs at least 3 vertices", file, lineNumber);

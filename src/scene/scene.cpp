@@ -150,6 +150,16 @@ size_t CountEmissiveTriangles(const Scene& scene) {
     return n;
 }
 
+void RequireSceneLight(const Scene& scene) {
+    auto bright = [](const vec3& v) { return std::max({v.x, v.y, v.z}) > 0.0f; };
+    if (CountEmissiveTriangles(scene) > 0 || bright(scene.background)) return;
+    for (const Light& light : scene.lights)
+        if (light.intensity > 0.0f && bright(light.color)) return;
+    Fail("scene '{}' ({}): has no light (no emissive material, no [[light]] with intensity > 0, a black "
+         "background): every image would be black and score as perfect",
+         scene.name, scene.sourcePath.string());
+}
+
 std::filesystem::path BuiltinScenesDir() {
     if (const char* env = std::getenv("FOVRT_SCENES_DIR"); env && *env) return env;
     std::filesystem::path dir = std::filesystem::path(FOVRT_SCENE_SOURCE_DIR) / "scenes";
