@@ -5,10 +5,13 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "app/report.h"
 #include "app/report_collect.h"
 #include "app/report_html.h"
 #include "app/report_summary.h"
+#include "config/settings_tables.h"
 #include "foveation/spp_model.h"
 #include "io/png.h"
 #include "test_support.h"
@@ -238,7 +241,11 @@ TEST_CASE("HTML report is a single offline file with plots, images and tables", 
         ++canvases;
     CHECK(canvases == 4);
     CHECK(html.find("<canvas class=\"hdr\" width=\"64\" height=\"48\" title=\"reference\">") != std::string::npos);
-    CHECK(html.find("class=\"exposure\" min=\"-4\" max=\"8\"") != std::string::npos);
+    // The exposure slider spans output.exposure's row, in stops over the PNGs' exposure (+1).
+    const ParamRange exposure = SliderSpan(OutputTable(), "output.exposure");
+    const std::string slider =
+        fmt::format("class=\"exposure\" min=\"{}\" max=\"{}\"", int(exposure.min) - 1, int(exposure.max) - 1);
+    CHECK(html.find(slider) != std::string::npos);
     CHECK(html.find("stops over output.exposure (+1)") != std::string::npos);
     const size_t lut = html.find("data-display-lut=\"");
     REQUIRE(lut != std::string::npos);
