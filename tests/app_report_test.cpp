@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -158,6 +160,34 @@ TEST_CASE("outlier frames that dominate a mean are named", "[app][report]") {
     CHECK(table.find("svgf fovea: 1 of 20 frames (7) hold 98% of the mean relMSE") != std::string::npos);
     CHECK(SummaryJson(r, stats)["scenes"]["s"]["variants"]["svgf"]["fovea"]["relmse"]["dominant_frames"]["frames"] ==
           nlohmann::json::array({7}));
+}
+
+TEST_CASE("the table's columns line up under a variant name longer than the others", "[app][report]") {
+    Results r;
+    const std::string longName = "two-history-asvgf-stable-hysteresis";
+    for (int frame = 0; frame < 4; ++frame)
+        for (const char* region : {"whole", "fovea", "periphery"}) {
+            r.Add({"cornell", frame, 0, "svgf", region, "relmse", 0.01 + 0.001 * frame});
+            r.Add({"cornell", frame, 0, longName, region, "relmse", 0.009 + 0.001 * frame});
+            r.Add({"cornell", frame, 0, "svgf", region, "ssim", 0.9});
+            r.Add({"cornell", frame, 0, longName, region, "ssim", 0.91});
+        }
+    const std::string table = SummaryTable(r, ExperimentStats(r));
+    INFO(table);
+    // The header and every row: one width, so each column starts where its header does.
+    std::vector<std::string> lines;
+    std::istringstream in(table);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("variant ", 0) == 0 || line.rfind("svgf ", 0) == 0 || line.rfind(longName + " ", 0) == 0)
+            lines.push_back(line);
+    REQUIRE(lines.size() == 7);
+    const size_t region = lines[0].find("region");
+    REQUIRE(region > longName.size());
+    for (const std::string& line : lines) {
+        CHECK(line.size() == lines[0].size());
+        const std::string cell = line.substr(region, 5);
+        CHECK((cell == "regio" || cell == "whole" || cell == "fovea" || cell == "perip"));
+    }
 }
 
 TEST_CASE("base64, escaping and viridis building blocks", "[app][report]") {
