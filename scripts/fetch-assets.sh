@@ -3,7 +3,8 @@
 # tests read from ../shared (beside the checkout). scripts/assets.manifest lists each file with its
 # SHA-256 and public source. This script checks every copy present against its hash and, unless
 # --verify is given, downloads each missing file (curl or wget), checks it and moves it into place.
-# Builds and tests never download; a test runs this script with --verify.
+# Builds and tests never download (the test assets_verify runs it with --verify, and its download
+# mode against a stand-in curl).
 # Usage: scripts/fetch-assets.sh [--verify] [--dir DIR]   (DIR default: ../shared beside the checkout)
 # Exit: 0 every file present and matching; 1 a copy (or a download) does not match its hash, or a
 #       download failed; 2 a bad option; 3 some files are absent (those present match).
