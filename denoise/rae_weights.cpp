@@ -7,12 +7,9 @@
 #include <map>
 #include <mutex>
 
+#include "core/data_dir.h"
 #include "core/error.h"
 #include "denoise/denoiser.h"
-
-#ifndef FOVRT_SOURCE_DIR
-#define FOVRT_SOURCE_DIR "."
-#endif
 
 namespace fovrt {
 namespace {
@@ -168,8 +165,8 @@ size_t RaeHiddenStateBytes(const RaeWeights& weights, int paddedWidth, int padde
 std::filesystem::path ResolveRaeWeightsPath(const DenoiserParams& params) {
     const std::filesystem::path p(params.rae.weights);
     if (p.is_absolute() || std::filesystem::exists(p)) return p;
-    const std::filesystem::path inTree = std::filesystem::path(FOVRT_SOURCE_DIR) / p;
-    return std::filesystem::exists(inTree) ? inTree : p;
+    const std::filesystem::path shipped = DataRoot() / p;
+    return std::filesystem::exists(shipped) ? shipped : p;
 }
 
 std::shared_ptr<const RaeWeights> SharedRaeWeights(const DenoiserParams& params) {

@@ -64,8 +64,9 @@ void SaveRaeWeights(const std::filesystem::path& path, const RaeWeights& weights
 // Bytes of the hidden state for a (padded) W×H frame: Σ_l w_l·(W/2^l)·(H/2^l)·4 + w_{L-1} at 1/2^L.
 size_t RaeHiddenStateBytes(const RaeWeights& weights, int paddedWidth, int paddedHeight);
 
-// The weight file `params.rae.weights` names: as given if it exists, else under the source tree
-// (FOVRT_SOURCE_DIR), so the committed default works from any working directory.
+// The weight file `params.rae.weights` names: as given if it exists, else under the data fovrt
+// ships (core/data_dir.h: the installed copy or the source tree), so the committed default works
+// from any working directory.
 std::filesystem::path ResolveRaeWeightsPath(const DenoiserParams& params);
 // Loads it once per path and process (both eyes and every instance share one copy).
 std::shared_ptr<const RaeWeights> SharedRaeWeights(const DenoiserParams& params);

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -106,6 +108,38 @@ TEST_CASE("experiment FovVideoVDP: a bad metric.display names the key and the ne
                                     "[experiment]\nscenes = [\"cornell\"]\nvariants = [\"svgf\"]\n");
     CHECK_THROWS_WITH(LoadExperiment(options),
                       Catch::Contains("metric.display") && Catch::Contains("did you mean 'headset-25'"));
+}
+
+TEST_CASE("experiment FovVideoVDP: the JOD table's columns line up under long scene and variant names",
+          "[app][vdp]") {
+    VdpVariantSummary base;
+    base.variant = "svgf";
+    base.sequences = 2;
+    base.jod = 8.1;
+    base.jodSustained = 8.5;
+    base.jodTransient = 9.2;
+    VdpVariantSummary stable = base;
+    stable.variant = "two-history-asvgf-stable-hysteresis";
+    stable.difference = 0.014;
+    stable.lower = 0.002;
+    stable.upper = 0.03;
+    stable.pairs = 2;
+    const std::string table =
+        VdpTable({{"brdf-detail-moving", {base, stable}}, {"cornell", {base, stable}}}, "svgf", "camera");
+    INFO(table);
+    std::vector<std::string> lines;  // the header and the four rows, after the title line
+    std::istringstream in(table);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line) && !line.empty()) lines.push_back(line);
+    REQUIRE(lines.size() == 5);
+    const size_t variant = lines[0].find("variant");
+    for (const std::string& row : lines) {
+        CHECK(row.size() == lines[0].size());  // every later column ends where its header does
+        CHECK(row[variant - 1] == ' ');        // the scene name ends before the variant column
+    }
+    for (size_t i = 1; i < lines.size(); ++i)
+        CHECK((lines[i].compare(variant, 5, "svgf ") == 0 || lines[i].compare(variant, 12, "two-history-") == 0));
 }
 
 TEST_CASE("experiment FovVideoVDP: JOD per sequence in jod.csv and summary.json", "[app][vdp]") {

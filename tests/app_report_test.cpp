@@ -4,11 +4,16 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "app/report.h"
 #include "app/report_collect.h"
 #include "app/report_html.h"
 #include "app/report_summary.h"
+#include "config/settings_tables.h"
 #include "foveation/spp_model.h"
 #include "io/png.h"
 #include "test_support.h"
@@ -157,6 +162,34 @@ TEST_CASE("outlier frames that dominate a mean are named", "[app][report]") {
           nlohmann::json::array({7}));
 }
 
+TEST_CASE("the table's columns line up under a variant name longer than the others", "[app][report]") {
+    Results r;
+    const std::string longName = "two-history-asvgf-stable-hysteresis";
+    for (int frame = 0; frame < 4; ++frame)
+        for (const char* region : {"whole", "fovea", "periphery"}) {
+            r.Add({"cornell", frame, 0, "svgf", region, "relmse", 0.01 + 0.001 * frame});
+            r.Add({"cornell", frame, 0, longName, region, "relmse", 0.009 + 0.001 * frame});
+            r.Add({"cornell", frame, 0, "svgf", region, "ssim", 0.9});
+            r.Add({"cornell", frame, 0, longName, region, "ssim", 0.91});
+        }
+    const std::string table = SummaryTable(r, ExperimentStats(r));
+    INFO(table);
+    // The header and every row: one width, so each column starts where its header does.
+    std::vector<std::string> lines;
+    std::istringstream in(table);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("variant ", 0) == 0 || line.rfind("svgf ", 0) == 0 || line.rfind(longName + " ", 0) == 0)
+            lines.push_back(line);
+    REQUIRE(lines.size() == 7);
+    const size_t region = lines[0].find("region");
+    REQUIRE(region > longName.size());
+    for (const std::string& line : lines) {
+        CHECK(line.size() == lines[0].size());
+        const std::string cell = line.substr(region, 5);
+        CHECK((cell == "regio" || cell == "whole" || cell == "fovea" || cell == "perip"));
+    }
+}
+
 TEST_CASE("base64, escaping and viridis building blocks", "[app][report]") {
     CHECK(Base64({}) == "");
     CHECK(Base64({'f'}) == "Zg==");
@@ -238,7 +271,11 @@ TEST_CASE("HTML report is a single offline file with plots, images and tables", 
         ++canvases;
     CHECK(canvases == 4);
     CHECK(html.find("<canvas class=\"hdr\" width=\"64\" height=\"48\" title=\"reference\">") != std::string::npos);
-    CHECK(html.find("class=\"exposure\" min=\"-4\" max=\"8\"") != std::string::npos);
+    // The exposure slider spans output.exposure's row, in stops over the PNGs' exposure (+1).
+    const ParamRange exposure = SliderSpan(OutputTable(), "output.exposure");
+    const std::string slider =
+        fmt::format("class=\"exposure\" min=\"{}\" max=\"{}\"", int(exposure.min) - 1, int(exposure.max) - 1);
+    CHECK(html.find(slider) != std::string::npos);
     CHECK(html.find("stops over output.exposure (+1)") != std::string::npos);
     const size_t lut = html.find("data-display-lut=\"");
     REQUIRE(lut != std::string::npos);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -167,12 +168,19 @@ std::string VdpTable(const std::map<std::string, std::vector<VdpVariantSummary>>
                      const std::string& baseline, const std::string& displayText) {
     std::string out = fmt::format("FovVideoVDP JOD (foveated at the true gaze; 10 = no visible difference; {})\n",
                                   displayText);
-    out += fmt::format("{:<14} {:<20} {:>7}  {:<28} {:>9} {:>9}\n", "scene", "variant", "JOD",
-                       fmt::format("vs {} [95% CI]", baseline), "sustained", "transient");
+    // The name columns as wide as the longest scene and variant names (brdf-detail-moving,
+    // two-history-asvgf-stable-hysteresis).
+    size_t sceneWidth = std::string_view("scene").size(), variantWidth = std::string_view("variant").size();
+    for (const auto& [scene, variants] : summary) {
+        sceneWidth = std::max(sceneWidth, scene.size());
+        for (const VdpVariantSummary& v : variants) variantWidth = std::max(variantWidth, v.variant.size());
+    }
+    out += fmt::format("{:<{}} {:<{}} {:>7}  {:<28} {:>9} {:>9}\n", "scene", sceneWidth, "variant", variantWidth,
+                       "JOD", fmt::format("vs {} [95% CI]", baseline), "sustained", "transient");
     for (const auto& [scene, variants] : summary)
         for (const VdpVariantSummary& v : variants)
-            out += fmt::format("{:<14} {:<20} {:>7.3f}  {:<28} {:>9.3f} {:>9.3f}\n", scene, v.variant, v.jod,
-                               Interval(v), v.jodSustained, v.jodTransient);
+            out += fmt::format("{:<{}} {:<{}} {:>7.3f}  {:<28} {:>9.3f} {:>9.3f}\n", scene, sceneWidth, v.variant,
+                               variantWidth, v.jod, Interval(v), v.jodSustained, v.jodTransient);
     return out + "\n";
 }
 

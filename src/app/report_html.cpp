@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "app/report_summary.h"
+#include "config/settings_tables.h"
 #include "io/png.h"
 #include "metrics/image_metrics.h"
 
@@ -217,6 +218,13 @@ const std::string& DisplayLutBase64() {
     return lut;
 }
 
+// The page's exposure slider in whole stops over the PNGs' exposure: output.exposure's slider span
+// (config/settings_tables.cpp), as the preview panel offers it, and always 0.
+std::pair<int, int> ExposureSliderStops(float exposure) {
+    const ParamRange span = SliderSpan(OutputTable(), "output.exposure");
+    return {std::min(0, int(std::ceil(span.min - exposure))), std::max(0, int(std::floor(span.max - exposure)))};
+}
+
 // A full frame the page shows at the exposure its slider picks (the script paints the canvas
 // from the RGBE images beside it).
 std::string HdrFigure(const Plane<vec3>& image, float exposure, const std::string& caption) {
@@ -354,11 +362,12 @@ std::string SceneSection(const HtmlReport& report, const ExperimentStats* stats,
                 out += "</div>";
             }
             // Full frames at an exposure the reader picks (the PNGs' exposure at 0).
+            const auto [lowest, highest] = ExposureSliderStops(v.exposure);
             out += fmt::format("<h3>Full frames (frame {}, eye {}, seed {})</h3><p class=\"note\">Exposure "
-                               "<input type=\"range\" class=\"exposure\" min=\"-4\" max=\"8\" step=\"1\" "
+                               "<input type=\"range\" class=\"exposure\" min=\"{}\" max=\"{}\" step=\"1\" "
                                "value=\"0\"><output>0</output> stops over output.exposure ({:+g}); the display "
                                "transform of the PNG outputs (clamp, sRGB).</p><div class=\"row\">",
-                               v.frame, v.eye, v.seed, v.exposure);
+                               v.frame, v.eye, v.seed, lowest, highest, v.exposure);
             out += HdrFigure(v.reference, v.exposure, "reference");
             if (!v.noisy.empty()) out += HdrFigure(v.noisy, v.exposure, "noisy");
             for (const auto& [name, img] : v.variants) out += HdrFigure(img, v.exposure, name);

@@ -1,7 +1,9 @@
 #include "app/report_summary.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <string_view>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -125,8 +127,11 @@ std::string SummaryTable(const Results& results, const ExperimentStats& stats) {
             "circular block bootstrap, blocks of {} frames]\n  ns: the interval contains 1 (no significant "
             "change); win: share of pairs where the variant is better; temporal: mean |lum(t) - lum(t-1)|\n",
             d.baseline, 100.0 * stats.Options().confidence, blocks);
-        out += fmt::format("{:<18} {:<9} {:>9} {:>9} {:>9}  {:<28} {:>4}  {:>9}  {:<28} {:>6}\n", "variant", "region",
-                           "relMSE", "median", "geomean", "relMSE ratio [95% CI]", "win", "temporal",
+        // The variant column as wide as the longest name (two-history-asvgf-stable-hysteresis).
+        size_t nameWidth = std::string_view("variant").size();
+        for (const std::string& variant : results.Variants(scene)) nameWidth = std::max(nameWidth, variant.size());
+        out += fmt::format("{:<{}} {:<9} {:>9} {:>9} {:>9}  {:<28} {:>4}  {:>9}  {:<28} {:>6}\n", "variant", nameWidth,
+                           "region", "relMSE", "median", "geomean", "relMSE ratio [95% CI]", "win", "temporal",
                            "temporal ratio [95% CI]", "SSIM");
         bool anyZero = false;
         for (const std::string& variant : results.Variants(scene))
@@ -144,8 +149,8 @@ std::string SummaryTable(const Results& results, const ExperimentStats& stats) {
                 const std::string win = !isBase && e->vsBaseline && e->vsBaseline->pairs > 0
                                             ? fmt::format("{:.0f}%", 100.0 * e->vsBaseline->winRate)
                                             : "-";
-                out += fmt::format("{:<18} {:<9} {:>9} {:>9} {:>9}  {:<28} {:>4}  {:>9}  {:<28} {:>6}\n", variant,
-                                   region, Sci(e->spread.mean), Sci(e->spread.median),
+                out += fmt::format("{:<{}} {:<9} {:>9} {:>9} {:>9}  {:<28} {:>4}  {:>9}  {:<28} {:>6}\n", variant,
+                                   nameWidth, region, Sci(e->spread.mean), Sci(e->spread.median),
                                    zero ? "n/a" : Sci(e->spread.geometricMean),
                                    ratio(e), win, t ? Sci(t->spread.mean) : "-", ratio(t),
                                    s ? fmt::format("{:.4f}", s->spread.mean) : "-");

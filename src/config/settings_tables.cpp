@@ -95,7 +95,9 @@ constexpr std::array<SettingRow<OutputConfig>, 7> kOutputRows{{
     {{.key = "output.write_debug_views",
       .doc = "each denoiser's debug views (p, t, historyU, ...) as the layers of one EXR per frame and eye (run)"},
      &OutputConfig::writeDebugViews},
-    {{.key = "output.exposure", .range = Closed(-64, 64), .doc = "PNG exposure in stops"}, &OutputConfig::exposure},
+    {{.key = "output.exposure", .range = Closed(-64, 64), .doc = "PNG exposure in stops",
+      .slider = Closed(-8, 8)},  // the preview panel's and the HTML report's exposure sliders
+     &OutputConfig::exposure},
     {{.key = "output.report", .doc = "HTML/JSON report at the end"}, &OutputConfig::report},
 }};
 

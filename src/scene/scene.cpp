@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/data_dir.h"
 #include "core/error.h"
 #include "core/nearest_name.h"
 
@@ -162,14 +163,13 @@ void RequireSceneLight(const Scene& scene) {
 
 std::filesystem::path BuiltinScenesDir() {
     if (const char* env = std::getenv("FOVRT_SCENES_DIR"); env && *env) return env;
-    std::filesystem::path dir = std::filesystem::path(FOVRT_SCENE_SOURCE_DIR) / "scenes";
+    std::filesystem::path dir = DataRoot() / "scenes";
     return std::filesystem::exists(dir) ? dir : std::filesystem::path();
 }
 
 std::filesystem::path SharedScenesDir() {
     if (const char* env = std::getenv("FOVRT_SHARED_SCENES"); env && *env) return env;
-    std::filesystem::path dir =
-        std::filesystem::path(FOVRT_SCENE_SOURCE_DIR).parent_path() / "shared" / "scenes";
+    std::filesystem::path dir = DataRoot().parent_path() / "shared" / "scenes";
     return std::filesystem::exists(dir) ? dir : std::filesystem::path();
 }
 

@@ -148,8 +148,9 @@ struct Scene {
 // default camera. Throws fovrt::Error naming the file/key/line on any problem.
 Scene LoadScene(const std::filesystem::path& path);
 
-// Directory with the built-in scenes shipped in the repository (scenes/), and the shared assets
-// (../shared/scenes next to the checkout), or empty paths when absent.
+// Directory with the built-in scenes shipped in the repository (scenes/ under core/data_dir.h's
+// DataRoot: the installed copy or the source tree), and the shared assets (../shared/scenes beside
+// that folder), or empty paths when absent.
 std::filesystem::path BuiltinScenesDir();
 std::filesystem::path SharedScenesDir();
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "config/settings_tables.h"
 #include "core/check.h"
 #include "denoise/variants.h"
 #include "ui/tracker_panel.h"
@@ -104,7 +105,9 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
         ImGui::RadioButton("right", &layout, int(DisplayLayout::RightEye));
         state.display.layout = DisplayLayout(layout);
         ImGui::Checkbox("gaze + fovea overlay (O)", &state.display.overlay);
-        ImGui::SliderFloat("exposure (stops)", &state.display.exposure, -6.0f, 6.0f, "%.1f");
+        const ParamRange exposure = SliderSpan(OutputTable(), "output.exposure");
+        ImGui::SliderFloat("exposure (stops)", &state.display.exposure, float(exposure.min), float(exposure.max),
+                           "%.1f");
     }
     if (ImGui::CollapsingHeader("Foveation")) {
         if (FoveationControls(controls.foveation)) {
