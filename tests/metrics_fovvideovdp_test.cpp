@@ -221,6 +221,18 @@ TEST_CASE("temporal filters: sustained sums to 1, transient is its scaled deriva
     CHECK(f.transient.back() == 0.0f);
 }
 
+TEST_CASE("both temporal channels in one pass equal each channel filtered alone, at the start and later", "[vdp]") {
+    const GoldenCase& c = CaseNamed("video, HDR cd/m2, moving content with noise");
+    const Frames frames = MakeFrames(c);
+    const VdpTemporalFilters f = MakeVdpTemporalFilters(c.fps, VdpParams{});
+    for (int frame : {0, 3, 20}) {
+        Plane<float> sustained, transient;
+        VdpFilterFrameChannels(frames.test, frame, f, sustained, transient);
+        CHECK(sustained.vector() == VdpFilterFrame(frames.test, frame, f.sustained).vector());
+        CHECK(transient.vector() == VdpFilterFrame(frames.test, frame, f.transient).vector());
+    }
+}
+
 namespace {
 
 // Values inside the reference at one frame (gen_stages.py beside the generator, same commit):

@@ -151,10 +151,9 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
         // Images in the order test, reference per channel; the reference's sustained image adapts.
         std::vector<Plane<float>> images;
         if (video) {
-            images.push_back(VdpFilterFrame(test, f, filters.sustained));
-            images.push_back(VdpFilterFrame(reference, f, filters.sustained));
-            images.push_back(VdpFilterFrame(test, f, filters.transient));
-            images.push_back(VdpFilterFrame(reference, f, filters.transient));
+            images.resize(4);
+            VdpFilterFrameChannels(test, f, filters, images[0], images[2]);
+            VdpFilterFrameChannels(reference, f, filters, images[1], images[3]);
         }
         std::vector<const Plane<float>*> inputs;
         if (video) {
