@@ -26,9 +26,13 @@ struct BandGeometry {
 
 BandGeometry MakeBandGeometry(const VdpGeometry& g, int w, int h, int imageW, int imageH) {
     BandGeometry b{Plane<float>(w, h), Plane<float>(w, h), Plane<float>(w, h)};
+    // A view direction's x depends on the column only and its y on the row only.
+    std::vector<double> columnX(static_cast<size_t>(w)), rowY(static_cast<size_t>(h));
+    for (int x = 0; x < w; ++x) columnX[size_t(x)] = g.ViewDirection(x + 0.5, 0.5, w, h, imageW, imageH).x;
+    for (int y = 0; y < h; ++y) rowY[size_t(y)] = g.ViewDirection(0.5, y + 0.5, w, h, imageW, imageH).y;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const glm::dvec2 d = g.ViewDirection(x + 0.5, y + 0.5, w, h, imageW, imageH);
+            const glm::dvec2 d(columnX[size_t(x)], rowY[size_t(y)]);
             b.directionX(x, y) = float(d.x);
             b.directionY(x, y) = float(d.y);
             b.magnification(x, y) = float(g.ResolutionMagnification(glm::length(d)));
