@@ -78,7 +78,8 @@ TEST_CASE("the CSF table's row lookup gives the scalar lookup's sensitivity in a
     table.Log2Sensitivity(rhoRow, lumRow, eccRow, n, log2S.data());
     double worst = 0.0;
     for (size_t i = 0; i < n; ++i)
-        worst = std::max(worst, std::abs(double(log2S[i]) - std::log2(double(table.Sensitivity(rho[i], lum[i], ecc[i])))));
+        worst = std::max(worst,
+                         std::abs(double(log2S[i]) - std::log2(double(table.Sensitivity(rho[i], lum[i], ecc[i])))));
     // The row form reads the axes as exactly uniform grids; the float grid's rounding moves the
     // fraction by ~1e-6, which the steepest cells (high ρ, sensitivity near the 1e-4 floor) turn
     // into 2e-5 in log2 S.

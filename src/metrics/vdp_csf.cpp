@@ -216,7 +216,8 @@ void VdpCsfTable::Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow&
                          std::size_t(eccentricity.node[i]);
         const float fr = rho.fraction[i], fl = luminance.fraction[i], fe = eccentricity.fraction[i];
         auto plane = [&](std::size_t e) {
-            return (c[e] * (1 - fr) + c[kRho + e] * fr) * (1 - fl) + (c[kLum + e] * (1 - fr) + c[kLum + kRho + e] * fr) * fl;
+            return (c[e] * (1 - fr) + c[kRho + e] * fr) * (1 - fl) +
+                   (c[kLum + e] * (1 - fr) + c[kLum + kRho + e] * fr) * fl;
         };
         out[i] = plane(0) * (1 - fe) + plane(1) * fe;
     }
