@@ -221,12 +221,34 @@ TEST_CASE("temporal filters: sustained sums to 1, transient is its scaled deriva
     CHECK(f.transient.back() == 0.0f);
 }
 
+TEST_CASE("a pyramid decomposed into an earlier frame's planes equals a fresh decomposition", "[vdp]") {
+    const Frames still = MakeFrames(CaseNamed("still, noise, 20 ppd"));  // 160×90
+    const Frames video = MakeFrames(CaseNamed("video, dynamic noise, 20 ppd"));  // 96×72
+    const std::vector<const Plane<float>*> stillImages = {&still.test[0], &still.reference[0]};
+    const std::vector<const Plane<float>*> videoImages = {&video.test[4], &video.reference[4], &video.test[5],
+                                                          &video.reference[5]};
+    const std::vector<const Plane<float>*> swapped = {&still.reference[0], &still.test[0]};
+    VdpContrastPyramid reused;
+    // Then other content of the same size (every plane stale), smaller with more images and fewer
+    // bands, larger again.
+    for (const auto& [images, bands] :
+         {std::pair{stillImages, 5}, {swapped, 5}, {videoImages, 4}, {stillImages, 5}}) {
+        VdpDecompose(images, 1, bands, reused);
+        const VdpContrastPyramid fresh = VdpDecompose(images, 1, bands);
+        for (int b = 0; b < bands; ++b) {
+            CHECK(reused.adaptation[size_t(b)].vector() == fresh.adaptation[size_t(b)].vector());
+            for (size_t i = 0; i < images.size(); ++i)
+                CHECK(reused.contrast[size_t(b)][i].vector() == fresh.contrast[size_t(b)][i].vector());
+        }
+    }
+}
+
 TEST_CASE("both temporal channels in one pass equal each channel filtered alone, at the start and later", "[vdp]") {
     const GoldenCase& c = CaseNamed("video, HDR cd/m2, moving content with noise");
     const Frames frames = MakeFrames(c);
     const VdpTemporalFilters f = MakeVdpTemporalFilters(c.fps, VdpParams{});
-    for (int frame : {0, 3, 20}) {
-        Plane<float> sustained, transient;
+    Plane<float> sustained, transient;  // reused from frame to frame, as the metric does
+    for (int frame : {20, 0, 3}) {
         VdpFilterFrameChannels(frames.test, frame, f, sustained, transient);
         CHECK(sustained.vector() == VdpFilterFrame(frames.test, frame, f.sustained).vector());
         CHECK(transient.vector() == VdpFilterFrame(frames.test, frame, f.transient).vector());

@@ -39,8 +39,11 @@ Plane<float> VdpFilterFrame(const std::vector<Plane<float>>& frames, int frame, 
 void VdpFilterFrameChannels(const std::vector<Plane<float>>& frames, int frame, const VdpTemporalFilters& filters,
                             Plane<float>& sustained, Plane<float>& transient) {
     const int w = frames[0].width(), h = frames[0].height();
-    sustained = Plane<float>(w, h, 0.0f);
-    transient = Plane<float>(w, h, 0.0f);
+    // Zeroed in place: the metric passes the planes of an earlier frame, whose memory is reused.
+    sustained.ResizeForOverwrite(w, h);
+    sustained.Fill(0.0f);
+    transient.ResizeForOverwrite(w, h);
+    transient.Fill(0.0f);
     // Row by row, so the taps' rows and the two outputs stay in cache; per pixel the taps are
     // summed in VdpFilterFrame's order.
     for (int y = 0; y < h; ++y) {
