@@ -173,6 +173,19 @@ TEST_CASE("display geometry: pixels per degree from a FOV, a monitor or a profil
     const VdpGeometry g = VdpGeometry::FromPixelsPerDegree(20);
     const double c30 = std::cos(30 * kPiD / 180);
     CHECK(g.ResolutionMagnification(30) == Approx(1 / (c30 * c30)).epsilon(2e-3));
+    // The reference's form, (tan(a + δ) − tan a) / tan δ with δ half a central pixel, at 5 to
+    // 60 ppd and angles out to the 89.9° cap (short of its pole at a + δ = 90°).
+    for (double ppd : {5.0, 20.0, 60.0}) {
+        const VdpGeometry geo = VdpGeometry::FromPixelsPerDegree(ppd);
+        const double delta = 0.5 / ppd * kPiD / 180;
+        for (double a : {0.0, 1.0, 12.5, 30.0, 55.0, 80.0, 89.0, 89.9, 95.0}) {
+            if (std::min(a, 89.9) + 0.5 / ppd >= 89.99) continue;
+            const double r = std::min(a, 89.9) * kPiD / 180;
+            INFO("ppd " << ppd << ", angle " << a);
+            CHECK(geo.ResolutionMagnification(a) ==
+                  Approx((std::tan(r + delta) - std::tan(r)) / std::tan(delta)).epsilon(1e-7));
+        }
+    }
 }
 
 TEST_CASE("photometry: sRGB, linear and absolute values to cd/m², clamped to the display's range", "[vdp]") {

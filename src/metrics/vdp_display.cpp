@@ -106,10 +106,11 @@ glm::dvec2 VdpGeometry::ViewDirection(double x, double y, int width, int height,
 }
 
 double VdpGeometry::ResolutionMagnification(double angle) const {
-    // ppd(a) = ppd₀ (tan(a + δ) − tan a) / tan δ with δ half a central pixel (the reference's form).
-    const double a = std::min(angle, 89.9);
-    const double delta = 0.5 / PixelsPerDegree();
-    return (std::tan(DegToRad(a + delta)) - std::tan(DegToRad(a))) / std::tan(DegToRad(delta));
+    // ppd(a) = ppd₀ (tan(a + δ) − tan a) / tan δ with δ half a central pixel (the reference's form),
+    // evaluated as (1 + tan² a) / (1 − tan a · tan δ), the same quantity with one tan instead of
+    // three and no cancellation (tan δ = tanPerPixel / 2). The metric calls it for every band pixel.
+    const double t = std::tan(DegToRad(std::min(angle, 89.9)));
+    return (1.0 + t * t) / (1.0 - t * (0.5 * tanPerPixel));
 }
 
 const std::vector<VdpDisplay>& VdpDisplayProfiles() {
