@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/vdp_fastmath.h"
+
 namespace fovrt {
 
 namespace {
@@ -158,6 +160,76 @@ float VdpCsfTable::Sensitivity(const LuminanceSlice& slice, float luminance) con
     float fl;
     lum_.Locate(std::log2(std::clamp(luminance, lum_.lo, lum_.hi)), l0, l1, fl);
     return std::exp2(slice.logS[size_t(l0)] * (1 - fl) + slice.logS[size_t(l1)] * fl);
+}
+
+const VdpCsfTable::Axis& VdpCsfTable::AxisOf(AxisName axis) const {
+    switch (axis) {
+        case AxisName::Rho: return rho_;
+        case AxisName::Luminance: return lum_;
+        case AxisName::Eccentricity: return ecc_;
+    }
+    return rho_;
+}
+
+namespace {
+
+// Locate's interpolant on a uniform grid g0 + i·step, for values already in the grid's domain:
+// i1 = ⌈(q − g0)/step⌉ clamped to [1, 31] (below the first node i1 = 1 with fraction 0 gives
+// Locate's i0 = i1 = 0), computed with truncation (no ceil call) so the loop vectorises.
+template <typename ToGrid>
+void LocateUniform(const float* values, std::size_t n, float lo, float hi, float g0, float step, ToGrid toGrid,
+                   int32_t* node, float* fraction) {
+    constexpr int kLast = VdpCsfTable::kSize - 1;
+    const float invStep = 1.0f / step, denominator = step + 0.000001f;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float v = values[i] < lo ? lo : (values[i] > hi ? hi : values[i]);
+        const float q = toGrid(v);
+        const float x = std::clamp((q - g0) * invStep, -1.0f, float(kLast + 1));
+        const int32_t truncated = int32_t(x);
+        const int32_t up = truncated + (float(truncated) < x ? 1 : 0);  // ⌈x⌉
+        const int32_t i0 = std::clamp(up, 1, kLast) - 1;
+        node[i] = i0;
+        fraction[i] = std::max((q - (g0 + float(i0) * step)) / denominator, 0.0f);
+    }
+}
+
+}  // namespace
+
+void VdpCsfTable::LocateRow(AxisName axis, const float* values, std::size_t n, VdpCsfAxisRow& out) const {
+    const Axis& a = AxisOf(axis);
+    out.Resize(n);
+    const float g0 = a.grid[0], step = (a.grid[kSize - 1] - a.grid[0]) / float(kSize - 1);
+    if (axis == AxisName::Eccentricity)
+        LocateUniform(values, n, a.lo, a.hi, g0, step, [](float v) { return std::sqrt(v); }, out.node.data(),
+                      out.fraction.data());
+    else
+        LocateUniform(values, n, a.lo, a.hi, g0, step, [](float v) { return VdpFastLog2(v); }, out.node.data(),
+                      out.fraction.data());
+}
+
+void VdpCsfTable::Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow& luminance,
+                                  const VdpCsfAxisRow& eccentricity, std::size_t n, float* out) const {
+    constexpr std::size_t kRho = kSize, kLum = std::size_t(kSize) * kSize;  // strides in logS_
+    const float* table = logS_.data();
+    for (std::size_t i = 0; i < n; ++i) {
+        const float* c = table + (std::size_t(luminance.node[i]) * kSize + std::size_t(rho.node[i])) * kSize +
+                         std::size_t(eccentricity.node[i]);
+        const float fr = rho.fraction[i], fl = luminance.fraction[i], fe = eccentricity.fraction[i];
+        auto plane = [&](std::size_t e) {
+            return (c[e] * (1 - fr) + c[kRho + e] * fr) * (1 - fl) +
+                   (c[kLum + e] * (1 - fr) + c[kLum + kRho + e] * fr) * fl;
+        };
+        out[i] = plane(0) * (1 - fe) + plane(1) * fe;
+    }
+}
+
+void VdpCsfTable::Log2Sensitivity(const LuminanceSlice& slice, const VdpCsfAxisRow& luminance, std::size_t n,
+                                  float* out) const {
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t l = std::size_t(luminance.node[i]);
+        const float fl = luminance.fraction[i];
+        out[i] = slice.logS[l] * (1 - fl) + slice.logS[l + 1] * fl;
+    }
 }
 
 }  // namespace fovrt

@@ -13,10 +13,13 @@
 //     at rest (velocity floor 0.1 deg/s).
 // Like the reference, the metric reads the model through a 32³ table over log2 ρ ∈ [−4, 6],
 // log2 L ∈ [log2 0.001, log2 10⁴] and √e ∈ [0, √120], trilinear, inputs clamped to the table.
+// The metric's loop reads it a row of pixels at a time (VdpCsfAxisRow, Log2Sensitivity): each
+// axis is located once per pixel for both channels' tables, in loops GCC vectorises.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace fovrt {
@@ -25,9 +28,18 @@ namespace fovrt {
 double VdpCsfModel(double rho, double omega, double luminance, double eccentricity, double sigma,
                    double kCm);
 
+// Where a row of queries falls on one axis of the table: the lower node of each and the fraction
+// towards the next node (the reference's interpolant, see VdpCsfTable::Axis::Locate).
+struct VdpCsfAxisRow {
+    std::vector<int32_t> node;
+    std::vector<float> fraction;
+    void Resize(std::size_t n) { node.resize(n), fraction.resize(n); }
+};
+
 class VdpCsfTable {
 public:
     static constexpr int kSize = 32;
+    enum class AxisName { Rho, Luminance, Eccentricity };
 
     VdpCsfTable(double omega, double sigma, double kCm);
 
@@ -42,12 +54,22 @@ public:
     LuminanceSlice Slice(float rho, float eccentricity) const;
     float Sensitivity(const LuminanceSlice& slice, float luminance) const;
 
+    // Row forms, equal to the scalar ones to float rounding (the axes are read as exactly uniform
+    // grids and log2 is VdpFastLog2): locate n values (ρ in cpd, L in cd/m², e in degrees) on an
+    // axis, then the log2 sensitivity of n pixels from their three (or, with a slice, one) axis
+    // rows. The axes are the same in every table.
+    void LocateRow(AxisName axis, const float* values, std::size_t n, VdpCsfAxisRow& out) const;
+    void Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow& luminance, const VdpCsfAxisRow& eccentricity,
+                         std::size_t n, float* out) const;
+    void Log2Sensitivity(const LuminanceSlice& slice, const VdpCsfAxisRow& luminance, std::size_t n, float* out) const;
+
 private:
     struct Axis {
         std::array<float, kSize> grid;  // in the interpolated domain (log2 or sqrt)
         float lo, hi;                   // clamp range in the input domain
         void Locate(float q, int& i0, int& i1, float& f) const;
     };
+    const Axis& AxisOf(AxisName axis) const;
     Axis rho_, lum_, ecc_;
     std::vector<float> logS_;  // [lum][rho][ecc]
     float At(int l, int r, int e) const { return logS_[(std::size_t(l) * kSize + std::size_t(r)) * kSize + std::size_t(e)]; }

@@ -7,8 +7,11 @@
 //   β_t power mean; JOD = 10 + sign(a)·(|a|^{1/b}·Q)^b.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 
+#include "metrics/vdp_fastmath.h"
 #include "metrics/vdp_params.h"
 
 namespace fovrt {
@@ -31,6 +34,21 @@ inline float VdpLog2MaskedDifference(float test, float reference, float sensitiv
     const float log2Mask = log2MaskGain + std::log2(std::min(t, r));
     const float log2D = p * std::log2(diff) - std::log2(1.0f + std::exp2(q * log2Mask));
     return std::min(log2D, 13.287712f);  // log2(1e4): the reference's clamp
+}
+
+// VdpLog2MaskedDifference over a row of pixels, as the metric runs it: log2 S per pixel (the CSF
+// table's own form, sensitivity correction included) and VdpFastLog2/VdpFastExp2, so the loop
+// vectorises. log2(1 + 2^y) is taken as max(y, 0) + log2(1 + 2^−|y|), which cannot overflow.
+inline void VdpLog2MaskedDifferenceRow(const float* test, const float* reference, const float* log2Sensitivity,
+                                       std::size_t n, float p, float q, float log2MaskGain, float* log2D) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const float t = test[i], r = reference[i], log2S = log2Sensitivity[i];
+        const float log2Mask = log2MaskGain + log2S + VdpFastLog2(std::min(std::abs(t), std::abs(r)));
+        const float y = q * log2Mask;
+        const float log2OnePlusMask = std::max(y, 0.0f) + VdpFastLog2(1.0f + VdpFastExp2(-std::abs(y)));
+        const float d = p * (VdpFastLog2(std::abs(t - r)) + log2S) - log2OnePlusMask;
+        log2D[i] = std::min(d, 13.287712f);  // log2(1e4): the reference's clamp
+    }
 }
 
 // Q → JOD.

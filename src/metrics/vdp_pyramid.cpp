@@ -70,9 +70,16 @@ Plane<float> VdpGaussReduce(const Plane<float>& x) {
 }
 
 Plane<float> VdpGaussExpand(const Plane<float>& x, int w, int h) {
+    Plane<float> out;
+    VdpGaussExpand(x, w, h, out);
+    return out;
+}
+
+void VdpGaussExpand(const Plane<float>& x, int w, int h, Plane<float>& out) {
     const std::vector<int> srcRow = ExpandSources(h, x.height());
     const std::vector<int> srcCol = ExpandSources(w, x.width());
-    Plane<float> rows(x.width(), h), out(w, h);
+    Plane<float> rows(x.width(), h);
+    out.ResizeForOverwrite(w, h);  // every pixel is written below
     metrics_detail::ParallelRows(h, [&](int r) {
         float* dst = &rows(0, r);
         std::fill(dst, dst + x.width(), 0.0f);
@@ -96,7 +103,6 @@ Plane<float> VdpGaussExpand(const Plane<float>& x, int w, int h) {
             dst[c] = s;
         }
     });
-    return out;
 }
 
 int VdpBandCount(int width, int height, double ppd) {
@@ -119,33 +125,39 @@ std::vector<double> VdpBandFrequencies(int width, int height, double ppd) {
 }
 
 VdpContrastPyramid VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage, int bands) {
-    const size_t n = images.size();
     VdpContrastPyramid pyr;
+    VdpDecompose(images, adaptingImage, bands, pyr);
+    return pyr;
+}
+
+void VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage, int bands,
+                  VdpContrastPyramid& pyr) {
+    const size_t n = images.size();
     pyr.contrast.resize(size_t(bands));
     pyr.adaptation.resize(size_t(bands));
-    std::vector<Plane<float>> level(n), next(n);
-    for (size_t i = 0; i < n; ++i) level[i] = *images[i];
+    std::vector<const Plane<float>*> level = images;  // band 0 reads the inputs themselves
+    std::vector<Plane<float>> reduced(n), next(n);
+    Plane<float> adaptingExpanded, expanded;  // reused across bands (they only shrink)
     for (int b = 0; b < bands; ++b) {
-        const int w = level[0].width(), h = level[0].height();
-        std::vector<Plane<float>> expanded(n);
-        for (size_t i = 0; i < n; ++i) {
-            next[i] = VdpGaussReduce(level[i]);
-            expanded[i] = VdpGaussExpand(next[i], w, h);
-        }
+        const int w = level[0]->width(), h = level[0]->height();
+        for (size_t i = 0; i < n; ++i) next[i] = VdpGaussReduce(*level[i]);
+        VdpGaussExpand(next[size_t(adaptingImage)], w, h, adaptingExpanded);
         Plane<float>& adapt = pyr.adaptation[size_t(b)];
-        adapt = expanded[size_t(adaptingImage)];
-        for (float& v : adapt.vector()) v = std::max(v, 0.1f);
+        adapt.ResizeForOverwrite(w, h);
+        for (size_t p = 0; p < adapt.size(); ++p) adapt[p] = std::max(adaptingExpanded[p], 0.1f);
         const float gain = b == 0 ? 1.0f : 2.0f;
         pyr.contrast[size_t(b)].resize(n);
         for (size_t i = 0; i < n; ++i) {
+            const Plane<float>* e = &adaptingExpanded;
+            if (i != size_t(adaptingImage)) VdpGaussExpand(next[i], w, h, expanded), e = &expanded;
+            const Plane<float>& l = *level[i];
             Plane<float>& c = pyr.contrast[size_t(b)][i];
-            c.Resize(w, h);
-            for (size_t p = 0; p < c.size(); ++p)
-                c[p] = std::min((level[i][p] - expanded[i][p]) / adapt[p], 1000.0f) * gain;
+            c.ResizeForOverwrite(w, h);
+            for (size_t p = 0; p < c.size(); ++p) c[p] = std::min((l[p] - (*e)[p]) / adapt[p], 1000.0f) * gain;
         }
-        level.swap(next);
+        reduced.swap(next);
+        for (size_t i = 0; i < n; ++i) level[i] = &reduced[i];
     }
-    return pyr;
 }
 
 Plane<float> VdpReconstruct(const std::vector<Plane<float>>& bands) {

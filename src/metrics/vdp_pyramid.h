@@ -18,6 +18,8 @@ namespace fovrt {
 Plane<float> VdpGaussReduce(const Plane<float>& image);
 // Expands `image` to width × height (each at most twice the input's size).
 Plane<float> VdpGaussExpand(const Plane<float>& image, int width, int height);
+// The same into `out`, reusing its memory when it already has that size.
+void VdpGaussExpand(const Plane<float>& image, int width, int height, Plane<float>& out);
 
 // Number of contrast bands for an image at `pixelsPerDegree` (the base band is not one of them):
 // bands stop at the first whose peak frequency falls to 0.5 cpd, and at log2(min(w, h)) − 1.
@@ -36,6 +38,11 @@ struct VdpContrastPyramid {
 // image to image `adaptingImage` (the reference's sustained channel).
 VdpContrastPyramid VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage,
                                 int bands);
+// The same into `pyramid`, reusing its planes' memory where the sizes match: the metric keeps one
+// pyramid per frame in flight, since mapping and clearing fresh memory for every frame's planes
+// cost a tenth of its time at 1280×720.
+void VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage, int bands,
+                  VdpContrastPyramid& pyramid);
 
 // Collapses per-band maps (band b at the band's size, without band gain) into one full-size map:
 // the reference's Laplacian reconstruction with a zero base band.

@@ -23,5 +23,9 @@ VdpTemporalFilters MakeVdpTemporalFilters(double fps, const VdpParams& params);
 // Frame `frame` of `frames` filtered by `taps` (tap k weights the frame k earlier; frame 0
 // repeats before the start, the reference's "replicate" padding).
 Plane<float> VdpFilterFrame(const std::vector<Plane<float>>& frames, int frame, const std::vector<float>& taps);
+// Both channels of frame `frame` in one pass over the frames the filters reach (the metric's
+// form: each frame read once for both); equal to VdpFilterFrame with each filter's taps.
+void VdpFilterFrameChannels(const std::vector<Plane<float>>& frames, int frame, const VdpTemporalFilters& filters,
+                            Plane<float>& sustained, Plane<float>& transient);
 
 }  // namespace fovrt
