@@ -273,7 +273,9 @@ expect_error "gaze trace is a directory" "traces: is a directory, not a gaze tra
 # AddressSanitizer reserves terabytes of address space for its shadow memory, so an ASan build
 # (scripts/sanitize.sh) cannot start under the limit: there the budget cases run without it and
 # the out-of-memory case is skipped.
-asan=false; ldd "$fovrt" 2>/dev/null | grep -q libasan && asan=true
+# (ldd's whole output is matched: piped to `grep -q`, ldd fails writing after grep exits, and
+# pipefail then hides libasan in some runs.)
+asan=false; [[ $(ldd "$fovrt" 2>/dev/null) == *libasan* ]] && asan=true
 real_fovrt=$fovrt
 if ! $asan; then
   printf '#!/usr/bin/env bash\nulimit -v 1048576\nexec "%s" "$@"\n' "$(realpath "$fovrt")" > limited-fovrt
