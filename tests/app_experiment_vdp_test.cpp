@@ -1,6 +1,7 @@
 // FovVideoVDP in `fovrt experiment` (app/experiment_vdp.h): every variant scored per (seed, eye)
 // sequence at the true gaze, with its outputs (jod.csv, summary.json, the stdout block) and its
 // time beside the denoisers' in the manifest.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -21,6 +22,40 @@ namespace fs = std::filesystem;
 using fovrt::test::ReadFile;
 
 namespace {
+
+// One row of jod.csv.
+struct JodRow {
+    std::string scene, variant;
+    uint32_t seed = 0;
+    int eye = 0;
+    double jod = 0.0, jodSustained = 0.0, jodTransient = 0.0;
+};
+
+std::vector<JodRow> ParseJodCsv(const std::string& csv) {
+    std::vector<JodRow> rows;
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);  // the header
+    while (std::getline(in, line)) {
+        std::istringstream fields(line);
+        std::string seed, eye, jod, sustained, transient;
+        JodRow r;
+        std::getline(fields, r.scene, ',');
+        std::getline(fields, seed, ',');
+        std::getline(fields, eye, ',');
+        std::getline(fields, r.variant, ',');
+        std::getline(fields, jod, ',');
+        std::getline(fields, sustained, ',');
+        std::getline(fields, transient, ',');
+        r.seed = uint32_t(std::stoul(seed));
+        r.eye = std::stoi(eye);
+        r.jod = std::stod(jod);
+        r.jodSustained = std::stod(sustained);
+        r.jodTransient = std::stod(transient);
+        rows.push_back(r);
+    }
+    return rows;
+}
 
 // A 64×36 grey-ramp sequence of 4 frames, and the same with a patch of ±noise centred on `patch`.
 struct Sequences {
@@ -171,6 +206,36 @@ TEST_CASE("experiment FovVideoVDP: JOD per sequence in jod.csv and summary.json"
     CHECK(vs.at("pairs") == 2);
     CHECK(vs.at("lower").get<double>() <= vs.at("difference").get<double>());
     CHECK(vs.at("difference").get<double>() <= vs.at("upper").get<double>());
+
+    // The summary recomputed from jod.csv (9 significant digits): each variant's JODs are the means
+    // over its (seed, eye) sequences; the difference to the baseline is the mean of the paired
+    // differences, and a bootstrap interval of that mean lies within their range.
+    const std::vector<JodRow> rows = ParseJodCsv(csv);
+    REQUIRE(rows.size() == 4);
+    auto mean = [&](const char* variant, double JodRow::*field) {
+        double sum = 0.0;
+        int n = 0;
+        for (const JodRow& r : rows)
+            if (r.variant == variant) sum += r.*field, ++n;
+        return sum / n;
+    };
+    for (const char* variant : {"svgf", "two-history"}) {
+        INFO(variant);
+        const nlohmann::json& v = vdp["scenes"]["cornell"][variant];
+        CHECK(v.at("jod").get<double>() == Approx(mean(variant, &JodRow::jod)).margin(1e-6));
+        CHECK(v.at("jod_sustained").get<double>() == Approx(mean(variant, &JodRow::jodSustained)).margin(1e-6));
+        CHECK(v.at("jod_transient").get<double>() == Approx(mean(variant, &JodRow::jodTransient)).margin(1e-6));
+    }
+    std::vector<double> differences;
+    for (const JodRow& r : rows)
+        for (const JodRow& b : rows)
+            if (r.variant == "two-history" && b.variant == "svgf" && r.seed == b.seed && r.eye == b.eye)
+                differences.push_back(r.jod - b.jod);
+    REQUIRE(differences.size() == 2);
+    CHECK(vs.at("difference").get<double>() == Approx((differences[0] + differences[1]) / 2.0).margin(1e-6));
+    const auto [lowest, highest] = std::minmax_element(differences.begin(), differences.end());
+    CHECK(vs.at("lower").get<double>() >= *lowest - 1e-6);
+    CHECK(vs.at("upper").get<double>() <= *highest + 1e-6);
     const std::string html = ReadFile(dir / "out" / "report.html");
     CHECK(html.find("FovVideoVDP JOD") != std::string::npos);
     CHECK(html.find("two-history FovVideoVDP map") != std::string::npos);

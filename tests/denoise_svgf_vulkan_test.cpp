@@ -35,7 +35,7 @@ struct ErrorStats {
     size_t bad = 0;
     void Add(float vk, float ref, double tol) {
         double d = std::abs(double(vk) - double(ref));
-        if (!std::isfinite(vk)) d = INFINITY;
+        if (!std::isfinite(vk) || !std::isfinite(ref)) d = INFINITY;  // a NaN reference must not pass
         maxAbs = std::max(maxAbs, d);
         double rel = d / (1.0 + std::abs(double(ref)));
         maxRel = std::max(maxRel, rel);

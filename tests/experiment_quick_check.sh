@@ -6,10 +6,10 @@
 # (scripts/report-check.sh; Chromium is installed by scripts/install-deps.sh).
 # Usage: experiment_quick_check.sh FOVRT SOURCE_DIR WORK_DIR
 set -euo pipefail
+. "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
 fovrt=$1; src=$2; work=$3
 if [[ ! -d "$src/../shared/scenes/veach-ajar" && -z "${FOVRT_SHARED_SCENES:-}" ]]; then
-  echo "skipped: ../shared/scenes is absent (the thesis preset renders Veach Ajar)"
-  exit 0
+  skip_all "../shared/scenes is absent (the thesis preset renders Veach Ajar)"
 fi
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 # Two of the preset's three seeds: every multi-seed path runs, in two thirds of the CI time.

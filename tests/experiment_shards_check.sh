@@ -7,6 +7,7 @@
 # valid entry; the cluster jobs run under GNU parallel (when installed) with the same result.
 # Usage: experiment_shards_check.sh FOVRT SOURCE_DIR IMAGE_PROBE WORK_DIR
 set -uo pipefail
+. "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
 fovrt=$(realpath "$1"); src=$(realpath "$2"); probe=$(realpath "$3"); work=$(realpath -m "$4")
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 passed=0; failed=0
@@ -88,7 +89,7 @@ if command -v parallel >/dev/null; then
   if bash jobs/run-parallel.sh 2 >parallel.out 2>&1 && cmp -s single/frames-cornell.csv viaparallel/frames-cornell.csv; then
     ok "run-parallel.sh (GNU parallel): CSV identical to the single run"
   else bad "run-parallel.sh: $(tail -3 parallel.out)"; fi
-else echo "skip: GNU parallel is not installed (scripts/install-deps.sh installs it)"; fi
+else skip_part "run-parallel.sh: GNU parallel is not installed (scripts/install-deps.sh installs it)"; fi
 
 # On a real one-node Slurm cluster started here (tests/tools/slurm_cluster.sh): the references as
 # one job array, the shards as a second (afterok), the merge last; the same CSV as the single run.
@@ -110,8 +111,8 @@ if out=$(bash "$src/tests/tools/slurm_cluster.sh" start "$cluster" 2>slurm.err);
   bash "$src/tests/tools/slurm_cluster.sh" stop "$cluster"; trap - EXIT
   pgrep -f "$cluster/slurm.conf" >/dev/null && bad "Slurm daemons still running" || ok "Slurm daemons stopped"
 else
-  echo "skip: Slurm: the one-node cluster did not start ($(tail -1 slurm.err))"
+  skip_part "Slurm: the one-node cluster did not start ($(tail -1 slurm.err))"
 fi
 
 echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish $failed

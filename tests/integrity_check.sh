@@ -10,6 +10,7 @@
 # Every wait is for an event (a line in frames.jsonl, a process's exit), never a fixed time.
 # Usage: integrity_check.sh FOVRT WORK_DIR
 set -uo pipefail
+. "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
 fovrt=$(realpath "$1"); work=$(realpath -m "$2"); scenes=$(realpath "$(dirname "$0")/../scenes")
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 passed=0; failed=0
@@ -253,7 +254,7 @@ on_full_disk() {
                        echo $? >disk.rc; (cd disk && find . -mindepth 1 | sort) >disk.ls' _ "$@" 2>/dev/null
 }
 if ! on_full_disk 64k true true; then
-  echo "skipped: full-disk probes (cannot mount a tmpfs in a private mount namespace: not root, no user namespaces)"
+  skip_part "full-disk probes (cannot mount a tmpfs in a private mount namespace: not root, no user namespaces)"
 else
   # 64 KiB: the first frame's second EXR finds the disk full.
   on_full_disk 64k true "'$fovrt' run ${small[*]} --set run.frames=1 --set output.dir=disk/out"
@@ -276,4 +277,4 @@ else
 fi
 
 echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish $failed

@@ -8,11 +8,11 @@
 # pointer's true gaze (x), recorded frame by frame; no display is one clear line.
 # Usage: preview_check.sh FOVRT IMAGE_PROBE WORK_DIR
 set -uo pipefail
+. "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
 fovrt=$(realpath "$1"); probe=$(realpath "$2"); work=$(realpath -m "$3")
 for tool in xvfb-run xdotool xwd xwdtopnm pnmtopng; do
   if ! command -v $tool >/dev/null; then
-    echo "SKIP: $tool is missing (scripts/install-deps.sh installs xvfb, xdotool, x11-apps, netpbm)"
-    exit 77
+    skip_all "$tool is missing (scripts/install-deps.sh installs xvfb, xdotool, x11-apps, netpbm)"
   fi
 done
 if [[ -z "${FOVRT_IN_XVFB:-}" ]]; then
@@ -214,4 +214,4 @@ if [[ -n $shot ]]; then
 else bad "tracker latency: no F12 capture: $(tail -2 err7.txt)"; fi
 
 echo "preview_check: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish $failed

@@ -8,12 +8,12 @@
 # Exit 77 (skipped) without Debian's python3-torch.
 # Usage: rae_training_check.sh FOVRT RAE_CHECK SOURCE_DIR WORK_DIR
 set -euo pipefail
+. "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
 fovrt=$1 check=$2 src=$3 work=$4
 py=/usr/bin/python3
 [ -x "$py" ] || py=python3
 if ! "$py" -c "import torch, numpy" 2>/dev/null; then
-  echo "skipped: python3-torch / python3-numpy not installed (scripts/install-deps.sh installs them)"
-  exit 77
+  skip_all "python3-torch / python3-numpy not installed (scripts/install-deps.sh installs them)"
 fi
 rm -rf "$work" && mkdir -p "$work"
 "$fovrt" dataset --out "$work/data" --scenes cornell --eval "" --no-uniform --noise-realisations 2 \

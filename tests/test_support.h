@@ -1,4 +1,5 @@
-// Helpers shared by the tests: locating data, and skipping with a message when it is absent.
+// Helpers shared by the tests: locating data, and skipping with a message when it is absent
+// (a skip is reported to ctest as one: test_skip.h).
 #pragma once
 
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "core/image.h"
 #include "core/math.h"
 #include "core/rng.h"
+#include "test_skip.h"
 
 namespace fovrt::test {
 
@@ -70,12 +72,16 @@ inline Plane<vec3> RandomImage(int w, int h, uint64_t seed, float scale = 1.0f) 
 
 }  // namespace fovrt::test
 
-// Catch2 v2 has no SKIP: print why and leave the test case as passed.
-#define FOVRT_SKIP(why)                                              \
-    do {                                                             \
-        WARN("skipped: " << why);                                    \
-        std::fprintf(stderr, "skipped: %s\n", std::string(why).c_str()); \
-        return;                                                      \
+// Ends the test case as skipped (test_skip.h: the executable then exits with ctest's skip status
+// unless another test case failed), or as failed under FOVRT_REQUIRE_ALL=1.
+#define FOVRT_SKIP(why)                                                                   \
+    do {                                                                                  \
+        if (::fovrt::test::SkipsAreFailures())                                            \
+            FAIL("not run, and FOVRT_REQUIRE_ALL=1 makes that a failure: " << (why));     \
+        ++::fovrt::test::SkippedTestCases();                                              \
+        WARN("skipped: " << (why));                                                       \
+        std::fprintf(stderr, "skipped: %s\n", std::string(why).c_str());                 \
+        return;                                                                           \
     } while (0)
 
 #define FOVRT_REQUIRE_SHARED_SCENES()                                            \
