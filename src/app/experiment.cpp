@@ -76,6 +76,15 @@ std::string SeedsText(const std::vector<uint32_t>& seeds) {
     return out;
 }
 
+// The path samples traced per pixel, by region at the true gaze, over every eye-frame rendered:
+// the measured sampling (a blink rendered uniform, A-SVGF's re-shaded pixels included).
+nlohmann::json TracedSppJson(const SceneRecord& r) {
+    nlohmann::json j = nlohmann::json::object();
+    for (size_t i = 0; i < kTracedRegions.size(); ++i)
+        if (r.tracedPixels[i] > 0) j[kTracedRegions[i]] = TracedSamples::SamplesPerPixel(r, i);
+    return j;
+}
+
 ReportTable MemoryTable(const RunConfig& config) {
     int w = config.camera.width, h = config.camera.height;
     double pixels = double(w) * double(h);
@@ -307,11 +316,13 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
         ExperimentScoring scoring(config, loop, record, part, visualFrame);
         ReportVisuals visuals(config, loop, record, visualFrame);
         PassCosts costs(record, part, progress, seeds.size() > 1);
+        TracedSamples traced(config, record);
         std::optional<ExperimentExr> exr;
         loop.Attach(visuals);
         loop.Attach(scoring);
         if (config.output.writeExr) loop.Attach(exr.emplace(outDir / record.label, seeds.size() > 1));
         loop.Attach(costs);
+        loop.Attach(traced);
         for (auto& [seedIndex, work] : passes) {
             visuals.Prepare(seedIndex, work);
             scoring.SetVisualsHere(ReportVisuals::ShownIn(seedIndex, work));
@@ -348,6 +359,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     report.results = &results;
     report.baseline = spec.baseline;
     nlohmann::json sceneRecords = nlohmann::json::array();
+    nlohmann::json tracedSpp = nlohmann::json::object();  // summary.json: the measured sampling per scene
     for (SceneRecord& r : part.scenes) {
         WriteFrameCsv(outDir / fmt::format("frames-{}.csv", r.label), results, r.label);
         // The report's images in the experiment's variant order.
@@ -373,7 +385,9 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                                 {"reference_lookups", r.referenceLookups},
                                 {"rays", r.rays},
                                 {"dropped_nonfinite_samples", r.droppedSamples},
-                                {"blink_frames", r.blinkFrames}});
+                                {"blink_frames", r.blinkFrames},
+                                {"traced_spp", TracedSppJson(r)}});
+        tracedSpp[r.label] = TracedSppJson(r);
     }
 
     // The eye tracker beside the errors; with experiment.suppress_saccades the statistics leave
@@ -393,6 +407,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     const ExperimentStats stats(scored, spec.baseline);
     nlohmann::json summary = SummaryJson(scored, stats);
     summary["gaze_tracking"] = gazeTracking;
+    summary["traced_spp"] = tracedSpp;
     summary["saccade_frames_suppressed"] = spec.suppressSaccades;
     const std::string vdpTable = base.metric.vdp ? AddVdpResults(part.vdp, spec.variants, spec.baseline,
                                                                   part.vdpDisplay, outDir, summary, report)

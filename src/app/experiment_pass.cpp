@@ -136,6 +136,27 @@ void ExperimentExr::Output(const StereoFrame& frame, int eye, const DenoisedOutp
                 *output.image);
 }
 
+TracedSamples::TracedSamples(const RunConfig& config, SceneRecord& record)
+    : fovea_(MetricFovea(config.foveation, config.camera.width)), record_(record) {}
+
+void TracedSamples::Eye(const StereoFrame& frame, int eye) {
+    const EyeFrame& e = frame.eyes[size_t(eye)];
+    const RegionSet regions = RegionSet::Build(e.camera, e.trueGazeEye, fovea_, {});
+    const Plane<uint16_t>& samples = e.inputs.sampleCount;
+    for (size_t r = 0; r < kTracedRegions.size(); ++r) {
+        const Region* region = regions.Find(kTracedRegions[r]);
+        if (!region) continue;  // an empty fovea (the gaze off the image) or periphery
+        uint64_t sum = 0;
+        for (size_t p = 0; p < samples.size(); ++p) sum += region->mask[p] ? samples[p] : 0u;
+        record_.tracedSamples[r] += sum;
+        record_.tracedPixels[r] += region->pixelCount;
+    }
+}
+
+double TracedSamples::SamplesPerPixel(const SceneRecord& record, size_t region) {
+    return record.tracedPixels[region] ? double(record.tracedSamples[region]) / double(record.tracedPixels[region]) : 0.0;
+}
+
 void PassCosts::Eye(const StereoFrame& frame, int eye) { record_.times.renderMs += frame.eyes[size_t(eye)].renderMs; }
 
 void PassCosts::Output(const StereoFrame&, int, const DenoisedOutput& output) {

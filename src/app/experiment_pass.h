@@ -5,8 +5,11 @@
 // - ReportVisuals: the report's images of one eye and frame under the first seed, its gaze marks.
 // - ExperimentExr: each variant's output as EXR (output.write_exr).
 // - PassCosts: per-pass denoiser timings, wall times, rays and dropped samples, progress.
+// - TracedSamples: the path samples the tracer took per pixel, by region at the true gaze (the
+//   measured sampling, not the nominal spp map).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -80,6 +83,21 @@ private:
     std::filesystem::path dir_;
     bool seedInName_;
     uint32_t seed_ = 0;
+};
+
+// The regions the measured sampling is reported in, in SceneRecord::tracedSamples' order.
+inline constexpr std::array<const char*, 3> kTracedRegions = {"whole", "fovea", "periphery"};
+
+class TracedSamples : public FrameLoopObserver {
+public:
+    TracedSamples(const RunConfig& config, SceneRecord& record);
+    void Eye(const StereoFrame& frame, int eye) override;
+    // Samples per pixel of region i of kTracedRegions; 0 where no pixel was counted.
+    static double SamplesPerPixel(const SceneRecord& record, size_t region);
+
+private:
+    FoveaRadius fovea_;
+    SceneRecord& record_;
 };
 
 class PassCosts : public FrameLoopObserver {

@@ -50,6 +50,8 @@ void RecordFields(Record& r, Field&& field) {
     field("blink_frames", r.blinkFrames);
     field("rays", r.rays);
     field("dropped_samples", r.droppedSamples);
+    field("traced_samples", r.tracedSamples);
+    field("traced_pixels", r.tracedPixels);
     field("has_visuals", r.hasVisuals);
 }
 
@@ -543,6 +545,10 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
             m.blinkFrames = std::max(m.blinkFrames, r.blinkFrames);  // counted by the first seed's shards alike
             m.rays += r.rays;
             m.droppedSamples += r.droppedSamples;
+            for (size_t i = 0; i < m.tracedSamples.size(); ++i) {
+                m.tracedSamples[i] += r.tracedSamples[i];
+                m.tracedPixels[i] += r.tracedPixels[i];
+            }
             if (r.hasVisuals) {
                 if (!m.hasVisuals) {
                     auto variants = std::move(m.visuals.variants);

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <array>
 #include <map>
 #include <string>
 #include <utility>
@@ -85,6 +86,9 @@ struct SceneRecord {
     SceneTimes times;
     int referenceHits = 0, referenceLookups = 0, eyeFrames = 0, blinkFrames = 0;
     uint64_t rays = 0, droppedSamples = 0;
+    // Measured sampling (TracedSamples, app/experiment_pass.h): Σ FrameInputs::sampleCount and the
+    // pixel count of each of kTracedRegions over every eye-frame a pass rendered, at the true gaze.
+    std::array<uint64_t, 3> tracedSamples{}, tracedPixels{};
     bool hasVisuals = false;  // ran the report's eye under the first seed
     SceneVisuals visuals;     // its variants: those this part ran
 };
