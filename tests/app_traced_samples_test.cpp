@@ -34,7 +34,7 @@ nlohmann::json TracedSpp(const fs::path& dir, std::vector<std::string> sets) {
 TEST_CASE("the thesis disc measures 8 samples per pixel in the fovea and 1 outside", "[app][traced]") {
     // SmallExperimentOptions' disc: 8 spp within 8 px of the gaze (80 px at 320 wide), 1 outside; the
     // metric's fovea is that disc, so its pixels are exactly the 8-spp ones.
-    const nlohmann::json spp = TracedSpp(test::ScratchDir("fovrt_traced_disc"), {});
+    const nlohmann::json spp = TracedSpp(test::ScratchDir("fovrt_traced") / "disc", {});
     CHECK(spp["fovea"].get<double>() == 8.0);
     CHECK(spp["periphery"].get<double>() == 1.0);
     const double whole = spp["whole"].get<double>();
@@ -44,7 +44,7 @@ TEST_CASE("the thesis disc measures 8 samples per pixel in the fovea and 1 outsi
 
 TEST_CASE("uniform sampling measures its spp in every region", "[app][traced]") {
     const nlohmann::json spp =
-        TracedSpp(test::ScratchDir("fovrt_traced_uniform"), {"foveation.model=uniform", "foveation.uniform_spp=3"});
+        TracedSpp(test::ScratchDir("fovrt_traced") / "uniform", {"foveation.model=uniform", "foveation.uniform_spp=3"});
     for (const char* region : {"whole", "fovea", "periphery"}) {
         INFO(region);
         CHECK(spp[region].get<double>() == 3.0);
