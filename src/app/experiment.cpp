@@ -325,6 +325,7 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
         loop.Attach(traced);
         for (auto& [seedIndex, work] : passes) {
             visuals.Prepare(seedIndex, work);
+            traced.CountEyes({Owns(units, sceneIndex, seedIndex, 0, 0), Owns(units, sceneIndex, seedIndex, 1, 0)});
             scoring.SetVisualsHere(ReportVisuals::ShownIn(seedIndex, work));
             // A fresh sequence per pass: the pipeline restarts with the seed before the first frame.
             std::optional<FrameSequence> sequence;

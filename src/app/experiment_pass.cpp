@@ -140,6 +140,7 @@ TracedSamples::TracedSamples(const RunConfig& config, SceneRecord& record)
     : fovea_(MetricFovea(config.foveation, config.camera.width)), record_(record) {}
 
 void TracedSamples::Eye(const StereoFrame& frame, int eye) {
+    if (!counted_[size_t(eye)]) return;
     const EyeFrame& e = frame.eyes[size_t(eye)];
     const RegionSet regions = RegionSet::Build(e.camera, e.trueGazeEye, fovea_, {});
     const Plane<uint16_t>& samples = e.inputs.sampleCount;

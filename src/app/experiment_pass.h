@@ -91,6 +91,10 @@ inline constexpr std::array<const char*, 3> kTracedRegions = {"whole", "fovea", 
 class TracedSamples : public FrameLoopObserver {
 public:
     TracedSamples(const RunConfig& config, SceneRecord& record);
+    // The eyes this pass counts: each (scene, seed, eye) is counted by exactly one part of a
+    // sharded experiment (the one that runs its first variant), so merged shards sum to the
+    // single run's counts.
+    void CountEyes(std::array<bool, 2> eyes) { counted_ = eyes; }
     void Eye(const StereoFrame& frame, int eye) override;
     // Samples per pixel of region i of kTracedRegions; 0 where no pixel was counted.
     static double SamplesPerPixel(const SceneRecord& record, size_t region);
@@ -98,6 +102,7 @@ public:
 private:
     FoveaRadius fovea_;
     SceneRecord& record_;
+    std::array<bool, 2> counted_{true, true};
 };
 
 class PassCosts : public FrameLoopObserver {
