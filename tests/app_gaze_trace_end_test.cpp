@@ -3,6 +3,7 @@
 // frame is rendered, holds the last row with the frames marked ("hold"), or loops ("loop").
 #include <fstream>
 
+#include "app/experiment.h"
 #include "app/replay.h"
 #include "app_test_configs.h"
 #include "config/config.h"
@@ -83,4 +84,21 @@ TEST_CASE("gaze.trace_start_ms outside the trace names the key, the value and th
     config.gaze.traceStartMs = 50.0;
     FramePipeline late(config);
     CHECK(late.GazeFrames() == 2);  // 50 ms left: frames 0 and 1
+}
+
+TEST_CASE("gaze.trace_end = hold: the experiment's gaze CSV marks the held frames", "[app][gaze]") {
+    const fs::path dir = test::ScratchDir("fovrt-trace-end-test") / "experiment";
+    fs::create_directories(dir);
+    std::ofstream(dir / "short.csv") << "n,x,y\n0,0,0\n50,5,0\n100,10,0\n";
+    ConfigOptions options = test::SmallExperimentOptions(dir, {.frames = 6, .experimentLines = ""});
+    options.sets = {"gaze.source=trace", "gaze.trace_path=" + (dir / "short.csv").string(), "gaze.trace_end=hold",
+                    "run.fps=30", "metric.vdp=false", "experiment.variants=[\"svgf\"]"};
+    RunExperiment(LoadExperiment(options));
+    std::ifstream csv(dir / "out" / "gaze-cornell.csv");
+    std::string line;
+    std::getline(csv, line);
+    REQUIRE(line.substr(line.rfind(',') + 1) == "gaze_held");
+    std::vector<char> held;
+    while (std::getline(csv, line)) held.push_back(line.back());
+    CHECK(held == std::vector<char>{'0', '0', '0', '0', '1', '1'});  // frames 4 and 5 lie past 100 ms
 }

@@ -108,12 +108,12 @@ TEST_CASE("a late tracker misses the true gaze after a saccade; the foveal error
     std::istringstream lines(csv);
     std::string line;
     std::getline(lines, line);
-    CHECK(line == "frame,time_s,blink,speed_deg_s,saccade,fovea_distance_deg,outside_fovea");
+    CHECK(line == "frame,time_s,blink,speed_deg_s,saccade,fovea_distance_deg,outside_fovea,gaze_held");
     for (int frame = 0; frame < 10; ++frame) {
         REQUIRE(std::getline(lines, line));
         INFO(line);
         const bool miss = frame >= 3 && frame <= 8;
-        CHECK(line.back() == (miss ? '1' : '0'));
+        CHECK(line.substr(line.size() - 4) == (miss ? ",1,0" : ",0,0"));  // outside_fovea, gaze_held
     }
     const nlohmann::json summary = nlohmann::json::parse(ReadFile(dir / "late" / "summary.json"));
     const nlohmann::json& tracking = summary.at("gaze_tracking").at("cornell");

@@ -103,6 +103,7 @@ void ReportVisuals::Frame(const StereoFrame& frame) {
         mark.foveaDistanceDeg = AngleBetweenDeg(frame.gaze.direction, frame.trueGaze.direction);
         mark.outsideFovea = shown.uniformForBlink ||
                             glm::length(shown.gazePixel - shown.trueGazePixel) > visuals.foveaRadiusPixels;
+        mark.gazeHeld = loop_.Pipeline().GazeHeld(frame.frame);
         visuals.gazeMarks.push_back(mark);
     }
     previousGaze_ = frame.trueGaze;

@@ -94,7 +94,8 @@ struct JsonFieldReader {
 void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
     fs::create_directories(dir);
     nlohmann::json marks = nlohmann::json::array();
-    for (const GazeMark& m : v.gazeMarks) marks.push_back({m.frame, m.blink, m.speedDegPerSecond, m.timeSeconds, m.foveaDistanceDeg, m.outsideFovea});
+    for (const GazeMark& m : v.gazeMarks) marks.push_back({m.frame, m.blink, m.speedDegPerSecond, m.timeSeconds, m.foveaDistanceDeg, m.outsideFovea,
+                          m.gazeHeld});
     nlohmann::json path = nlohmann::json::array();
     for (const vec2& p : v.gazePath) path.push_back(Vec2Json(p));
     nlohmann::json variants = nlohmann::json::array();
@@ -128,7 +129,8 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
     const nlohmann::json meta = nlohmann::json::parse(in);
     SceneVisuals v;
     VisualsFields(v, JsonFieldReader{meta});
-    for (const auto& m : meta.at("gaze_marks")) v.gazeMarks.push_back({m.at(0), m.at(1), m.at(2), m.at(3), m.at(4), m.at(5)});
+    for (const auto& m : meta.at("gaze_marks"))
+        v.gazeMarks.push_back({m.at(0), m.at(1), m.at(2), m.at(3), m.at(4), m.at(5), m.at(6)});
     for (const auto& p : meta.at("gaze_path")) v.gazePath.push_back(Vec2From(p));
     v.gazePixel = Vec2From(meta.at("gaze_pixel"));
     if (!meta.at("has_images").get<bool>()) return v;

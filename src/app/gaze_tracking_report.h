@@ -30,7 +30,8 @@ struct GazeTrackingSummary {
 };
 GazeTrackingSummary SummarizeGazeTracking(const std::vector<GazeMark>& marks);
 
-// Per-frame CSV: frame,time_s,blink,speed_deg_s,saccade,fovea_distance_deg,outside_fovea.
+// Per-frame CSV: frame,time_s,blink,speed_deg_s,saccade,fovea_distance_deg,outside_fovea,gaze_held
+// (gaze_held: the frame lies past the end of its trace or recording, gaze.trace_end = "hold").
 std::string GazeTrackingCsv(const std::vector<GazeMark>& marks);
 
 // The frames of `marks` that are saccades.

@@ -52,6 +52,8 @@ struct GazeMark {
     // whether the true gaze fell outside the disc (app/gaze_tracking_report.h).
     double foveaDistanceDeg = 0.0;
     bool outsideFovea = false;
+    // Past the end of a gaze trace or recording held on its last row (gaze.trace_end = "hold").
+    bool gazeHeld = false;
     bool Saccade() const { return !blink && speedDegPerSecond > kSaccadeDegPerSecond; }
 };
 
