@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "denoise/variant_notes.h"
 #include "denoise/variants.h"
 #include "test_support.h"
 
@@ -43,4 +44,17 @@ TEST_CASE("a name's hidden mechanisms are listed", "[denoise][variants]") {
     CHECK(Lists(needs, "gradient samples"));
     CHECK(Lists(needs, "sample counts"));
     CHECK(VariantRendererNeeds(FindDenoiserVariant("svgf")).empty());
+}
+
+TEST_CASE("every variant has one note for docs/denoisers.md, and every note a variant", "[denoise][variants]") {
+    for (const DenoiserVariant& v : DenoiserVariants()) {
+        INFO(v.name);
+        CHECK(FindVariantNote(v.name) != nullptr);
+    }
+    for (const VariantNote& note : VariantNotes()) {
+        INFO(note.name);
+        CHECK(LookupDenoiserVariant(note.name) != nullptr);
+        CHECK(note.measured.empty() == note.measuredAt.empty());  // figures name the commit that published them
+    }
+    CHECK(VariantNotes().size() == DenoiserVariants().size());
 }
