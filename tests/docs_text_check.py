@@ -18,8 +18,8 @@ import sys
 
 MAKING_OF = re.compile(r"SPEC §|SPEC section|session [0-9]|stop [0-9]+|issue #|[0-9]{2}:[0-9]{2} UTC|"
                        r"other engineers|this branch")
-# Pages whose correction is another change's: remove a page from here when that change lands.
-PENDING_PAGES = {"docs/sanitizers.md"}
+# Pages left out of the check (none: every page is held to it).
+PENDING_PAGES: set[str] = set()
 SKIP_DIRS = {"out", "cache", "node_modules", "shared"}
 PAPERS = ["schied2017svgf", "schied2018asvgf", "tu2024twohistory", "zhuang2021brdfdemodulation",
           "chaitanya2017rae", "mantiuk2021fovvideovdp"]
