@@ -199,9 +199,8 @@ else bad "reference SIGINT: exit $rc, $(find refsINT -name '*.tmp-*' | wc -l) te
 "$fovrt" run "${small[@]}" --set run.frames=100000 --set output.dir=k9 >/dev/null 2>k9.err &
 pid=$!
 # until its own first frame: its ledger (no "added" yet) is written once the first run moved aside
-until { [[ -s k9/frames.jsonl ]] && ! grep -q '"added"' k9/.fovrt-outputs.json 2>/dev/null; } || ! kill -0 $pid 2>/dev/null; do
-  sleep 0.05
-done
+first_frame_written() { [[ -s k9/frames.jsonl ]] && ! grep -q '"added"' k9/.fovrt-outputs.json 2>/dev/null; }
+until first_frame_written || ! kill -0 $pid 2>/dev/null; do sleep 0.05; done
 kill -KILL $pid; wait $pid 2>/dev/null
 "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=k9 >/dev/null 2>k9.err || bad "run after the kill: $(cat k9.err)"
 complete=(k9/previous-run-*[0-9]Z); partial=(k9/previous-run-*-partial)
