@@ -229,6 +229,15 @@ constexpr MechanismName kMechanismNames[] = {
 
 }  // namespace
 
+std::string_view DenoiserFamilyName(DenoiserFamily family) {
+    switch (family) {
+        case DenoiserFamily::Svgf: return "svgf";
+        case DenoiserFamily::TwoHistory: return "two-history";
+        case DenoiserFamily::Rae: return "rae";
+    }
+    return "";
+}
+
 std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant) {
     std::vector<std::string> names;
     for (const MechanismName& m : kMechanismNames)

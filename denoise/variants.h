@@ -28,6 +28,9 @@ namespace fovrt {
 // (denoise/rae_weights.h).
 enum class DenoiserFamily { Svgf, TwoHistory, Rae };
 
+// "svgf", "two-history", "rae": how `fovrt info` names a family.
+std::string_view DenoiserFamilyName(DenoiserFamily family);
+
 struct DenoiserVariant {
     std::string_view name;     // the factory name, e.g. "two-history-asvgf"
     std::string_view summary;  // one line for `fovrt info` and error messages

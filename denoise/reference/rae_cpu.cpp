@@ -2,18 +2,11 @@
 
 #include <chrono>
 
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "denoise/reference/rae_features.h"
 
 namespace fovrt {
-namespace {
-
-double MsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 RaeReferenceDenoiser::RaeReferenceDenoiser(std::string name, const DenoiserParams& params)
     : name_(std::move(name)), weights_(SharedRaeWeights(params)) {}
 

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "denoise/reference/rae_features.h"
 #include "denoise/reference/rae_net.h"
@@ -14,9 +15,6 @@
 namespace fovrt {
 namespace {
 
-double MsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 uint32_t Groups(int n, int per) { return uint32_t((n + per - 1) / per); }
 

@@ -52,10 +52,10 @@ void PrintDenoiser(const InfoOptions& o) {
         Fail("--width/--height: {}x{} is outside 1..16384", o.width, o.height);
     const DenoiserParams params = ParamsForDenoiser(o.denoiser, DenoiserParams{});
     const DenoiserPlan plan = BuildDenoiserPlan(v.name, params, o.width, o.height);
-    const char* families[] = {"svgf", "two-history", "rae"};
     std::printf("denoiser    %s\n", o.denoiser.c_str());
     std::printf("summary     %.*s\n", int(v.summary.size()), v.summary.data());
-    std::printf("family      %s\n", families[int(v.family)]);
+    const std::string_view family = DenoiserFamilyName(v.family);
+    std::printf("family      %.*s\n", int(family.size()), family.data());
     std::printf("mechanisms  %s\n", Joined(VariantMechanisms(v), "none beyond the family's passes").c_str());
     if (std::optional<Demodulation> d = DenoiserDemodulation(o.denoiser))
         std::printf("demodulation %s (re-demodulated before filtering)\n",

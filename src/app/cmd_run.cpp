@@ -33,6 +33,7 @@
 #include "config/config_cli.h"
 #include "config/config_io.h"
 #include "core/atomic_file.h"
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "denoise/memory_plan.h"
@@ -65,10 +66,6 @@ void WriteDebugViewsExr(const std::filesystem::path& path, Denoiser& denoiser) {
     WriteExrLayers(path, planes[0].width(), planes[0].height(), layers);
 }
 
-double MsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 
 // Mean, min and max of one timing over a run: what the manifest keeps of the per-frame timings

@@ -44,10 +44,6 @@ namespace fs = std::filesystem;
 
 constexpr int64_t kMaxSeed = std::numeric_limits<uint32_t>::max();
 
-double MsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 std::vector<std::string> StringArray(const ExperimentTable& experiment, const std::string& key) {
     const std::string file = experiment.Origin(key);
@@ -310,10 +306,8 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
         record.source = loop.Pipeline().GetScene().sourcePath.string();
 
         const int visualFrame =
-            spec.visualFrame >= 0 ? spec.visualFrame
-                                  : int((replay ? FrameSequence(loop.Pipeline(), *replay) : FrameSequence(loop.Pipeline()))
-                                            .LastFrame());
-        ExperimentScoring scoring(config, loop, record, part, visualFrame);
+            spec.visualFrame >= 0 ? spec.visualFrame : int(LastFrameOf(config, replay ? &*replay : nullptr));
+        ExperimentScoring scoring(config, record, part, visualFrame);
         ReportVisuals visuals(config, loop, record, visualFrame);
         PassCosts costs(record, part, progress, seeds.size() > 1);
         TracedSamples traced(config, record);

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/cpu_time.h"
 #include "gaze/tracker.h"
 #include "io/exr.h"
 #include "pipeline/metric_fovea.h"
@@ -13,9 +14,6 @@
 namespace fovrt {
 namespace {
 
-double MsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Blink, and the gaze's angular speed since the previous valid sample (head space), for the
 // report's per-frame plots.
@@ -34,9 +32,9 @@ GazeMark GazeMarkOf(int frame, const GazeSample& gaze, const std::optional<GazeS
 
 }  // namespace
 
-ExperimentScoring::ExperimentScoring(const RunConfig& config, FrameLoop& loop, SceneRecord& record,
-                                     ExperimentPart& part, int visualFrame)
-    : config_(config), loop_(loop), record_(record), part_(part), visualFrame_(visualFrame) {}
+ExperimentScoring::ExperimentScoring(const RunConfig& config, SceneRecord& record, ExperimentPart& part,
+                                     int visualFrame)
+    : config_(config), record_(record), part_(part), visualFrame_(visualFrame) {}
 
 void ExperimentScoring::BeginSeed(size_t, uint32_t seed, FramePipeline& pipeline) {
     scorer_.reset();  // it holds passConfig_

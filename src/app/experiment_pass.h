@@ -26,8 +26,7 @@ class ExperimentScoring : public FrameLoopObserver {
 public:
     // `visuals`: the record's report images (their VDP difference maps); `visualFrame` the frame
     // whose maps are kept on the passes that show visuals (ReportVisuals::ShownIn).
-    ExperimentScoring(const RunConfig& config, FrameLoop& loop, SceneRecord& record, ExperimentPart& part,
-                      int visualFrame);
+    ExperimentScoring(const RunConfig& config, SceneRecord& record, ExperimentPart& part, int visualFrame);
 
     void BeginSeed(size_t seedIndex, uint32_t seed, FramePipeline& pipeline) override;
     void Reference(const StereoFrame& frame, int eye, const ReferenceLookup& reference) override;
@@ -38,7 +37,6 @@ public:
 
 private:
     const RunConfig& config_;
-    FrameLoop& loop_;
     SceneRecord& record_;
     ExperimentPart& part_;
     int visualFrame_;

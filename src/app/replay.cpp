@@ -231,15 +231,18 @@ void CheckReplayScene(Replay& replay, const FramePipeline& pipeline) {
     replay.changed.push_back({{"key", "scene fingerprint"}, {"value", now}, {"recorded", recorded}});
 }
 
+uint32_t LastFrameOf(const RunConfig& config, const Replay* replay) {
+    return replay ? replay->summary.lastFrame : uint32_t(config.run.firstFrame + config.run.frames - 1);
+}
+
 FrameSequence::FrameSequence(const FramePipeline& pipeline)
-    : pipeline_(pipeline), count_(pipeline.Config().run.frames) {
-    lastFrame_ = uint32_t(pipeline.Config().run.firstFrame + count_ - 1);
+    : pipeline_(pipeline), count_(pipeline.Config().run.frames), lastFrame_(LastFrameOf(pipeline.Config(), nullptr)) {
     pipeline.CheckGazeCovers(uint32_t(pipeline.Config().run.firstFrame), count_);
 }
 
 FrameSequence::FrameSequence(const FramePipeline& pipeline, const Replay& replay)
     : pipeline_(pipeline), reader_(std::make_unique<SessionReader>(replay.file)),
-      count_(int(replay.summary.frames)), lastFrame_(replay.summary.lastFrame) {
+      count_(int(replay.summary.frames)), lastFrame_(LastFrameOf(pipeline.Config(), &replay)) {
     const RunConfig& config = pipeline.Config();
     if (config.camera.width != replay.recorded.camera.width || config.camera.height != replay.recorded.camera.height) {
         width_ = config.camera.width;

@@ -80,6 +80,9 @@ nlohmann::json SessionHeaderExtra(const FramePipeline& pipeline);
 
 // The frames a job renders, in order: the config's frames (run.first_frame, run.frames; head and
 // eyes from the scene's camera path, gaze from the gaze source) or a recording's.
+// The last frame a job renders: run.first_frame + run.frames − 1, or the recording's last.
+uint32_t LastFrameOf(const RunConfig& config, const Replay* replay);
+
 class FrameSequence {
 public:
     // Headless frames of `pipeline`'s config.

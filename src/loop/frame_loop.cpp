@@ -3,17 +3,10 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/cpu_time.h"
 #include "core/interrupt.h"
 
 namespace fovrt {
-namespace {
-
-double MsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 bool SeedWork::RunsEye(int eye) const {
     if (runs.empty()) return true;
     return std::any_of(runs.begin(), runs.end(), [&](const std::array<bool, 2>& r) { return r[size_t(eye)]; });

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "denoise/variants.h"
 #include "gaze/tracker.h"
@@ -25,10 +26,6 @@ void MakeUniform(Plane<uint16_t>& sppMap) {
     for (size_t p = 0; p < sppMap.size(); ++p) sppMap[p] = spp;
 }
 
-double MillisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 }  // namespace
 
@@ -160,7 +157,7 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap);
         eyeFrame.uniformForBlink = !out.gaze.valid && config_.gaze.blink == "uniform";
         if (eyeFrame.uniformForBlink) MakeUniform(eyeFrame.sppMap);
-        eyeFrame.sppMs = MillisecondsSince(start);
+        eyeFrame.sppMs = MsSince(start);
 
         start = std::chrono::steady_clock::now();
         eyeFrame.inputs.cameraCut = cut;
@@ -168,7 +165,7 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.inputs.cameraCut = cut;
         eyeFrame.inputs.frameIndex = frame;
         eyeFrame.inputs.timeSeconds = out.timeSeconds;
-        eyeFrame.renderMs = MillisecondsSince(start);
+        eyeFrame.renderMs = MsSince(start);
         previousCameras_[size_t(eye)] = camera;
     }
     hasPrevious_ = true;
