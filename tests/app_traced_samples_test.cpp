@@ -34,8 +34,11 @@ nlohmann::json TracedSpp(const fs::path& dir, std::vector<std::string> sets) {
 TEST_CASE("the thesis disc measures 8 samples per pixel in the fovea and 1 outside", "[app][traced]") {
     // SmallExperimentOptions' disc: 8 spp within 8 px of the gaze (80 px at 320 wide), 1 outside; the
     // metric's fovea is that disc, so its pixels are exactly the 8-spp ones.
-    const nlohmann::json spp = TracedSpp(test::ScratchDir("fovrt_traced") / "disc", {});
+    const fs::path dir = test::ScratchDir("fovrt_traced") / "disc";
+    const nlohmann::json spp = TracedSpp(dir, {"output.report=true"});
     CHECK(spp["fovea"].get<double>() == 8.0);
+    // The report's run table shows it too.
+    CHECK(ReadFile(dir / "out" / "report.html").find(" / 8.00 / 1.00") != std::string::npos);
     CHECK(spp["periphery"].get<double>() == 1.0);
     const double whole = spp["whole"].get<double>();
     CHECK(whole > 1.0);

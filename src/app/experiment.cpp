@@ -81,6 +81,16 @@ nlohmann::json TracedSppJson(const SceneRecord& r) {
     return j;
 }
 
+// "cornell 1.95 / 8.00 / 1.00": the measured sampling of every scene, for the report's run table.
+std::string TracedSppText(const std::vector<SceneRecord>& scenes) {
+    std::string text;
+    for (const SceneRecord& r : scenes)
+        text += fmt::format("{}{} {:.2f} / {:.2f} / {:.2f}", text.empty() ? "" : "; ", r.label,
+                            TracedSamples::SamplesPerPixel(r, 0), TracedSamples::SamplesPerPixel(r, 1),
+                            TracedSamples::SamplesPerPixel(r, 2));
+    return text;
+}
+
 ReportTable MemoryTable(const RunConfig& config) {
     int w = config.camera.width, h = config.camera.height;
     double pixels = double(w) * double(h);
@@ -424,6 +434,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                        {"reference spp", std::to_string(base.reference.spp)},
                        {"denoise device", part.deviceDescription},
                        {"relMSE ε", "0.01"},
+                       {"traced spp (whole / fovea / periphery)", TracedSppText(part.scenes)},
                        {"fovrt", FOVRT_VERSION},
                        // Up to the report: the outputs above are written, the manifest follows.
                        {spec.merge ? "time (this merge)" : "time", RunTimeText(totalStart)}};
