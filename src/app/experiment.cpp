@@ -10,7 +10,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "app/design_sweep.h"
 #include "app/experiment_pass.h"
+#include "app/experiment_run.h"
 #include "app/experiment_shards.h"
 #include "app/experiment_stats.h"
 #include "app/experiment_vdp.h"
@@ -177,8 +179,12 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
         RunConfig config = ResolveExperimentConfig(resolved, quick, experiment);
         for (const auto& [key, node] : experiment.table) {
             std::string k(key.str());
-            static const std::vector<std::string> known = {"scenes", "variants", "visual_frame", "quick",
-                                                           "seeds", "baseline", "suppress_saccades"};
+            static const std::vector<std::string> known = [] {
+                std::vector<std::string> keys = {"scenes", "variants", "visual_frame", "quick",
+                                                 "seeds",  "baseline", "suppress_saccades"};
+                keys.insert(keys.end(), std::begin(kSweepKeys), std::end(kSweepKeys));
+                return keys;
+            }();
             if (std::find(known.begin(), known.end(), k) == known.end())
                 Fail("{}: unknown key experiment.{} (did you mean experiment.{}?)", experiment.Origin(k), k, NearestName(k, known));
         }
@@ -198,6 +204,15 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
         if (experiment.table.contains("scenes"))
             std::fprintf(stderr, "fovrt experiment: replay: experiment.scenes is ignored (the recording's scene '%s' "
                                  "is rendered)\n", spec.config.scene.name.c_str());
+    }
+    if (replayPath.empty()) {
+        spec.sweep = LoadSamplingSweep(experiment, options, quick, spec.variants);
+        if (spec.sweep.Active() && !spec.config.metric.vdp)
+            Fail("{}: experiment.designs needs metric.vdp = true (the curves are FovVideoVDP's JOD against rays)",
+                 experiment.Origin("designs"));
+    } else if (experiment.table.contains("designs")) {
+        Fail("{}: experiment.designs and --replay exclude each other (a recording has its own sampling)",
+             experiment.Origin("designs"));
     }
     if (const toml::node* baseline = experiment.table.get("baseline")) {
         auto value = baseline->value<std::string>();
@@ -251,10 +266,8 @@ bool Owns(const std::vector<RunUnit>& units, size_t scene, size_t seed, int eye,
     return false;
 }
 
-// Computes the runs in `units` (all of them for a single machine): per scene, one frame loop (the
-// scene and its BVH built once, the references from the shared cache); per run seed that has a
-// run, the frames are rendered once (stereo) and fed to the runs' denoisers. What is kept of them
-// comes from the observers of app/experiment_pass.h.
+}  // namespace
+
 ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit>& units, const fs::path& outDir) {
     const RunConfig& base = spec.config;
     const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
@@ -348,9 +361,9 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
     return part;
 }
 
-// The outputs of a whole experiment, from one machine's part or the merged parts of its shards.
 Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part, const fs::path& outDir,
-                               std::chrono::steady_clock::time_point totalStart) {
+                               std::chrono::steady_clock::time_point totalStart, ExperimentOutputs outputs) {
+    const bool print = outputs == ExperimentOutputs::kPrinted;
     const RunConfig& base = spec.config;
     const std::vector<uint32_t> seeds = spec.seeds.empty() ? std::vector<uint32_t>{base.run.seed} : spec.seeds;
     std::map<std::string, size_t> sceneIndex;
@@ -418,8 +431,8 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
                                                                   part.vdpDisplay, outDir, summary, report)
                                                  : "";
     WriteTextAtomically(outDir / "summary.json", summary.dump(2) + "\n");
-    std::printf("%s%s", SummaryTable(scored, stats).c_str(), vdpTable.c_str());
-    if (!IsIdealTracker(base.gaze.tracker) || spec.suppressSaccades)
+    if (print) std::printf("%s%s", SummaryTable(scored, stats).c_str(), vdpTable.c_str());
+    if (print && (!IsIdealTracker(base.gaze.tracker) || spec.suppressSaccades))
         for (const auto& [scene, json] : gazeTracking.items()) std::printf("%s", GazeTrackingTable(json, scene).c_str());
 
     report.manifest = {{"experiment", spec.file.string()},
@@ -466,6 +479,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     manifest["cpu_s"] = CpuSeconds();
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
+    if (!print) return results;
     SceneTimes times;
     for (const SceneRecord& r : part.scenes) times += r.times;
     std::fprintf(stderr, "fovrt experiment: tracing %.1f s, denoising %.1f s, FovVideoVDP %.1f s (wall, all scenes and seeds)\n",
@@ -475,6 +489,8 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     if (base.output.report) std::printf("HTML report: %s\n", (outDir / "report.html").string().c_str());
     return results;
 }
+
+namespace {
 
 // Every large buffer of one scene's pass (the scene does not change it): the run's, the
 // references' and the metric's frames (an experiment always scores).
@@ -486,12 +502,12 @@ std::vector<BufferPlan> PlanExperimentMemory(const RunConfig& config) {
     return plan;
 }
 
+}  // namespace
+
 std::string RerunCommand(const ExperimentSpec& spec) {
     return fmt::format("fovrt experiment {}{} --shard I/N (the same options as the others)", spec.file.string(),
                        spec.quick ? " --quick" : "");
 }
-
-}  // namespace
 
 namespace {
 
@@ -500,6 +516,7 @@ Results RunOrMerge(const ExperimentSpec& spec, OutputDir& out) {
     const fs::path outDir = out.Path();
     const fs::path shardsDir = outDir / "shards";
     auto totalStart = std::chrono::steady_clock::now();
+    if (spec.sweep.Active()) return RunSweep(spec, out);
     const std::string fingerprint = ExperimentFingerprint(spec);
     if (spec.merge) {
         ExperimentPart part = MergeShardParts(shardsDir, fingerprint, RerunCommand(spec));

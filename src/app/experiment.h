@@ -18,6 +18,7 @@
 #include "app/replay.h"
 #include "app/experiment_shards.h"
 #include "app/report.h"
+#include "app/sampling_designs.h"
 #include "metrics/regions.h"
 
 namespace fovrt {
@@ -45,6 +46,9 @@ struct ExperimentSpec {
     // --replay: every frame comes from this recording, whose scene is the only one; the config is
     // the recording's with the file and --set on top (app/replay.h says which keys may differ).
     std::optional<Replay> replay;
+    // experiment.designs / budgets: every point runs the whole experiment above with its own
+    // sampling (app/sampling_designs.h); inactive when the file names no designs.
+    SamplingSweep sweep;
 };
 
 // The command line of `fovrt experiment` beyond the config options.

@@ -278,9 +278,13 @@ std::vector<RunUnit> ExperimentUnits(size_t scenes, size_t seeds, size_t variant
     return units;
 }
 
+std::pair<size_t, size_t> ShardBlock(size_t count, const ShardSelection& selection) {
+    const size_t shards = size_t(selection.count), i = size_t(selection.index);
+    return {i * count / shards, (i + 1) * count / shards};
+}
+
 std::vector<RunUnit> ShardUnits(const std::vector<RunUnit>& all, const ShardSelection& selection) {
-    const size_t n = all.size(), count = size_t(selection.count), i = size_t(selection.index);
-    const size_t begin = i * n / count, end = (i + 1) * n / count;
+    const auto [begin, end] = ShardBlock(all.size(), selection);
     return std::vector<RunUnit>(all.begin() + long(begin), all.begin() + long(end));
 }
 

@@ -49,7 +49,10 @@ struct RunUnit {
 };
 // Every run in single-machine order: scene, seed, eye, variant.
 std::vector<RunUnit> ExperimentUnits(size_t scenes, size_t seeds, size_t variants);
-// The block of runs shard `selection` computes: contiguous, sizes differing by at most one.
+// The block [begin, end) of `count` runs that shard `selection` computes: contiguous, sizes
+// differing by at most one.
+std::pair<size_t, size_t> ShardBlock(size_t count, const ShardSelection& selection);
+// The block of runs shard `selection` computes (ShardBlock of all).
 std::vector<RunUnit> ShardUnits(const std::vector<RunUnit>& all, const ShardSelection& selection);
 
 // Mean per-pass denoiser times, mergeable (sums and counts).

@@ -637,13 +637,15 @@ std::string SvgColorBar(int width, const std::vector<std::pair<double, std::stri
 std::string SvgLinePlot(const LinePlot& plot) {
     constexpr double kW = 440, kLeft = 64, kRight = 16, kTop = 34, kPlotH = 170, kAxisH = 34;
     constexpr double kLegendRow = 16, kCharW = 6.4;
-    const bool logY = plot.logY;
+    const bool logY = plot.logY, logX = plot.logX;
     double xMin = std::numeric_limits<double>::infinity(), xMax = -xMin, yMin = xMin, yMax = -xMin;
     auto mapY = [&](double y) { return logY ? std::log10(y) : y; };
+    auto mapX = [&](double x) { return logX ? std::log10(x) : x; };
+    auto skip = [&](double x, double y) { return !std::isfinite(y) || !std::isfinite(x) || (logY && y <= 0) || (logX && x <= 0); };
     for (const PlotSeries& s : plot.series)
         for (const auto& [x, y] : s.points) {
-            if (!std::isfinite(y) || (logY && y <= 0)) continue;
-            xMin = std::min(xMin, x), xMax = std::max(xMax, x);
+            if (skip(x, y)) continue;
+            xMin = std::min(xMin, mapX(x)), xMax = std::max(xMax, mapX(x));
             yMin = std::min(yMin, mapY(y)), yMax = std::max(yMax, mapY(y));
         }
     if (plot.thresholdY && (!logY || *plot.thresholdY > 0) && std::isfinite(yMin)) {
@@ -685,12 +687,17 @@ std::string SvgLinePlot(const LinePlot& plot) {
         kW, kH, kLeft, HtmlEscape(plot.title));
     if (!std::isfinite(xMin))
         return out + fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\">no data</text></svg>", kLeft, kTop + kPlotH / 2);
-    if (xMax == xMin) xMin -= 0.5, xMax += 0.5;
+    if (xMax == xMin) xMin -= logX ? 0.1 : 0.5, xMax += logX ? 0.1 : 0.5;
+    if (logX) {  // keep the end points off the frame
+        const double xPad = 0.05 * (xMax - xMin);
+        xMin -= xPad, xMax += xPad;
+    }
     if (yMax == yMin) yMin -= (yMin == 0 ? 1 : std::abs(yMin) * 0.1), yMax += (yMax == 0 ? 1 : std::abs(yMax) * 0.1);
     const double pad = 0.05 * (yMax - yMin);  // keep lines off the frame
     yMin -= pad, yMax += pad;
     const double pw = kW - kLeft - kRight, ph = kPlotH;
-    auto px = [&](double x) { return kLeft + (x - xMin) / (xMax - xMin) * pw; };
+    auto pxMapped = [&](double m) { return kLeft + (m - xMin) / (xMax - xMin) * pw; };
+    auto px = [&](double x) { return pxMapped(mapX(x)); };
     auto pyMapped = [&](double m) { return kTop + (1 - (m - yMin) / (yMax - yMin)) * ph; };
     auto py = [&](double y) { return pyMapped(mapY(y)); };
     // Frame bands (one frame wide, centred on the frame) for blinks and saccades.
@@ -718,16 +725,16 @@ std::string SvgLinePlot(const LinePlot& plot) {
                            "<text x=\"{4}\" y=\"{5:.1f}\" font-size=\"10\" text-anchor=\"end\">{6}</text>",
                            kLeft, kLeft + pw, y, kLeft - 4, kLeft - 6, y + 3.5, yLabel(t));
     }
-    // X ticks (integers: frames).
-    for (double t : AxisTicks(xMin, xMax, false, 6)) {
-        if (std::abs(t - std::round(t)) > 1e-9) continue;
-        const double x = px(t);
+    // X ticks (integers: frames; on a log axis 1, 2, 5 × 10^k).
+    for (double t : AxisTicks(xMin, xMax, logX, 6)) {
+        if (!logX && std::abs(t - std::round(t)) > 1e-9) continue;
+        const double x = pxMapped(t);
         out += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#666\"/>"
-                           "<text x=\"{0:.1f}\" y=\"{3}\" font-size=\"10\" text-anchor=\"middle\">{4:g}</text>",
-                           x, kTop + ph, kTop + ph + 4, kTop + ph + 15, t);
+                           "<text x=\"{0:.1f}\" y=\"{3}\" font-size=\"10\" text-anchor=\"middle\">{4:.3g}</text>",
+                           x, kTop + ph, kTop + ph + 4, kTop + ph + 15, logX ? std::pow(10.0, t) : t);
     }
-    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"middle\">{}</text>", kLeft + pw / 2,
-                       kTop + ph + 28, HtmlEscape(plot.xLabel));
+    out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"middle\">{}{}</text>", kLeft + pw / 2,
+                       kTop + ph + 28, HtmlEscape(plot.xLabel), logX ? " (log)" : "");
     out += fmt::format("<text x=\"12\" y=\"{0}\" font-size=\"10\" text-anchor=\"middle\" transform=\"rotate(-90 12 {0})\">"
                        "{1}{2}</text>",
                        kTop + ph / 2, HtmlEscape(plot.yLabel), logY ? " (log)" : "");
@@ -736,17 +743,20 @@ std::string SvgLinePlot(const LinePlot& plot) {
                            "stroke-dasharray=\"3,2\"/>",
                            kLeft, kLeft + pw, py(*plot.thresholdY));
     for (double x : plot.markedX)
-        if (x >= xMin && x <= xMax)
+        if (!logX && x >= xMin && x <= xMax)
             out += fmt::format("<path d=\"M{0:.1f},{1} l-4,-7 l8,0 Z\" fill=\"#B00\"><title>frame {2:g}</title></path>",
                                px(x), kTop - 1, x);
     for (size_t k = 0; k < plot.series.size(); ++k) {
-        std::string pts;
+        std::string pts, dots;
         for (const auto& [x, y] : plot.series[k].points) {
-            if (!std::isfinite(y) || (logY && y <= 0)) continue;
+            if (skip(x, y)) continue;
             pts += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
+            if (plot.markers)
+                dots += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"><title>{:.3g}, {:.4g}</title></circle>",
+                                    px(x), py(y), SeriesColor(k), x, y);
         }
         out += fmt::format("<polyline class=\"series\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>",
-                           SeriesColor(k), pts);
+                           SeriesColor(k), pts) + dots;
     }
     out += fmt::format("<g transform=\"translate(0,{:.1f})\">{}</g>", kTop + ph + kAxisH + 12, legend);
     return out + "</svg>";
@@ -782,6 +792,12 @@ std::string RenderHtmlReport(const HtmlReport& report) {
                       HtmlEscape(report.title) + "</title><style>" + kCss + "</style>" + kCheckScript +
                       "</head><body" + lut + ">";
     out += "<h1>" + HtmlEscape(report.title) + "</h1>";
+    for (const ReportTable& t : report.headline) out += TableHtml(t);
+    if (!report.plots.empty()) {
+        out += "<div class=\"plots\">";
+        for (const std::string& plot : report.plots) out += plot;
+        out += "</div>";
+    }
     out += fmt::format(
         "<p class=\"note\">relMSE = mean((y−r)²/(r²+ε)) per channel on HDR, ε = {:g}. SSIM (Wang 2004, 11×11 "
         "Gaussian σ = 1.5, K1 = 0.01, K2 = 0.03) on the luma of the tonemapped image (clamp to [0,1], sRGB "

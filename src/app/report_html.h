@@ -85,6 +85,9 @@ struct HtmlReport {
     std::string baseline;                    // "" = each scene's first variant
     std::vector<SceneVisuals> scenes;
     std::vector<ReportTable> tables;  // memory table, per-pass timings, ...
+    // At the top, under the title: the headline tables, then figures (inline SVG, e.g. SvgLinePlot).
+    std::vector<ReportTable> headline;
+    std::vector<std::string> plots;
 };
 
 std::string RenderHtmlReport(const HtmlReport& report);
@@ -128,6 +131,8 @@ struct LinePlot {
     std::string yLabel;
     std::vector<PlotSeries> series;
     bool logY = false;                    // plots log10(y); non-positive values are skipped
+    bool logX = false;                    // plots log10(x) (ticks at 1, 2, 5 × 10^k); x ≤ 0 is skipped
+    bool markers = false;                 // a dot at every point (sparse data: a sweep's curves)
     std::vector<double> blinkX, saccadeX; // x of blink / saccade frames: shaded bands
     std::vector<double> markedX;          // x of outlier frames: a marker above the plot
     std::optional<double> thresholdY;     // a dashed horizontal line (e.g. the saccade speed)

@@ -712,7 +712,8 @@ std::string ExperimentTable::Origin(const std::string& key) const {
 RunConfig ResolveExperimentConfig(const ConfigOptions& options, bool quick, ExperimentTable& experiment) {
     ConfigOptions resolved = options;
     resolved.ignoredTables.push_back("experiment");
-    if (quick) resolved.overlayTables.push_back("experiment.quick");
+    // --quick first: a command's own overlays (a sampling design) go over it.
+    if (quick) resolved.overlayTables.insert(resolved.overlayTables.begin(), "experiment.quick");
     Origins origins;
     std::string sources;
     toml::table root = ResolveTable(resolved, origins, sources);

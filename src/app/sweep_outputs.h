@@ -1,0 +1,62 @@
+// The outputs of a sampling-design sweep (app/design_sweep.h), from every point's results:
+//   curves.csv     one row per (scene, variant, design, budget, seed): the measured traced path
+//                  samples per pixel (whole, fovea, periphery), JOD and its two channels, whole and
+//                  foveal relMSE, foveal flicker: the rate–quality curves' data
+//   summary.json   per design its keys and per point the measured sampling and the means; per
+//                  (scene, variant, design) the rays saved at equal JOD against the anchor design
+//                  and the JOD gain at equal rays, each with its seed-bootstrap interval
+//                  (metrics/rate_quality.h)
+//   report.html    the headline table, then JOD against rays per (scene, variant), one curve per
+//                  design, and the points table; each point's own report is in designs/<point>/
+//   manifest.json  the sweep (designs, budgets, anchor, points), scenes, variants, seeds, build, time
+// and the headline table on stdout.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/experiment.h"
+#include "app/experiment_vdp.h"
+#include "metrics/rate_quality.h"
+
+namespace fovrt {
+
+// What the sweep keeps of one point.
+struct SweepPointResult {
+    size_t point = 0;                                          // index into SamplingSweep::points
+    std::vector<std::string> scenes;                           // scene labels, in experiment order
+    std::map<std::string, std::array<double, 3>> tracedSpp;    // label -> whole, fovea, periphery
+    Results results;
+    std::vector<VdpScore> vdp;
+};
+
+// One (scene, variant) at one point, per run seed (the experiment's seeds, in order).
+struct SweepPointValues {
+    std::array<double, 3> tracedSpp{};  // measured over every seed: whole, fovea, periphery
+    std::vector<double> jod, jodSustained, jodTransient;  // mean over the eyes
+    std::vector<double> relmseWhole, relmseFovea, flickerFovea;  // mean over frames and eyes
+};
+SweepPointValues PointValues(const SweepPointResult& point, const std::string& scene, const std::string& variant,
+                             const std::vector<uint32_t>& seeds);
+
+// A design's curve against the anchor's for one (scene, variant).
+struct RaysSavedRow {
+    std::string scene, variant, design;
+    BjontegaardInterval raysSaved;  // anchor rays / design rays at equal JOD
+    BjontegaardInterval jodGain;    // design JOD − anchor JOD at equal rays
+};
+// Every design but the anchor against the anchor, per scene and variant (none without an anchor
+// or with fewer than two budgets).
+std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points);
+
+// The headline table as text: scene, variant, design, rays saved and JOD gain with intervals.
+std::string RaysSavedTable(const ExperimentSpec& spec, const std::vector<RaysSavedRow>& rows);
+
+void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points,
+                       const std::filesystem::path& outDir, std::chrono::steady_clock::time_point start);
+
+}  // namespace fovrt
