@@ -1,0 +1,163 @@
+// Sampling designs as an experiment axis (app/sampling_designs.h, app/sweep_outputs.h): the points
+// an experiment file's designs and budgets make, every refusal naming the design and key, and the
+// rays saved computed from the points' scores, on synthetic curves whose answer is known in closed
+// form.
+#include <cmath>
+#include <filesystem>
+
+#include <catch2/catch.hpp>
+
+#include "app/experiment.h"
+#include "app/sweep_outputs.h"
+#include "app_test_configs.h"
+#include "config/config_cli.h"
+#include "core/error.h"
+#include "test_support.h"
+
+using namespace fovrt;
+namespace fs = std::filesystem;
+
+namespace {
+
+ConfigOptions DesignOptions(const std::string& name, const std::string& lines) {
+    return test::SmallExperimentOptions(test::ScratchDir("fovrt_designs") / name, {.experimentLines = lines});
+}
+
+std::string LoadError(const ConfigOptions& options, const ExperimentArgs& args = {}) {
+    try {
+        (void)LoadExperiment(options, args);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+constexpr const char* kTwoDesigns =
+    "budgets = [2.5, 1]\n"
+    "[experiment.designs.zeta]\n"
+    "foveation.model = \"uniform\"\n"
+    "[experiment.designs.alpha]\n"
+    "foveation = { model = \"disc\", spp_inside = 6 }\n"
+    "gaze.tracker_latency_ms = 40\n";
+
+}  // namespace
+
+TEST_CASE("designs × budgets: the points, in the file's order, each the experiment with its design and budget",
+          "[app][designs]") {
+    const ExperimentSpec spec = LoadExperiment(DesignOptions("points", kTwoDesigns));
+    const SamplingSweep& sweep = spec.sweep;
+    REQUIRE(sweep.Active());
+    REQUIRE(sweep.designs.size() == 2);
+    CHECK(sweep.designs[0].name == "zeta");  // the file's order, not the alphabet's
+    CHECK(sweep.designs[1].name == "alpha");
+    CHECK(sweep.budgets == std::vector<double>{1.0, 2.5});
+    REQUIRE(sweep.anchor);
+    CHECK(*sweep.anchor == 0);  // the one uniform design
+    REQUIRE(sweep.points.size() == 4);
+    CHECK(sweep.points[0].label == "zeta-b1");
+    CHECK(sweep.points[1].label == "zeta-b2.5");
+    CHECK(sweep.points[3].label == "alpha-b2.5");
+    const int64_t pixels = 32 * 18;
+    CHECK(sweep.points[0].config.foveation.rayBudget == pixels);
+    CHECK(sweep.points[1].config.foveation.rayBudget == std::llround(2.5 * pixels));
+    CHECK(sweep.points[1].config.foveation.model == "uniform");
+    CHECK(sweep.points[3].config.foveation.model == "disc");
+    CHECK(sweep.points[3].config.foveation.sppInside == 6);
+    CHECK(sweep.points[3].config.gaze.tracker.latencyMs == 40.0);
+    CHECK(sweep.points[1].config.gaze.tracker.latencyMs == 0.0);  // a design's keys stay in it
+    // Everything else is the experiment's, denoisers included.
+    CHECK(sweep.points[2].config.camera.width == spec.config.camera.width);
+    CHECK(sweep.points[2].config.denoise.denoisers == spec.variants);
+    // The experiment's own config keeps no budget.
+    CHECK(spec.config.foveation.rayBudget == 0);
+}
+
+TEST_CASE("a design's keys go over [experiment.quick]; run_designs picks some", "[app][designs]") {
+    const ConfigOptions options = DesignOptions("quick", std::string(kTwoDesigns) +
+                                                             "[experiment.quick.foveation]\nspp_inside = 3\n"
+                                                             "[experiment.quick.experiment]\nrun_designs = [\"alpha\"]\n");
+    const ExperimentSpec full = LoadExperiment(options);
+    CHECK(full.sweep.points.size() == 4);
+    ExperimentArgs args;
+    args.quick = true;
+    const ExperimentSpec quick = LoadExperiment(options, args);
+    REQUIRE(quick.sweep.points.size() == 2);
+    CHECK(quick.sweep.points[0].label == "alpha-b1");
+    CHECK(quick.sweep.points[0].config.foveation.sppInside == 6);
+    CHECK_FALSE(quick.sweep.anchor);  // the uniform design does not run
+}
+
+TEST_CASE("a bad design is refused in one line naming the design and key", "[app][designs]") {
+    using Catch::Matchers::Contains;
+    CHECK_THAT(LoadError(DesignOptions("bad-key", "[experiment.designs.d]\nrender.max_depth = 3\n")),
+               Contains("experiment.designs.d.render.max_depth") && Contains("[foveation]"));
+    CHECK_THAT(LoadError(DesignOptions("gaze-source", "[experiment.designs.d]\ngaze.source = \"static\"\n")),
+               Contains("experiment.designs.d.gaze.source"));
+    CHECK_THAT(LoadError(DesignOptions("budget-key", "budgets = [1, 2]\n[experiment.designs.d]\nfoveation.ray_budget = 900\n")),
+               Contains("experiment.designs.d.foveation.ray_budget") && Contains("experiment.budgets"));
+    CHECK_THAT(LoadError(DesignOptions("bad-value", "[experiment.designs.d]\nfoveation.spp_inside = 99\n")),
+               Contains("experiment.designs.d") && Contains("foveation.spp_inside"));
+    CHECK_THAT(LoadError(DesignOptions("infeasible", "budgets = [20]\n[experiment.designs.d]\nfoveation.model = \"uniform\"\n")),
+               Contains("experiment.budgets"));
+    CHECK_THAT(LoadError(DesignOptions("no-designs", "budgets = [1, 2]\n")), Contains("experiment.budgets needs experiment.designs"));
+    CHECK_THAT(LoadError(DesignOptions("anchor", "anchor_design = \"omega\"\n" + std::string(kTwoDesigns))),
+               Contains("experiment.anchor_design"));
+    CHECK_THAT(LoadError(DesignOptions("run", "run_designs = [\"omega\"]\n" + std::string(kTwoDesigns))),
+               Contains("experiment.run_designs") && Contains("omega"));
+    ConfigOptions set = DesignOptions("set", kTwoDesigns);
+    set.sets = {"foveation.spp_inside=4"};
+    CHECK_THAT(LoadError(set), Contains("--set foveation.spp_inside=4") && Contains("experiment.designs.alpha"));
+    ConfigOptions noVdp = DesignOptions("no-vdp", kTwoDesigns);
+    noVdp.sets = {"metric.vdp=false"};
+    CHECK_THAT(LoadError(noVdp), Contains("metric.vdp"));
+}
+
+namespace {
+
+// A point of a synthetic sweep: every seed's JOD from `jod(rays, seed)` on one scene and variant,
+// sampled as measured at `rays`.
+SweepPointResult SyntheticPoint(size_t index, double rays, const std::function<double(double, uint32_t)>& jod) {
+    SweepPointResult p;
+    p.point = index;
+    p.scenes = {"room"};
+    p.tracedSpp["room"] = {rays, rays, rays};
+    for (uint32_t seed : {1u, 2u, 3u})
+        for (int eye = 0; eye < 2; ++eye) p.vdp.push_back({"room", seed, eye, "svgf", jod(rays, seed), 9.0, 9.5});
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("rays saved from the points: a design that reaches each JOD with half the rays saves 2×", "[app][designs]") {
+    // JOD = 7 + 0.8 ln(rays) (+ a per-seed offset that cancels in the paired bootstrap) for uniform;
+    // the foveated design scores as uniform does with twice its rays: rays saved exactly 2, JOD gain
+    // 0.8 ln 2 at every rate.
+    ExperimentSpec spec = LoadExperiment(DesignOptions("closed-form",
+                                                       "budgets = [1, 2, 4, 8]\n"
+                                                       "[experiment.designs.uniform]\nfoveation.model = \"uniform\"\n"
+                                                       "[experiment.designs.fov]\nfoveation.model = \"linear\"\n"));
+    spec.seeds = {1, 2, 3};
+    spec.variants = {"svgf"};
+    auto uniform = [](double rays, uint32_t seed) { return 7.0 + 0.8 * std::log(rays) + 0.01 * seed; };
+    auto foveated = [&](double rays, uint32_t seed) { return uniform(2.0 * rays, seed); };
+    std::vector<SweepPointResult> points;
+    for (size_t i = 0; i < spec.sweep.points.size(); ++i) {
+        const SweepPoint& point = spec.sweep.points[i];
+        points.push_back(SyntheticPoint(i, *point.budgetSpp, point.design == 0 ? std::function(uniform) : std::function(foveated)));
+    }
+    const std::vector<RaysSavedRow> rows = SweepRaysSaved(spec, points);
+    REQUIRE(rows.size() == 1);
+    CHECK(rows[0].design == "fov");
+    REQUIRE(rows[0].raysSaved.estimate.Ok());
+    CHECK(rows[0].raysSaved.estimate.value == Approx(2.0).epsilon(1e-3));
+    CHECK(rows[0].jodGain.estimate.value == Approx(0.8 * std::log(2.0)).epsilon(1e-3));
+    CHECK(rows[0].raysSaved.lower <= 2.0 + 1e-6);
+    CHECK(rows[0].raysSaved.upper >= 2.0 - 1e-6);
+    const std::string table = RaysSavedTable(spec, rows);
+    CHECK_THAT(table, Catch::Matchers::Contains("2.00×"));
+
+    const SweepPointValues values = PointValues(points[1], "room", "svgf", spec.seeds);
+    CHECK(values.jod.size() == 3);
+    CHECK(values.jod[1] == Approx(uniform(2.0, 2)));
+    CHECK(values.tracedSpp[0] == 2.0);
+}

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The foveation study's quick form end to end (presets/foveation-study.toml --quick), run by ctest
+# as app_foveation_study: two sampling designs at three budgets on the room, every point a whole
+# experiment; the rays-saved table printed with a value and its interval; curves.csv with one row
+# per (design, budget, seed) and the measured rays equal to each budget; summary.json's rays saved
+# matching the table; the report's JOD-against-rays plot; two shards and a merge give the same
+# curves and summary as the single run.
+# Usage: foveation_study_check.sh FOVRT SOURCE_DIR WORK_DIR
+set -uo pipefail
+. "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
+fovrt=$(realpath "$1"); src=$(realpath "$2"); work=$(realpath -m "$3")
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+passed=0; failed=0
+ok() { echo "ok: $1"; passed=$((passed + 1)); }
+bad() { echo "FAIL: $1"; failed=$((failed + 1)); }
+preset=$src/presets/foveation-study.toml
+args=(--quick --set reference.cache_dir="\"$work/cache\"")
+
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=single > single.txt 2> single.err \
+  || bad "quick study: $(tail -2 single.err)"
+cat single.txt
+grep -q "Rays saved at equal perceived quality against 'uniform'" single.txt && ok "the rays-saved table is printed" \
+  || bad "no rays-saved table"
+# room svgf disc 0.79× [0.75, 0.82] ...: a ratio with an interval
+grep -Eq '^  room +svgf +disc +[0-9]+\.[0-9]+× \[[0-9]+\.[0-9]+, [0-9]+\.[0-9]+\]' single.txt \
+  && ok "rays saved for disc has a value and an interval" || bad "no rays-saved value: $(grep room single.txt)"
+
+rows=$(($(wc -l < single/curves.csv) - 1))
+[[ $rows -eq 12 ]] && ok "curves.csv: 12 rows (2 designs × 3 budgets × 2 seeds)" || bad "curves.csv rows: $rows"
+# Measured rays: the budget, met by every design (the budget model meets it within a few samples).
+python3 - single/curves.csv <<'PY' && ok "measured traced spp equals each budget" || bad "measured spp off the budget"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+off = [(r["design"], r["budget_spp"], r["traced_spp_whole"]) for r in rows
+       if abs(float(r["traced_spp_whole"]) - float(r["budget_spp"])) > 0.01 * float(r["budget_spp"])]
+sys.exit(1 if off or not rows else 0)
+PY
+python3 - single/summary.json single.txt <<'PY' && ok "summary.json's rays saved is the table's" || bad "summary.json rays saved"
+import json, re, sys
+s = json.load(open(sys.argv[1]))
+r = s["designs"]["disc"]["rays_saved"]["room"]["svgf"]
+shown = re.search(r"disc +([0-9.]+)× \[([0-9.]+), ([0-9.]+)\]", open(sys.argv[2]).read())
+ok = s["anchor_design"] == "uniform" and r["lower"] <= r["value"] <= r["upper"] and shown \
+     and all(abs(float(shown.group(i + 1)) - v) < 0.006 for i, v in enumerate([r["value"], r["lower"], r["upper"]]))
+ok = ok and set(s["designs"]["uniform"]["points"][0]["traced_spp"]["room"]) == {"whole", "fovea", "periphery"}
+sys.exit(0 if ok else 1)
+PY
+grep -q "room · svgf: JOD against rays" single/report.html && [[ $(grep -o "<circle" single/report.html | wc -l) -ge 6 ]] \
+  && ok "the report plots JOD against rays, a marker per point" || bad "report plot"
+[[ -f single/designs/disc-b2/summary.json && -f single/designs/uniform-b4/frames-room.csv ]] \
+  && ok "every point's own outputs under designs/" || bad "point outputs: $(ls single/designs)"
+
+for i in 0 1; do
+  "$fovrt" experiment "$preset" "${args[@]}" --set output.dir=sharded --shard $i/2 > /dev/null 2> shard$i.err \
+    || bad "shard $i/2: $(tail -2 shard$i.err)"
+done
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=sharded --merge > merged.txt 2> merge.err \
+  || bad "merge: $(tail -2 merge.err)"
+cmp single/curves.csv sharded/curves.csv && cmp single/summary.json sharded/summary.json \
+  && ok "two shards and a merge: curves.csv and summary.json identical to the single run" || bad "merged sweep differs"
+diff <(grep -v "HTML report" single.txt) <(grep -v "HTML report" merged.txt) > /dev/null && ok "merged table identical" \
+  || bad "merged table differs"
+
+# Refusals name the design and key.
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=bad --set experiment.designs.disc.render.spp=3 \
+  > /dev/null 2> bad.err && bad "a design with a render key ran" \
+  || { grep -q "experiment.designs.disc.render.spp" bad.err && ok "a design's foreign key is refused: $(tail -1 bad.err)" \
+       || bad "foreign key message: $(tail -1 bad.err)"; }
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=bad --set foveation.spp_inside=4 \
+  > /dev/null 2> bad.err && bad "--set of a design's key ran" \
+  || { grep -q "experiment.designs.disc" bad.err && ok "--set of a design's key is refused" || bad "set message: $(tail -1 bad.err)"; }
+
+echo "passed $passed, failed $failed"
+finish "$failed"
