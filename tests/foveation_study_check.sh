@@ -35,6 +35,17 @@ off = [(r["design"], r["budget_spp"], r["traced_spp_whole"]) for r in rows
        if abs(float(r["traced_spp_whole"]) - float(r["budget_spp"])) > 0.01 * float(r["budget_spp"])]
 sys.exit(1 if off or not rows else 0)
 PY
+# At 1 spp every design samples uniformly: the same inputs, so the same scores, foveal ones
+# included (every design is scored in the experiment's own fovea, not its own).
+python3 - single/curves.csv <<'PY' && ok "at 1 spp disc scores exactly as uniform, fovea included" || bad "disc at 1 spp differs from uniform"
+import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["budget_spp"] == "1"]
+key = lambda r: r["seed"]
+u = {key(r): r for r in rows if r["design"] == "uniform"}
+d = {key(r): r for r in rows if r["design"] == "disc"}
+cols = ["jod", "relmse_whole", "relmse_fovea", "flicker_fovea", "traced_spp_fovea"]
+sys.exit(0 if u and u.keys() == d.keys() and all(u[k][c] == d[k][c] for k in u for c in cols) else 1)
+PY
 python3 - single/summary.json single.txt <<'PY' && ok "summary.json's rays saved is the table's" || bad "summary.json rays saved"
 import json, re, sys
 s = json.load(open(sys.argv[1]))
@@ -47,6 +58,12 @@ sys.exit(0 if ok else 1)
 PY
 grep -q "room · svgf: JOD against rays" single/report.html && [[ $(grep -o "<circle" single/report.html | wc -l) -ge 6 ]] \
   && ok "the report plots JOD against rays, a marker per point" || bad "report plot"
+if command -v chromium > /dev/null 2>&1 || command -v chromium-browser > /dev/null 2>&1; then
+  bash "$src/scripts/report-check.sh" single/report.html dom.html 2> browser.err \
+    && ok "the sweep's report draws every figure in headless Chromium" || bad "browser check: $(tail -3 browser.err)"
+else
+  skip_part "chromium is not installed: the sweep's report was not opened in a browser"
+fi
 [[ -f single/designs/disc-b2/summary.json && -f single/designs/uniform-b4/frames-room.csv ]] \
   && ok "every point's own outputs under designs/" || bad "point outputs: $(ls single/designs)"
 

@@ -22,6 +22,7 @@ ExperimentSpec PointSpec(const ExperimentSpec& spec, const SweepPoint& point) {
     ExperimentSpec p = spec;
     p.config = point.config;
     p.sweep = {};
+    p.scoredFoveation = spec.config.foveation;  // one fovea for every design
     return p;
 }
 

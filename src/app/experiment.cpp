@@ -330,10 +330,13 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
 
         const int visualFrame =
             spec.visualFrame >= 0 ? spec.visualFrame : int(LastFrameOf(config, replay ? &*replay : nullptr));
-        ExperimentScoring scoring(config, record, part, visualFrame);
-        ReportVisuals visuals(config, loop, record, visualFrame);
+        // The fovea the errors and measured sampling are taken in (a sweep's points share one).
+        RunConfig scored = config;
+        if (spec.scoredFoveation) scored.foveation = *spec.scoredFoveation;
+        ExperimentScoring scoring(scored, record, part, visualFrame);
+        ReportVisuals visuals(scored, loop, record, visualFrame);
         PassCosts costs(record, part, progress, seeds.size() > 1);
-        TracedSamples traced(config, record);
+        TracedSamples traced(scored, record);
         std::optional<ExperimentExr> exr;
         loop.Attach(visuals);
         loop.Attach(scoring);

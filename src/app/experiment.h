@@ -49,6 +49,10 @@ struct ExperimentSpec {
     // experiment.designs / budgets: every point runs the whole experiment above with its own
     // sampling (app/sampling_designs.h); inactive when the file names no designs.
     SamplingSweep sweep;
+    // The foveation whose fovea the errors and the measured sampling are taken in (MetricFovea);
+    // none: config.foveation's. A sweep's points take the experiment's own, so every design is
+    // scored in the same fovea.
+    std::optional<FoveationParams> scoredFoveation;
 };
 
 // The command line of `fovrt experiment` beyond the config options.

@@ -359,6 +359,11 @@ std::string ExperimentFingerprint(const ExperimentSpec& spec) {
     j["config"].erase("output");
     j["config"]["reference"].erase("cache_dir");
     j["config"]["run"].erase("threads");
+    if (spec.scoredFoveation) {  // a sweep's point: scored in the experiment's fovea
+        RunConfig scored = spec.config;
+        scored.foveation = *spec.scoredFoveation;
+        j["scored_foveation"] = ConfigToJson(scored)["foveation"];
+    }
     return HashHex(j.dump());
 }
 

@@ -798,7 +798,9 @@ std::string RenderHtmlReport(const HtmlReport& report) {
         for (const std::string& plot : report.plots) out += plot;
         out += "</div>";
     }
-    out += fmt::format(
+    // The metrics' definitions, where the page shows them (a sweep's page links to its points').
+    if (report.results || !report.scenes.empty())
+        out += fmt::format(
         "<p class=\"note\">relMSE = mean((y−r)²/(r²+ε)) per channel on HDR, ε = {:g}. SSIM (Wang 2004, 11×11 "
         "Gaussian σ = 1.5, K1 = 0.01, K2 = 0.03) on the luma of the tonemapped image (clamp to [0,1], sRGB "
         "encode). FLIP: LDR-FLIP on the same tonemap at the eye's pixels per degree. Temporal error (SVGF §5.4): "
