@@ -1,6 +1,7 @@
-// DenoiserBuffers: the GPU buffers of one plan-driven Vulkan denoiser, one per buffer of its memory
-// plan (so `fovrt memory` lists exactly what exists), addressed by typed BufferKey
-// (denoise/planes.h); clearing them on a reset; synchronous read-backs for tests and debug views.
+// DenoiserBuffers: the GPU buffers of one plan-driven Vulkan denoiser, one per allocation of its
+// memory plan (so `fovrt memory` lists exactly what exists), its planes addressed by typed
+// BufferKey (denoise/planes.h), several transient planes in one slot of the transient pool;
+// clearing them on a reset; synchronous read-backs for tests and debug views.
 #pragma once
 
 #include <map>
@@ -20,10 +21,16 @@ public:
     // `owner` names the denoiser in error messages.
     explicit DenoiserBuffers(std::string owner = "vulkan denoiser") : owner_(std::move(owner)) {}
 
-    // Replaces every buffer by the plan's (plan.bufferKeys); staging planes are host-visible.
+    // Replaces every buffer by the plan's allocations (plan.buffers) and places its planes
+    // (plan.planes) in them; staging planes are host-visible.
     void Allocate(VulkanContext& context, const DenoiserPlan& plan);
+    // The buffer that holds a plane (a pool slot may be larger than the plane: see Bytes).
     Buffer& operator[](const BufferKey& key);
-    void Release() { buffers_.clear(); }  // e.g. before descriptor layouts change
+    size_t Bytes(const BufferKey& key) const;  // the plane's own size
+    void Release() {  // e.g. before descriptor layouts change
+        planes_.clear();
+        allocations_.clear();
+    }
 
     // Drops every history: each device buffer to its plane's ClearValue (background object ids,
     // so nothing reprojects; 0 elsewhere).
@@ -40,9 +47,15 @@ public:
                    size_t scalarBytes, Plane<float>& out);
 
 private:
-    std::vector<uint8_t> Read(VulkanContext& context, Buffer& src);
+    struct Placement {
+        size_t allocation = 0;
+        size_t bytes = 0;
+    };
+    const Placement& Find(const BufferKey& key) const;
+    std::vector<uint8_t> Read(VulkanContext& context, Buffer& src, size_t bytes);
     std::string owner_;
-    std::map<BufferKey, Buffer> buffers_;
+    std::vector<Buffer> allocations_;
+    std::map<BufferKey, Placement> planes_;
 };
 
 // Per-pass GPU timings of the last submitted frame.
