@@ -140,6 +140,17 @@ void PlaceInTransientPool(DenoiserPlan& plan) {
         plan.buffers.push_back({fmt::format("transient.{}", s), slots[s].bytes, false, true});
 }
 
+bool HeldAfterFrame(const DenoiserPlan& plan, const BufferKey& key) {
+    const std::map<BufferKey, PlaneLifetime> lifetimes = PlaneLifetimes(plan);
+    const PlanePlacement* self = nullptr;
+    for (const PlanePlacement& p : plan.planes)
+        if (p.key == key) self = &p;
+    FOVRT_CHECK(self != nullptr);
+    for (const PlanePlacement& p : plan.planes)
+        if (p.allocation == self->allocation && lifetimes.at(p.key).first > lifetimes.at(key).first) return false;
+    return true;
+}
+
 size_t PeakLiveTransientBytes(const DenoiserPlan& plan) {
     const std::map<BufferKey, PlaneLifetime> lifetimes = PlaneLifetimes(plan);
     std::map<int, size_t> live;  // epoch → bytes (only epochs where a lifetime starts can peak)

@@ -34,6 +34,10 @@ std::map<BufferKey, PlaneLifetime> PlaneLifetimes(const DenoiserPlan& plan);
 // goes, in order of first write, to the free slot it grows least.
 void PlaceInTransientPool(DenoiserPlan& plan);
 
+// Whether a plane still holds this frame's value once the frame ends: false when a plane written
+// later shares its slot (read-backs of such a plane would read the later one).
+bool HeldAfterFrame(const DenoiserPlan& plan, const BufferKey& key);
+
 // The most bytes of transient planes live in one epoch: the floor of any pool for the plan.
 size_t PeakLiveTransientBytes(const DenoiserPlan& plan);
 

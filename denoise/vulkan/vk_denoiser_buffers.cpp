@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "denoise/transient_pool.h"
 
 namespace fovrt {
 
@@ -15,7 +16,7 @@ void DenoiserBuffers::Allocate(VulkanContext& context, const DenoiserPlan& plan)
     for (const PlanePlacement& p : plan.planes) {
         FOVRT_CHECK(p.allocation < plan.buffers.size() && p.bytes <= plan.buffers[p.allocation].bytes);
         staging[p.allocation] = staging[p.allocation] || IsStaging(p.key.id.kind);
-        planes_[p.key] = {p.allocation, p.bytes};
+        planes_[p.key] = {p.allocation, p.bytes, HeldAfterFrame(plan, p.key)};
     }
     for (size_t i = 0; i < plan.buffers.size(); ++i) {
         const BufferPlan& b = plan.buffers[i];
@@ -52,13 +53,22 @@ std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, Buffer& src, 
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const BufferKey& key) {
-    return Read(context, (*this)[key], Bytes(key));
+    const Placement& p = Find(key);
+    if (!p.heldAfterFrame)
+        Fail("{}: '{}' is gone after the frame (a later plane reused its transient slot)", owner_, BufferName(key));
+    return Read(context, allocations_[p.allocation], p.bytes);
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const std::string& name) {
     for (const auto& [key, placement] : planes_)
-        if (BufferName(key) == name) return Read(context, allocations_[placement.allocation], placement.bytes);
+        if (BufferName(key) == name) return Read(context, key);
     Fail("{}: no buffer '{}' in the memory plan", owner_, name);
+}
+
+bool DenoiserBuffers::Readable(const std::string& name) const {
+    for (const auto& [key, placement] : planes_)
+        if (BufferName(key) == name) return placement.heldAfterFrame;
+    return false;
 }
 
 std::vector<float> DenoiserBuffers::ReadFloats(VulkanContext& context, const BufferKey& key, size_t scalarBytes) {

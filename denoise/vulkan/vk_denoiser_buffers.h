@@ -36,9 +36,11 @@ public:
     // so nothing reprojects; 0 elsewhere).
     void RecordClear(CommandRecorder& rec);
 
-    // Synchronous read-back of one buffer, by key or by its printed name (tests).
+    // Synchronous read-back of one buffer, by key or by its printed name (tests), after a frame:
+    // fails for a transient plane whose slot a later plane of the frame reused.
     std::vector<uint8_t> Read(VulkanContext& context, const BufferKey& key);
     std::vector<uint8_t> Read(VulkanContext& context, const std::string& name);
+    bool Readable(const std::string& name) const;  // a plane of the plan that Read() accepts
     // The same as floats, stored with `scalarBytes` per scalar: 2 for fp16 history storage, 4
     // otherwise (HistoryScalarBytes of the plan's precision for history planes).
     std::vector<float> ReadFloats(VulkanContext& context, const BufferKey& key, size_t scalarBytes);
@@ -50,6 +52,7 @@ private:
     struct Placement {
         size_t allocation = 0;
         size_t bytes = 0;
+        bool heldAfterFrame = true;  // no plane written later shares its slot (HeldAfterFrame)
     };
     const Placement& Find(const BufferKey& key) const;
     std::vector<uint8_t> Read(VulkanContext& context, Buffer& src, size_t bytes);
