@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "denoise/rae_weights.h"
 #include "denoise/svgf_family_plan.h"
@@ -46,14 +48,21 @@ void ForEachPlaneRef(const Command& command, F&& f) {
 }
 
 // The memory plan: every plane a command names (a history: both sides), in plane-table order,
-// sized by its row (a staging plane by the transfers routed through it), marked when the host
+// sized by its row (a staging plane by the larger of its uploads and its downloads), marked when the host
 // reads it after the frame; then placed: permanent planes in buffers of their own, the others in
 // the transient pool.
 void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent, const std::set<BufferKey>& readAfterFrame) {
     std::set<BufferKey> keys;
-    std::map<PlaneKind, size_t> transfers;
+    // Per staging plane the bytes of its uploads and of its downloads: the host writes every
+    // upload before the frame is submitted, and the downloads land in the same room after a
+    // barrier every frame records has ordered them behind the uploads' copies.
+    std::map<PlaneKind, size_t> uploads, downloads;
+    bool barrierSinceUpload = true;
     for (const PlannedPass& pass : plan.passes)
         for (const Command& command : pass.commands) {
+            if (std::holds_alternative<BarrierCommand>(command.op) && pass.when == When::Always &&
+                command.when == When::Always)
+                barrierSinceUpload = true;
             ForEachPlaneRef(command, [&](const PlaneRef& ref) {
                 if (IsHistory(ref.id.kind)) {
                     keys.insert({ref.id, BufferSide::A});
@@ -62,15 +71,20 @@ void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent, const std::set<
                     keys.insert({ref.id, BufferSide::None});
                 }
             });
-            if (const auto* up = std::get_if<UploadCommand>(&command.op))
-                transfers[up->staging] += StagingAlign(PlaneBytes(up->to.id.kind, extent));
-            if (const auto* down = std::get_if<DownloadCommand>(&command.op))
-                transfers[down->staging] += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+            if (const auto* up = std::get_if<UploadCommand>(&command.op)) {
+                FOVRT_CHECK(downloads.empty());  // every upload before the first download
+                uploads[up->staging] += StagingAlign(PlaneBytes(up->to.id.kind, extent));
+                barrierSinceUpload = false;
+            }
+            if (const auto* down = std::get_if<DownloadCommand>(&command.op)) {
+                FOVRT_CHECK(barrierSinceUpload);
+                downloads[down->staging] += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+            }
         }
     for (const BufferKey& key : keys) {
         const PlaneKind kind = key.id.kind;
         const size_t planeBytes = PlaneBytes(kind, extent);
-        const size_t bytes = IsStaging(kind) && planeBytes == 0 ? transfers[kind] : planeBytes;
+        const size_t bytes = IsStaging(kind) && planeBytes == 0 ? std::max(uploads[kind], downloads[kind]) : planeBytes;
         plan.planes.push_back({key, bytes, 0, readAfterFrame.count(key) > 0});
     }
     PlaceInTransientPool(plan);

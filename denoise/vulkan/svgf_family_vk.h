@@ -55,7 +55,9 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
         const FrameInputs& inputs;
         FrameConditions conditions;
         uint32_t gradientSamples;
-        std::map<PlaneKind, size_t> stagingOffsets;   // next free offset per staging plane
+        std::map<PlaneKind, size_t> stagingOffsets;   // next free offset per staging plane: uploads
+        std::map<PlaneKind, size_t> downloadEnd;      // … downloads, from 0 again (the plan orders
+                                                      // them behind the uploads' copies)
         std::map<PlaneKind, size_t> downloadOffsets;  // where each downloaded plane landed
     };
     // A planned dispatch, ready to record: its pipeline and its set per history parity.
