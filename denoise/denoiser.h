@@ -26,6 +26,8 @@ struct BufferPlan {
     std::string name;
     size_t bytes = 0;
     bool history = false;   // persists across frames (vs. per-frame scratch)
+    bool transient = false; // a slot of the transient pool: planes that live only within a frame,
+                            // at times that do not overlap (else a plane's own buffer)
 };
 
 struct DenoiseStats {

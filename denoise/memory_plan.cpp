@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "denoise/pass_plan.h"
+#include "denoise/transient_pool.h"
 
 namespace fovrt {
 
@@ -38,6 +39,13 @@ size_t HistoryBytes(const std::vector<BufferPlan>& plan) {
     return total;
 }
 
+size_t TransientBytes(const std::vector<BufferPlan>& plan) {
+    size_t total = 0;
+    for (const auto& b : plan)
+        if (b.transient) total += b.bytes;
+    return total;
+}
+
 void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes, const std::string& what) {
     if (budgetBytes == 0) return;
     size_t total = TotalBytes(plan);
@@ -51,15 +59,26 @@ void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes
          budgetBytes, what, total, total / 1048576.0, largest);
 }
 
-std::string FormatMemoryPlan(const std::vector<BufferPlan>& plan, int width, int height) {
+std::string FormatMemoryPlan(const DenoiserPlan& plan, int width, int height) {
     const double pixels = double(width) * double(height);
+    auto row = [&](const std::string& name, size_t bytes, const char* kind) {
+        return fmt::format("{:<28} {:>14} {:>10.2f} {}\n", name, bytes, bytes / pixels, kind);
+    };
     std::string out = fmt::format("{:<28} {:>14} {:>10} {}\n", "buffer", "bytes", "B/pixel", "kind");
-    for (const auto& b : plan)
-        out += fmt::format("{:<28} {:>14} {:>10.2f} {}\n", b.name, b.bytes, b.bytes / pixels,
-                           b.history ? "history" : "scratch");
-    size_t total = TotalBytes(plan), hist = HistoryBytes(plan);
-    out += fmt::format("{:<28} {:>14} {:>10.2f}\n", "history total", hist, hist / pixels);
-    out += fmt::format("{:<28} {:>14} {:>10.2f}\n", "total", total, total / pixels);
+    for (size_t i = 0; i < plan.buffers.size(); ++i) {
+        const BufferPlan& b = plan.buffers[i];
+        out += row(b.name, b.bytes, b.history ? "history" : b.transient ? "transient" : "scratch");
+        if (!b.transient) continue;
+        for (const PlanePlacement& p : plan.planes)
+            if (p.allocation == i) out += row("  " + BufferName(p.key), p.bytes, "");
+    }
+    const size_t total = TotalBytes(plan.buffers), history = HistoryBytes(plan.buffers);
+    const size_t transient = TransientBytes(plan.buffers);
+    out += row("history total", history, "");
+    out += row("other permanent", total - history - transient, "");
+    out += row("transient pool", transient, "");
+    if (!plan.planes.empty()) out += row("  live at once, at most", PeakLiveTransientBytes(plan), "");
+    out += row("peak (all allocations)", total, "");
     return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
+#include "denoise/pass_plan.h"
 #include "denoise/planes.h"
 
 namespace fovrt {
@@ -20,15 +21,20 @@ namespace fovrt {
 std::vector<BufferPlan> PlanTwoHistoryExtraMemory(const std::string& name, int width, int height,
                                                   const DenoiserParams& params);
 
+// All the allocations: the permanent buffers and the transient pool, held through the whole frame,
+// so the peak the device holds.
 size_t TotalBytes(const std::vector<BufferPlan>& plan);
 size_t HistoryBytes(const std::vector<BufferPlan>& plan);
+size_t TransientBytes(const std::vector<BufferPlan>& plan);  // the transient pool's slots
 
-// Throws fovrt::Error when the plan exceeds `budgetBytes`, naming the total and the largest
+// Throws fovrt::Error when the plan's peak (TotalBytes) exceeds `budgetBytes`, naming the total and the largest
 // buffers. budgetBytes == 0 means no budget.
 void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes,
                          const std::string& what = "denoiser");
 
-// Human-readable table: every buffer with bytes and bytes/pixel, then totals.
-std::string FormatMemoryPlan(const std::vector<BufferPlan>& plan, int width, int height);
+// Human-readable table: every allocation with bytes and bytes/pixel (under a transient slot, the
+// planes it holds), then history, other permanent, transient pool, the most transient bytes live
+// at once (the floor of any pool) and the peak.
+std::string FormatMemoryPlan(const DenoiserPlan& plan, int width, int height);
 
 }  // namespace fovrt

@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "denoise/rae_weights.h"
 #include "denoise/svgf_family_plan.h"
+#include "denoise/transient_pool.h"
 #include "denoise/variants.h"
 
 namespace fovrt {
@@ -45,12 +48,21 @@ void ForEachPlaneRef(const Command& command, F&& f) {
 }
 
 // The memory plan: every plane a command names (a history: both sides), in plane-table order,
-// sized by its row; a staging plane sized by the transfers routed through it.
-void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent) {
+// sized by its row (a staging plane by the larger of its uploads and its downloads), marked when the host
+// reads it after the frame; then placed: permanent planes in buffers of their own, the others in
+// the transient pool.
+void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent, const std::set<BufferKey>& readAfterFrame) {
     std::set<BufferKey> keys;
-    std::map<PlaneKind, size_t> transfers;
+    // Per staging plane the bytes of its uploads and of its downloads: the host writes every
+    // upload before the frame is submitted, and the downloads land in the same room after a
+    // barrier every frame records has ordered them behind the uploads' copies.
+    std::map<PlaneKind, size_t> uploads, downloads;
+    bool barrierSinceUpload = true;
     for (const PlannedPass& pass : plan.passes)
         for (const Command& command : pass.commands) {
+            if (std::holds_alternative<BarrierCommand>(command.op) && pass.when == When::Always &&
+                command.when == When::Always)
+                barrierSinceUpload = true;
             ForEachPlaneRef(command, [&](const PlaneRef& ref) {
                 if (IsHistory(ref.id.kind)) {
                     keys.insert({ref.id, BufferSide::A});
@@ -59,18 +71,36 @@ void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent) {
                     keys.insert({ref.id, BufferSide::None});
                 }
             });
-            if (const auto* up = std::get_if<UploadCommand>(&command.op))
-                transfers[up->staging] += StagingAlign(PlaneBytes(up->to.id.kind, extent));
-            if (const auto* down = std::get_if<DownloadCommand>(&command.op))
-                transfers[down->staging] += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+            if (const auto* up = std::get_if<UploadCommand>(&command.op)) {
+                FOVRT_CHECK(downloads.empty());  // every upload before the first download
+                uploads[up->staging] += StagingAlign(PlaneBytes(up->to.id.kind, extent));
+                barrierSinceUpload = false;
+            }
+            if (const auto* down = std::get_if<DownloadCommand>(&command.op)) {
+                FOVRT_CHECK(barrierSinceUpload);
+                downloads[down->staging] += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+            }
         }
     for (const BufferKey& key : keys) {
         const PlaneKind kind = key.id.kind;
         const size_t planeBytes = PlaneBytes(kind, extent);
-        const size_t bytes = IsStaging(kind) && planeBytes == 0 ? transfers[kind] : planeBytes;
-        plan.buffers.push_back({BufferName(key), bytes, IsHistory(kind)});
-        plan.bufferKeys.push_back(key);
+        const size_t bytes = IsStaging(kind) && planeBytes == 0 ? std::max(uploads[kind], downloads[kind]) : planeBytes;
+        plan.planes.push_back({key, bytes, 0, readAfterFrame.count(key) > 0});
     }
+    PlaceInTransientPool(plan);
+}
+
+// The non-history planes the host reads after a frame: what it downloads, what a debug view of
+// the variant reads (histories are permanent anyway).
+std::set<BufferKey> ReadAfterFrame(const DenoiserVariant& v, const DenoiserParams& p, const DenoiserPlan& plan) {
+    std::set<BufferKey> read;
+    for (const PlannedPass& pass : plan.passes)
+        for (const Command& command : pass.commands)
+            if (const auto* down = std::get_if<DownloadCommand>(&command.op)) read.insert({down->from.id, BufferSide::None});
+    for (const DebugView& row : DebugViewTable())
+        if (const std::optional<PlaneRef> ref = DebugViewPlane(v, p, row.id); ref && !IsHistory(ref->id.kind))
+            read.insert({ref->id, BufferSide::None});
+    return read;
 }
 
 // The byte model of one pass from its commands (steady state: what runs after a reset only is
@@ -123,7 +153,7 @@ DenoiserPlan PlanSvgfFamilyDenoiser(const DenoiserVariant& v, const DenoiserPara
     DenoiserPlan plan;
     plan.passes = PlanSvgfFamily(v, p, width, height);
     const PlaneExtent extent{width, height, p.precision};
-    DeriveMemory(plan, extent);
+    DeriveMemory(plan, extent, ReadAfterFrame(v, p, plan));
     for (PlannedPass& pass : plan.passes) {
         if (pass.when == When::NoPrevious) continue;
         UseCounter counter(extent, pass.uses);

@@ -6,7 +6,9 @@
 //     samples, or indirect over a pixel list), fills, copies and transfers.
 //   - The C++ reference (denoise/reference/svgf_family_ref.h) runs each pass's ReferenceStage:
 //     one function of denoise/reference/*_ref.h, on the planes the stage names.
-//   - The memory plan is the union of the planes the commands name (denoise/planes.h sizes them).
+//   - The memory plan is the union of the planes the commands name (denoise/planes.h sizes them),
+//     the planes that live only within a frame sharing the slots of a transient pool
+//     (denoise/transient_pool.h).
 //   - The byte model of `fovrt bench` (denoise/bench/pass_bytes.h) is the sum of each pass's
 //     uses, derived from its commands.
 // The lavapipe-driven choices are properties of the commands, kept out of the maths: both
@@ -248,9 +250,19 @@ struct PlannedPass {
     std::vector<PlaneUse> uses;  // the byte model (SVGF family: derived from the commands)
 };
 
+// Where one plane of the plan lives (SVGF family).
+struct PlanePlacement {
+    BufferKey key;
+    size_t bytes = 0;             // the plane's own size (a pool slot may be larger)
+    size_t allocation = 0;        // its buffer in DenoiserPlan::buffers
+    bool readAfterFrame = false;  // the host reads it after the frame (downloads, debug views)
+};
+
 struct DenoiserPlan {
-    std::vector<BufferPlan> buffers;     // the memory plan (PlanDenoiserMemory)
-    std::vector<BufferKey> bufferKeys;   // the plane of buffers[i] (SVGF family; RAE: empty)
+    // The memory plan (PlanDenoiserMemory): every allocation, the permanent buffers and then the
+    // transient pool's slots (denoise/transient_pool.h).
+    std::vector<BufferPlan> buffers;
+    std::vector<PlanePlacement> planes;  // every plane the commands name (SVGF family; RAE: empty)
     std::vector<PlannedPass> passes;     // recording order
 };
 

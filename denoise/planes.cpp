@@ -12,7 +12,7 @@ namespace {
 enum class Scope : uint8_t { Shared, PerChannel };
 enum class Lifetime : uint8_t { Scratch, History, Staging };
 enum class SizeRule : uint8_t {
-    PixelsOf, Pixels, History, Strata, Fixed, SampleCounts, GradientSamples, Transfers, ExtraStaging
+    PixelsOf, Pixels, History, Strata, Fixed, SampleCounts, GradientSamples, Transfers
 };
 enum class Source : uint8_t { None, EveryFrame, WhenRead };
 
@@ -35,7 +35,6 @@ struct PlaneRow {
 #define SAMPLE_COUNTS SizeRule::SampleCounts, 0
 #define GRADIENT_SAMPLES SizeRule::GradientSamples, 0
 #define TRANSFERS SizeRule::Transfers, 0
-#define EXTRA_STAGING SizeRule::ExtraStaging, 0
 #define EVERY_FRAME(member) Source::EveryFrame
 #define MODULATION Source::EveryFrame
 #define WHEN_READ(member) Source::WhenRead
@@ -52,7 +51,6 @@ const PlaneRow kRows[] = {FOVRT_DENOISER_PLANES(FOVRT_PLANE_ROW)};
 #undef SAMPLE_COUNTS
 #undef GRADIENT_SAMPLES
 #undef TRANSFERS
-#undef EXTRA_STAGING
 #undef EVERY_FRAME
 #undef MODULATION
 #undef WHEN_READ
@@ -139,9 +137,6 @@ size_t PlaneBytes(PlaneKind kind, const PlaneExtent& e) {
         case SizeRule::SampleCounts: return ((sizeof(uint16_t) * pixels + 3) / 4) * 4;
         case SizeRule::GradientSamples: return GradientSampleCapacity(e.width, e.height) * sizeof(GradientSample);
         case SizeRule::Transfers: return 0;
-        case SizeRule::ExtraStaging:
-            return StagingAlign(PlaneBytes(PlaneKind::SampleCount, e)) +
-                   StagingAlign(PlaneBytes(PlaneKind::AsvgfSamples, e));
     }
     return 0;
 }

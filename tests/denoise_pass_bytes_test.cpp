@@ -79,12 +79,19 @@ TEST_CASE("pass byte models cover the compulsory traffic of the memory plan", "[
                     for (const PassBytes& p : DenoiserPassBytes(name, backend, 96, 64, params))
                         if (p.pass != "upload" && p.pass != "download") compute += p.bytesPerPixel;
                     const double compulsory =
-                        CompulsoryBytesPerPixel(PlanDenoiserMemory(name, 96, 64, params), 96, 64);
+                        CompulsoryBytesPerPixel(BuildDenoiserPlan(name, params, 96, 64), 96, 64);
                     INFO(name << " " << backend << " combined " << combined);
                     CHECK(compulsory > 50.0);
                     CHECK(compute >= compulsory);
                     CHECK(compute < 40 * compulsory);  // sanity: not counting every gather tap
                 }
+}
+
+TEST_CASE("compulsory traffic counts every plane whether or not it shares a transient slot", "[bench]") {
+    // svgf, fp32, direct and indirect apart: histories 2 × (geometry 20 + 2 channels × (colour 12 +
+    // moments 8 + length 4)), the inputs the pool holds (4 × 12 + 2 × 8), the output 12.
+    CHECK(CompulsoryBytesPerPixel(BuildDenoiserPlan("svgf", DenoiserParams{}, 96, 64), 96, 64) ==
+          Approx(2 * (20 + 2 * 24) + 4 * 12 + 2 * 8 + 12));
 }
 
 TEST_CASE("SVGF pass bytes follow the shaders' bindings", "[bench]") {

@@ -50,7 +50,10 @@ TEST_CASE("every plane a pass uses is allocated, and every allocated plane is us
             INFO(name);
             const DenoiserPlan plan = BuildDenoiserPlan(name, p, 40, 24);
             std::set<std::string> allocated, used;
-            for (const BufferPlan& b : plan.buffers) allocated.insert(Unsided(b.name));
+            // The SVGF family's planes (some share a transient slot); the RAE's buffers are its planes.
+            for (const PlanePlacement& b : plan.planes) allocated.insert(Unsided(BufferName(b.key)));
+            if (plan.planes.empty())
+                for (const BufferPlan& b : plan.buffers) allocated.insert(Unsided(b.name));
             for (const PlannedPass& pass : plan.passes)
                 for (const PlaneUse& use : pass.uses) {
                     INFO("pass " << pass.name);

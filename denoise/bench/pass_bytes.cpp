@@ -63,10 +63,14 @@ std::vector<PassBytes> DenoiserPassBytes(const std::string& name, const std::str
     return PlanPassBytes(BuildDenoiserPlan(name, params, width, height), width, height, o, backend == "cpu");
 }
 
-double CompulsoryBytesPerPixel(const std::vector<BufferPlan>& plan, int width, int height) {
+double CompulsoryBytesPerPixel(const DenoiserPlan& plan, int width, int height) {
     double bytes = 0.0;
-    for (const BufferPlan& b : plan)
-        if (b.history || b.name.rfind("input.", 0) == 0 || b.name == "output") bytes += double(b.bytes);
+    auto add = [&](const std::string& name, size_t size, bool history) {
+        if (history || name.rfind("input.", 0) == 0 || name == "output") bytes += double(size);
+    };
+    for (const PlanePlacement& p : plan.planes) add(BufferName(p.key), p.bytes, IsHistory(p.key.id.kind));
+    if (plan.planes.empty())  // the RAE: its buffers are its planes
+        for (const BufferPlan& b : plan.buffers) add(b.name, b.bytes, b.history);
     return bytes / (double(width) * double(height));
 }
 

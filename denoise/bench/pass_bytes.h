@@ -15,6 +15,7 @@
 
 #include "denoise/denoiser.h"
 #include "denoise/params.h"
+#include "denoise/pass_plan.h"
 
 namespace fovrt {
 
@@ -47,9 +48,10 @@ std::vector<PassBytes> DenoiserPassBytes(const std::string& name, const std::str
                                          int height, const DenoiserParams& params,
                                          const PassBytesOptions& options = {});
 
-// Compulsory traffic of a memory plan per pixel: every history read once and written once (an
-// A/B pair: one read, one write), every input written (uploaded), the output written. A lower
-// bound on the bytes the compute passes of one frame move.
-double CompulsoryBytesPerPixel(const std::vector<BufferPlan>& plan, int width, int height);
+// Compulsory traffic of a plan per pixel: every history read once and written once (an A/B
+// pair: one read, one write), every input written (uploaded), the output written, by the planes'
+// own sizes (transient ones share pool slots). A lower bound on the bytes the compute passes of
+// one frame move.
+double CompulsoryBytesPerPixel(const DenoiserPlan& plan, int width, int height);
 
 }  // namespace fovrt

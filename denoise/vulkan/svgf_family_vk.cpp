@@ -139,17 +139,16 @@ void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const Command& comma
             } else if constexpr (std::is_same_v<T, FillCommand>) {
                 rec.Fill(buffer(op.plane), op.value);
             } else if constexpr (std::is_same_v<T, CopyCommand>) {
-                Buffer& from = buffer(op.from);
-                rec.Copy(from, buffer(op.to), from.size());
+                rec.Copy(buffer(op.from), buffer(op.to), buffers_.Bytes(ResolveSide(op.from, parity_)));
             } else if constexpr (std::is_same_v<T, UploadCommand>) {
                 const HostBytes source = FrameSource(op.to.id.kind, frame.inputs);
                 size_t& offset = frame.stagingOffsets[op.staging];
                 offset = rec.Upload(source.data, source.bytes, staging(op.staging), offset, buffer(op.to));
             } else if constexpr (std::is_same_v<T, DownloadCommand>) {
-                Buffer& from = buffer(op.from);
-                size_t& offset = frame.stagingOffsets[op.staging];
+                size_t& offset = frame.downloadEnd[op.staging];
                 frame.downloadOffsets[op.from.id.kind] = offset;
-                offset = rec.Download(from, from.size(), staging(op.staging), offset);
+                offset = rec.Download(buffer(op.from), buffers_.Bytes(ResolveSide(op.from, parity_)), staging(op.staging),
+                                      offset);
             } else if constexpr (std::is_same_v<T, ClearCommand>) {
                 buffers_.RecordClear(rec);
             } else {
@@ -169,7 +168,7 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     if (samples > GradientSampleCapacity(w, h))
         Fail("{}: {} gradient samples exceed the capacity {} (two per 3x3 stratum)", Name(), samples,
              GradientSampleCapacity(w, h));
-    Frame frame{in, {!needsClear_, samples > 0}, uint32_t(samples), {}, {}};
+    Frame frame{in, {!needsClear_, samples > 0}, uint32_t(samples), {}, {}, {}};
 
     CommandRecorder rec(*context_, commands_, &timestamps_);
     for (size_t p = 0; p < plan_.passes.size(); ++p) {

@@ -43,6 +43,9 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
     // Downloads a buffer of the memory plan by its printed name, e.g. "direct.length.A" (tests:
     // histories and scratch after Denoise()).
     std::vector<uint8_t> ReadBuffer(const std::string& name);
+    // Whether ReadBuffer(name) can read it: false for a transient plane whose slot a plane
+    // written later in the frame reused, and for names not in the plan.
+    bool Readable(const std::string& name) const { return buffers_.Readable(name); }
     // Name suffix of the history side written by the last Denoise() ("A" or "B").
     std::string LastWrittenSide() const { return parity_ ? "A" : "B"; }
 
@@ -52,7 +55,9 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
         const FrameInputs& inputs;
         FrameConditions conditions;
         uint32_t gradientSamples;
-        std::map<PlaneKind, size_t> stagingOffsets;   // next free offset per staging plane
+        std::map<PlaneKind, size_t> stagingOffsets;   // next free offset per staging plane: uploads
+        std::map<PlaneKind, size_t> downloadEnd;      // … downloads, from 0 again (the plan orders
+                                                      // them behind the uploads' copies)
         std::map<PlaneKind, size_t> downloadOffsets;  // where each downloaded plane landed
     };
     // A planned dispatch, ready to record: its pipeline and its set per history parity.

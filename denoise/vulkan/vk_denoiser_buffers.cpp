@@ -6,49 +6,69 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "denoise/transient_pool.h"
 
 namespace fovrt {
 
 void DenoiserBuffers::Allocate(VulkanContext& context, const DenoiserPlan& plan) {
-    FOVRT_CHECK(plan.bufferKeys.size() == plan.buffers.size());
-    buffers_.clear();
+    Release();
+    std::vector<bool> staging(plan.buffers.size(), false);
+    for (const PlanePlacement& p : plan.planes) {
+        FOVRT_CHECK(p.allocation < plan.buffers.size() && p.bytes <= plan.buffers[p.allocation].bytes);
+        staging[p.allocation] = staging[p.allocation] || IsStaging(p.key.id.kind);
+        planes_[p.key] = {p.allocation, p.bytes, HeldAfterFrame(plan, p.key)};
+    }
     for (size_t i = 0; i < plan.buffers.size(); ++i) {
         const BufferPlan& b = plan.buffers[i];
-        const MemoryUsage usage = IsStaging(plan.bufferKeys[i].id.kind) ? MemoryUsage::Staging : MemoryUsage::Device;
-        buffers_.emplace(plan.bufferKeys[i], context.allocator().CreateBuffer(b.name, b.bytes, usage));
+        allocations_.push_back(
+            context.allocator().CreateBuffer(b.name, b.bytes, staging[i] ? MemoryUsage::Staging : MemoryUsage::Device));
     }
 }
 
-Buffer& DenoiserBuffers::operator[](const BufferKey& key) {
-    auto it = buffers_.find(key);
-    if (it == buffers_.end()) Fail("{}: no buffer '{}' in the memory plan", owner_, BufferName(key));
+const DenoiserBuffers::Placement& DenoiserBuffers::Find(const BufferKey& key) const {
+    auto it = planes_.find(key);
+    if (it == planes_.end()) Fail("{}: no buffer '{}' in the memory plan", owner_, BufferName(key));
     return it->second;
 }
 
+Buffer& DenoiserBuffers::operator[](const BufferKey& key) { return allocations_[Find(key).allocation]; }
+
+size_t DenoiserBuffers::Bytes(const BufferKey& key) const { return Find(key).bytes; }
+
+// A pool slot is filled once per plane it holds: its planes' values are all dropped alike.
 void DenoiserBuffers::RecordClear(CommandRecorder& rec) {
-    for (auto& [key, buffer] : buffers_)
-        if (!IsStaging(key.id.kind)) rec.Fill(buffer, ClearValue(key.id.kind));
+    for (const auto& [key, placement] : planes_)
+        if (!IsStaging(key.id.kind)) rec.Fill(allocations_[placement.allocation], ClearValue(key.id.kind));
 }
 
-std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, Buffer& src) {
-    Buffer tmp = context.allocator().CreateBuffer("readback:" + src.name(), src.size(), MemoryUsage::Staging);
+std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, Buffer& src, size_t bytes) {
+    Buffer tmp = context.allocator().CreateBuffer("readback:" + src.name(), bytes, MemoryUsage::Staging);
     CommandRecorder rec(context);
-    rec.Download(src, src.size(), tmp, 0);
+    rec.Download(src, bytes, tmp, 0);
     rec.Barrier();
     rec.Submit();
-    std::vector<uint8_t> out(src.size());
-    std::memcpy(out.data(), tmp.mapped(), src.size());
+    std::vector<uint8_t> out(bytes);
+    std::memcpy(out.data(), tmp.mapped(), bytes);
     return out;
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const BufferKey& key) {
-    return Read(context, (*this)[key]);
+    const Placement& p = Find(key);
+    if (!p.heldAfterFrame)
+        Fail("{}: '{}' is gone after the frame (a later plane reused its transient slot)", owner_, BufferName(key));
+    return Read(context, allocations_[p.allocation], p.bytes);
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const std::string& name) {
-    for (auto& [key, buffer] : buffers_)
-        if (BufferName(key) == name) return Read(context, buffer);
+    for (const auto& [key, placement] : planes_)
+        if (BufferName(key) == name) return Read(context, key);
     Fail("{}: no buffer '{}' in the memory plan", owner_, name);
+}
+
+bool DenoiserBuffers::Readable(const std::string& name) const {
+    for (const auto& [key, placement] : planes_)
+        if (BufferName(key) == name) return placement.heldAfterFrame;
+    return false;
 }
 
 std::vector<float> DenoiserBuffers::ReadFloats(VulkanContext& context, const BufferKey& key, size_t scalarBytes) {

@@ -1,6 +1,7 @@
-// DenoiserBuffers: the GPU buffers of one plan-driven Vulkan denoiser, one per buffer of its memory
-// plan (so `fovrt memory` lists exactly what exists), addressed by typed BufferKey
-// (denoise/planes.h); clearing them on a reset; synchronous read-backs for tests and debug views.
+// DenoiserBuffers: the GPU buffers of one plan-driven Vulkan denoiser, one per allocation of its
+// memory plan (so `fovrt memory` lists exactly what exists), its planes addressed by typed
+// BufferKey (denoise/planes.h), several transient planes in one slot of the transient pool;
+// clearing them on a reset; synchronous read-backs for tests and debug views.
 #pragma once
 
 #include <map>
@@ -20,18 +21,26 @@ public:
     // `owner` names the denoiser in error messages.
     explicit DenoiserBuffers(std::string owner = "vulkan denoiser") : owner_(std::move(owner)) {}
 
-    // Replaces every buffer by the plan's (plan.bufferKeys); staging planes are host-visible.
+    // Replaces every buffer by the plan's allocations (plan.buffers) and places its planes
+    // (plan.planes) in them; staging planes are host-visible.
     void Allocate(VulkanContext& context, const DenoiserPlan& plan);
+    // The buffer that holds a plane (a pool slot may be larger than the plane: see Bytes).
     Buffer& operator[](const BufferKey& key);
-    void Release() { buffers_.clear(); }  // e.g. before descriptor layouts change
+    size_t Bytes(const BufferKey& key) const;  // the plane's own size
+    void Release() {  // e.g. before descriptor layouts change
+        planes_.clear();
+        allocations_.clear();
+    }
 
     // Drops every history: each device buffer to its plane's ClearValue (background object ids,
     // so nothing reprojects; 0 elsewhere).
     void RecordClear(CommandRecorder& rec);
 
-    // Synchronous read-back of one buffer, by key or by its printed name (tests).
+    // Synchronous read-back of one buffer, by key or by its printed name (tests), after a frame:
+    // fails for a transient plane whose slot a later plane of the frame reused.
     std::vector<uint8_t> Read(VulkanContext& context, const BufferKey& key);
     std::vector<uint8_t> Read(VulkanContext& context, const std::string& name);
+    bool Readable(const std::string& name) const;  // a plane of the plan that Read() accepts
     // The same as floats, stored with `scalarBytes` per scalar: 2 for fp16 history storage, 4
     // otherwise (HistoryScalarBytes of the plan's precision for history planes).
     std::vector<float> ReadFloats(VulkanContext& context, const BufferKey& key, size_t scalarBytes);
@@ -40,9 +49,16 @@ public:
                    size_t scalarBytes, Plane<float>& out);
 
 private:
-    std::vector<uint8_t> Read(VulkanContext& context, Buffer& src);
+    struct Placement {
+        size_t allocation = 0;
+        size_t bytes = 0;
+        bool heldAfterFrame = true;  // no plane written later shares its slot (HeldAfterFrame)
+    };
+    const Placement& Find(const BufferKey& key) const;
+    std::vector<uint8_t> Read(VulkanContext& context, Buffer& src, size_t bytes);
     std::string owner_;
-    std::map<BufferKey, Buffer> buffers_;
+    std::vector<Buffer> allocations_;
+    std::map<BufferKey, Placement> planes_;
 };
 
 // Per-pass GPU timings of the last submitted frame.

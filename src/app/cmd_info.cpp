@@ -64,7 +64,7 @@ void PrintDenoiser(const InfoOptions& o) {
     std::printf("passes      (recording order; default parameters)\n");
     for (const PlannedPass& pass : plan.passes)
         if (!pass.name.empty()) std::printf("  %s%s\n", pass.name.c_str(), WhenText(pass.when));
-    std::printf("memory per eye at %dx%d\n%s", o.width, o.height, FormatMemoryPlan(plan.buffers, o.width, o.height).c_str());
+    std::printf("memory per eye at %dx%d\n%s", o.width, o.height, FormatMemoryPlan(plan, o.width, o.height).c_str());
 }
 
 // Bytes per pixel of one eye's buffers at 1280×720 with the given history precision.

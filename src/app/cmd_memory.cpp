@@ -1,5 +1,6 @@
 // `fovrt memory`: every buffer a denoiser allocates at W×H (per eye, then × eyes), with bytes and
-// bytes/pixel, the totals, and what two-history adds over svgf (the thesis: 88 B/pixel in fp32;
+// bytes/pixel, the planes each slot of the transient pool holds, permanent against transient
+// bytes and the peak (what the budget is checked against), and what two-history adds over svgf (the thesis: 88 B/pixel in fp32;
 // fovrt's default, direct and indirect separate, matches it).
 #include <cstdio>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "denoise/denoiser.h"
 #include "denoise/memory_plan.h"
+#include "denoise/pass_plan.h"
 #include "pipeline/denoiser_set.h"
 
 namespace fovrt {
@@ -37,22 +39,24 @@ void PrintMemory(const MemoryOptions& o) {
     FindDenoiserVariant(o.denoiser, "--denoiser");
     params.svgf.filterCombined = o.filterCombined;
     const uint64_t budget = o.budget.empty() ? 0 : ParseByteSize(o.budget, "--memory-budget");
-    auto plan = PlanDenoiserMemory(o.denoiser, o.width, o.height, params);
+    const DenoiserPlan denoiser = BuildDenoiserPlan(o.denoiser, params, o.width, o.height);
+    const std::vector<BufferPlan>& plan = denoiser.buffers;
     const double pixels = double(o.width) * double(o.height);
     std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination\n", o.denoiser.c_str(),
                 o.width, o.height, o.precision.c_str(),
                 o.filterCombined ? "combined" : "direct + indirect separate");
-    std::printf("%s", FormatMemoryPlan(plan, o.width, o.height).c_str());
-    size_t total = TotalBytes(plan);
-    std::printf("all %d eye(s): %zu bytes (%.1f MiB)\n", o.eyes, total * size_t(o.eyes),
-                double(total) * o.eyes / 1048576.0);
+    std::printf("%s", FormatMemoryPlan(denoiser, o.width, o.height).c_str());
+    const size_t total = TotalBytes(plan), transient = TransientBytes(plan);
+    std::printf("all %d eye(s): peak %zu bytes (%.1f MiB): permanent %.1f MiB, transient %.1f MiB\n", o.eyes,
+                total * size_t(o.eyes), double(total) * o.eyes / 1048576.0,
+                double(total - transient) * o.eyes / 1048576.0, double(transient) * o.eyes / 1048576.0);
     // Extra of two-history over svgf: the thesis counts only the added history planes.
     try {
         auto svgf = PlanDenoiserMemory("svgf", o.width, o.height, params);
         auto two = PlanDenoiserMemory("two-history", o.width, o.height, params);
         double extraHist = (double(HistoryBytes(two)) - double(HistoryBytes(svgf))) / pixels;
         double extraAll = (double(TotalBytes(two)) - double(TotalBytes(svgf))) / pixels;
-        std::printf("two-history over svgf: +%.1f B/pixel of history (+%.1f B/pixel with scratch), "
+        std::printf("two-history over svgf: +%.1f B/pixel of history (+%.1f B/pixel at the peak), "
                     "%.1f MiB for %d eye(s)\n",
                     extraHist, extraAll, extraAll * pixels * o.eyes / 1048576.0, o.eyes);
         std::printf(
@@ -106,7 +110,7 @@ void RegisterMemoryCommand(CLI::App& app) {
     cmd->add_option("--denoiser", o->denoiser, "Denoiser name");
     cmd->add_option("--precision", o->precision, "History storage: fp32 or fp16");
     cmd->add_flag("--filter-combined", o->filterCombined, "Plan for direct+indirect filtered together");
-    cmd->add_option("--memory-budget", o->budget, "Fail when all eyes' buffers exceed BYTES (e.g. 1GiB)");
+    cmd->add_option("--memory-budget", o->budget, "Fail when all eyes' peak (permanent buffers + transient pool) exceeds BYTES (e.g. 1GiB)");
     cmd->add_option("--scored-frames", o->scoredFrames,
                     "Also list FovVideoVDP's frames when N frames are scored (run --score, experiment)")
         ->check(CLI::Range(0, 1000000));

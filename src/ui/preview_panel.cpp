@@ -219,7 +219,7 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
                 ImGui::TableNextColumn();
                 Text(Bytes(b.bytes));
                 ImGui::TableNextColumn();
-                Text(b.history ? "history" : "scratch");
+                Text(b.history ? "history" : b.transient ? "transient" : "scratch");
             }
             ImGui::EndTable();
         }

@@ -1,0 +1,86 @@
+// The memory plan (denoise/memory_plan.h): staging as large as the transfers need, every
+// variant's bytes per pixel at headset size held (a change that grows one fails here), and the
+// budget checked against the peak.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "denoise/gradient_strata.h"
+#include "denoise/memory_plan.h"
+#include "denoise/pass_plan.h"
+#include "denoise/variants.h"
+
+using namespace fovrt;
+
+namespace {
+size_t Bytes(const DenoiserPlan& plan, const std::string& name) {
+    for (const BufferPlan& b : plan.buffers)
+        if (b.name == name) return b.bytes;
+    return 0;
+}
+}  // namespace
+
+TEST_CASE("staging holds what the host writes, and the downloads reuse its room") {
+    const int w = 40, h = 24;
+    const size_t pixels = size_t(w) * size_t(h);
+    // Every frame uploads direct, indirect, modulation, emission (4 × 12 B), the depth gradient and
+    // the previous pixel (2 × 8 B), this frame's normal, depth and object id (12 + 4 + 4 B), then
+    // downloads the 12 B output and the counters into the same room.
+    const size_t uploads = pixels * (4 * 12 + 2 * 8 + 12 + 4 + 4);
+    for (const char* name : {"svgf", "two-history"})
+        CHECK(Bytes(BuildDenoiserPlan(name, DenoiserParams{}, w, h), "staging") == uploads);
+    // The two-history family stages its sample counts apart, and only what it uploads: A-SVGF's
+    // gradient samples only where the variant reads them.
+    const size_t counts = StagingAlign(PlaneBytes(PlaneKind::SampleCount, {w, h}));
+    const size_t samples = StagingAlign(GradientSampleCapacity(w, h) * sizeof(GradientSample));
+    CHECK(Bytes(BuildDenoiserPlan("two-history", DenoiserParams{}, w, h), "staging.extra") == counts);
+    CHECK(Bytes(BuildDenoiserPlan("two-history-asvgf", DenoiserParams{}, w, h), "staging.extra") == counts + samples);
+}
+
+// `fovrt memory --width 2064 --height 2208 --denoiser NAME` (fp32, the default parameters): the
+// peak per eye, permanent buffers and transient pool, in bytes per pixel.
+TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
+    const std::map<std::string, double> expected = {
+        {"svgf", 344.00},
+        {"svgf-weighted", 364.00},
+        {"asvgf", 372.44},
+        {"two-history", 494.00},
+        {"two-history-asvgf", 514.44},
+        {"asvgf-antilag", 372.44},
+        {"two-history-asvgf-antilag", 514.44},
+        {"two-history-stable", 518.00},
+        {"two-history-stable-firefly", 518.00},
+        {"two-history-stable-antilag", 518.00},
+        {"two-history-asvgf-stable-antilag", 538.44},
+        {"two-history-clamp", 494.00},
+        {"two-history-stable-clamp", 518.00},
+        {"two-history-hysteresis", 510.00},
+        {"two-history-stable-hysteresis", 526.00},
+        {"two-history-asvgf-stable-hysteresis", 546.44},
+        {"rae", 432.49},
+        {"rae-spp", 440.55},
+    };
+    const int w = 2064, h = 2208;
+    const double pixels = double(w) * double(h);
+    for (const std::string& name : DenoiserNames()) {
+        INFO(name);
+        const DenoiserPlan plan = BuildDenoiserPlan(name, DenoiserParams{}, w, h);
+        const double perPixel = double(TotalBytes(plan.buffers)) / pixels;
+        std::printf("%-40s %8.2f B/pixel\n", name.c_str(), perPixel);
+        REQUIRE(expected.count(name) == 1);
+        CHECK(perPixel == Approx(expected.at(name)).margin(0.01));
+    }
+}
+
+TEST_CASE("the budget is checked against the peak: a transient slot counts once, not per plane it holds") {
+    const DenoiserPlan plan = BuildDenoiserPlan("two-history", DenoiserParams{}, 64, 64);
+    size_t planes = 0;
+    for (const PlanePlacement& p : plan.planes) planes += p.bytes;
+    const size_t peak = TotalBytes(plan.buffers);
+    CHECK(peak < planes);
+    CHECK(TransientBytes(plan.buffers) > 0);
+    CHECK_NOTHROW(EnforceMemoryBudget(plan.buffers, peak));
+    CHECK_THROWS_WITH(EnforceMemoryBudget(plan.buffers, peak - 1), Catch::Contains(std::to_string(peak)));
+}
