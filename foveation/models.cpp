@@ -1,8 +1,9 @@
-// The spp models: two-level disc, linear eccentricity falloff, acuity (MAR), uniform, and the
-// fixed-ray-budget wrapper. Densities below 1 become sample masks (foveation/sample_mask.h).
+// The spp models: two-level disc, linear eccentricity falloff, acuity (MAR), uniform, perceptual
+// (the eye's contrast sensitivity to noise), and the fixed-ray-budget wrapper. Densities below 1 become sample masks (foveation/sample_mask.h).
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -22,11 +23,44 @@ float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3
 
 namespace {
 
+// The perceptual model's relative sensitivity S(e) / S(0) at one spatial frequency and luminance,
+// tabulated once per map over √e ∈ [0, √180] (the CSF changes fastest near the fovea) and read
+// with linear interpolation. The table is held non-increasing (a running minimum): with the
+// cortical magnification alone S(ρ, e) = S(ρ / M(e), 0), which rises off-axis for a ρ below the
+// CSF's peak (about 1 cpd for the metric's CSF), and the fovea sees no band worse than the
+// periphery does.
+class RelativeSensitivity {
+public:
+    static constexpr int kNodes = 97;
+    static constexpr float kMaxDeg = 180.0f;
+
+    RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance) {
+        const double foveal = sensitivity(rhoCpd, luminance, 0.0);
+        float least = 1.0f;
+        for (int i = 0; i < kNodes; ++i) {
+            const double root = std::sqrt(double(kMaxDeg)) * i / (kNodes - 1);
+            const double relative = foveal > 0.0 ? sensitivity(rhoCpd, luminance, root * root) / foveal : 0.0;
+            least = std::min(least, float(std::max(relative, 0.0)));
+            table_[size_t(i)] = least;
+        }
+    }
+    float At(float eccentricityDeg) const {
+        const float u = std::sqrt(std::clamp(eccentricityDeg, 0.0f, kMaxDeg) / kMaxDeg) * float(kNodes - 1);
+        const int i = std::min(int(u), kNodes - 2);
+        const float f = u - float(i);
+        return table_[size_t(i)] + f * (table_[size_t(i) + 1] - table_[size_t(i)]);
+    }
+
+private:
+    std::array<float, kNodes> table_{};
+};
+
 // Per-call gaze data shared by all pixels of one map.
 struct GazeContext {
     vec3 gaze;       // unit, eye space
     bool inFront;    // gaze points into the image half-space (always, for real gaze)
     vec2 gazePixel;  // continuous pixel of the gaze ray (valid when inFront)
+    const RelativeSensitivity* sensitivity = nullptr;  // the perceptual model's, else none
 };
 
 // A model's continuous spp at one pixel; `e` is the pixel's eccentricity (EccentricityDegrees).
@@ -63,16 +97,23 @@ float UniformDensity(const FoveationParams& p, const EyeCamera&, const vec2&, fl
     return p.uniformSpp;
 }
 
-// The models by name: the one list of foveation.model's values.
+float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext& g) {
+    return std::max(p.sppMin, float(p.sppMax) * g.sensitivity->At(e));
+}
+
+// The models by name: the one list of foveation.model's values. `readsSensitivity`: the density
+// reads the eye's contrast sensitivity (GazeContext::sensitivity).
 struct ModelRow {
     const char* name;
     DensityFn density;
+    bool readsSensitivity = false;
 };
-constexpr std::array<ModelRow, 4> kModels{{
+constexpr std::array<ModelRow, 5> kModels{{
     {"disc", DiscDensity},
     {"linear", LinearDensity},
     {"acuity", AcuityDensity},
     {"uniform", UniformDensity},
+    {"perceptual", PerceptualDensity, true},
 }};
 constexpr std::array<const char*, kModels.size()> kModelNames = [] {
     std::array<const char*, kModels.size()> names{};
@@ -89,7 +130,8 @@ uint16_t MaskedSpp(float density, int x, int y, uint32_t frameIndex) {
 // and clamps at 1 and above, and masks below 1.
 class DensityModel final : public SppModel {
 public:
-    DensityModel(const ModelRow& row, const FoveationParams& p) : row_(row), p_(p) {}
+    DensityModel(const ModelRow& row, const FoveationParams& p, ContrastSensitivity sensitivity)
+        : row_(row), p_(p), sensitivity_(std::move(sensitivity)) {}
     std::string Name() const override { return row_.name; }
 
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
@@ -112,6 +154,11 @@ public:
         g.gaze = glm::normalize(gazeEye);
         g.inFront = g.gaze.z < -1e-6f;
         g.gazePixel = g.inFront ? camera.PixelOfEyeDirection(g.gaze) : vec2(0.0f);
+        std::optional<RelativeSensitivity> relative;
+        if (row_.readsSensitivity) {
+            const double rho = double(p_.noiseFrequency) * 0.5 * double(camera.PixelsPerDegree());
+            g.sensitivity = &relative.emplace(sensitivity_, rho, double(p_.adaptLuminance));
+        }
         // View rays are separable in tangent space: (tx[x], ty[y], -1), normalised per pixel.
         std::vector<float> tx(static_cast<size_t>(w)), ty(static_cast<size_t>(h));
         for (int x = 0; x < w; ++x) {
@@ -137,6 +184,7 @@ public:
 private:
     ModelRow row_;
     FoveationParams p_;
+    ContrastSensitivity sensitivity_;
 };
 
 // Fixed ray budget: scale the inner model's continuous map by s so that
@@ -230,11 +278,16 @@ std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, 
 
 NameList FoveationModelNames() { return kModelNames; }
 
-std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p) {
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const ContrastSensitivity& sensitivity) {
     ValidateFoveationParams(p);
     std::unique_ptr<SppModel> model;
-    for (const ModelRow& row : kModels)
-        if (p.model == row.name) model = std::make_unique<DensityModel>(row, p);
+    for (const ModelRow& row : kModels) {
+        if (p.model != row.name) continue;
+        if (row.readsSensitivity && !sensitivity)
+            Fail("foveation.model = \"{}\" reads the eye's contrast sensitivity, and none was given "
+                 "(the frame pipeline gives the metric's)", row.name);
+        model = std::make_unique<DensityModel>(row, p, sensitivity);
+    }
     if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor);
     return model;
 }

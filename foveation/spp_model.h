@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -42,6 +43,12 @@ public:
 // gaze ray (both in eye space). Computed with atan2 so it stays accurate near 0.
 float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3& gazeEye);
 
+// The eye's contrast sensitivity (1 / threshold contrast) to a grating of `rhoCpd` cycles per
+// degree seen at `eccentricityDeg` on a background of `luminance` cd/m²: what the perceptual model
+// reads. foveation/ may not include metrics/ (the same floor), so the frame pipeline passes the
+// metric's own (src/pipeline/eye_sensitivity.h).
+using ContrastSensitivity = std::function<double(double rhoCpd, double luminance, double eccentricityDeg)>;
+
 // Parameters of every model, as loaded from the [foveation] config table (defaults = thesis).
 struct FoveationParams {
     std::string model = "disc";  // one of FoveationModelNames()
@@ -66,6 +73,14 @@ struct FoveationParams {
     float omega0Deg = 1.0f / 48.0f;  // foveal MAR ω0 in degrees (Guenter 2012: 1/48°)
     float marSlope = 0.022f;         // m in deg/deg (Guenter: 0.022–0.0275)
 
+    // perceptual: spp = max(sppMax · S(e) / S(0), sppMin), S the eye's contrast sensitivity at
+    // the noise's spatial frequency ρ = noiseFrequency · ppd / 2 (ppd: the camera's pixels per
+    // degree, ppd / 2 its Nyquist frequency) and luminance adaptLuminance, made non-increasing in
+    // e. Under a ray budget the map is n ∝ S, the allocation that minimises the visible noise
+    // Σ S²/n (docs/foveation.md).
+    float noiseFrequency = 0.5f;
+    float adaptLuminance = 50.0f;
+
     // uniform: the same spp everywhere.
     float uniformSpp = 1.0f;
 
@@ -79,7 +94,7 @@ struct FoveationParams {
     bool operator==(const FoveationParams&) const = default;
 };
 
-// The model names (disc, linear, acuity, uniform): the rows of the factory in models.cpp.
+// The model names (disc, linear, acuity, uniform, perceptual): the rows of the factory in models.cpp.
 NameList FoveationModelNames();
 // [foveation]: key, member, range, meaning of every FoveationParams member (foveation_params.cpp).
 std::span<const SettingRow<FoveationParams>> FoveationParamTable();
@@ -89,8 +104,9 @@ std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& params
 void ValidateFoveationParams(const FoveationParams& params);
 
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
-// out-of-range parameters throw fovrt::Error naming the foveation.* key.
-std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params);
+// out-of-range parameters throw fovrt::Error naming the foveation.* key; so does the perceptual
+// model without a `sensitivity`.
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {});
 // Wraps a model so each map's total equals `rayBudget` (within a few samples, and in expectation
 // over frames where pixels fall below 1; see models.cpp), no pixel's density below `sppFloor`.
 std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget,
