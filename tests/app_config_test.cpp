@@ -465,7 +465,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 95);
+    CHECK(keys.size() == 97);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -494,7 +494,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 96);  // the 95 table rows and denoise.precision
+    CHECK(listed.size() == 98);  // the 97 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {
@@ -589,6 +589,8 @@ TEST_CASE("a slider span outside its row's range is a malformed row", "[config]"
     CHECK(ParamRowProblem({.key = "k", .range = OpenMin(0, 10), .doc = "d", .slider = Closed(0, 5)}) != nullptr);
     // Every row the preview panel slides has a span (the panel reads it by key).
     for (const char* key : {"foveation.spp_inside", "foveation.radius_px", "foveation.foveal_deg",
-                            "foveation.peripheral_deg", "foveation.mar_slope", "foveation.uniform_spp"})
+                            "foveation.peripheral_deg", "foveation.mar_slope", "foveation.uniform_spp",
+                            "foveation.spp_outside", "foveation.spp_min", "foveation.spp_floor",
+                            "foveation.noise_frequency"})
         CHECK(!FindRow(FoveationParamTable(), key)->slider.Empty());
 }
