@@ -19,7 +19,8 @@ constexpr ParamRange kSppMasked = Closed(kMinSpp, kMaxSpp);
 // a radius of 180° or more would make every direction foveal (the uniform model's job), and
 // every radius below it is a disc, so [0, 180).
 constexpr std::array<SettingRow<FoveationParams>, 17> kFoveationRows{{
-    {{.key = "foveation.model", .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
+    {{.key = "foveation.model",
+      .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
       .names = FoveationModelNames},
      &F::model},
     {{.key = "foveation.spp_inside", .range = kSpp, .doc = "disc: spp inside the fovea disc", .slider = kSpp},

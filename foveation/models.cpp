@@ -1,5 +1,6 @@
 // The spp models: two-level disc, linear eccentricity falloff, acuity (MAR), uniform, perceptual
-// (the eye's contrast sensitivity to noise), and the fixed-ray-budget wrapper. Densities below 1 become sample masks (foveation/sample_mask.h).
+// (the eye's contrast sensitivity to noise), and the fixed-ray-budget wrapper. Densities below 1
+// become sample masks (foveation/sample_mask.h).
 #include <algorithm>
 #include <array>
 #include <cmath>
