@@ -12,17 +12,21 @@ namespace {
 
 using F = FoveationParams;
 constexpr ParamRange kSpp = Closed(1, kMaxSpp);
+// The periphery's densities may go below one sample per pixel (sample masks, sample_mask.h).
+constexpr ParamRange kSppMasked = Closed(kMinSpp, kMaxSpp);
 
 // radius_deg bounds an eccentricity, the angle between two rays, which lies in [0°, 180°]:
 // a radius of 180° or more would make every direction foveal (the uniform model's job), and
 // every radius below it is a disc, so [0, 180).
-constexpr std::array<SettingRow<FoveationParams>, 14> kFoveationRows{{
-    {{.key = "foveation.model", .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform",
+constexpr std::array<SettingRow<FoveationParams>, 17> kFoveationRows{{
+    {{.key = "foveation.model",
+      .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
       .names = FoveationModelNames},
      &F::model},
     {{.key = "foveation.spp_inside", .range = kSpp, .doc = "disc: spp inside the fovea disc", .slider = kSpp},
      &F::sppInside},
-    {{.key = "foveation.spp_outside", .range = kSpp, .doc = "disc: spp outside it", .slider = kSpp},
+    {{.key = "foveation.spp_outside", .range = kSppMasked,
+      .doc = "disc: spp outside it (below 1: traced on that fraction of frames)", .slider = kSppMasked},
      &F::sppOutside},
     {{.key = "foveation.radius_px", .range = OpenMin(0, 1e6),
       .doc = "disc: radius in pixels at radius_reference_width (scales with the image width)",
@@ -34,9 +38,11 @@ constexpr std::array<SettingRow<FoveationParams>, 14> kFoveationRows{{
     {{.key = "foveation.radius_deg", .range = OpenMax(0, 180),
       .doc = "disc: > 0 = angular radius (eccentricity <= radius_deg) instead of radius_px"},
      &F::radiusDeg},
-    {{.key = "foveation.spp_max", .range = kSpp, .doc = "linear, acuity: spp at the gaze", .slider = kSpp},
+    {{.key = "foveation.spp_max", .range = kSpp, .doc = "linear, acuity, perceptual: spp at the gaze", .slider = kSpp},
      &F::sppMax},
-    {{.key = "foveation.spp_min", .range = kSpp, .doc = "linear, acuity: spp in the periphery", .slider = kSpp},
+    {{.key = "foveation.spp_min", .range = kSppMasked,
+      .doc = "linear, acuity, perceptual: spp in the periphery (below 1: traced on that fraction of frames)",
+      .slider = kSppMasked},
      &F::sppMin},
     {{.key = "foveation.foveal_deg", .range = Closed(0, 180), .doc = "linear: spp_max up to this eccentricity",
       .slider = Closed(0.5, 30)},
@@ -49,11 +55,25 @@ constexpr std::array<SettingRow<FoveationParams>, 14> kFoveationRows{{
     {{.key = "foveation.mar_slope", .range = Closed(0, 10), .doc = "acuity: MAR slope m in deg/deg (Guenter 0.022)",
       .slider = Closed(0.005, 0.05)},
      &F::marSlope},
-    {{.key = "foveation.uniform_spp", .range = kSpp, .doc = "uniform: spp everywhere", .slider = kSpp},
+    {{.key = "foveation.noise_frequency", .range = OpenMin(0, 1),
+      .doc = "perceptual: the noise's spatial frequency as a fraction of the display's Nyquist (ppd/2); "
+             "1 = raw per-pixel noise, 0.5 = an octave lower, as a denoiser leaves it",
+      .slider = Closed(0.1, 1)},
+     &F::noiseFrequency},
+    {{.key = "foveation.adapt_luminance", .range = Closed(0.01, 10000),
+      .doc = "perceptual: the luminance the eye is adapted to, cd/m² (the CSF's background)"},
+     &F::adaptLuminance},
+    {{.key = "foveation.uniform_spp", .range = kSppMasked,
+      .doc = "uniform: spp everywhere (below 1: traced on that fraction of frames)", .slider = kSppMasked},
      &F::uniformSpp},
     {{.key = "foveation.ray_budget", .range = Closed(0, double(std::numeric_limits<int64_t>::max())),
-      .doc = "samples per eye per frame, the map scaled to it; 0 = none (else from W·H to the spp cap × W·H)"},
+      .doc = "samples per eye per frame, the map scaled to it; 0 = none (else from spp_floor × W·H to the spp "
+              "cap × W·H)"},
      &F::rayBudget},
+    {{.key = "foveation.spp_floor", .range = Closed(kMinSpp, 1),
+      .doc = "ray budget: the least spp it scales a pixel to (below 1: traced on that fraction of frames)",
+      .slider = Closed(kMinSpp, 1)},
+     &F::sppFloor},
 }};
 static_assert(RowsWellFormed(kFoveationRows), "a [foveation] row is malformed (see ParamRowProblem)");
 

@@ -1,8 +1,10 @@
-// The spp models of SPEC §7: two-level disc, linear eccentricity falloff, acuity (MAR), uniform,
-// and the fixed-ray-budget wrapper.
+// The spp models: two-level disc, linear eccentricity falloff, acuity (MAR), uniform, perceptual
+// (the eye's contrast sensitivity to noise), and the fixed-ray-budget wrapper. Densities below 1
+// become sample masks (foveation/sample_mask.h).
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -22,11 +24,44 @@ float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3
 
 namespace {
 
+// The perceptual model's relative sensitivity S(e) / S(0) at one spatial frequency and luminance,
+// tabulated once per map over √e ∈ [0, √180] (the CSF changes fastest near the fovea) and read
+// with linear interpolation. The table is held non-increasing (a running minimum): with the
+// cortical magnification alone S(ρ, e) = S(ρ / M(e), 0), which rises off-axis for a ρ below the
+// CSF's peak (about 1 cpd for the metric's CSF), and the fovea sees no band worse than the
+// periphery does.
+class RelativeSensitivity {
+public:
+    static constexpr int kNodes = 97;
+    static constexpr float kMaxDeg = 180.0f;
+
+    RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance) {
+        const double foveal = sensitivity(rhoCpd, luminance, 0.0);
+        float least = 1.0f;
+        for (int i = 0; i < kNodes; ++i) {
+            const double root = std::sqrt(double(kMaxDeg)) * i / (kNodes - 1);
+            const double relative = foveal > 0.0 ? sensitivity(rhoCpd, luminance, root * root) / foveal : 0.0;
+            least = std::min(least, float(std::max(relative, 0.0)));
+            table_[size_t(i)] = least;
+        }
+    }
+    float At(float eccentricityDeg) const {
+        const float u = std::sqrt(std::clamp(eccentricityDeg, 0.0f, kMaxDeg) / kMaxDeg) * float(kNodes - 1);
+        const int i = std::min(int(u), kNodes - 2);
+        const float f = u - float(i);
+        return table_[size_t(i)] + f * (table_[size_t(i) + 1] - table_[size_t(i)]);
+    }
+
+private:
+    std::array<float, kNodes> table_{};
+};
+
 // Per-call gaze data shared by all pixels of one map.
 struct GazeContext {
     vec3 gaze;       // unit, eye space
     bool inFront;    // gaze points into the image half-space (always, for real gaze)
     vec2 gazePixel;  // continuous pixel of the gaze ray (valid when inFront)
+    const RelativeSensitivity* sensitivity = nullptr;  // the perceptual model's, else none
 };
 
 // A model's continuous spp at one pixel; `e` is the pixel's eccentricity (EccentricityDegrees).
@@ -44,35 +79,42 @@ float DiscDensity(const FoveationParams& p, const EyeCamera& camera, const vec2&
         vec2 d = pixel - g.gazePixel;
         inside = g.inFront && glm::dot(d, d) <= radius * radius;
     }
-    return float(inside ? p.sppInside : p.sppOutside);
+    return inside ? float(p.sppInside) : p.sppOutside;
 }
 
 float LinearDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext&) {
     if (e <= p.fovealDeg) return float(p.sppMax);
-    if (e >= p.peripheralDeg) return float(p.sppMin);
+    if (e >= p.peripheralDeg) return p.sppMin;
     float t = (e - p.fovealDeg) / (p.peripheralDeg - p.fovealDeg);
-    return float(p.sppMax) + t * float(p.sppMin - p.sppMax);
+    return float(p.sppMax) + t * (p.sppMin - float(p.sppMax));
 }
 
 float AcuityDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext&) {
     float ratio = p.omega0Deg / (p.omega0Deg + p.marSlope * e);  // ω0 / ω(e)
-    return std::max(float(p.sppMin), float(p.sppMax) * ratio * ratio);
+    return std::max(p.sppMin, float(p.sppMax) * ratio * ratio);
 }
 
 float UniformDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float, const GazeContext&) {
-    return float(p.uniformSpp);
+    return p.uniformSpp;
 }
 
-// The models by name: the one list of foveation.model's values.
+float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext& g) {
+    return std::max(p.sppMin, float(p.sppMax) * g.sensitivity->At(e));
+}
+
+// The models by name: the one list of foveation.model's values. `readsSensitivity`: the density
+// reads the eye's contrast sensitivity (GazeContext::sensitivity).
 struct ModelRow {
     const char* name;
     DensityFn density;
+    bool readsSensitivity = false;
 };
-constexpr std::array<ModelRow, 4> kModels{{
+constexpr std::array<ModelRow, 5> kModels{{
     {"disc", DiscDensity},
     {"linear", LinearDensity},
     {"acuity", AcuityDensity},
     {"uniform", UniformDensity},
+    {"perceptual", PerceptualDensity, true},
 }};
 constexpr std::array<const char*, kModels.size()> kModelNames = [] {
     std::array<const char*, kModels.size()> names{};
@@ -80,11 +122,17 @@ constexpr std::array<const char*, kModels.size()> kModelNames = [] {
     return names;
 }();
 
+// The map's value at pixel (x, y) for a density below 1: its sample mask's bit for this frame.
+uint16_t MaskedSpp(float density, int x, int y, uint32_t frameIndex) {
+    return SampleMaskSelects(density, x, y, frameIndex) ? 1 : 0;
+}
+
 // A model defined by a continuous spp per pixel (its row's density); Generate() rounds to nearest
-// and clamps.
+// and clamps at 1 and above, and masks below 1.
 class DensityModel final : public SppModel {
 public:
-    DensityModel(const ModelRow& row, const FoveationParams& p) : row_(row), p_(p) {}
+    DensityModel(const ModelRow& row, const FoveationParams& p, ContrastSensitivity sensitivity)
+        : row_(row), p_(p), sensitivity_(std::move(sensitivity)) {}
     std::string Name() const override { return row_.name; }
 
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
@@ -92,8 +140,12 @@ public:
         Plane<float> density;
         GenerateDensity(camera, gazeEye, frameIndex, density);
         spp.Resize(density.width(), density.height());
-        for (size_t i = 0; i < density.size(); ++i)
-            spp[i] = uint16_t(std::clamp(std::lround(density[i]), 1L, long(kMaxSpp)));
+        for (int y = 0; y < spp.height(); ++y)
+            for (int x = 0; x < spp.width(); ++x) {
+                const float d = density(x, y);
+                spp(x, y) = d < 1.0f ? MaskedSpp(d, x, y, frameIndex)
+                                     : uint16_t(std::clamp(std::lround(d), 1L, long(kMaxSpp)));
+            }
     }
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t,
                          Plane<float>& density) const override {
@@ -103,6 +155,11 @@ public:
         g.gaze = glm::normalize(gazeEye);
         g.inFront = g.gaze.z < -1e-6f;
         g.gazePixel = g.inFront ? camera.PixelOfEyeDirection(g.gaze) : vec2(0.0f);
+        std::optional<RelativeSensitivity> relative;
+        if (row_.readsSensitivity) {
+            const double rho = double(p_.noiseFrequency) * 0.5 * double(camera.PixelsPerDegree());
+            g.sensitivity = &relative.emplace(sensitivity_, rho, double(p_.adaptLuminance));
+        }
         // View rays are separable in tangent space: (tx[x], ty[y], -1), normalised per pixel.
         std::vector<float> tx(static_cast<size_t>(w)), ty(static_cast<size_t>(h));
         for (int x = 0; x < w; ++x) {
@@ -119,7 +176,7 @@ public:
                 ray *= 1.0f / std::sqrt(glm::dot(ray, ray));
                 // Same formula as EccentricityDegrees (2·asin(|ray − gaze| / 2)).
                 float e = Degrees(2.0f * std::asin(std::min(0.5f * glm::length(ray - g.gaze), 1.0f)));
-                density(x, y) = std::clamp(row_.density(p_, camera, vec2(x + 0.5f, y + 0.5f), e, g), 1.0f,
+                density(x, y) = std::clamp(row_.density(p_, camera, vec2(x + 0.5f, y + 0.5f), e, g), kMinSpp,
                                            float(kMaxSpp));
             }
         }
@@ -128,26 +185,29 @@ public:
 private:
     ModelRow row_;
     FoveationParams p_;
+    ContrastSensitivity sensitivity_;
 };
 
 // Fixed ray budget: scale the inner model's continuous map by s so that
-// Σ clamp(s·d, 1, kMaxSpp) = budget (regula falsi; the sum is monotone in s), then round with
-// serpentine 1-D error diffusion. Every target lies in [1, kMaxSpp] and the carried error in
-// [-0.5, 0.5], so each output stays in [1, kMaxSpp] and the total differs from the budget by
-// < 1 sample plus the solver tolerance (0.05)
-// and float rounding of the targets. The carry starts at a hash of the frame index, so the
-// dither pattern changes from frame to frame deterministically.
+// Σ clamp(s·d, floor, kMaxSpp) = budget (regula falsi; the sum is monotone in s), then round the
+// targets at 1 and above with serpentine 1-D error diffusion and mask those below 1. Every
+// diffused target lies in [1, kMaxSpp] and the carried error in [-0.5, 0.5], so each output stays
+// in [1, kMaxSpp] and their total differs from their targets' by < 1 sample; a masked pixel of
+// target d is traced d times per frame on average (sample_mask.h), so the map's total meets the
+// budget in expectation, within that sample plus the solver tolerance (0.05) and float rounding
+// of the targets. The carry starts at a hash of the frame index, so the dither pattern changes
+// from frame to frame deterministically.
 class BudgetModel final : public SppModel {
 public:
-    BudgetModel(std::unique_ptr<SppModel> inner, int64_t budget)
-        : inner_(std::move(inner)), budget_(budget) {}
+    BudgetModel(std::unique_ptr<SppModel> inner, int64_t budget, float floor)
+        : inner_(std::move(inner)), budget_(budget), floor_(floor) {}
     std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
 
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
                          Plane<float>& density) const override {
         inner_->GenerateDensity(camera, gazeEye, frameIndex, density);
-        const double n = double(density.size());
-        const double target = std::clamp(double(budget_), n, n * kMaxSpp);
+        const double n = double(density.size()), floor = double(floor_);
+        const double target = std::clamp(double(budget_), n * floor, n * kMaxSpp);
         float dMin = float(kMaxSpp);
         for (size_t i = 0; i < density.size(); ++i) {
             dMin = std::min(dMin, density[i]);
@@ -156,13 +216,13 @@ public:
         auto total = [&](double s) {
             double sum = 0.0;
             for (size_t i = 0; i < density.size(); ++i)
-                sum += std::clamp(s * double(density[i]), 1.0, double(kMaxSpp));
+                sum += std::clamp(s * double(density[i]), floor, double(kMaxSpp));
             return sum;
         };
-        // total(0) = n <= target <= total(kMaxSpp / dMin) = n·kMaxSpp; total is monotone and
+        // total(0) = n·floor <= target <= total(kMaxSpp / dMin) = n·kMaxSpp; total is monotone and
         // piecewise linear in s, so regula falsi (Illinois variant) converges in a few passes.
         double lo = 0.0, hi = double(kMaxSpp) / dMin;
-        double fLo = n - target, fHi = n * kMaxSpp - target;
+        double fLo = n * floor - target, fHi = n * kMaxSpp - target;
         double s = hi;
         int side = 0;
         for (int it = 0; it < 100 && fHi - fLo > 0.0 && hi - lo > 1e-12 * hi; ++it) {
@@ -180,7 +240,7 @@ public:
             }
         }
         for (size_t i = 0; i < density.size(); ++i)
-            density[i] = float(std::clamp(s * double(density[i]), 1.0, double(kMaxSpp)));
+            density[i] = float(std::clamp(s * double(density[i]), floor, double(kMaxSpp)));
     }
 
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
@@ -192,6 +252,10 @@ public:
         for (int y = 0; y < spp.height(); ++y) {
             for (int i = 0; i < spp.width(); ++i) {
                 int x = (y % 2 == 0) ? i : spp.width() - 1 - i;  // serpentine
+                if (density(x, y) < 1.0f) {
+                    spp(x, y) = MaskedSpp(density(x, y), x, y, frameIndex);
+                    continue;
+                }
                 double want = double(density(x, y)) + carry;
                 double value = std::clamp(std::floor(want + 0.5), 1.0, double(kMaxSpp));
                 carry = want - value;
@@ -203,22 +267,29 @@ public:
 private:
     std::unique_ptr<SppModel> inner_;
     int64_t budget_;
+    float floor_;
 };
 
 }  // namespace
 
-std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget) {
-    return std::make_unique<BudgetModel>(std::move(inner), rayBudget);
+std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget,
+                                               float sppFloor) {
+    return std::make_unique<BudgetModel>(std::move(inner), rayBudget, sppFloor);
 }
 
 NameList FoveationModelNames() { return kModelNames; }
 
-std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p) {
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const ContrastSensitivity& sensitivity) {
     ValidateFoveationParams(p);
     std::unique_ptr<SppModel> model;
-    for (const ModelRow& row : kModels)
-        if (p.model == row.name) model = std::make_unique<DensityModel>(row, p);
-    if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget);
+    for (const ModelRow& row : kModels) {
+        if (p.model != row.name) continue;
+        if (row.readsSensitivity && !sensitivity)
+            Fail("foveation.model = \"{}\" reads the eye's contrast sensitivity, and none was given "
+                 "(the frame pipeline gives the metric's)", row.name);
+        model = std::make_unique<DensityModel>(row, p, sensitivity);
+    }
+    if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor);
     return model;
 }
 

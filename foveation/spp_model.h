@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -11,6 +12,7 @@
 #include "core/camera.h"
 #include "core/image.h"
 #include "core/setting_table.h"
+#include "foveation/sample_mask.h"
 
 namespace fovrt {
 
@@ -20,11 +22,13 @@ class SppModel {
 public:
     virtual ~SppModel() = default;
     virtual std::string Name() const = 0;
-    // Fills `spp` (resized to the camera's resolution) with values in [1, kMaxSpp].
+    // Fills `spp` (resized to the camera's resolution) with values in [0, kMaxSpp]: a pixel whose
+    // density is below 1 gets 1 on the frames its sample mask selects and 0 on the others
+    // (foveation/sample_mask.h); at 1 and above it is never 0.
     // `gazeEye` is the gaze direction in this eye's space (unit, -Z forward).
     virtual void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
                           Plane<uint16_t>& spp) const = 0;
-    // The model's continuous spp before rounding (values in [1, kMaxSpp]); the ray-budget wrapper
+    // The model's continuous spp before rounding (values in [kMinSpp, kMaxSpp]); the ray-budget wrapper
     // scales it. Default: Generate() converted to float.
     virtual void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
                                  Plane<float>& density) const {
@@ -39,6 +43,12 @@ public:
 // gaze ray (both in eye space). Computed with atan2 so it stays accurate near 0.
 float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3& gazeEye);
 
+// The eye's contrast sensitivity (1 / threshold contrast) to a grating of `rhoCpd` cycles per
+// degree seen at `eccentricityDeg` on a background of `luminance` cd/m²: what the perceptual model
+// reads. foveation/ may not include metrics/ (the same floor), so the frame pipeline passes the
+// metric's own (src/pipeline/eye_sensitivity.h).
+using ContrastSensitivity = std::function<double(double rhoCpd, double luminance, double eccentricityDeg)>;
+
 // Parameters of every model, as loaded from the [foveation] config table (defaults = thesis).
 struct FoveationParams {
     std::string model = "disc";  // one of FoveationModelNames()
@@ -47,8 +57,9 @@ struct FoveationParams {
     // radiusPx at an image `radiusReferenceWidth` pixels wide and scales with the image width
     // (200 px at 1280 -> 100 px at 640), so the disc covers the same angle at any resolution with
     // the same FOV. radiusDeg > 0 switches to an angular disc: eccentricity <= radiusDeg.
+    // Densities below 1 (down to kMinSpp) are sample masks: spp_outside, spp_min, uniform_spp.
     int sppInside = 8;
-    int sppOutside = 1;
+    float sppOutside = 1.0f;
     float radiusPx = 200.0f;
     int radiusReferenceWidth = 1280;
     float radiusDeg = 0.0f;
@@ -56,23 +67,34 @@ struct FoveationParams {
     // linear: sppMax for e <= fovealDeg, sppMin for e >= peripheralDeg, linear in between.
     // acuity: spp = clamp(sppMax * (omega0 / (omega0 + m e))^2, sppMin, kMaxSpp) (Guenter 2012).
     int sppMax = 8;
-    int sppMin = 1;
+    float sppMin = 1.0f;
     float fovealDeg = 5.0f;
     float peripheralDeg = 30.0f;
     float omega0Deg = 1.0f / 48.0f;  // foveal MAR ω0 in degrees (Guenter 2012: 1/48°)
     float marSlope = 0.022f;         // m in deg/deg (Guenter: 0.022–0.0275)
 
-    // uniform: the same spp everywhere.
-    int uniformSpp = 1;
+    // perceptual: spp = max(sppMax · S(e) / S(0), sppMin), S the eye's contrast sensitivity at
+    // the noise's spatial frequency ρ = noiseFrequency · ppd / 2 (ppd: the camera's pixels per
+    // degree, ppd / 2 its Nyquist frequency) and luminance adaptLuminance, made non-increasing in
+    // e. Under a ray budget the map is n ∝ S, the allocation that minimises the visible noise
+    // Σ S²/n (docs/foveation.md).
+    float noiseFrequency = 0.5f;
+    float adaptLuminance = 50.0f;
 
-    // Fixed ray budget: total samples per eye per frame (0 = none). Any model's map is scaled and
-    // dithered to it; clamped to the feasible [W*H, kMaxSpp*W*H].
+    // uniform: the same spp everywhere.
+    float uniformSpp = 1.0f;
+
+    // Fixed ray budget: total samples per eye per frame (0 = none). Any model's map is scaled to it,
+    // each pixel kept in [sppFloor, kMaxSpp], then dithered (at 1 and above) or masked (below 1);
+    // the budget is clamped to the feasible [sppFloor*W*H, kMaxSpp*W*H]. sppFloor = 1 traces every
+    // pixel every frame.
     int64_t rayBudget = 0;
+    float sppFloor = 1.0f;
 
     bool operator==(const FoveationParams&) const = default;
 };
 
-// The model names (disc, linear, acuity, uniform): the rows of the factory in models.cpp.
+// The model names (disc, linear, acuity, uniform, perceptual): the rows of the factory in models.cpp.
 NameList FoveationModelNames();
 // [foveation]: key, member, range, meaning of every FoveationParams member (foveation_params.cpp).
 std::span<const SettingRow<FoveationParams>> FoveationParamTable();
@@ -82,9 +104,12 @@ std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& params
 void ValidateFoveationParams(const FoveationParams& params);
 
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
-// out-of-range parameters throw fovrt::Error naming the foveation.* key.
-std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params);
-// Wraps a model so each map's total equals `rayBudget` (within a few samples; see models.cpp).
-std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget);
+// out-of-range parameters throw fovrt::Error naming the foveation.* key; so does the perceptual
+// model without a `sensitivity`.
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {});
+// Wraps a model so each map's total equals `rayBudget` (within a few samples, and in expectation
+// over frames where pixels fall below 1; see models.cpp), no pixel's density below `sppFloor`.
+std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget,
+                                               float sppFloor = 1.0f);
 
 }  // namespace fovrt

@@ -161,6 +161,13 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     fails({"foveation.model=gaussian"}, "foveation.model");
     fails({"foveation.peripheral_deg=1"}, "foveation.peripheral_deg");
     fails({"foveation.ray_budget=10"}, "foveation.ray_budget");
+    fails({"foveation.spp_outside=0.05"}, "foveation.spp_outside");  // below 1/16
+    fails({"foveation.spp_floor=1.5"}, "foveation.spp_floor");
+    // A budget below W·H (640×360 by default) needs a floor below 1 that lets the map reach it.
+    fails({"foveation.ray_budget=115200"}, "foveation.ray_budget");
+    fails({"foveation.ray_budget=50000", "foveation.spp_floor=0.25"}, "foveation.ray_budget");
+    CHECK(Resolve("", {"foveation.ray_budget=57600", "foveation.spp_floor=0.25"}).foveation.rayBudget == 57600);
+    CHECK(Resolve("", {"foveation.spp_outside=0.25"}).foveation.sppOutside == 0.25f);
     fails({"gaze.source=eyelink"}, "gaze.source");
     fails({"gaze.source=trace"}, "gaze.trace_path");
     fails({"denoise.precision=fp64"}, "denoise.precision");
@@ -458,7 +465,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 94);
+    CHECK(keys.size() == 97);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -487,7 +494,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 95);  // the 94 table rows and denoise.precision
+    CHECK(listed.size() == 98);  // the 97 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {
@@ -582,6 +589,8 @@ TEST_CASE("a slider span outside its row's range is a malformed row", "[config]"
     CHECK(ParamRowProblem({.key = "k", .range = OpenMin(0, 10), .doc = "d", .slider = Closed(0, 5)}) != nullptr);
     // Every row the preview panel slides has a span (the panel reads it by key).
     for (const char* key : {"foveation.spp_inside", "foveation.radius_px", "foveation.foveal_deg",
-                            "foveation.peripheral_deg", "foveation.mar_slope", "foveation.uniform_spp"})
+                            "foveation.peripheral_deg", "foveation.mar_slope", "foveation.uniform_spp",
+                            "foveation.spp_outside", "foveation.spp_min", "foveation.spp_floor",
+                            "foveation.noise_frequency"})
         CHECK(!FindRow(FoveationParamTable(), key)->slider.Empty());
 }

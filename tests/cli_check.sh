@@ -233,7 +233,7 @@ expect_error "the metric's frames count against the budget" "vdp.*luminance" mem
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
   grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt &&
   grep -q "^foveation.radius_deg  *0.0  *\[0, 180) " keys.txt &&
-  grep -q "^foveation.model  *disc  *disc|linear|acuity|uniform " keys.txt &&
+  grep -q "^foveation.model  *disc  *disc|linear|acuity|uniform|perceptual " keys.txt &&
   grep -q "^gaze.tracker_rate_hz  *0.0  *\[0, 10000\] " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"
 # A run renders the experiment's noisy inputs when it lists the same variants: A-SVGF's gradient
 # samples re-shade one pixel per 3×3 stratum with the previous frame's seed, so from frame 1 on the

@@ -346,10 +346,12 @@ void CheckRules(const RunConfig& c, const Reader& r) {
     }
     const FoveationConfig& f = c.foveation;
     const int64_t pixels = int64_t(c.camera.width) * c.camera.height;
-    if (f.rayBudget != 0 && (f.rayBudget < pixels || f.rayBudget > pixels * kMaxSpp))
+    const int64_t leastBudget = int64_t(std::ceil(double(f.sppFloor) * double(pixels)));
+    if (f.rayBudget != 0 && (f.rayBudget < leastBudget || f.rayBudget > pixels * kMaxSpp))
         r.Bad("foveation.ray_budget",
-              fmt::format("{} is outside [width*height, {}*width*height] = [{}, {}] (0 = no budget)",
-                          f.rayBudget, kMaxSpp, pixels, pixels * kMaxSpp));
+              fmt::format("{} is outside [spp_floor*width*height, {}*width*height] = [{}, {}] (0 = no budget; "
+                          "foveation.spp_floor = {} is the least spp it may scale a pixel to)",
+                          f.rayBudget, kMaxSpp, leastBudget, pixels * kMaxSpp, f.sppFloor));
     const DenoiseConfig& d = c.denoise;
     for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");

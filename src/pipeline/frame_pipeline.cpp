@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "denoise/variants.h"
 #include "gaze/tracker.h"
+#include "pipeline/eye_sensitivity.h"
 
 namespace fovrt {
 namespace {
@@ -62,7 +63,7 @@ FramePipeline::FramePipeline(const RunConfig& config)
 }
 
 void FramePipeline::MakeGazeAndFoveation() {
-    sppModel_ = CreateSppModel(config_.foveation);
+    sppModel_ = CreateSppModel(config_.foveation, MetricContrastSensitivity());
     tracked_.reset();
     gaze_ = CreateGazeSource(config_.gaze, ResolveFov(config_, scene_));
     tracked_ = std::make_unique<TrackedGaze>(*gaze_, config_.gaze.tracker);
@@ -104,7 +105,7 @@ void FramePipeline::CheckGazeCovers(uint32_t firstFrame, int frames) const {
 }
 
 void FramePipeline::SetFoveation(const FoveationParams& params) {
-    sppModel_ = CreateSppModel(params);
+    sppModel_ = CreateSppModel(params, MetricContrastSensitivity());
     config_.foveation = params;
 }
 

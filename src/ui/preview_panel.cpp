@@ -55,25 +55,28 @@ bool FoveationControls(FoveationParams& f) {
     bool changed = Combo("model", models, f.model);
     if (f.model == "disc") {
         changed |= SliderOf("spp inside", "foveation.spp_inside", f.sppInside);
-        changed |= SliderOf("spp outside", "foveation.spp_outside", f.sppOutside);
+        changed |= SliderOf("spp outside", "foveation.spp_outside", f.sppOutside, "%.3g");
         changed |= SliderOf("radius px @1280", "foveation.radius_px", f.radiusPx, "%.0f");
-    } else if (f.model == "linear" || f.model == "acuity") {
+    } else if (f.model == "linear" || f.model == "acuity" || f.model == "perceptual") {
         changed |= SliderOf("spp max", "foveation.spp_max", f.sppMax);
-        changed |= SliderOf("spp min", "foveation.spp_min", f.sppMin);
+        changed |= SliderOf("spp min", "foveation.spp_min", f.sppMin, "%.3g");
         if (f.model == "linear") {
             changed |= SliderOf("foveal deg", "foveation.foveal_deg", f.fovealDeg, "%.1f");
             changed |= SliderOf("peripheral deg", "foveation.peripheral_deg", f.peripheralDeg, "%.1f");
-        } else {
+        } else if (f.model == "acuity") {
             changed |= SliderOf("MAR slope", "foveation.mar_slope", f.marSlope, "%.4f");
+        } else {
+            changed |= SliderOf("noise x Nyquist", "foveation.noise_frequency", f.noiseFrequency, "%.2f");
         }
     } else {
-        changed |= SliderOf("spp", "foveation.uniform_spp", f.uniformSpp);
+        changed |= SliderOf("spp", "foveation.uniform_spp", f.uniformSpp, "%.3g");
     }
     int budget = int(f.rayBudget);
     if (ImGui::InputInt("ray budget (0: none)", &budget, 1000, 10000)) {
         f.rayBudget = std::max(0, budget);
         changed = true;
     }
+    if (f.rayBudget > 0) changed |= SliderOf("spp floor", "foveation.spp_floor", f.sppFloor, "%.3g");
     return changed;
 }
 

@@ -1,0 +1,14 @@
+// The eye's contrast sensitivity the perceptual spp model reads (foveation/spp_model.h,
+// ContrastSensitivity): FovVideoVDP's CSF (metrics/vdp_csf.h) in its sustained channel (ω = 0 Hz),
+// with the metric's stimulus size (csf_sigma) and cortical-magnification exponent (k_cm) from
+// VdpParams, so the map puts samples where the metric that scores it sees noise. It lives here
+// because foveation/ and metrics/ share a floor and may not include each other.
+#pragma once
+
+#include "foveation/spp_model.h"
+
+namespace fovrt {
+
+ContrastSensitivity MetricContrastSensitivity();
+
+}  // namespace fovrt

@@ -1,0 +1,126 @@
+// The perceptual spp model with a made-up contrast sensitivity, so each term has a closed form:
+// spp_max · S(e) / S(0) at the frequency and luminance the keys give, non-increasing in e, and
+// under a ray budget n ∝ S with the budget met.
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+#include "foveation/spp_model.h"
+#include "test_support.h"
+
+using namespace fovrt;
+
+namespace {
+
+// Independent eccentricity of a pixel centre, gaze straight ahead, symmetric camera.
+double StraightAheadEccentricity(const EyeCamera& cam, int x, int y) {
+    double tanX = std::tan(double(cam.fov().angleRight)), tanY = std::tan(double(cam.fov().angleUp));
+    double tx = ((x + 0.5) / cam.width() * 2.0 - 1.0) * tanX;
+    double ty = ((y + 0.5) / cam.height() * 2.0 - 1.0) * tanY;
+    return std::atan(std::sqrt(tx * tx + ty * ty)) * 180.0 / M_PI;
+}
+
+// S = 1 / (1 + e / 5): falls smoothly, S(0) = 1.
+double Hyperbolic(double, double, double e) { return 1.0 / (1.0 + e / 5.0); }
+
+FoveationParams Perceptual() {
+    FoveationParams p;
+    p.model = "perceptual";
+    p.sppMax = 16;
+    p.sppMin = kMinSpp;
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("Perceptual: spp_max S(e)/S(0) at each pixel's eccentricity", "[foveation]") {
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), 1.0f), 96, 96);
+    auto model = CreateSppModel(Perceptual(), Hyperbolic);
+    CHECK(model->Name() == "perceptual");
+    Plane<float> density;
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density);
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const double e = StraightAheadEccentricity(cam, x, y);
+            // The table over √e interpolates linearly: within 0.5 % of the closed form.
+            REQUIRE(density(x, y) == Approx(std::max(16.0 * Hyperbolic(0, 0, e), double(kMinSpp))).epsilon(5e-3));
+        }
+}
+
+TEST_CASE("Perceptual: the CSF is read at noise_frequency x Nyquist and adapt_luminance", "[foveation]") {
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(80.0f), 1.0f), 64, 64);  // 0.8 ppd
+    FoveationParams p = Perceptual();
+    p.noiseFrequency = 0.25f;
+    p.adaptLuminance = 12.5f;
+    std::vector<double> rhos, luminances;
+    auto spy = [&](double rho, double luminance, double e) {
+        rhos.push_back(rho), luminances.push_back(luminance);
+        return Hyperbolic(rho, luminance, e);
+    };
+    Plane<float> density;
+    CreateSppModel(p, spy)->GenerateDensity(cam, vec3(0, 0, -1), 0, density);
+    REQUIRE(!rhos.empty());
+    for (double rho : rhos) CHECK(rho == Approx(0.25 * 0.5 * 64.0 / 80.0));
+    for (double luminance : luminances) CHECK(luminance == 12.5);
+}
+
+TEST_CASE("Perceptual: never more samples off-axis than at the gaze (sensitivity held non-increasing)",
+          "[foveation]") {
+    // A CSF below its peak rises off-axis (S(ρ / M(e))): the map must not.
+    auto rising = [](double, double, double e) { return e < 10.0 ? 1.0 + e / 10.0 : 2.0 / (1.0 + (e - 10.0)); };
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), 2.0f), 128, 64);
+    FoveationParams p = Perceptual();
+    p.sppMax = 8;
+    Plane<float> density;
+    CreateSppModel(p, rising)->GenerateDensity(cam, vec3(0, 0, -1), 0, density);
+    float previous = 1e9f;
+    for (int x = 64; x < 128; ++x) {  // the centre row, outward
+        REQUIRE(density(x, 32) <= previous);
+        previous = density(x, 32);
+    }
+    CHECK(density(64, 32) == Approx(8.0f).epsilon(1e-2));
+    CHECK(previous < 1.0f);
+}
+
+TEST_CASE("Perceptual under a ray budget: n proportional to S, budget met", "[foveation]") {
+    const int w = 96, h = 64;
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p = Perceptual();
+    p.sppFloor = kMinSpp;
+    for (double perPixel : {0.5, 2.0}) {
+        p.rayBudget = int64_t(perPixel * w * h);
+        INFO("budget " << perPixel << " spp");
+        auto model = CreateSppModel(p, Hyperbolic);
+        CHECK(model->Name() == "budget(perceptual)");
+        Plane<float> density;
+        model->GenerateDensity(cam, vec3(0, 0, -1), 0, density);
+        // n_i = s · S_i wherever no bound binds (Lagrange: minimising Σ S²/n at Σ n = B).
+        double sum = 0.0, ratio = -1.0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                sum += density(x, y);
+                const double s = Hyperbolic(0, 0, StraightAheadEccentricity(cam, x, y));
+                if (density(x, y) > kMinSpp && density(x, y) < float(kMaxSpp)) {
+                    if (ratio < 0) ratio = density(x, y) / s;
+                    REQUIRE(density(x, y) / s == Approx(ratio).epsilon(1e-2));
+                }
+            }
+        CHECK(sum == Approx(double(p.rayBudget)).margin(0.1));
+        // The integer maps: over 16 frames the total is the budget's within 1 %.
+        int64_t total = 0;
+        Plane<uint16_t> spp;
+        for (uint32_t t = 0; t < 16; ++t) {
+            model->Generate(cam, vec3(0, 0, -1), t, spp);
+            for (size_t i = 0; i < spp.size(); ++i) total += spp[i];
+        }
+        CHECK(std::abs(double(total) - 16.0 * double(p.rayBudget)) <= 0.01 * 16.0 * double(p.rayBudget));
+    }
+}
+
+TEST_CASE("Perceptual without a contrast sensitivity names the key", "[foveation]") {
+    CHECK_THROWS_WITH(CreateSppModel(Perceptual()), Catch::Contains("foveation.model") &&
+                                                        Catch::Contains("perceptual"));
+    FoveationParams bad = Perceptual();
+    bad.noiseFrequency = 0.0f;
+    CHECK_THROWS_WITH(CreateSppModel(bad, Hyperbolic), Catch::Contains("foveation.noise_frequency"));
+}
