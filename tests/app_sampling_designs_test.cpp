@@ -97,8 +97,22 @@ TEST_CASE("a bad design is refused in one line naming the design and key", "[app
                Contains("experiment.designs.d.foveation.ray_budget") && Contains("experiment.budgets"));
     CHECK_THAT(LoadError(DesignOptions("bad-value", "[experiment.designs.d]\nfoveation.spp_inside = 99\n")),
                Contains("experiment.designs.d") && Contains("foveation.spp_inside"));
-    CHECK_THAT(LoadError(DesignOptions("infeasible", "budgets = [20]\n[experiment.designs.d]\nfoveation.model = \"uniform\"\n")),
+    CHECK_THAT(LoadError(DesignOptions("budget-range", "budgets = [20]\n[experiment.designs.d]\nfoveation.model = \"uniform\"\n")),
                Contains("experiment.budgets"));
+    // Half a sample per pixel needs a design whose floor lets the budget scale pixels below 1.
+    CHECK_THAT(LoadError(DesignOptions("infeasible", "budgets = [0.5, 1]\n[experiment.designs.d]\nfoveation.model = \"uniform\"\n")),
+               Contains("experiment.designs.d at budget 0.5 spp") && Contains("foveation.ray_budget") &&
+                   Contains("spp_floor"));
+    // A design that cannot go below 1 spp sweeps its own budgets beside the others'.
+    const ExperimentSpec own = LoadExperiment(DesignOptions(
+        "own-budgets", "budgets = [0.5, 1]\n[experiment.designs.u]\nfoveation = { model = \"uniform\", spp_floor = 0.0625 }\n"
+                       "[experiment.designs.d]\nfoveation.model = \"disc\"\nbudgets = [1, 2, 4]\n"));
+    REQUIRE(own.sweep.points.size() == 5);
+    CHECK(own.sweep.points[0].label == "u-b0.5");
+    CHECK(own.sweep.points[2].label == "d-b1");
+    CHECK(own.sweep.points[4].config.foveation.rayBudget == 4 * 32 * 18);
+    CHECK_NOTHROW(LoadExperiment(DesignOptions("feasible", "budgets = [0.5, 1]\n[experiment.designs.d]\n"
+                                                           "foveation = { model = \"uniform\", spp_floor = 0.0625 }\n")));
     CHECK_THAT(LoadError(DesignOptions("no-designs", "budgets = [1, 2]\n")), Contains("experiment.budgets needs experiment.designs"));
     CHECK_THAT(LoadError(DesignOptions("anchor", "anchor_design = \"omega\"\n" + std::string(kTwoDesigns))),
                Contains("experiment.anchor_design"));

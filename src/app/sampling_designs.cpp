@@ -59,21 +59,18 @@ bool IsPathComponent(const std::string& name) {
     });
 }
 
-std::vector<double> Budgets(const ExperimentTable& experiment) {
+// A budgets array (`what` names it in errors): numbers in (0, kMaxSpp], distinct, sorted.
+std::vector<double> ParseBudgets(const toml::node& node, const std::string& origin, const std::string& what) {
     std::vector<double> budgets;
-    const toml::node* node = experiment.table.get("budgets");
-    if (!node) return budgets;
-    const std::string origin = experiment.Origin("budgets");
-    const toml::array* array = node->as_array();
+    const toml::array* array = node.as_array();
     if (!array || array->empty())
-        Fail("{}: experiment.budgets must be a non-empty array of mean samples per pixel, e.g. [1, 2, 4]", origin);
+        Fail("{}: {} must be a non-empty array of mean samples per pixel, e.g. [1, 2, 4]", origin, what);
     for (const toml::node& element : *array) {
         std::optional<double> value = element.value<double>();
         if (!value || !(element.is_integer() || element.is_floating_point()) || !std::isfinite(*value) ||
             *value <= 0 || *value > kMaxSpp)
-            Fail("{}: experiment.budgets must hold numbers in (0, {}] (mean path samples per pixel)", origin, kMaxSpp);
-        if (std::ranges::find(budgets, *value) != budgets.end())
-            Fail("{}: experiment.budgets lists {:g} twice", origin, *value);
+            Fail("{}: {} must hold numbers in (0, {}] (mean path samples per pixel)", origin, what, kMaxSpp);
+        if (std::ranges::find(budgets, *value) != budgets.end()) Fail("{}: {} lists {:g} twice", origin, what, *value);
         budgets.push_back(*value);
     }
     std::ranges::sort(budgets);
@@ -101,7 +98,8 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
     if (!designs || designs->empty())
         Fail("{}: experiment.designs must be a table of named designs, e.g. [experiment.designs.uniform]",
              experiment.Origin("designs"));
-    sweep.budgets = Budgets(experiment);
+    if (const toml::node* budgets = experiment.table.get("budgets"))
+        sweep.budgets = ParseBudgets(*budgets, experiment.Origin("budgets"), "experiment.budgets");
     const std::vector<std::string> allowed = DesignKeys();
 
     // The designs in the order the file gives them (toml++ keeps a table's keys sorted).
@@ -140,16 +138,22 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
             Fail("{}: {}: a design's name is a folder name: letters, digits, '.', '_', '-'", origin, where);
         const toml::table* table = designs->get(name)->as_table();
         if (!table) Fail("{}: {} must be a table of [foveation] and gaze.tracker_* keys", origin, where);
-        SamplingDesign design{name, {}};
-        Flatten(*table, "", design.keys);
+        SamplingDesign design{name, {}, sweep.budgets};
+        toml::table sampling = *table;
+        if (const toml::node* own = table->get("budgets")) {  // the design's own budgets
+            design.budgets = ParseBudgets(*own, experiment.Origin("designs." + name + ".budgets"), where + ".budgets");
+            sampling.erase("budgets");
+        }
+        Flatten(sampling, "", design.keys);
         for (const auto& [key, value] : design.keys) {
             const std::string keyOrigin = experiment.Origin("designs." + name + "." + key);
             if (std::ranges::find(allowed, key) == allowed.end())
                 Fail("{}: {}.{}: a design sets only [foveation] keys and the eye tracker's gaze.* keys "
                      "(did you mean {}?)",
                      keyOrigin, where, key, NearestName(key, allowed));
-            if (key == kRayBudgetKey && !sweep.budgets.empty())
-                Fail("{}: {}.{}: experiment.budgets sets the ray budget of every point", keyOrigin, where, key);
+            if (key == kRayBudgetKey && !design.budgets.empty())
+                Fail("{}: {}.{}: the budgets (experiment.budgets, or the design's own) set the ray budget of every point",
+                     keyOrigin, where, key);
             for (const std::string& set : options.sets)
                 if (set.rfind(key + "=", 0) == 0 || set.rfind(key + " ", 0) == 0)
                     Fail("--set {}: {} sets {} (a design's keys are the experiment's axis; edit the design "
@@ -170,12 +174,14 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
     }
 
     for (size_t d = 0; d < sweep.designs.size(); ++d) {
-        std::vector<std::optional<double>> budgets(sweep.budgets.begin(), sweep.budgets.end());
+        const std::vector<double>& own = sweep.designs[d].budgets;
+        std::vector<std::optional<double>> budgets(own.begin(), own.end());
         if (budgets.empty()) budgets.push_back(std::nullopt);
         for (std::optional<double> budget : budgets) {
             SweepPoint point{d, budget, SweepPointLabel(sweep.designs[d].name, budget), {}};
             ConfigOptions resolved = options;
             resolved.overlayTables.push_back("experiment.designs." + sweep.designs[d].name);
+            resolved.ignoredTables.push_back("budgets");  // a design's own budgets are the sweep's, not config
             ExperimentTable unused;
             try {
                 if (budget) {
@@ -187,7 +193,7 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
                 point.config = ResolveExperimentConfig(resolved, quick, unused);
             } catch (const Error& e) {
                 Fail("experiment.designs.{}{}: {}", sweep.designs[d].name,
-                     budget ? fmt::format(" at experiment.budgets {:g} spp", *budget) : std::string(), e.what());
+                     budget ? fmt::format(" at budget {:g} spp", *budget) : std::string(), e.what());
             }
             point.config.denoise.denoisers = variants;
             sweep.points.push_back(std::move(point));

@@ -10,8 +10,9 @@
 //   foveation.model = "uniform"
 //   [experiment.designs.disc]
 //   foveation = { model = "disc", spp_inside = 8, spp_outside = 1 }
+//   budgets = [1, 2, 4]               # optional: this design's own (a design that cannot go below 1)
 //
-// Every (design, budget) is a point: the experiment's config with the design's keys merged over it
+// Every (design, budget) is a point (a design without budgets is one point at its own sampling): the experiment's config with the design's keys merged over it
 // (after [experiment.quick]), then the budget; every point runs every scene, variant and seed.
 // A design may set only [foveation] keys and the eye-tracker keys of [gaze] (the rows of
 // FoveationParamTable and TrackerParamTable); with budgets, not foveation.ray_budget. A key outside
@@ -42,11 +43,12 @@ struct SweepPoint {
 struct SamplingDesign {
     std::string name;
     std::vector<std::pair<std::string, std::string>> keys;  // dotted key -> value as TOML text
+    std::vector<double> budgets;  // ascending: its own `budgets`, else experiment.budgets; empty: none
 };
 
 struct SamplingSweep {
     std::vector<SamplingDesign> designs;  // in the file's order
-    std::vector<double> budgets;          // ascending; empty: each design once at its own sampling
+    std::vector<double> budgets;          // experiment.budgets, ascending (a design may have its own)
     std::optional<size_t> anchor;         // the design rays saved are measured against
     std::vector<SweepPoint> points;       // design-major, budgets ascending
     bool Active() const { return !designs.empty(); }

@@ -135,7 +135,7 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
                 raysSaved[r.scene][r.variant] = IntervalJson(r.raysSaved);
                 jodGain[r.scene][r.variant] = IntervalJson(r.jodGain);
             }
-        designs[sweep.designs[d].name] = {{"keys", keys}, {"points", pointsJson}};
+        designs[sweep.designs[d].name] = {{"keys", keys}, {"budgets_spp", sweep.designs[d].budgets}, {"points", pointsJson}};
         if (!raysSaved.empty()) {
             designs[sweep.designs[d].name]["rays_saved"] = raysSaved;
             designs[sweep.designs[d].name]["jod_gain"] = jodGain;
@@ -239,7 +239,7 @@ SweepPointValues PointValues(const SweepPointResult& point, const std::string& s
 std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
     std::vector<RaysSavedRow> rows;
     const SamplingSweep& sweep = spec.sweep;
-    if (!sweep.anchor || sweep.budgets.size() < 2 || points.empty()) return rows;
+    if (!sweep.anchor || points.empty()) return rows;
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants) {
             const SeededRateQualityCurve anchor = CurveOf(spec, points, *sweep.anchor, scene, variant);
@@ -258,7 +258,7 @@ std::string RaysSavedTable(const ExperimentSpec& spec, const std::vector<RaysSav
     const ReportTable t = HeadlineReportTable(spec, rows);
     std::string out = t.title + " (FovVideoVDP JOD; Bjøntegaard delta on PCHIP fits, 95 % seed bootstrap)\n";
     if (rows.empty()) {
-        return out + (spec.sweep.anchor ? "  (needs at least two budgets: experiment.budgets)\n"
+        return out + (spec.sweep.anchor ? "  (no design besides the anchor)\n"
                                         : "  (no anchor: name one with experiment.anchor_design, or list one uniform design)\n");
     }
     std::vector<size_t> widths(t.header.size(), 0);
@@ -292,12 +292,19 @@ void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointR
                                    spec.quick ? " (--quick)" : "");
         std::string designs;
         for (const SamplingDesign& d : sweep.designs) designs += (designs.empty() ? "" : ", ") + d.name;
-        std::string budgets;
-        for (double b : sweep.budgets) budgets += (budgets.empty() ? "" : ", ") + fmt::format("{:g}", b);
+        std::string budgets;  // "1, 2, 4", or per design where they differ
+        for (const SamplingDesign& d : sweep.designs) {
+            std::string list;
+            for (double b : d.budgets) list += (list.empty() ? "" : ", ") + fmt::format("{:g}", b);
+            if (d.budgets != sweep.budgets || sweep.budgets.empty())
+                budgets += fmt::format("{}{}: {}", budgets.empty() ? "" : "; ", d.name, list.empty() ? "its own sampling" : list);
+        }
+        if (budgets.empty())
+            for (double b : sweep.budgets) budgets += (budgets.empty() ? "" : ", ") + fmt::format("{:g}", b);
         report.manifest = {{"experiment", spec.file.string()},
                            {"designs", designs},
                            {"anchor design", sweep.anchor ? sweep.designs[*sweep.anchor].name : "none"},
-                           {"budgets (mean spp)", budgets.empty() ? "each design's own" : budgets},
+                           {"budgets (mean spp)", budgets},
                            {"resolution per eye", fmt::format("{}×{}", spec.config.camera.width, spec.config.camera.height)},
                            {"frames", std::to_string(spec.config.run.frames)},
                            {"points' outputs", "designs/<design>-b<budget>/ (each with its own report)"},
@@ -332,9 +339,8 @@ void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointR
     WriteTextAtomically(outDir / "manifest.json", manifest.dump(2) + "\n");
 
     std::printf("%s", headline.c_str());
-    std::fprintf(stderr, "fovrt experiment: %zu points (%zu designs × %zu budgets) done in %.1f s wall, %.1f s CPU -> %s\n",
-                 sweep.points.size(), sweep.designs.size(), std::max<size_t>(1, sweep.budgets.size()), wall, cpu,
-                 outDir.string().c_str());
+    std::fprintf(stderr, "fovrt experiment: %zu points (%zu designs) done in %.1f s wall, %.1f s CPU -> %s\n",
+                 sweep.points.size(), sweep.designs.size(), wall, cpu, outDir.string().c_str());
     if (spec.config.output.report) std::printf("HTML report: %s\n", (outDir / "report.html").string().c_str());
 }
 
