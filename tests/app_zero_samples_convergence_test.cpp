@@ -46,7 +46,8 @@ double RelativeSquaredError(const Plane<vec3>& image, const Plane<vec3>& referen
 
 }  // namespace
 
-TEST_CASE("a still view through a moving sparse mask converges towards the reference", "[zero_samples]") {
+TEST_CASE("a still view through a moving sparse mask converges towards the reference",
+          "[zero_samples]") {
     const Scene scene = BoxScene();
     const EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
     auto renderer = CreateRenderer(scene, RenderSettings{});

@@ -131,7 +131,8 @@ TEST_CASE("a pixel without a path sample keeps its history: no colour enters, th
     }
 }
 
-TEST_CASE("a disoccluded pixel without a sample holds nothing and its neighbours fill it", "[zero_samples]") {
+TEST_CASE("a disoccluded pixel without a sample holds nothing and its neighbours fill it",
+          "[zero_samples]") {
     for (const char* name : {"svgf-weighted", "two-history", "two-history-asvgf-stable-antilag"}) {
         INFO(name);
         const DenoiserVariant& variant = FindDenoiserVariant(name);
@@ -152,8 +153,9 @@ TEST_CASE("a disoccluded pixel without a sample holds nothing and its neighbours
         f.direct(px, py) = f.indirect(px, py) = vec3(0.0f);
         ref.Denoise(f, out);
         CheckHistoriesFinite(ref, variant.family == DenoiserFamily::TwoHistory);
-        const float length = variant.family == DenoiserFamily::TwoHistory ? ref.CurrentState().wu(px, py)
-                                                                          : ref.CurrentHistory(0).length(px, py);
+        const float length = variant.family == DenoiserFamily::TwoHistory
+                                 ? ref.CurrentState().wu(px, py)
+                                 : ref.CurrentHistory(0).length(px, py);
         CHECK(length == 0.0f);
         // Filled from its neighbours: the surface's illumination, not black, and finite.
         const vec3 filled = vec3(ref.Filtered(0)(px, py));
@@ -175,16 +177,18 @@ TEST_CASE("no NaN or Inf in any history after frames with zero-sample pixels", "
             SvgfFamilyReferenceDenoiser ref(variant, params);
             Plane<vec3> out;
             for (uint32_t frame = 0; frame < 5; ++frame) {
-                ref.Denoise(test::WithZeroSamples(test::RandomTwoHistoryFrame(kW, kH, frame), frame), out);
+                ref.Denoise(
+                    test::WithZeroSamples(test::RandomTwoHistoryFrame(kW, kH, frame), frame), out);
                 CheckHistoriesFinite(ref, variant.family == DenoiserFamily::TwoHistory);
                 REQUIRE(AllFinite(out));
             }
         }
 }
 
-// Bytes of one eye's buffers at 1280×720 (`fovrt memory`), fp32 / fp16 histories, as they were before
-// zero-sample pixels were accepted: a pixel without a sample needs no plane of its own.
-TEST_CASE("accepting zero-sample pixels leaves every variant's memory plan unchanged", "[zero_samples]") {
+// Bytes of one eye's buffers at 1280×720 (`fovrt memory`), fp32 / fp16 histories, as they were
+// before zero-sample pixels were accepted: a pixel without a sample needs no plane of its own.
+TEST_CASE("accepting zero-sample pixels leaves every variant's memory plan unchanged",
+          "[zero_samples]") {
     struct Expected {
         const char* name;
         size_t fp32, fp16;

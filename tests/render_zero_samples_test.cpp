@@ -1,7 +1,7 @@
-// Pixels the spp map gives 0 samples (a periphery below 1 spp): the tracer still traces their primary
-// ray for the guide planes (counted as guide rays, apart from the path samples), leaves their
-// colour at 0 and records n = 0; A-SVGF's forward projection draws no gradient sample from a pixel
-// that had no path sample.
+// Pixels the spp map gives 0 samples (a periphery below 1 spp): the tracer still traces their
+// primary ray for the guide planes (counted as guide rays, apart from the path samples), leaves
+// their colour at 0 and records n = 0; A-SVGF's forward projection draws no gradient sample from a
+// pixel that had no path sample.
 #include <cmath>
 #include <cstring>
 
@@ -88,9 +88,11 @@ TEST_CASE("no A-SVGF gradient sample comes from a pixel without path samples", "
     const int strata = ((kW + 2) / 3) * ((kH + 2) / 3);
     CHECK(int(cur.gradientSamples.size()) == strata);
     for (const GradientSample& g : cur.gradientSamples) {
-        INFO("pixel " << g.pixel.x << "," << g.pixel.y << " from " << g.prevPixel.x << "," << g.prevPixel.y);
+        INFO("pixel " << g.pixel.x << "," << g.pixel.y << " from " << g.prevPixel.x << ","
+                      << g.prevPixel.y);
         REQUIRE(prev.sampleCount(g.prevPixel.x, g.prevPixel.y) > 0);
-        REQUIRE(cur.sampleCount(g.pixel.x, g.pixel.y) == prev.sampleCount(g.prevPixel.x, g.prevPixel.y));
+        REQUIRE(cur.sampleCount(g.pixel.x, g.pixel.y) ==
+                prev.sampleCount(g.prevPixel.x, g.prevPixel.y));
         REQUIRE(g.newLuminance == g.oldLuminance);  // same scene, same seed and n: a zero gradient
     }
 }
