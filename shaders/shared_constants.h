@@ -49,6 +49,10 @@
 #define FOVRT_MAX_ATROUS_ITERATIONS 8
 // Object id of background pixels (matches fovrt::kNoObject).
 #define FOVRT_NO_OBJECT 0xFFFFFFFFu
+// The variance of an (illumination, variance) plane at a pixel that holds nothing: no path sample
+// this frame (sample count 0) and no history to keep. Every real variance is >= 0; the spatial
+// passes give such a pixel weight 0, so its neighbours fill it (HOLDS_NOTHING, HoldsNothing).
+#define FOVRT_EMPTY_VARIANCE (-1.0)
 
 // ---- Bindings (set 0), one list per shader --------------------------------------------------
 // Per-pixel planes are tightly packed arrays indexed i = y·width + x: RGB as 3 floats, vec2 as 2.

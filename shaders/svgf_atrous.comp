@@ -5,7 +5,9 @@
 // Purpose: 5×5 kernel h⊗h at step 2^i with w = w_z·w_n·w_l; w_l uses the 3×3 Gaussian-prefiltered
 //   variance of the centre; colour = Σ h w c / Σ h w, variance = Σ h² w² Var / (Σ h w)².
 //   On the feedback iteration (specialization constant FOVRT_SPEC_ATROUS_WRITE_HISTORY) the filtered
-//   colour is also written as the colour history.
+//   colour is also written as the colour history. A pixel that holds nothing (HOLDS_NOTHING: no
+//   sample, no history) has weight 0 as a tap, its own included, and as a centre no w_l: its
+//   neighbours fill it; with none that holds anything it stays as it is.
 // Channels: FOVRT_CHANNELS (1: "svgf_atrous", 2: "svgf_atrous_pair") illumination planes filtered
 //   by one dispatch (direct + indirect, or the unweighted + weighted history of two-history). The
 //   per-tap guide fetch, background test, depth gradient and w_z·w_n exponent are shared; each
@@ -96,7 +98,7 @@ void main() {
             vec4 gq = FETCH4(guide, j);
             vec4 v[NCH];
             FETCH_ILLUM(v, j);
-            const bool use = q_inside && !GUIDE_IS_BACKGROUND(gq);
+            const bool use = q_inside && !GUIDE_IS_BACKGROUND(gq) && !HOLDS_NOTHING(v[0]);
             [[unroll]] for (int k = 0; k < BK; ++k) {
                 const int dx = vx - 1 - (k & 1), dy = vy - 1 - (k >> 1);
                 if (dx < -1 || dx > 1 || dy < -1 || dy > 1) continue;  // compile-time
@@ -124,7 +126,7 @@ void main() {
                     gc[k] = q_inside ? gq : gc[k];
                     center[k] = v;  // only read where gc[k] is not background
                 }
-                float g = q_inside && !GUIDE_IS_BACKGROUND(gq) ? gauss3(dx, dy) : 0.0;
+                float g = q_inside && !GUIDE_IS_BACKGROUND(gq) && !HOLDS_NOTHING(v[0]) ? gauss3(dx, dy) : 0.0;
                 [[unroll]] for (int c = 0; c < NCH; ++c) var_sum[k][c] += g * v[c].a;
                 var_w[k] += g;
             }
@@ -137,9 +139,10 @@ void main() {
         filtered[k] = !GUIDE_IS_BACKGROUND(gc[k]);
         gp[k] = valid[k] ? FETCH2(depth_grad, pix[k].y * pc.size.x + pix[k].x) : vec2(0.0);
         [[unroll]] for (int c = 0; c < NCH; ++c) {
-            float sigma_l_std = pc.sigma_luminance * sqrt(max(0.0, var_sum[k][c] / var_w[k]));
+            float sigma_l_std = pc.sigma_luminance * sqrt(max(0.0, var_w[k] > 0.0 ? var_sum[k][c] / var_w[k] : 0.0));
             lp[k][c] = luminance(center[k][c].rgb);
-            inv_l_den[k][c] = 1.0 / (sigma_l_std + FOVRT_ATROUS_LUMINANCE_EPSILON);
+            // A centre that holds nothing has no luminance to stop at.
+            inv_l_den[k][c] = HOLDS_NOTHING(center[k][0]) ? 0.0 : 1.0 / (sigma_l_std + FOVRT_ATROUS_LUMINANCE_EPSILON);
             sum_w[k][c] = 0.0;
             sum_c[k][c] = vec3(0.0);
             sum_v[k][c] = 0.0;
@@ -152,9 +155,9 @@ void main() {
             ivec2 q = base + ivec2(lx - 2, ly - 2) * s;
             int j = clamped_index(q, pc.size);
             vec4 gq = FETCH4(guide, j);
-            const bool use = inside(q) && !GUIDE_IS_BACKGROUND(gq);
             vec4 cq[NCH];
             FETCH_ILLUM(cq, j);
+            const bool use = inside(q) && !GUIDE_IS_BACKGROUND(gq) && !HOLDS_NOTHING(cq[0]);
             [[unroll]] for (int k = 0; k < BK; ++k) {
                 const int kx = lx - 2 - (k & 1), ky = ly - 2 - (k >> 1);
                 if (kx < -2 || kx > 2 || ky < -2 || ky > 2) continue;  // compile-time
@@ -183,8 +186,9 @@ void main() {
         int i = pix[k].y * pc.size.x + pix[k].x;
         vec4 result[NCH];
         [[unroll]] for (int c = 0; c < NCH; ++c)
-            result[c] = filtered[k] ? vec4(sum_c[k][c] / sum_w[k][c], sum_v[k][c] / (sum_w[k][c] * sum_w[k][c]))
-                                  : center[k][c];
+            result[c] = filtered[k] && sum_w[k][c] > 0.0
+                            ? vec4(sum_c[k][c] / sum_w[k][c], sum_v[k][c] / (sum_w[k][c] * sum_w[k][c]))
+                            : center[k][c];
         illum_out0[i] = result[0];
         if (kWriteHistory) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
 #if NCH == 2

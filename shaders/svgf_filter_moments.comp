@@ -5,7 +5,8 @@
 // (paper §4.2, SPEC §3, Falcor SVGFFilterMoments).
 // Purpose: where history length < threshold, replace illumination and variance by a 7×7 bilateral
 //   estimate (weights w_z·w_n): illum = Σw c / Σw, variance = max(0, m2 − m1²) of Σw m / Σw,
-//   boosted by threshold / length for the first frames. Elsewhere pass through.
+//   boosted by threshold / length for the first frames. Elsewhere pass through. A pixel that holds
+//   nothing (HOLDS_NOTHING) is no neighbour, and one listed itself takes its neighbours' estimate.
 // Dispatch: indirect, one invocation per pixel listed by svgf_moments_classify (not background,
 //   length < threshold); the host copies the input to the output for every other pixel first.
 // Reads:  illumination + variance (vec4), guide (normal, depth, background), depth gradient,
@@ -41,15 +42,21 @@ void filter_pixel(int i) {
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.size))) continue;
             int j = q.y * pc.size.x + q.x;
             vec4 gq = FETCH4(guide, j);
-            if (GUIDE_IS_BACKGROUND(gq)) continue;
+            vec4 cq = FETCH4(illum_in, j);
+            if (GUIDE_IS_BACKGROUND(gq) || HOLDS_NOTHING(cq)) continue;
             float w = geometry_weight(zp, gq.w, gp, vec2(dx, dy), pc.sigma_depth, np, gq.xyz,
                                       pc.sigma_normal, 0.0);
             sum_w += w;
-            sum_c += w * FETCH3(illum_in, j);
+            sum_c += w * cq.rgb;
             sum_m += w * FETCH2(moments, j);
         }
     }
-    // The centre has weight 1, so sum_w ≥ 1.
+    // The centre has weight 1, so sum_w ≥ 1, unless it holds nothing: then its neighbours fill it,
+    // and where none holds anything it stays as it is.
+    if (sum_w == 0.0) {
+        illum_out[i] = FETCH4(illum_in, i);
+        return;
+    }
     vec2 m = sum_m / sum_w;
     float variance = max(0.0, m.y - m.x * m.x) * (pc.threshold / max(len, 1.0));
     illum_out[i] = vec4(sum_c / sum_w, variance);

@@ -7,6 +7,8 @@
 //   blend: C' = lerp(C_prev, C, α_c) with α_c = max(α, 1/length) — or, in weighted mode (svgf-weighted,
 //   SPEC §5), W ← (1−α)·W_prev + n, C' = C_prev + n·(C − C_prev)/W. Moments (l, l²) use
 //   α_m = max(α_m, 1/length). History length is interpolated from the valid taps, +1, capped.
+//   Weighted, n = 0 (no path sample): the reprojected history is kept as it is (length, weight,
+//   moments, colour); without one the pixel holds nothing (length 0, FOVRT_EMPTY_VARIANCE).
 // Passes: "svgf_reproject[_pair]" runs on every pixel with the bilinear taps and lists the pixels
 //   whose taps all failed (their disocclusion result is written meanwhile); "…_box" runs on the
 //   listed pixels only (indirect dispatch) with the 3×3 fallback taps and overwrites their results
@@ -95,7 +97,9 @@ vec3 sanitise(vec3 c) {
         STORE2(hist_moments##k, i, to_history(m_acc[k]), hfloat);                                            \
         hist_length##k[i] = hfloat(len[k]);                                                                  \
         if (kWriteColor) STORE3(hist_color##k, i, to_history(c_acc[k]), hfloat);                             \
-        illum_out##k[i] = vec4(c_acc[k], max(0.0, m_acc[k].y - m_acc[k].x * m_acc[k].x));                   \
+        illum_out##k[i] = n == 0.0 && len[k] == 0.0                                                           \
+                              ? vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)                                        \
+                              : vec4(c_acc[k], max(0.0, m_acc[k].y - m_acc[k].x * m_acc[k].x));             \
     } while (false)
 
 // Accumulates pixel i with this pass's taps; true when the main pass found no bilinear tap on an
@@ -127,7 +131,7 @@ bool reproject_pixel(int i) {
     GATHER_HISTORY(1);
 #endif
     bool success = taps.count > 0;
-    float n = kWeighted ? float(max(LOAD_U16(sample_count, i), 1u)) : 1.0;
+    float n = kWeighted ? float(LOAD_U16(sample_count, i)) : 1.0;
 
     vec3 c_acc[NCH];
     vec2 m_acc[NCH];
@@ -135,6 +139,14 @@ bool reproject_pixel(int i) {
     [[unroll]] for (int k = 0; k < NCH; ++k) {
         float l = luminance(c[k]);
         vec2 m = vec2(l, l * l);
+        if (n == 0.0) {  // weighted, no path sample: the reprojected history as it is, or nothing
+            bool held = success && len_prev[k] > 0.0;
+            total[k] = held ? w_prev[k] : 0.0;
+            c_acc[k] = held ? c_prev[k] : vec3(0.0);
+            m_acc[k] = held ? m_prev[k] : vec2(0.0);
+            len[k] = held ? len_prev[k] : 0.0;
+            continue;
+        }
         len[k] = success ? min(len_prev[k] + 1.0, FOVRT_MAX_HISTORY_LENGTH) : 1.0;
         if (kWeighted) {
             total[k] = (success ? (1.0 - pc.alpha_color) * w_prev[k] : 0.0) + n;

@@ -11,6 +11,8 @@
 //   W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
 //   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)·lum(Σx − ΣI_u,prev)
 //   over the channels (GRADIENT flag; g is one float, the signed luminance of the gradient).
+//   n = 0 (no path sample; TWO_HISTORY only, the others read no sample count): every history
+//   stays as reprojected, W_u included; without one the pixel holds nothing (FOVRT_EMPTY_VARIANCE).
 // Channels: FOVRT_CHANNELS (1: "two_history_reproject", one channel = direct + indirect summed
 //   (combined); 2: "two_history_reproject_pair", direct at the base bindings and indirect at
 //   COLOR_IN2 / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
@@ -134,16 +136,18 @@ float neighbour_max_luminance(int k, int i) {
         }                                                                                      \
         float l_ = luminance(x[k]);                                                            \
         if (!success) m_prev_ = vec2(l_, l_ * l_);                                             \
-        vec3 iu_ = iu_prev[k] + (x[k] - iu_prev[k]) * (1.0 / wu);                              \
-        vec2 m_ = mix(m_prev_, vec2(l_, l_ * l_), am);                                         \
+        vec3 iu_ = !sampled ? (held ? iu_prev[k] : vec3(0.0))                                  \
+                            : iu_prev[k] + (x[k] - iu_prev[k]) * (1.0 / wu);                   \
+        vec2 m_ = !sampled ? (held ? m_prev_ : vec2(0.0)) : mix(m_prev_, vec2(l_, l_ * l_), am); \
         float variance_ = max(0.0, m_.y - m_.x * m_.x);                                        \
         STORE2(cur_m##k, i, to_history(m_), hfloat);                                           \
         cur_wu##k[i] = hfloat(to_history(wu));                                                 \
-        illum_u##k[i] = vec4(iu_, variance_);                                                  \
+        illum_u##k[i] = held ? vec4(iu_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE);   \
         if (kWriteColor) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
         if (kTwo) {                                                                            \
-            vec3 iw_ = iw_prev_ + (x[k] - iw_prev_) * (n / ww);                                \
-            illum_w##k[i] = vec4(iw_, variance_);                                              \
+            vec3 iw_ = !sampled ? (held ? iw_prev_ : vec3(0.0))                                \
+                                : iw_prev_ + (x[k] - iw_prev_) * (n / ww);                     \
+            illum_w##k[i] = held ? vec4(iw_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE); \
             if (kWriteColor) STORE3(cur_iw##k, i, to_history(iw_), hfloat);                    \
         }                                                                                      \
     } while (false)
@@ -161,7 +165,8 @@ bool reproject_pixel(int i) {
                                       max(abs(dzv.x), abs(dzv.y)));
     }
     bool success = taps.count > 0;
-    float n = float(max(LOAD_U16(sample_count, i), 1u));
+    // The sample count is read by the two-history variants only (A-SVGF's own takes n = 1).
+    float n = kTwo ? float(LOAD_U16(sample_count, i)) : 1.0;
 
     // Per-pixel state, once for all channels (W_u from channel 0's length: both channels hold the same).
     float wu_prev = 0.0, ww_prev = 0.0;
@@ -181,9 +186,12 @@ bool reproject_pixel(int i) {
         alpha_m = mix(pc.alpha_moments, 1.0, a);
     }
     float beta = success ? two_history_decay(alpha, wu_prev) : 0.0;
-    float wu = beta * wu_prev + 1.0;
-    float ww = beta * ww_prev + n;
-    vec3 s = beta * beta * s_prev + vec3(1.0 / n, 1.0, n);
+    // No path sample (n = 0): every history stays as reprojected, W_u included; where there is
+    // none (W_u,prev = 0) the pixel holds nothing.
+    bool sampled = n > 0.0, held = sampled || wu_prev > 0.0;
+    float wu = sampled ? beta * wu_prev + 1.0 : wu_prev;
+    float ww = sampled ? beta * ww_prev + n : ww_prev;
+    vec3 s = sampled ? beta * beta * s_prev + vec3(1.0 / n, 1.0, n) : s_prev;
     float am = success ? max(alpha_m, 1.0 / wu) : 1.0;
 
     vec3 x[NCH], iu_prev[NCH];
@@ -206,9 +214,10 @@ bool reproject_pixel(int i) {
 #endif
             float g_prev = 0.0;
             if (success) GATHER1(prev_g, taps, g_prev);
-            float g = success ? g_prev * pc.gradient_beta +
+            float g = !sampled ? g_prev  // no sample, no new gradient
+                      : success ? g_prev * pc.gradient_beta +
                                     luminance(x_sum - iu_prev_sum) * (1.0 - pc.gradient_beta)
-                              : 0.0;
+                                : 0.0;
             cur_g[i] = hfloat(to_history(g));
         }
     }

@@ -155,6 +155,34 @@ inline FrameInputs RandomTwoHistoryFrame(int w, int h, uint32_t frame, bool boxF
     return f;
 }
 
+// `f` (frame `frame`) with pixels that have no path sample, as a periphery below 1 spp gives them:
+// sample count 0 and colour 0 at one pixel of every 2×2 block (which one moves with the frame), and
+// from frame 1 on a disoccluded 12×8 block (previous pixel off-screen) whose left half has no sample
+// at all, so that its pixels hold nothing. A-SVGF's gradient-sample pixels keep their n (the
+// renderer never draws a gradient sample from a pixel without one).
+inline FrameInputs WithZeroSamples(FrameInputs f, uint32_t frame) {
+    const int w = f.width(), h = f.height();
+    Plane<uint8_t> gradientPixel(w, h, uint8_t(0));
+    for (const GradientSample& g : f.gradientSamples)
+        if (f.objectId.InBounds(g.pixel.x, g.pixel.y)) gradientPixel(g.pixel.x, g.pixel.y) = 1;
+    const int bx = w / 3, by = h / 3;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool block = frame > 0 && x >= bx && x < bx + 12 && y >= by && y < by + 8;
+            if (block) f.prevPixel(x, y) = vec2(-1.0f);
+            const bool none = (block && x < bx + 6) || ((x & 1) + 2 * (y & 1)) == int(frame % 4);
+            if (!none || gradientPixel(x, y)) continue;
+            f.sampleCount(x, y) = 0;
+            f.direct(x, y) = vec3(0.0f);
+            f.indirect(x, y) = vec3(0.0f);
+        }
+    return f;
+}
+
+inline FrameInputs ZeroSampleFrame(int w, int h, uint32_t seed, uint32_t frame) {
+    return WithZeroSamples(RandomFrame(w, h, seed, frame), frame);
+}
+
 // Pixels of `cur` that the reference reprojects from `prev` through the 3×3 fallback.
 inline int CountBoxFallbackPixels(const FrameInputs& cur, const FrameInputs& prev) {
     int count = 0;

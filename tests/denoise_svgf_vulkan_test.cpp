@@ -217,6 +217,32 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
 // The reprojection runs as two passes on Vulkan (bilinear taps on every pixel, then the 3×3
 // fallback on the listed pixels only: shaders/common/reprojection.glsl); the reference does both in
 // one loop. FallbackFrame sends every patch-edge column through the fallback.
+// Pixels without a path sample (test::ZeroSampleFrame): svgf-weighted keeps their histories or,
+// disoccluded, lets them hold nothing for the à-trous to fill; svgf reads no sample count.
+TEST_CASE("vulkan svgf matches the reference with zero-sample pixels", "[vulkan][svgf]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
+        if (precision == Precision::Fp16 && !TestContext()->supports16BitStorage()) continue;
+        const double tol = precision == Precision::Fp16 ? 1e-2 : 2e-3;
+        const std::string suffix = precision == Precision::Fp16 ? " fp16" : "";
+        DenoiserParams p;
+        p.precision = precision;
+        p.svgf.atrousIterations = 3;
+        SECTION("svgf-weighted, feedback of iteration 1" + suffix) {
+            p.svgf.weightBySampleCount = true;
+            RunPair(p, "svgf-weighted", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf-weighted, unfiltered colour history" + suffix) {
+            p.svgf.weightBySampleCount = true;
+            p.svgf.feedbackIteration = 0;
+            RunPair(p, "svgf-weighted", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf" + suffix) {
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+    }
+}
+
 TEST_CASE("vulkan svgf: the 3x3 reprojection fallback pass matches the reference", "[vulkan][svgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     const int boxPixels = CountBoxFallbackPixels(FallbackFrame(64, 64, 1234, 1), FallbackFrame(64, 64, 1234, 0));

@@ -1,5 +1,5 @@
 // Two-history per-pixel maths (SPEC §5): recursions vs explicit sums, the blend factor p vs a
-// brute-force minimisation of V(p), V(p) vs Monte-Carlo, constant n ⇒ both histories coincide.
+// brute-force minimisation of V(p), V(p) vs Monte-Carlo, constant n ⇒ both histories coincide and p = 1.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -199,6 +199,23 @@ TEST_CASE("constant n: weighted and unweighted histories coincide", "[two_histor
             CHECK(w.ww == Approx(n * w.wu).epsilon(1e-5));
         }
     }
+}
+
+// Every n of the history equal: V(p) is flat and p is decided by the tie rule, not by the last bits
+// of a and c (which favoured p = 0 for some of these histories).
+TEST_CASE("a tie of the sample counts gives p = 1", "[two_history]") {
+    size_t histories = 0;
+    for (float alpha : {0.05f, 0.1f, 0.2f, 0.37f})
+        for (int n = 1; n <= 16; ++n) {
+            TwoHistoryWeights w;
+            for (int frame = 0; frame < 60; ++frame) {
+                w = AccumulateWeights(w, TwoHistoryDecay(alpha, w.wu), float(n));
+                INFO("alpha " << alpha << ", n " << n << ", frame " << frame);
+                REQUIRE(TwoHistoryOptimalBlend(w) == 1.0f);
+                ++histories;
+            }
+        }
+    CHECK(histories == 4 * 16 * 60);
 }
 
 TEST_CASE("warm-up decay reproduces SVGF's max(alpha, 1/historyLength)", "[two_history]") {

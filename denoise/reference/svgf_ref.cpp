@@ -121,6 +121,9 @@ vec3 SanitizeIllumination(const vec3& c, DenoiseStats& stats) {
     return c;
 }
 
+vec4 NothingHeld() { return vec4(0.0f, 0.0f, 0.0f, float(FOVRT_EMPTY_VARIANCE)); }
+bool HoldsNothing(const vec4& illumination) { return illumination.a < 0.0f; }
+
 float QuantizeHistory(float v, Precision precision) {
     if (precision == Precision::Fp32) return v;
     return glm::unpackHalf1x16(glm::packHalf1x16(std::clamp(v, -65000.0f, 65000.0f)));
@@ -165,9 +168,21 @@ void SvgfReprojectRef(const Plane<vec3>& color, const Plane<vec3>* color2, const
             vec2 mPrev = GatherTaps(histPrev.moments, taps);
             float lenPrev = GatherTaps(histPrev.length, taps);
             float len = success ? std::min(lenPrev + 1.0f, float(FOVRT_MAX_HISTORY_LENGTH)) : 1.0f;
+            // Weighted: a pixel without a path sample keeps its reprojected history as it is (no
+            // colour enters, the length stays), or holds nothing where it has none.
+            if (options.weighted && cur.sampleCount[i] == 0) {
+                const bool held = success && lenPrev > 0.0f;
+                const float wPrev = GatherTaps(histPrev.weight, taps);
+                histCur.weight[i] = held ? QuantizeHistory(wPrev, prec) : 0.0f;
+                histCur.moments[i] = held ? QuantizeHistory(mPrev, prec) : vec2(0.0f);
+                histCur.length[i] = held ? QuantizeHistory(lenPrev, prec) : 0.0f;
+                if (options.writeColorHistory) histCur.color[i] = held ? QuantizeHistory(cPrev, prec) : vec3(0.0f);
+                illumOut[i] = held ? vec4(cPrev, std::max(0.0f, mPrev.y - mPrev.x * mPrev.x)) : NothingHeld();
+                continue;
+            }
             vec3 cAcc;
             if (options.weighted) {
-                float n = float(std::max<uint16_t>(cur.sampleCount[i], 1));
+                float n = float(cur.sampleCount[i]);
                 float wPrev = GatherTaps(histPrev.weight, taps);
                 float total = (success ? (1.0f - options.alphaColor) * wPrev : 0.0f) + n;
                 cAcc = success ? cPrev + (n / total) * (c - cPrev) : c;
@@ -215,13 +230,17 @@ void SvgfFilterMomentsRef(const Plane<vec4>& illumIn, const SvgfGeometry& geomet
                     int qx = x + dx, qy = y + dy;
                     if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
                     size_t j = size_t(qy) * size_t(w) + size_t(qx);
-                    if (geometry.objectId[j] == kNoObject) continue;
+                    if (geometry.objectId[j] == kNoObject || HoldsNothing(illumIn[j])) continue;
                     float wq = DepthWeight(zp, geometry.depth[j], gp, vec2(dx, dy), params.sigmaDepth) *
                                NormalWeight(np, geometry.normal[j], params.sigmaNormal);
                     sumW += wq;
                     sumC += wq * vec3(illumIn[j]);
                     sumM += wq * moments[j];
                 }
+            if (sumW == 0.0f) {  // holds nothing, and neither does any neighbour
+                illumOut[i] = illumIn[i];
+                continue;
+            }
             vec2 m = sumM / sumW;
             float variance = std::max(0.0f, m.y - m.x * m.x) * (threshold / std::max(len, 1.0f));
             illumOut[i] = vec4(sumC / sumW, variance);
@@ -242,17 +261,20 @@ void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
             vec4 center = illumIn[i];
             vec4 result = center;
             if (geometry.objectId[i] != kNoObject) {
+                // A pixel that holds nothing has weight 0 everywhere (its neighbours fill it) and,
+                // with no luminance of its own, no luminance edge-stopping.
+                const bool empty = HoldsNothing(center);
                 float varSum = 0.0f, varW = 0.0f;
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         if (!inside(x + dx, y + dy)) continue;
                         size_t j = i + size_t(ptrdiff_t(dy) * w + dx);
-                        if (geometry.objectId[j] == kNoObject) continue;
+                        if (geometry.objectId[j] == kNoObject || HoldsNothing(illumIn[j])) continue;
                         float g = Gauss3(dx, dy);
                         varSum += g * illumIn[j].a;
                         varW += g;
                     }
-                float sigmaLStd = params.sigmaLuminance * std::sqrt(std::max(0.0f, varSum / varW));
+                float sigmaLStd = params.sigmaLuminance * std::sqrt(std::max(0.0f, varW > 0.0f ? varSum / varW : 0.0f));
                 float zp = geometry.depth[i];
                 vec3 np = geometry.normal[i];
                 vec2 gp = depthGradient[i];
@@ -264,7 +286,7 @@ void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
                         int qx = x + kx * step, qy = y + ky * step;
                         if (!inside(qx, qy)) continue;
                         size_t j = size_t(qy) * size_t(w) + size_t(qx);
-                        if (geometry.objectId[j] == kNoObject) continue;
+                        if (geometry.objectId[j] == kNoObject || HoldsNothing(illumIn[j])) continue;
                         vec4 cq = illumIn[j];
                         float hk = kAtrousKernel[kx + 2] * kAtrousKernel[ky + 2];
                         float wq = (kx == 0 && ky == 0)
@@ -272,13 +294,13 @@ void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
                                        : DepthWeight(zp, geometry.depth[j], gp,
                                                      vec2(kx * step, ky * step), params.sigmaDepth) *
                                              NormalWeight(np, geometry.normal[j], params.sigmaNormal) *
-                                             LuminanceWeight(lp, Luminance(vec3(cq)), sigmaLStd);
+                                             (empty ? 1.0f : LuminanceWeight(lp, Luminance(vec3(cq)), sigmaLStd));
                         float hw = hk * wq;
                         sumW += hw;
                         sumC += hw * vec3(cq);
                         sumV += hw * hw * cq.a;
                     }
-                result = vec4(sumC / sumW, sumV / (sumW * sumW));
+                if (sumW > 0.0f) result = vec4(sumC / sumW, sumV / (sumW * sumW));
             }
             illumOut[i] = result;
             if (historyColor) (*historyColor)[i] = QuantizeHistory(vec3(result), precision);

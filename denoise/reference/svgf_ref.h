@@ -68,6 +68,11 @@ T GatherTaps(const Plane<T>& plane, const ReprojectionTaps& taps) {
 // NaN/Inf pixel → 0 (counted non-finite); negative components → 0 (counted negative).
 vec3 SanitizeIllumination(const vec3& c, DenoiseStats& stats);
 
+// The (illumination, variance) of a pixel that holds nothing: no path sample this frame and no
+// history (FOVRT_EMPTY_VARIANCE); the spatial passes give it weight 0 so its neighbours fill it.
+vec4 NothingHeld();
+bool HoldsNothing(const vec4& illumination);
+
 // Rounds a value as the history storage of `precision` would (fp16 round trip, saturating).
 float QuantizeHistory(float v, Precision precision);
 vec2 QuantizeHistory(const vec2& v, Precision precision);

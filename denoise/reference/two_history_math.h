@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "shaders/common/two_history_constants.glsl"
 
 namespace fovrt {
 
@@ -112,14 +113,16 @@ inline double TwoHistoryBlendVariance(const TwoHistoryWeights& w, double p) {
 // "First Phase of Blending": the boxed formula swaps S_0 and S_1; this one follows from the proof).
 // Evaluated as (a − b)/(a − 2b + c) with the terms of V(p) above, which keeps the magnitudes near
 // 1/W. The denominator is Σβ²(1/W_u − n/W_w)²/n ≥ 0 and vanishes only when every n is equal (I_w =
-// I_u, any p is right); when it is lost in rounding V(p) is linear and the smaller end wins.
+// I_u, any p is right); when it is lost in rounding V(p) is linear and the smaller end wins, and
+// ends within FOVRT_TWO_HISTORY_TIE are a tie, p = 1 — on the device too, whatever the last bits
+// of a and c (every n equal gives a = b = c).
 inline float TwoHistoryOptimalBlend(const TwoHistoryWeights& w) {
     if (w.wu <= 0.0f || w.ww <= 0.0f) return 1.0f;
     const float a = w.s1 / (w.ww * w.ww);
     const float b = w.s0 / (w.ww * w.wu);
     const float c = w.sMinus1 / (w.wu * w.wu);
     const float den = a - 2.0f * b + c;
-    if (!(den > 1e-6f * (a + c))) return a < c ? 0.0f : 1.0f;
+    if (!(den > 1e-6f * (a + c))) return c - a > float(FOVRT_TWO_HISTORY_TIE) * (a + c) ? 0.0f : 1.0f;
     return std::clamp((a - b) / den, 0.0f, 1.0f);
 }
 

@@ -65,7 +65,8 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
             const ReprojectionTaps taps =
                 hasPrev ? FindReprojectionTaps(frame, prevGeometry, x, y) : ReprojectionTaps{};
             const bool success = taps.count > 0;
-            const float n = float(std::max<uint16_t>(frame.sampleCount[i], 1));
+            // The sample count is read by the two-history variants only (A-SVGF's own takes n = 1).
+            const float n = two ? float(frame.sampleCount[i]) : 1.0f;
 
             TwoHistoryWeights wPrev;
             if (success) {
@@ -85,7 +86,10 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
             }
             // β = 0 on disocclusion: every sum restarts from this frame's sample.
             const float beta = success ? TwoHistoryDecay(alpha, wPrev.wu) : 0.0f;
-            const TwoHistoryWeights wNew = AccumulateWeights(wPrev, beta, n);
+            // No path sample (n = 0): every history stays as reprojected, W_u included; where
+            // there is none (W_u,prev = 0) the pixel holds nothing.
+            const bool sampled = n > 0.0f, held = sampled || wPrev.wu > 0.0f;
+            const TwoHistoryWeights wNew = sampled ? AccumulateWeights(wPrev, beta, n) : wPrev;
             const float am = success ? std::max(alphaM, 1.0f / wNew.wu) : 1.0f;
 
             vec3 xSum(0.0f), iuPrevSum(0.0f);
@@ -101,16 +105,16 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                                          neighbourMaxLuminance(ch, x, y));
                 const float l = Luminance(xc);
                 const vec2 mPrev = success ? mGathered : vec2(l, l * l);
-                const vec3 iu = AccumulateUnweighted(iuPrev, xc, wNew.wu);
-                const vec2 m = glm::mix(mPrev, vec2(l, l * l), am);
+                const vec3 iu = !sampled ? (held ? iuPrev : vec3(0.0f)) : AccumulateUnweighted(iuPrev, xc, wNew.wu);
+                const vec2 m = !sampled ? (held ? mPrev : vec2(0.0f)) : glm::mix(mPrev, vec2(l, l * l), am);
                 const float var = std::max(0.0f, m.y - m.x * m.x);
                 cur.moments[ch][i] = QuantizeHistory(m, prec);
-                illumU[ch][i] = vec4(iu, var);
+                illumU[ch][i] = held ? vec4(iu, var) : NothingHeld();
                 if (options.writeColorHistory) cur.iu[ch][i] = QuantizeHistory(iu, prec);
                 if (two) {
                     const vec3 iwPrev = success ? GatherTaps(prev.iw[ch], taps) : xc;
-                    const vec3 iw = AccumulateWeighted(iwPrev, xc, n, wNew.ww);
-                    illumW[ch][i] = vec4(iw, var);
+                    const vec3 iw = !sampled ? (held ? iwPrev : vec3(0.0f)) : AccumulateWeighted(iwPrev, xc, n, wNew.ww);
+                    illumW[ch][i] = held ? vec4(iw, var) : NothingHeld();
                     if (options.writeColorHistory) cur.iw[ch][i] = QuantizeHistory(iw, prec);
                 }
                 xSum += xc;
@@ -124,8 +128,9 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
             if (withGradient) {
                 const float gPrev = success ? GatherTaps(prev.gradient, taps) : 0.0f;
                 cur.gradient[i] = QuantizeHistory(
-                    AccumulateGradient(gPrev, LuminanceGradient(xSum, iuPrevSum), 0.0f,
-                                       options.gradientBeta, success),
+                    sampled ? AccumulateGradient(gPrev, LuminanceGradient(xSum, iuPrevSum), 0.0f,
+                                                 options.gradientBeta, success)
+                            : gPrev,  // no sample, no new gradient
                     prec);
             }
         }

@@ -32,5 +32,7 @@ int clamped_index(ivec2 q, ivec2 size) {
 // Edge-stopping guide written by svgf_pack_guide: xyz = normal, w = linear depth, w = −1 on
 // background pixels (object id kNoObject).
 #define GUIDE_IS_BACKGROUND(g) ((g).w < 0.0)
+// An (illumination, variance) texel of a pixel that holds nothing (FOVRT_EMPTY_VARIANCE).
+#define HOLDS_NOTHING(v) ((v).a < 0.0)
 
 #endif

@@ -5,6 +5,7 @@
 #ifndef FOVRT_TWO_HISTORY_GLSL
 #define FOVRT_TWO_HISTORY_GLSL
 #include "common/luminance.glsl"
+#include "common/two_history_constants.glsl"
 
 // β = min(1, (1/α − 1)/W_u,prev): steady state 1 − α, SVGF's max(α, 1/length) during warm-up.
 float two_history_decay(float alpha, float wu_prev) {
@@ -36,14 +37,15 @@ float firefly_neighbour_luminance(vec3 c) {
     return luminance(max(c, vec3(0.0)));
 }
 
-// p = clamp((a − b)/(a − 2b + c), 0, 1) with a = S_1/W_w², b = S_0/(W_w W_u), c = S_{-1}/W_u².
+// p = clamp((a − b)/(a − 2b + c), 0, 1) with a = S_1/W_w², b = S_0/(W_w W_u), c = S_{-1}/W_u²;
+// p = 1 at a tie (FOVRT_TWO_HISTORY_TIE).
 float two_history_optimal_blend(float wu, float ww, vec3 s) {
     if (wu <= 0.0 || ww <= 0.0) return 1.0;
     float a = s.z / (ww * ww);
     float b = s.y / (ww * wu);
     float c = s.x / (wu * wu);
     float den = a - 2.0 * b + c;
-    if (!(den > 1e-6 * (a + c))) return a < c ? 0.0 : 1.0;
+    if (!(den > 1e-6 * (a + c))) return c - a > FOVRT_TWO_HISTORY_TIE * (a + c) ? 0.0 : 1.0;
     return clamp((a - b) / den, 0.0, 1.0);
 }
 

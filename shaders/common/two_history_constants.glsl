@@ -29,6 +29,13 @@
 // for trusting the temporal variance is 4 frames as well).
 #define FOVRT_FIREFLY_MIN_HISTORY 4.0
 
+// Two-history's blend factor p where V(p) is linear (the denominator a − 2b + c of
+// TwoHistoryOptimalBlend lost in rounding): the smaller end V(0) = a or V(1) = c wins, and ends within
+// this fraction of a + c are a tie, p = 1 (I_u), on the host and the device alike. Every sample count
+// of the history equal gives a = b = c (I_w = I_u), which rounding (a few 1e-7 of a + c in fp32)
+// would otherwise split between p = 0 and 1; the band stays below the 1e-5 of V that p may lose.
+#define FOVRT_TWO_HISTORY_TIE 4e-6
+
 // two_history_stabilize: below this luminance the stabilised colour is shifted (c + L_s − L)
 // instead of scaled (c·L_s/L), which would amplify the noise of a near-black pixel's hue.
 #define FOVRT_STABLE_LUMINANCE_FLOOR 1e-4

@@ -112,11 +112,12 @@ std::vector<Throughput> Measure(const std::vector<Renderer*>& renderers, const s
 
 void PrintThroughput(const char* label, const Throughput& t, int frames) {
     const RenderStats& s = t.stats;
-    std::printf("  %s: %.1f ms/frame (%.1f per eye), %.2f Mrays/s traced (primary %.2fM, shadow %.2fM of which %.2fM "
-                "reused per pixel, bounce %.2fM per frame), %.2f Msamples/s (%.2f per CPU-second), "
-                "%llu dropped samples, checksum %016llx\n",
+    std::printf("  %s: %.1f ms/frame (%.1f per eye), %.2f Mrays/s traced (primary %.2fM of which %.2fM guide rays, "
+                "shadow %.2fM of which %.2fM reused per pixel, bounce %.2fM per frame), %.2f Msamples/s (%.2f per "
+                "CPU-second), %llu dropped samples, checksum %016llx\n",
                 label, 1e3 * t.seconds / frames, 1e3 * t.seconds / frames / 2.0, 1e-6 * double(s.Rays()) / t.seconds,
-                1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.shadowRays) / frames,
+                1e-6 * double(s.primaryRays) / frames, 1e-6 * double(s.guideRays) / frames,
+                1e-6 * double(s.shadowRays) / frames,
                 1e-6 * double(s.shadowRaysReused) / frames, 1e-6 * double(s.bounceRays) / frames, 1e-6 * double(s.samples) / t.seconds,
                 1e-6 * double(s.samples) / t.cpuSeconds,
                 static_cast<unsigned long long>(s.droppedSamples), static_cast<unsigned long long>(t.checksum));

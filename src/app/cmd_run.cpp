@@ -315,6 +315,7 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
                                 {"traced_samples", stats.samples},
                                 {"rays", stats.Rays()},
                                 {"primary_rays", stats.primaryRays},
+                                {"guide_rays", stats.guideRays},
                                 {"shadow_tests", stats.shadowRays},
                                 {"shadow_rays_reused", stats.shadowRaysReused},
                                 {"bounce_rays", stats.bounceRays},

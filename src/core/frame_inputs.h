@@ -77,8 +77,9 @@ bool ParseDemodulation(std::string_view name, Demodulation& d);
       "motion: previous-frame continuous pixel of this surface point; (-1, -1) behind the "       \
       "previous eye")                                                                             \
     X(sampleCount, uint16_t, uint16_t(1), "",                                                     \
-      "n >= 1: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the "     \
-      "previous frame's n, reused)")                                                             \
+      "n >= 0: samples the tracer took (= spp map; at an A-SVGF gradient sample's pixel the "     \
+      "previous frame's n, reused). n = 0: no path sample, direct = indirect = 0, the other "     \
+      "planes (the guides) filled as for any n")                                                 \
     X(roughness, float, 0.0f, "",                                                                 \
       "primary hit's GGX roughness in [0,1] (sqrt of alpha); 0 for background. Only the RAE "    \
       "(SPEC §12) reads it")

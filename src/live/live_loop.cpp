@@ -239,7 +239,9 @@ std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
 
     const RenderStats before = pipeline_.GetRenderer().Stats();
     pipeline_.Render(frame->source.request, frame->stereo);
-    frame->timings.rays = pipeline_.GetRenderer().Stats().Rays() - before.Rays();
+    const RenderStats after = pipeline_.GetRenderer().Stats();
+    frame->timings.rays = after.Rays() - before.Rays();
+    frame->timings.guideRays = after.guideRays - before.guideRays;
     for (int eye = 0; eye < 2; ++eye) {
         const EyeFrame& e = frame->stereo.eyes[size_t(eye)];
         frame->timings.sppMs += e.sppMs;

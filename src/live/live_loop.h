@@ -37,6 +37,7 @@ struct LiveTimings {
     double frameMs = 0.0;    // request to publish
     std::vector<PassTiming> passes;  // per denoiser pass, summed over the eyes
     uint64_t rays = 0;
+    uint64_t guideRays = 0;  // of `rays`: primary rays of pixels without a path sample (guide planes only)
     double RaysPerSecond() const { return traceMs > 0.0 ? double(rays) / (traceMs * 1e-3) : 0.0; }
 };
 

@@ -65,9 +65,10 @@ void LiveStats::Add(const ShownFrameStats& f) {
         fmt::print(stream_,
                    "{{\"frame\":{},\"shown_s\":{:.4f},\"latency_ms\":{:.3f},\"present_ms\":{:.3f},\"spp_ms\":{:.3f},"
                    "\"trace_ms\":{:.3f},\"denoise_ms\":{:.3f},\"view_ms\":{:.3f},\"frame_ms\":{:.3f},"
-                   "\"rays\":{},\"passes_ms\":{{{}}}}}\n",
+                   "\"rays\":{},\"guide_rays\":{},\"passes_ms\":{{{}}}}}\n",
                    f.number, SecondsBetween(start_, now), f.latencyMs, f.presentMs, f.timings.sppMs, f.timings.traceMs,
-                   f.timings.denoiseMs, f.timings.viewMs, f.timings.frameMs, f.timings.rays, passes);
+                   f.timings.denoiseMs, f.timings.viewMs, f.timings.frameMs, f.timings.rays, f.timings.guideRays,
+                   passes);
     }
 }
 

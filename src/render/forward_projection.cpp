@@ -13,6 +13,21 @@ namespace {
 constexpr float kGradientDepthTolerance = 0.01f;  // relative depth match for forward projection
 constexpr uint32_t kGradientStream = 0x47524144u;   // random pixel per stratum
 
+// A pixel the previous frame gave no path sample has no f_{i-1} to difference against (its
+// luminance is its emission alone): the stratum's sample moves to the next pixel, in raster order
+// from the drawn one (px, py), that had samples. False when no pixel of the stratum had any.
+bool SampledPixelOfStratum(const Plane<uint16_t>& prevCount, int bx, int by, int sizeX, int sizeY, int& px, int& py) {
+    const int first = (py - by) * sizeX + (px - bx), cells = sizeX * sizeY;
+    for (int k = 0; k < cells; ++k) {
+        const int cell = (first + k) % cells;
+        const int x = bx + cell % sizeX, y = by + cell / sizeX;
+        if (prevCount(x, y) == 0) continue;
+        px = x, py = y;
+        return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 void MergeGradientSamples(const EmbreeScene& embree, uint32_t runSeed, uint32_t frame, int eye,
@@ -27,8 +42,10 @@ void MergeGradientSamples(const EmbreeScene& embree, uint32_t runSeed, uint32_t 
             Pcg32 rng(PixelSeed(HashCombine(runSeed, kGradientStream), uint32_t(eye),
                                 uint32_t(sx), uint32_t(sy), frame));
             int bx = sx * kGradientStratumSize, by = sy * kGradientStratumSize;
-            int px = bx + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, w - bx))));
-            int py = by + int(rng.NextBounded(uint32_t(std::min(kGradientStratumSize, h - by))));
+            const int sizeX = std::min(kGradientStratumSize, w - bx), sizeY = std::min(kGradientStratumSize, h - by);
+            int px = bx + int(rng.NextBounded(uint32_t(sizeX)));
+            int py = by + int(rng.NextBounded(uint32_t(sizeY)));
+            if (!SampledPixelOfStratum(history.sampleCount, bx, by, sizeX, sizeY, px, py)) continue;
             if (history.instance(px, py) == kNoObject) continue;
             SurfaceSample s{history.instance(px, py), prevVis.primitiveId(px, py), prevVis.barycentrics(px, py)};
             auto proj = camera.Project(embree.Surface(s).position);

@@ -36,7 +36,8 @@ struct EyeVisibility {
 };
 
 // The merge (paper §3, "Constructing Gradient Samples"): one random
-// previous-frame pixel per 3×3 stratum, moved to this frame with current transforms, dropped
+// previous-frame pixel per 3×3 stratum (one that had path samples: a drawn pixel with none passes
+// the draw to the next in raster order, and a stratum with none has no gradient sample), moved to this frame with current transforms, dropped
 // if off-screen or occluded in the new visibility buffer, at most one per current stratum
 // (first wins, raster order of the previous strata). A survivor replaces the visibility-buffer
 // entry of the pixel it lands in, with the previous seed and the previous sample count n_prev

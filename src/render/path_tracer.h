@@ -5,7 +5,8 @@
 // FrameInputs gets only what denoisers read), with A-SVGF gradient samples the forward-projected
 // previous surface samples merged into it (MergeGradientSamples), then every entry shaded once
 // (ShadeEntry, from TraceTile when nothing is merged, else from ShadeTile).
-// - spp-map entries of 0 are taken as 1 (sampleCount records what was traced).
+// - An spp-map entry of 0 traces the pixel's primary ray only (a guide ray, RenderStats::guideRays):
+//   its guide planes are filled, direct and indirect are 0, sampleCount is 0.
 // - Static instances (at most one transform key) are flattened into the top-level BVH.
 #pragma once
 

@@ -10,13 +10,14 @@
 namespace fovrt {
 
 struct RayCounts {
-    uint64_t primary = 0, shadow = 0, shadowReused = 0, bounce = 0, samples = 0, dropped = 0;
+    uint64_t primary = 0, guide = 0, shadow = 0, shadowReused = 0, bounce = 0, samples = 0, dropped = 0;
 };
 
 class RenderCounters {
 public:
     void Add(const RayCounts& c) {
         primaryRays_ += c.primary;
+        guideRays_ += c.guide;
         shadowRays_ += c.shadow;
         shadowRaysReused_ += c.shadowReused;
         bounceRays_ += c.bounce;
@@ -26,6 +27,7 @@ public:
     RenderStats Stats() const {
         RenderStats s;
         s.primaryRays = primaryRays_.load();
+        s.guideRays = guideRays_.load();
         s.shadowRays = shadowRays_.load();
         s.shadowRaysReused = shadowRaysReused_.load();
         s.bounceRays = bounceRays_.load();
@@ -35,6 +37,7 @@ public:
     }
     void Reset() {
         primaryRays_ = 0;
+        guideRays_ = 0;
         shadowRays_ = 0;
         shadowRaysReused_ = 0;
         bounceRays_ = 0;
@@ -43,7 +46,7 @@ public:
     }
 
 private:
-    std::atomic<uint64_t> primaryRays_{0}, shadowRays_{0}, shadowRaysReused_{0}, bounceRays_{0}, samples_{0},
+    std::atomic<uint64_t> primaryRays_{0}, guideRays_{0}, shadowRays_{0}, shadowRaysReused_{0}, bounceRays_{0}, samples_{0},
         dropped_{0};
 };
 

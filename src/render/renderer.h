@@ -33,9 +33,12 @@ struct RenderSettings {
 // taken. Samples whose value was NaN/Inf are dropped (counted, contribute 0). shadowRays counts
 // the shadow tests of every sample (one per light sample); those of point/spot/directional lights
 // at the primary vertex do not depend on the sample, so they are traced once per pixel and the
-// other samples reuse the answer (shadowRaysReused of shadowRays were not traced).
+// other samples reuse the answer (shadowRaysReused of shadowRays were not traced). guideRays: the
+// primary rays (counted in primaryRays) of pixels the spp map gave 0 samples, traced for their
+// guide planes only; no path sample starts from them.
 struct RenderStats {
     uint64_t primaryRays = 0;
+    uint64_t guideRays = 0;
     uint64_t shadowRays = 0;
     uint64_t shadowRaysReused = 0;
     uint64_t bounceRays = 0;
@@ -70,7 +73,7 @@ public:
     virtual void SetFbetaPlane(bool on) = 0;
     virtual const Scene& GetScene() const = 0;
 
-    // Renders one eye with n = spp(x, y) samples per pixel into `out` (allocated to the camera's
+    // Renders one eye with n = spp(x, y) samples per pixel (n = 0: guide planes only) into `out` (allocated to the camera's
     // resolution) and the eye's visibility buffer (Visibility(eye)). `prevCamera` and the previous
     // frame's scene state give the motion vectors.
     // With gradient samples on, each gradient pixel instead holds the forward-projected previous

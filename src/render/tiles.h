@@ -52,8 +52,8 @@ struct EyeView {
           prevView(mat3(prev.View())), rays(c) {}
 };
 
-// Shades visibility-buffer entry (x, y) = s with n samples from `seed` and fills the remaining
-// G-buffer planes. `dir`: world ray towards s (any length; background: the pixel's unit ray);
+// Shades visibility-buffer entry (x, y) = s with n samples from `seed` (n = 0: a guide ray, no
+// path sample) and fills the remaining G-buffer planes. `dir`: world ray towards s (any length; background: the pixel's unit ray);
 // `eyeRay`: the same ray in eye space with z = -1. Always inlined: as a call, the 1-spp
 // bench ran 1.6 % more instructions than the single-sweep tracer before the split (callgrind).
 template <typename Rays>
@@ -61,6 +61,7 @@ template <typename Rays>
                                               const SurfaceSample& s, uint32_t seed, int n, const vec3& dir,
                                               const vec3& eyeRay, FrameInputs& out, VisibilityBuffer& vis,
                                               Plane<float>& luminance, RayCounts& counts) {
+    counts.guide += n == 0 ? 1 : 0;  // here, not in TraceTile: a merged gradient sample brings its own n
     if (s.instance == kNoObject) {
         out.emission(x, y) = in.scene().background;
         if (!luminance.empty()) luminance(x, y) = Luminance(in.scene().background);
@@ -90,7 +91,8 @@ template <typename Rays>
 }
 
 // Visibility buffer of one tile: primary rays through the pixel centres (8-wide packets along
-// the row), the fresh per-pixel seeds and the spp map's sample counts. `shade`: nothing will
+// the row), the fresh per-pixel seeds and the spp map's sample counts (a pixel the map gives 0
+// keeps its primary ray as a guide ray: guide planes filled, no path sample, direct = indirect = 0). `shade`: nothing will
 // be merged, so each pixel is shaded right after its packet (one sweep, the rays at hand).
 template <typename Rays>
 inline void TraceTile(const Integrator<Rays>& in, const EyeView& view, const Plane<uint16_t>& spp, int x0, int y0, int x1,
@@ -116,7 +118,7 @@ inline void TraceTile(const Integrator<Rays>& in, const EyeView& view, const Pla
             for (int i = 0; i < 8 && xs + i < x1; ++i) {
                 int x = xs + i;
                 uint32_t seed = PixelSeed(in.settings().seed, uint32_t(view.eye), uint32_t(x), uint32_t(y), view.frame);
-                int n = std::max<int>(1, spp(x, y));
+                int n = spp(x, y);  // 0: the guide planes only (a guide ray), colour 0
                 vis.seed(x, y) = seed;
                 out.sampleCount(x, y) = uint16_t(n);
                 out.objectId(x, y) = hits[i].instance;

@@ -176,7 +176,7 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
         Text(fmt::format("spp {:.1f}  trace {:.1f}  denoise {:.1f}  view {:.1f} ms", t.sppMs, t.traceMs,
                          t.denoiseMs, t.viewMs));
         if (!history.empty()) Text(fmt::format("present {:.1f} ms", history.back().presentMs));
-        Text(fmt::format("{:.2f} Mrays/s ({} rays)", t.RaysPerSecond() * 1e-6, t.rays));
+        Text(fmt::format("{:.2f} Mrays/s ({} rays, {} guide rays)", t.RaysPerSecond() * 1e-6, t.rays, t.guideRays));
         std::vector<float> frameMs, denoiseMs;
         for (const auto& f : history) {
             frameMs.push_back(float(f.timings.frameMs));

@@ -1,0 +1,226 @@
+// Pixels with zero path samples (a periphery below 1 spp) in the denoisers that read per-pixel
+// sample counts, on the C++ reference (the Vulkan passes are held to it by
+// denoise_svgf_vulkan_test and denoise_two_history_vulkan_test on the same inputs):
+// - a pixel without a sample keeps its reprojected history as it is: no colour enters, the history
+//   length (SVGF's length, two-history's W_u) and the weights do not advance;
+// - a disoccluded pixel without a sample holds nothing and its neighbours fill it;
+// - no NaN or Inf in any history, whatever the mask;
+// - the memory plan of every variant is what it was before zero-sample pixels were accepted.
+#include <cmath>
+#include <iterator>
+#include <string>
+
+#include "denoise/denoiser_factory.h"
+#include "denoise/memory_plan.h"
+#include "denoise/reference/svgf_family_ref.h"
+#include "denoise/variants.h"
+#include "denoise_svgf_scenes.h"
+#include "test_support.h"
+
+using namespace fovrt;
+
+namespace {
+
+constexpr int kW = 48, kH = 32;
+
+// A still frame (every pixel reprojects onto itself with one tap) with `n` samples everywhere.
+FrameInputs StillFrame(uint32_t frame, uint16_t n) {
+    FrameInputs f = test::RandomFrame(kW, kH, 11, frame);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            f.prevPixel(x, y) = vec2(float(x) + 0.5f, float(y) + 0.5f);
+            f.sampleCount(x, y) = n;
+        }
+    f.gradientSamples.clear();
+    return f;
+}
+
+bool NoSample(int x, int y) { return (x + y) % 3 == 0; }
+
+template <typename T>
+bool AllFinite(const Plane<T>& plane) {
+    const float* v = reinterpret_cast<const float*>(plane.data());
+    for (size_t i = 0; i < plane.size() * sizeof(T) / sizeof(float); ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+// Every history plane the reference keeps for `ref`'s variant is finite.
+void CheckHistoriesFinite(const SvgfFamilyReferenceDenoiser& ref, bool twoHistoryFamily) {
+    if (!twoHistoryFamily) {
+        for (size_t c = 0; c < ref.ChannelCount(); ++c) {
+            const SvgfHistory& h = ref.CurrentHistory(c);
+            CHECK(AllFinite(h.color));
+            CHECK(AllFinite(h.moments));
+            CHECK(AllFinite(h.length));
+            CHECK(AllFinite(h.weight));
+        }
+        return;
+    }
+    const TwoHistoryState& st = ref.CurrentState();
+    CHECK(AllFinite(st.wu));
+    CHECK(AllFinite(st.ww));
+    CHECK(AllFinite(st.powerSums));
+    CHECK(AllFinite(st.gradient));
+    for (size_t c = 0; c < ref.ChannelCount(); ++c) {
+        CHECK(AllFinite(st.iu[c]));
+        CHECK(AllFinite(st.iw[c]));
+        CHECK(AllFinite(st.moments[c]));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("a pixel without a path sample keeps its history: no colour enters, the length stays",
+          "[zero_samples]") {
+    for (const DenoiserVariant& variant : DenoiserVariants()) {
+        if (variant.family == DenoiserFamily::Rae || !variant.needsSampleCount) continue;
+        const std::string name(variant.name);
+        INFO(name);
+        DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});
+        params.svgf.feedbackIteration = 0;  // the reprojection writes the colour history itself
+        SvgfFamilyReferenceDenoiser ref(variant, params);
+        const bool two = variant.family == DenoiserFamily::TwoHistory;
+        Plane<vec3> out;
+        ref.Denoise(StillFrame(0, 2), out);
+        ref.Denoise(StillFrame(1, 2), out);
+        // Frame 1's histories, copied: frame 2 reads them as its previous ones.
+        const TwoHistoryState before = two ? ref.CurrentState() : TwoHistoryState{};
+        const SvgfHistory beforeSvgf = two ? SvgfHistory{} : ref.CurrentHistory(0);
+        FrameInputs f = StillFrame(2, 2);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                if (NoSample(x, y)) {
+                    f.sampleCount(x, y) = 0;
+                    f.direct(x, y) = f.indirect(x, y) = vec3(0.0f);
+                }
+        ref.Denoise(f, out);
+        CheckHistoriesFinite(ref, two);
+        size_t kept = 0, advanced = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                if (f.objectId(x, y) == kNoObject) continue;
+                if (two) {
+                    const TwoHistoryState& st = ref.CurrentState();
+                    if (NoSample(x, y)) {
+                        REQUIRE(st.wu(x, y) == before.wu(x, y));
+                        REQUIRE(st.ww(x, y) == before.ww(x, y));
+                        REQUIRE(st.powerSums(x, y) == before.powerSums(x, y));
+                        REQUIRE(st.iu[0](x, y) == before.iu[0](x, y));
+                        REQUIRE(st.iw[0](x, y) == before.iw[0](x, y));
+                        REQUIRE(st.moments[0](x, y) == before.moments[0](x, y));
+                        ++kept;
+                    } else {
+                        advanced += st.wu(x, y) > before.wu(x, y);
+                    }
+                } else {
+                    const SvgfHistory& h = ref.CurrentHistory(0);
+                    if (NoSample(x, y)) {
+                        REQUIRE(h.length(x, y) == beforeSvgf.length(x, y));
+                        REQUIRE(h.weight(x, y) == beforeSvgf.weight(x, y));
+                        REQUIRE(h.color(x, y) == beforeSvgf.color(x, y));
+                        REQUIRE(h.moments(x, y) == beforeSvgf.moments(x, y));
+                        ++kept;
+                    } else {
+                        advanced += h.length(x, y) > beforeSvgf.length(x, y);
+                    }
+                }
+            }
+        CHECK(kept > size_t(kW * kH / 4));
+        CHECK(advanced > size_t(kW * kH / 2));
+    }
+}
+
+TEST_CASE("a disoccluded pixel without a sample holds nothing and its neighbours fill it",
+          "[zero_samples]") {
+    for (const char* name : {"svgf-weighted", "two-history", "two-history-asvgf-stable-antilag"}) {
+        INFO(name);
+        const DenoiserVariant& variant = FindDenoiserVariant(name);
+        SvgfFamilyReferenceDenoiser ref(variant, ParamsForDenoiser(name, DenoiserParams{}));
+        Plane<vec3> out;
+        ref.Denoise(StillFrame(0, 2), out);
+        FrameInputs f = StillFrame(1, 2);
+        // One pixel of a surface, disoccluded and without a sample: nothing to keep, nothing new.
+        int px = -1, py = -1;
+        for (int y = 4; y < kH - 4 && px < 0; ++y)
+            for (int x = 4; x < kW - 4 && px < 0; ++x)
+                if (f.objectId(x, y) != kNoObject && f.objectId(x - 1, y) == f.objectId(x, y) &&
+                    f.objectId(x + 1, y) == f.objectId(x, y))
+                    px = x, py = y;
+        REQUIRE(px >= 0);
+        f.prevPixel(px, py) = vec2(-1.0f);
+        f.sampleCount(px, py) = 0;
+        f.direct(px, py) = f.indirect(px, py) = vec3(0.0f);
+        ref.Denoise(f, out);
+        CheckHistoriesFinite(ref, variant.family == DenoiserFamily::TwoHistory);
+        const float length = variant.family == DenoiserFamily::TwoHistory
+                                 ? ref.CurrentState().wu(px, py)
+                                 : ref.CurrentHistory(0).length(px, py);
+        CHECK(length == 0.0f);
+        // Filled from its neighbours: the surface's illumination, not black, and finite.
+        const vec3 filled = vec3(ref.Filtered(0)(px, py));
+        INFO("filtered illumination " << filled.x << " " << filled.y << " " << filled.z);
+        CHECK(std::isfinite(filled.x));
+        CHECK(Luminance(filled) > 0.05f);
+        CHECK(std::isfinite(out(px, py).x));
+    }
+}
+
+TEST_CASE("no NaN or Inf in any history after frames with zero-sample pixels", "[zero_samples]") {
+    for (Precision precision : {Precision::Fp32, Precision::Fp16})
+        for (const DenoiserVariant& variant : DenoiserVariants()) {
+            if (variant.family == DenoiserFamily::Rae) continue;
+            const std::string name(variant.name);
+            INFO(name << (precision == Precision::Fp16 ? " fp16" : " fp32"));
+            DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});
+            params.precision = precision;
+            SvgfFamilyReferenceDenoiser ref(variant, params);
+            Plane<vec3> out;
+            for (uint32_t frame = 0; frame < 5; ++frame) {
+                ref.Denoise(
+                    test::WithZeroSamples(test::RandomTwoHistoryFrame(kW, kH, frame), frame), out);
+                CheckHistoriesFinite(ref, variant.family == DenoiserFamily::TwoHistory);
+                REQUIRE(AllFinite(out));
+            }
+        }
+}
+
+// Bytes of one eye's buffers at 1280×720 (`fovrt memory`), fp32 / fp16 histories, as they were
+// before zero-sample pixels were accepted: a pixel without a sample needs no plane of its own.
+TEST_CASE("accepting zero-sample pixels leaves every variant's memory plan unchanged",
+          "[zero_samples]") {
+    struct Expected {
+        const char* name;
+        size_t fp32, fp16;
+    };
+    const Expected expected[] = {
+        {"svgf", 364953656, 320716856},
+        {"svgf-weighted", 383385656, 331776056},
+        {"asvgf", 393025976, 348789176},
+        {"two-history", 518968376, 434181176},
+        {"two-history-asvgf", 527579576, 446478776},
+        {"asvgf-antilag", 393025976, 348789176},
+        {"two-history-asvgf-antilag", 527579576, 446478776},
+        {"two-history-stable", 533713976, 441553976},
+        {"two-history-stable-firefly", 533713976, 441553976},
+        {"two-history-stable-antilag", 533713976, 441553976},
+        {"two-history-asvgf-stable-antilag", 542325176, 453851576},
+        {"two-history-clamp", 518968376, 434181176},
+        {"two-history-stable-clamp", 533713976, 441553976},
+        {"two-history-hysteresis", 526341176, 437867576},
+        {"two-history-stable-hysteresis", 541086776, 445240376},
+        {"two-history-asvgf-stable-hysteresis", 549697976, 457537976},
+        {"rae", 404710028, 404710028},
+        {"rae-spp", 412246956, 412246956},
+    };
+    for (const Expected& e : expected) {
+        INFO(e.name);
+        for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
+            DenoiserParams params = ParamsForDenoiser(e.name, DenoiserParams{});
+            params.precision = precision;
+            CHECK(TotalBytes(PlanDenoiserMemory(e.name, 1280, 720, params)) ==
+                  (precision == Precision::Fp32 ? e.fp32 : e.fp16));
+        }
+    }
+    CHECK(std::size(expected) == DenoiserVariants().size());
+}
