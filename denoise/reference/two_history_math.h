@@ -2,16 +2,17 @@
 // sample-count-weighted (I_w, W_w) exponential histories, the power sums S_k of the sample counts,
 // the variance-optimal blend factor p, the (luminance) gradient EMA and the gradient-guided
 // factor q.
-// Header-only and templated on the colour type so the CPU reference, the tests and the GLSL
-// (shaders/common/two_history.glsl, same formulas) agree line by line; the Vulkan host includes
-// it too (no link dependency) for its debug view p, evaluated from the state it downloads.
+// Header-only; the closed forms the shaders evaluate too are written once, for GLSL and C++, in
+// shaders/common/two_history.glsl, and the functions here that call them carry their reasons.
+// The accumulation is templated on the colour type for the tests. The Vulkan host includes this
+// header too (no link dependency) for its debug view p, evaluated from the state it downloads.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/math.h"
-#include "shaders/common/two_history_constants.glsl"
+#include "shaders/common/two_history.glsl"
 
 namespace fovrt {
 
@@ -39,9 +40,7 @@ inline TwoHistoryWeights StoredTwoHistoryWeights(float wu, float ww, const vec3&
 // constant α this reproduces SVGF's effective α exactly (1, 1/2, …, 1/len, then α), and the
 // recursions below stay exact for a time-varying β, so the blend formula keeps holding.
 inline float TwoHistoryDecay(float alpha, float wuPrev) {
-    alpha = std::clamp(alpha, 1e-4f, 1.0f);
-    if (wuPrev <= 0.0f) return 0.0f;  // no history: nothing to decay
-    return std::min(1.0f, (1.0f / alpha - 1.0f) / wuPrev);
+    return glsl::two_history_decay(alpha, wuPrev);
 }
 
 // The anti-lag variants' α (Q2RTX's history-length reduction in weight form): the anti-lag factor
@@ -49,11 +48,10 @@ inline float TwoHistoryDecay(float alpha, float wuPrev) {
 // + 1)) runs on the shrunk length, and a pulls the weight to 1: α' = lerp(warm-up α, 1, a). As
 // α' ≥ max(α, 1/(W_u,prev + 1)), TwoHistoryDecay(α', W_u,prev) gives W_u = 1/α': the history keeps
 // counting from the shrunk length, so the frames after a change average as 1/2, 1/3, … and not
-// with the base α. a = 0 is SVGF's warm-up; power = 0 keeps the length (Schied's α = lerp(α, 1, a)).
+// with the base α. a = 0 is SVGF's warm-up; power = 0 keeps the length (Schied's α = lerp(α, 1,
+// a)).
 inline float AntilagAlpha(float a, float alpha, float wuPrev, float power) {
-    const float keep = power > 0.0f ? std::pow(std::max(1.0f - a, 0.0f), power) : 1.0f;
-    const float warm = std::max(alpha, 1.0f / (wuPrev * keep + 1.0f));
-    return warm + (1.0f - warm) * a;
+    return glsl::antilag_alpha(a, alpha, wuPrev, power);
 }
 
 // Firefly suppression before accumulation (the firefly variants). A sample of luminance l is an
@@ -63,17 +61,15 @@ inline float AntilagAlpha(float a, float alpha, float wuPrev, float power) {
 // spatial one alone (ReBLUR's anti-firefly) would flatten a one-pixel highlight that was always
 // there. The outlier is scaled down to the larger bound, keeping its hue. Applied where the
 // moments span FOVRT_FIREFLY_MIN_HISTORY frames; biased (it removes energy) by design.
-inline vec3 SuppressFirefly(const vec3& x, float l, const vec2& momentsPrev, float k, float neighbourMax) {
-    const float temporal = momentsPrev.x + k * std::sqrt(std::max(momentsPrev.y - momentsPrev.x * momentsPrev.x, 0.0f));
-    const float bound = std::max(temporal, neighbourMax);
-    return l > bound ? x * (bound / l) : x;
+inline vec3 SuppressFirefly(const vec3& x, float l, const vec2& momentsPrev, float k,
+                            float neighbourMax) {
+    return glsl::suppress_firefly(x, l, momentsPrev, k, neighbourMax);
 }
 
 // A neighbour's sample luminance for the spatial bound: sanitised as the accumulation sanitises
 // (non-finite → 0, negative components → 0), without counting.
 inline float FireflyNeighbourLuminance(const vec3& c) {
-    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) return 0.0f;
-    return Luminance(glm::max(c, vec3(0.0f)));
+    return glsl::firefly_neighbour_luminance(c);
 }
 
 // W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k.
@@ -117,13 +113,7 @@ inline double TwoHistoryBlendVariance(const TwoHistoryWeights& w, double p) {
 // ends within FOVRT_TWO_HISTORY_TIE are a tie, p = 1 — on the device too, whatever the last bits
 // of a and c (every n equal gives a = b = c).
 inline float TwoHistoryOptimalBlend(const TwoHistoryWeights& w) {
-    if (w.wu <= 0.0f || w.ww <= 0.0f) return 1.0f;
-    const float a = w.s1 / (w.ww * w.ww);
-    const float b = w.s0 / (w.ww * w.wu);
-    const float c = w.sMinus1 / (w.wu * w.wu);
-    const float den = a - 2.0f * b + c;
-    if (!(den > 1e-6f * (a + c))) return c - a > float(FOVRT_TWO_HISTORY_TIE) * (a + c) ? 0.0f : 1.0f;
-    return std::clamp((a - b) / den, 0.0f, 1.0f);
+    return glsl::two_history_optimal_blend(w.wu, w.ww, vec3(w.sMinus1, w.s0, w.s1));
 }
 
 // Gradient EMA g ← β_g g + (1 − β_g)(x − I_u,prev); g = 0 where the history was dropped.
@@ -144,10 +134,7 @@ inline float LuminanceGradient(const vec3& x, const vec3& iuPrev) { return Lumin
 // switching on or off) and is smaller otherwise (a hue change at constant luminance
 // gives q ≈ 0).
 inline float TwoHistoryGradientBlend(float g, float varianceLumIu, float scale) {
-    const float absG = std::abs(g);
-    const float sd = std::sqrt(std::max(varianceLumIu, 0.0f));
-    if (absG <= 0.0f) return 0.0f;
-    return std::clamp(scale * absG / std::max(sd, 1e-8f), 0.0f, 1.0f);
+    return glsl::two_history_gradient_blend(g, varianceLumIu, scale);
 }
 
 // I_b = lerp(I_opt, I_u, q) = lerp(I_w, I_u, t) with t = p + q − pq.
@@ -161,9 +148,7 @@ inline float TwoHistoryFinalBlend(float p, float q) { return p + q - p * q; }
 // round a hair outside). q is not filtered: t = held + q − held·q still hands a changing pixel
 // to I_u at once.
 inline float HystereticChoice(float prev, float p, float rate, float band) {
-    const float d = p - prev;
-    const float excess = std::max(std::abs(d) - band, 0.0f);
-    return std::clamp(prev + rate * (d < 0.0f ? -excess : excess), 0.0f, 1.0f);
+    return glsl::hysteretic_choice(prev, p, rate, band);
 }
 
 // The clamp variants' blend in place of p (NRD ReLAX clamps one history to the other's local
@@ -172,19 +157,17 @@ inline float HystereticChoice(float prev, float p, float rate, float band) {
 // I_w itself, so where the histories agree (every sample had the same count) I_u passes
 // unchanged. No per-pixel choice that flips when the sample count does: I_u moves only by its
 // excess over the neighbourhood's spread.
-inline vec3 ClampToHistoryBox(const vec3& iu, const vec3& iw, const vec3& mean, const vec3& sigma, float k) {
-    const vec3 lo = glm::min(mean - k * sigma, iw);
-    const vec3 hi = glm::max(mean + k * sigma, iw);
-    return glm::clamp(iu, lo, hi);
+inline vec3 ClampToHistoryBox(const vec3& iu, const vec3& iw, const vec3& mean, const vec3& sigma,
+                              float k) {
+    return glsl::clamp_to_history_box(iu, iw, mean, sigma, k);
 }
 
 // The clamp variants' output: lerp(clamped I_u, I_u, q) for colour (q still hands a changing pixel
 // to I_u, as in t = p + q − pq), lerp(Var_w, Var_u, q) for the variance (the clamped estimate's
 // spread is the weighted history's where q = 0).
-inline vec4 TwoHistoryClampBlend(const vec4& iu, const vec4& iw, const vec3& mean, const vec3& sigma, float k,
-                                 float q) {
-    const vec3 c = ClampToHistoryBox(vec3(iu), vec3(iw), mean, sigma, k);
-    return vec4(glm::mix(c, vec3(iu), q), glm::mix(iw.w, iu.w, q));
+inline vec4 TwoHistoryClampBlend(const vec4& iu, const vec4& iw, const vec3& mean,
+                                 const vec3& sigma, float k, float q) {
+    return glsl::two_history_clamp_blend(iu, iw, mean, sigma, k, q);
 }
 
 }  // namespace fovrt

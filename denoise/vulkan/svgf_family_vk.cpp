@@ -203,7 +203,7 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
     const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (view == DebugViewId::P && !ref) {
         // Not stored: the blend evaluates p from this frame's state, and so does this, with the
-        // shader's formula (two_history_math.h, mirrored by common/two_history.glsl).
+        // shader's formula (common/two_history.glsl, the one text both compile).
         if (!variant_.twoHistory) return false;
         auto floats = [&](PlaneKind kind, Channel ch) {
             const BufferKey key = ResolveSide({{kind, ch}, HistorySide::This}, lastParity);
