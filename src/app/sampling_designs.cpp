@@ -130,8 +130,10 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
             run->push_back(*name);
         }
     }
+    // Every design is checked, the ones run_designs leaves out too (a mistake in the file is one
+    // whether or not this run reaches it); a --set only conflicts with a design that runs.
     for (const auto& [line, name] : order) {
-        if (run && std::ranges::find(*run, name) == run->end()) continue;
+        const bool runs = !run || std::ranges::find(*run, name) != run->end();
         const std::string where = "experiment.designs." + name;
         const std::string origin = experiment.Origin("designs." + name);
         if (!IsPathComponent(name))
@@ -154,13 +156,13 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
             if (key == kRayBudgetKey && !design.budgets.empty())
                 Fail("{}: {}.{}: the budgets (experiment.budgets, or the design's own) set the ray budget of every point",
                      keyOrigin, where, key);
-            for (const std::string& set : options.sets)
+            for (const std::string& set : runs ? options.sets : std::vector<std::string>{})
                 if (set.rfind(key + "=", 0) == 0 || set.rfind(key + " ", 0) == 0)
                     Fail("--set {}: {} sets {} (a design's keys are the experiment's axis; edit the design "
                          "or use --set {}.{}=VALUE)",
                          set, where, key, where, key);
         }
-        sweep.designs.push_back(std::move(design));
+        if (runs) sweep.designs.push_back(std::move(design));
     }
 
     if (const toml::node* anchor = experiment.table.get("anchor_design")) {
