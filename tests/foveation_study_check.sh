@@ -21,9 +21,9 @@ args=(--quick --set reference.cache_dir="\"$work/cache\"")
 cat single.txt
 grep -q "Rays saved at equal perceived quality against 'uniform'" single.txt && ok "the rays-saved table is printed" \
   || bad "no rays-saved table"
-# room svgf disc 0.79× [0.75, 0.82] ...: a ratio with an interval
-grep -Eq '^  room +svgf +disc +[0-9]+\.[0-9]+× \[[0-9]+\.[0-9]+, [0-9]+\.[0-9]+\]' single.txt \
-  && ok "rays saved for disc has a value and an interval" || bad "no rays-saved value: $(grep room single.txt)"
+# room svgf perceptual 1.10× [1.05, 1.15] ...: a ratio with an interval
+grep -Eq '^  room +svgf +perceptual +[0-9]+\.[0-9]+× \[[0-9]+\.[0-9]+, [0-9]+\.[0-9]+\]' single.txt \
+  && ok "rays saved for perceptual has a value and an interval" || bad "no rays-saved value: $(grep room single.txt)"
 
 rows=$(($(wc -l < single/curves.csv) - 1))
 [[ $rows -eq 12 ]] && ok "curves.csv: 12 rows (2 designs × 3 budgets × 2 seeds)" || bad "curves.csv rows: $rows"
@@ -35,22 +35,33 @@ off = [(r["design"], r["budget_spp"], r["traced_spp_whole"]) for r in rows
        if abs(float(r["traced_spp_whole"]) - float(r["budget_spp"])) > 0.01 * float(r["budget_spp"])]
 sys.exit(1 if off or not rows else 0)
 PY
-# At 1 spp every design samples uniformly: the same inputs, so the same scores, foveal ones
-# included (every design is scored in the experiment's own fovea, not its own).
-python3 - single/curves.csv <<'PY' && ok "at 1 spp disc scores exactly as uniform, fovea included" || bad "disc at 1 spp differs from uniform"
+# Below 1 spp a pixel without a path sample gets a guide ray: uniform at 0.5 spp leaves half the
+# pixels to guides each frame; from 1 spp on uniform sampling has none.
+python3 - single/curves.csv <<'PY' && ok "guide rays counted apart: 0.5 per pixel for uniform at 0.5 spp, none at 1 spp" || bad "guide rays"
 import csv, sys
-rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["budget_spp"] == "1"]
-key = lambda r: r["seed"]
-u = {key(r): r for r in rows if r["design"] == "uniform"}
-d = {key(r): r for r in rows if r["design"] == "disc"}
+rows = list(csv.DictReader(open(sys.argv[1])))
+u = {r["budget_spp"]: float(r["guide_rays_whole"]) for r in rows if r["design"] == "uniform"}
+p = [float(r["guide_rays_whole"]) for r in rows if r["design"] == "perceptual" and r["budget_spp"] == "0.5"]
+sys.exit(0 if abs(u["0.5"] - 0.5) < 0.01 and u["1"] == 0 and u["2"] == 0 and p and min(p) > 0.3 else 1)
+PY
+# At 1 spp the disc, scaled to the budget, samples uniformly: the same inputs, so the same scores,
+# foveal ones included (every design is scored in the experiment's own fovea, not its own).
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=fovea --set 'experiment.quick.experiment.budgets=[1]' \
+  --set 'experiment.designs.disc.budgets=[1]' --set 'experiment.quick.experiment.run_designs=["uniform", "disc"]' \
+  > fovea.txt 2> fovea.err || bad "uniform and disc at 1 spp: $(tail -2 fovea.err)"
+python3 - fovea/curves.csv <<'PY' && ok "at 1 spp disc scores exactly as uniform, fovea included" || bad "disc at 1 spp differs from uniform"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+u = {r["seed"]: r for r in rows if r["design"] == "uniform"}
+d = {r["seed"]: r for r in rows if r["design"] == "disc"}
 cols = ["jod", "relmse_whole", "relmse_fovea", "flicker_fovea", "traced_spp_fovea"]
 sys.exit(0 if u and u.keys() == d.keys() and all(u[k][c] == d[k][c] for k in u for c in cols) else 1)
 PY
 python3 - single/summary.json single.txt <<'PY' && ok "summary.json's rays saved is the table's" || bad "summary.json rays saved"
 import json, re, sys
 s = json.load(open(sys.argv[1]))
-r = s["designs"]["disc"]["rays_saved"]["room"]["svgf"]
-shown = re.search(r"disc +([0-9.]+)× \[([0-9.]+), ([0-9.]+)\]", open(sys.argv[2]).read())
+r = s["designs"]["perceptual"]["rays_saved"]["room"]["svgf"]
+shown = re.search(r"perceptual +([0-9.]+)× \[([0-9.]+), ([0-9.]+)\]", open(sys.argv[2]).read())
 ok = s["anchor_design"] == "uniform" and r["lower"] <= r["value"] <= r["upper"] and shown \
      and all(abs(float(shown.group(i + 1)) - v) < 0.006 for i, v in enumerate([r["value"], r["lower"], r["upper"]]))
 ok = ok and set(s["designs"]["uniform"]["points"][0]["traced_spp"]["room"]) == {"whole", "fovea", "periphery"}
@@ -64,7 +75,7 @@ if command -v chromium > /dev/null 2>&1 || command -v chromium-browser > /dev/nu
 else
   skip_part "chromium is not installed: the sweep's report was not opened in a browser"
 fi
-[[ -f single/designs/disc-b2/summary.json && -f single/designs/uniform-b4/frames-room.csv ]] \
+[[ -f single/designs/perceptual-b2/summary.json && -f single/designs/uniform-b0.5/frames-room.csv ]] \
   && ok "every point's own outputs under designs/" || bad "point outputs: $(ls single/designs)"
 
 for i in 0 1; do
@@ -83,9 +94,9 @@ diff <(grep -v "HTML report" single.txt) <(grep -v "HTML report" merged.txt) > /
   > /dev/null 2> bad.err && bad "a design with a render key ran" \
   || { grep -q "experiment.designs.disc.render.spp" bad.err && ok "a design's foreign key is refused: $(tail -1 bad.err)" \
        || bad "foreign key message: $(tail -1 bad.err)"; }
-"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=bad --set foveation.spp_inside=4 \
+"$fovrt" experiment "$preset" "${args[@]}" --set output.dir=bad --set foveation.spp_max=8 \
   > /dev/null 2> bad.err && bad "--set of a design's key ran" \
-  || { grep -q "experiment.designs.disc" bad.err && ok "--set of a design's key is refused" || bad "set message: $(tail -1 bad.err)"; }
+  || { grep -q "experiment.designs.perceptual" bad.err && ok "--set of a design's key is refused" || bad "set message: $(tail -1 bad.err)"; }
 
 echo "passed $passed, failed $failed"
 finish "$failed"

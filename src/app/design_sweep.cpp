@@ -37,6 +37,7 @@ SweepPointResult Keep(size_t index, const ExperimentPart& part, Results results)
         r.scenes.push_back(s->label);
         auto& spp = r.tracedSpp[s->label];
         for (size_t i = 0; i < spp.size(); ++i) spp[i] = TracedSamples::SamplesPerPixel(*s, i);
+        r.guideRays[s->label] = TracedSamples::GuideRaysPerPixel(*s, 0);
     }
     r.results = std::move(results);
     r.vdp = part.vdp;

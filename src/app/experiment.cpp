@@ -80,6 +80,7 @@ nlohmann::json TracedSppJson(const SceneRecord& r) {
     nlohmann::json j = nlohmann::json::object();
     for (size_t i = 0; i < kTracedRegions.size(); ++i)
         if (r.tracedPixels[i] > 0) j[kTracedRegions[i]] = TracedSamples::SamplesPerPixel(r, i);
+    if (r.tracedPixels[0] > 0) j["guide_rays_whole"] = TracedSamples::GuideRaysPerPixel(r, 0);
     return j;
 }
 

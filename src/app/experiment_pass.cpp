@@ -146,11 +146,17 @@ void TracedSamples::Eye(const StereoFrame& frame, int eye) {
     for (size_t r = 0; r < kTracedRegions.size(); ++r) {
         const Region* region = regions.Find(kTracedRegions[r]);
         if (!region) continue;  // an empty fovea (the gaze off the image) or periphery
-        uint64_t sum = 0;
-        for (size_t p = 0; p < samples.size(); ++p) sum += region->mask[p] ? samples[p] : 0u;
+        uint64_t sum = 0, guides = 0;
+        for (size_t p = 0; p < samples.size(); ++p)
+            if (region->mask[p]) sum += samples[p], guides += samples[p] == 0;
         record_.tracedSamples[r] += sum;
+        record_.guidePixels[r] += guides;
         record_.tracedPixels[r] += region->pixelCount;
     }
+}
+
+double TracedSamples::GuideRaysPerPixel(const SceneRecord& record, size_t region) {
+    return record.tracedPixels[region] ? double(record.guidePixels[region]) / double(record.tracedPixels[region]) : 0.0;
 }
 
 double TracedSamples::SamplesPerPixel(const SceneRecord& record, size_t region) {

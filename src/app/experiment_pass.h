@@ -96,6 +96,9 @@ public:
     void Eye(const StereoFrame& frame, int eye) override;
     // Samples per pixel of region i of kTracedRegions; 0 where no pixel was counted.
     static double SamplesPerPixel(const SceneRecord& record, size_t region);
+    // Guide rays per pixel of region i: the pixels without a path sample, which get only their
+    // primary hit (normal, depth, motion, albedo; a headset renderer rasterizes these).
+    static double GuideRaysPerPixel(const SceneRecord& record, size_t region);
 
 private:
     FoveaRadius fovea_;

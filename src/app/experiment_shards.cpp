@@ -25,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // 2: FovVideoVDP scores; 3: denoise and metric times; 4: the hash of each file a scene loaded
-constexpr int kPartVersion = 4;
+constexpr int kPartVersion = 5;
 
 nlohmann::json Vec2Json(const vec2& v) { return {v.x, v.y}; }
 vec2 Vec2From(const nlohmann::json& j) { return vec2(j.at(0).get<float>(), j.at(1).get<float>()); }
@@ -52,6 +52,7 @@ void RecordFields(Record& r, Field&& field) {
     field("dropped_samples", r.droppedSamples);
     field("traced_samples", r.tracedSamples);
     field("traced_pixels", r.tracedPixels);
+    field("guide_pixels", r.guidePixels);
     field("has_visuals", r.hasVisuals);
 }
 
@@ -559,6 +560,7 @@ ExperimentPart MergeShardParts(const fs::path& shardsDir, const std::string& fin
             for (size_t i = 0; i < m.tracedSamples.size(); ++i) {
                 m.tracedSamples[i] += r.tracedSamples[i];
                 m.tracedPixels[i] += r.tracedPixels[i];
+                m.guidePixels[i] += r.guidePixels[i];
             }
             if (r.hasVisuals) {
                 if (!m.hasVisuals) {

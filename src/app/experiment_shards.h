@@ -92,6 +92,7 @@ struct SceneRecord {
     // Measured sampling (TracedSamples, app/experiment_pass.h): Σ FrameInputs::sampleCount and the
     // pixel count of each of kTracedRegions over every eye-frame a pass rendered, at the true gaze.
     std::array<uint64_t, 3> tracedSamples{}, tracedPixels{};
+    std::array<uint64_t, 3> guidePixels{};  // of those pixels, the ones without a path sample (a guide ray only)
     bool hasVisuals = false;  // ran the report's eye under the first seed
     SceneVisuals visuals;     // its variants: those this part ran
 };

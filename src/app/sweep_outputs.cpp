@@ -81,7 +81,7 @@ std::string BudgetText(const SweepPoint& point) {
 std::string CurvesCsv(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
     const std::vector<uint32_t> seeds = SeedsOf(spec);
     std::string out =
-        "scene,variant,design,budget_spp,seed,traced_spp_whole,traced_spp_fovea,traced_spp_periphery,jod,"
+        "scene,variant,design,budget_spp,seed,traced_spp_whole,traced_spp_fovea,traced_spp_periphery,guide_rays_whole,jod,"
         "jod_sustained,jod_transient,relmse_whole,relmse_fovea,flicker_fovea\n";
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants)
@@ -89,9 +89,9 @@ std::string CurvesCsv(const ExperimentSpec& spec, const std::vector<SweepPointRe
                 const SweepPoint& point = spec.sweep.points[p.point];
                 const SweepPointValues v = PointValues(p, scene, variant, seeds);
                 for (size_t s = 0; s < seeds.size(); ++s)
-                    out += fmt::format("{},{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
+                    out += fmt::format("{},{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
                                        scene, variant, spec.sweep.designs[point.design].name, BudgetText(point),
-                                       seeds[s], v.tracedSpp[0], v.tracedSpp[1], v.tracedSpp[2], v.jod[s],
+                                       seeds[s], v.tracedSpp[0], v.tracedSpp[1], v.tracedSpp[2], v.guideRays, v.jod[s],
                                        v.jodSustained[s], v.jodTransient[s], v.relmseWhole[s], v.relmseFovea[s],
                                        v.flickerFovea[s]);
             }
@@ -110,10 +110,12 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
         for (const SweepPointResult* p : PointsOf(spec, points, d)) {
             const SweepPoint& point = sweep.points[p->point];
             nlohmann::json traced = nlohmann::json::object(), variants = nlohmann::json::object();
+            nlohmann::json guides = nlohmann::json::object();  // guide rays per pixel, whole image
             for (const std::string& scene : p->scenes) {
                 for (const std::string& variant : spec.variants) {
                     const SweepPointValues v = PointValues(*p, scene, variant, seeds);
                     traced[scene] = {{"whole", v.tracedSpp[0]}, {"fovea", v.tracedSpp[1]}, {"periphery", v.tracedSpp[2]}};
+                    guides[scene] = v.guideRays;
                     variants[scene][variant] = {{"jod", Mean(v.jod)},
                                                 {"jod_per_seed", v.jod},
                                                 {"jod_sustained", Mean(v.jodSustained)},
@@ -127,6 +129,7 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
                                   {"budget_spp", point.budgetSpp ? nlohmann::json(*point.budgetSpp) : nlohmann::json(nullptr)},
                                   {"outputs", (fs::path("designs") / point.label).string()},
                                   {"traced_spp", traced},
+                                  {"guide_rays_per_pixel", guides},
                                   {"scores", variants}});
         }
         nlohmann::json raysSaved = nlohmann::json::object(), jodGain = nlohmann::json::object();
@@ -165,7 +168,7 @@ ReportTable HeadlineReportTable(const ExperimentSpec& spec, const std::vector<Ra
 
 ReportTable PointsTable(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
     ReportTable t{"Every point: measured sampling and scores (mean over seeds)",
-                  {"scene", "variant", "design", "budget spp", "traced spp whole / fovea / periphery", "JOD",
+                  {"scene", "variant", "design", "budget spp", "traced spp whole / fovea / periphery", "guide rays/pixel", "JOD",
                    "relMSE whole", "relMSE fovea", "flicker fovea"},
                   {}};
     for (const std::string& scene : points.front().scenes)
@@ -175,6 +178,7 @@ ReportTable PointsTable(const ExperimentSpec& spec, const std::vector<SweepPoint
                 const SweepPointValues v = PointValues(p, scene, variant, SeedsOf(spec));
                 t.rows.push_back({scene, variant, spec.sweep.designs[point.design].name, BudgetText(point),
                                   fmt::format("{:.2f} / {:.2f} / {:.2f}", v.tracedSpp[0], v.tracedSpp[1], v.tracedSpp[2]),
+                                  fmt::format("{:.3f}", v.guideRays),
                                   fmt::format("{:.3f}", Mean(v.jod)), fmt::format("{:.4g}", Mean(v.relmseWhole)),
                                   fmt::format("{:.4g}", Mean(v.relmseFovea)), fmt::format("{:.4g}", Mean(v.flickerFovea))});
             }
@@ -208,6 +212,7 @@ SweepPointValues PointValues(const SweepPointResult& point, const std::string& s
                              const std::vector<uint32_t>& seeds) {
     SweepPointValues v;
     if (auto it = point.tracedSpp.find(scene); it != point.tracedSpp.end()) v.tracedSpp = it->second;
+    if (auto it = point.guideRays.find(scene); it != point.guideRays.end()) v.guideRays = it->second;
     const size_t n = seeds.size();
     auto seedIndex = [&](uint32_t seed) { return size_t(std::find(seeds.begin(), seeds.end(), seed) - seeds.begin()); };
     // Sums and counts per seed of each value.

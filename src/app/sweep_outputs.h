@@ -30,6 +30,7 @@ struct SweepPointResult {
     size_t point = 0;                                          // index into SamplingSweep::points
     std::vector<std::string> scenes;                           // scene labels, in experiment order
     std::map<std::string, std::array<double, 3>> tracedSpp;    // label -> whole, fovea, periphery
+    std::map<std::string, double> guideRays;                   // label -> guide rays per pixel, whole image
     Results results;
     std::vector<VdpScore> vdp;
 };
@@ -37,6 +38,7 @@ struct SweepPointResult {
 // One (scene, variant) at one point, per run seed (the experiment's seeds, in order).
 struct SweepPointValues {
     std::array<double, 3> tracedSpp{};  // measured over every seed: whole, fovea, periphery
+    double guideRays = 0.0;             // guide rays per pixel (pixels without a path sample), whole image
     std::vector<double> jod, jodSustained, jodTransient;  // mean over the eyes
     std::vector<double> relmseWhole, relmseFovea, flickerFovea;  // mean over frames and eyes
 };
