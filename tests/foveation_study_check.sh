@@ -21,8 +21,8 @@ args=(--quick --set reference.cache_dir="\"$work/cache\"")
 cat single.txt
 grep -q "Rays saved at equal perceived quality against 'uniform'" single.txt && ok "the rays-saved table is printed" \
   || bad "no rays-saved table"
-# room svgf perceptual 1.10× [1.05, 1.15] ...: a ratio with an interval
-grep -Eq '^  room +svgf +perceptual +[0-9]+\.[0-9]+× \[[0-9]+\.[0-9]+, [0-9]+\.[0-9]+\]' single.txt \
+# room svgf-weighted perceptual 1.10× [1.05, 1.15] ...: a ratio with an interval
+grep -Eq '^  room +svgf-weighted +perceptual +[0-9]+\.[0-9]+× \[[0-9]+\.[0-9]+, [0-9]+\.[0-9]+\]' single.txt \
   && ok "rays saved for perceptual has a value and an interval" || bad "no rays-saved value: $(grep room single.txt)"
 
 rows=$(($(wc -l < single/curves.csv) - 1))
@@ -60,14 +60,14 @@ PY
 python3 - single/summary.json single.txt <<'PY' && ok "summary.json's rays saved is the table's" || bad "summary.json rays saved"
 import json, re, sys
 s = json.load(open(sys.argv[1]))
-r = s["designs"]["perceptual"]["rays_saved"]["room"]["svgf"]
+r = s["designs"]["perceptual"]["rays_saved"]["room"]["svgf-weighted"]
 shown = re.search(r"perceptual +([0-9.]+)× \[([0-9.]+), ([0-9.]+)\]", open(sys.argv[2]).read())
 ok = s["anchor_design"] == "uniform" and r["lower"] <= r["value"] <= r["upper"] and shown \
      and all(abs(float(shown.group(i + 1)) - v) < 0.006 for i, v in enumerate([r["value"], r["lower"], r["upper"]]))
 ok = ok and set(s["designs"]["uniform"]["points"][0]["traced_spp"]["room"]) == {"whole", "fovea", "periphery"}
 sys.exit(0 if ok else 1)
 PY
-grep -q "room · svgf: JOD against rays" single/report.html && [[ $(grep -o "<circle" single/report.html | wc -l) -ge 6 ]] \
+grep -q "room · svgf-weighted: JOD against rays" single/report.html && [[ $(grep -o "<circle" single/report.html | wc -l) -ge 6 ]] \
   && ok "the report plots JOD against rays, a marker per point" || bad "report plot"
 if command -v chromium > /dev/null 2>&1 || command -v chromium-browser > /dev/null 2>&1; then
   bash "$src/scripts/report-check.sh" single/report.html dom.html 2> browser.err \
