@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "vk/device_choice.h"
+#include "vk/leak_check_pin.h"
 #include "vk/vk_check.h"
 
 namespace fovrt {
@@ -43,6 +44,7 @@ struct VulkanContext::State {
                 vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
             if (destroy) destroy(instance, messenger, nullptr);
         }
+        KeepLoadedLibrariesForLeakCheck();  // before the loader unloads the driver and layers
         if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
     }
 };
