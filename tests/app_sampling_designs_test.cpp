@@ -128,15 +128,20 @@ TEST_CASE("a bad design is refused in one line naming the design and key", "[app
 
 namespace {
 
-// A point of a synthetic sweep: every seed's JOD from `jod(rays, seed)` on one scene and variant,
-// sampled as measured at `rays`.
-SweepPointResult SyntheticPoint(size_t index, double rays, const std::function<double(double, uint32_t)>& jod) {
+using SeedCurve = std::function<double(double, uint32_t)>;
+
+// A point of a synthetic sweep: every seed's JOD from `jod(rays, seed)` and foveal relMSE from
+// `fovealRelMse(rays, seed)` on one scene and variant, sampled as measured at `rays`.
+SweepPointResult SyntheticPoint(size_t index, double rays, const SeedCurve& jod, const SeedCurve& fovealRelMse) {
     SweepPointResult p;
     p.point = index;
     p.scenes = {"room"};
     p.tracedSpp["room"] = {rays, rays, rays};
     for (uint32_t seed : {1u, 2u, 3u})
-        for (int eye = 0; eye < 2; ++eye) p.vdp.push_back({"room", seed, eye, "svgf", jod(rays, seed), 9.0, 9.5});
+        for (int eye = 0; eye < 2; ++eye) {
+            p.vdp.push_back({"room", seed, eye, "svgf", jod(rays, seed), 9.0, 9.5});
+            p.results.Add({"room", 0, eye, "svgf", "fovea", "relmse", fovealRelMse(rays, seed), seed});
+        }
     return p;
 }
 
@@ -145,7 +150,8 @@ SweepPointResult SyntheticPoint(size_t index, double rays, const std::function<d
 TEST_CASE("rays saved from the points: a design that reaches each JOD with half the rays saves 2×", "[app][designs]") {
     // JOD = 7 + 0.8 ln(rays) (+ a per-seed offset that cancels in the paired bootstrap) for uniform;
     // the foveated design scores as uniform does with twice its rays: rays saved exactly 2, JOD gain
-    // 0.8 ln 2 at every rate.
+    // 0.8 ln 2 at every rate. Its fovea's relMSE is uniform's with three times its rays (relMSE ∝
+    // 1/rays, a per-seed factor): rays saved at equal foveal relMSE exactly 3.
     ExperimentSpec spec = LoadExperiment(DesignOptions("closed-form",
                                                        "budgets = [1, 2, 4, 8]\n"
                                                        "[experiment.designs.uniform]\nfoveation.model = \"uniform\"\n"
@@ -154,10 +160,14 @@ TEST_CASE("rays saved from the points: a design that reaches each JOD with half 
     spec.variants = {"svgf"};
     auto uniform = [](double rays, uint32_t seed) { return 7.0 + 0.8 * std::log(rays) + 0.01 * seed; };
     auto foveated = [&](double rays, uint32_t seed) { return uniform(2.0 * rays, seed); };
+    auto uniformFovea = [](double rays, uint32_t seed) { return 0.1 * (1.0 + 0.05 * seed) / rays; };
+    auto foveatedFovea = [&](double rays, uint32_t seed) { return uniformFovea(3.0 * rays, seed); };
     std::vector<SweepPointResult> points;
     for (size_t i = 0; i < spec.sweep.points.size(); ++i) {
         const SweepPoint& point = spec.sweep.points[i];
-        points.push_back(SyntheticPoint(i, *point.budgetSpp, point.design == 0 ? std::function(uniform) : std::function(foveated)));
+        const bool anchor = point.design == 0;
+        points.push_back(SyntheticPoint(i, *point.budgetSpp, anchor ? SeedCurve(uniform) : SeedCurve(foveated),
+                                        anchor ? SeedCurve(uniformFovea) : SeedCurve(foveatedFovea)));
     }
     const std::vector<RaysSavedRow> rows = SweepRaysSaved(spec, points);
     REQUIRE(rows.size() == 1);
@@ -167,8 +177,12 @@ TEST_CASE("rays saved from the points: a design that reaches each JOD with half 
     CHECK(rows[0].jodGain.estimate.value == Approx(0.8 * std::log(2.0)).epsilon(1e-3));
     CHECK(rows[0].raysSaved.lower <= 2.0 + 1e-6);
     CHECK(rows[0].raysSaved.upper >= 2.0 - 1e-6);
+    REQUIRE(rows[0].raysSavedFovea.estimate.Ok());
+    CHECK(rows[0].raysSavedFovea.estimate.value == Approx(3.0).epsilon(1e-3));
+    CHECK(rows[0].raysSavedFovea.lower <= 3.0 + 1e-6);
+    CHECK(rows[0].raysSavedFovea.upper >= 3.0 - 1e-6);
     const std::string table = RaysSavedTable(spec, rows);
-    CHECK_THAT(table, Catch::Matchers::Contains("2.00×"));
+    CHECK_THAT(table, Catch::Matchers::Contains("2.00×") && Catch::Matchers::Contains("3.00×"));
 
     const SweepPointValues values = PointValues(points[1], "room", "svgf", spec.seeds);
     CHECK(values.jod.size() == 3);

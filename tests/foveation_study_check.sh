@@ -65,6 +65,8 @@ shown = re.search(r"perceptual +([0-9.]+)× \[([0-9.]+), ([0-9.]+)\]", open(sys.
 ok = s["anchor_design"] == "uniform" and r["lower"] <= r["value"] <= r["upper"] and shown \
      and all(abs(float(shown.group(i + 1)) - v) < 0.006 for i, v in enumerate([r["value"], r["lower"], r["upper"]]))
 ok = ok and set(s["designs"]["uniform"]["points"][0]["traced_spp"]["room"]) == {"whole", "fovea", "periphery"}
+f = s["designs"]["perceptual"]["rays_saved_fovea"]["room"]["svgf-weighted"]  # at equal foveal relMSE
+ok = ok and f["value"] is not None and f["lower"] <= f["value"] <= f["upper"]
 sys.exit(0 if ok else 1)
 PY
 grep -q "room · svgf-weighted: JOD against rays" single/report.html && [[ $(grep -o "<circle" single/report.html | wc -l) -ge 6 ]] \

@@ -37,12 +37,23 @@ std::vector<const SweepPointResult*> PointsOf(const ExperimentSpec& spec, const 
     return out;
 }
 
+// The quality a curve plots against rays.
+enum class CurveQuality {
+    kJod,         // FovVideoVDP JOD
+    kFovealError  // −ln foveal relMSE: higher is better, and its seed mean is the log of the geometric mean
+};
+constexpr const char* kFovealErrorName = "-ln foveal relMSE";
+
 SeededRateQualityCurve CurveOf(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points, size_t d,
-                               const std::string& scene, const std::string& variant) {
+                               const std::string& scene, const std::string& variant,
+                               CurveQuality quality = CurveQuality::kJod) {
     SeededRateQualityCurve curve;
     for (const SweepPointResult* p : PointsOf(spec, points, d)) {
         const SweepPointValues v = PointValues(*p, scene, variant, SeedsOf(spec));
-        curve.push_back({v.tracedSpp[0], v.jod});
+        std::vector<double> perSeed = v.jod;
+        if (quality == CurveQuality::kFovealError)
+            for (size_t s = 0; s < perSeed.size(); ++s) perSeed[s] = -std::log(v.relmseFovea[s]);
+        curve.push_back({v.tracedSpp[0], perSeed});
     }
     return curve;
 }
@@ -133,15 +144,18 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
                                   {"scores", variants}});
         }
         nlohmann::json raysSaved = nlohmann::json::object(), jodGain = nlohmann::json::object();
+        nlohmann::json raysSavedFovea = nlohmann::json::object();
         for (const RaysSavedRow& r : saved)
             if (r.design == sweep.designs[d].name) {
                 raysSaved[r.scene][r.variant] = IntervalJson(r.raysSaved);
                 jodGain[r.scene][r.variant] = IntervalJson(r.jodGain);
+                raysSavedFovea[r.scene][r.variant] = IntervalJson(r.raysSavedFovea);
             }
         designs[sweep.designs[d].name] = {{"keys", keys}, {"budgets_spp", sweep.designs[d].budgets}, {"points", pointsJson}};
         if (!raysSaved.empty()) {
             designs[sweep.designs[d].name]["rays_saved"] = raysSaved;
             designs[sweep.designs[d].name]["jod_gain"] = jodGain;
+            designs[sweep.designs[d].name]["rays_saved_fovea"] = raysSavedFovea;
         }
     }
     return {{"anchor_design", sweep.anchor ? nlohmann::json(sweep.designs[*sweep.anchor].name) : nlohmann::json(nullptr)},
@@ -151,18 +165,20 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
              "rays = measured traced path samples per pixel (whole image, every eye-frame); JOD = FovVideoVDP, mean "
              "over eyes per seed; rays saved = anchor rays / design rays at equal JOD (Bjøntegaard delta on PCHIP "
              "fits of ln rays over JOD, over the JOD range both curves cover); JOD gain = design − anchor at equal "
-             "rays; 95 % percentile intervals from a paired bootstrap over seeds (2000 resamples)"},
+             "rays; rays saved fovea = the same on -ln foveal relMSE (geometric mean over seeds) instead of JOD; 95 % "
+             "percentile intervals from a paired bootstrap over seeds (2000 resamples)"},
             {"designs", designs}};
 }
 
 ReportTable HeadlineReportTable(const ExperimentSpec& spec, const std::vector<RaysSavedRow>& rows) {
     ReportTable t{fmt::format("Rays saved at equal perceived quality against '{}'",
                               spec.sweep.anchor ? spec.sweep.designs[*spec.sweep.anchor].name : "—"),
-                  {"scene", "variant", "design", "rays saved at equal JOD [95 %]", "JOD gain at equal rays [95 %]"},
+                  {"scene", "variant", "design", "rays saved at equal JOD [95 %]", "JOD gain at equal rays [95 %]",
+                   "rays saved at equal foveal relMSE [95 %]"},
                   {}};
     for (const RaysSavedRow& r : rows)
         t.rows.push_back({r.scene, r.variant, r.design, IntervalText(r.raysSaved, "{:.2f}", "×"),
-                          IntervalText(r.jodGain, "{:+.3f}", "")});
+                          IntervalText(r.jodGain, "{:+.3f}", ""), IntervalText(r.raysSavedFovea, "{:.2f}", "×")});
     return t;
 }
 
@@ -248,12 +264,19 @@ std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants) {
             const SeededRateQualityCurve anchor = CurveOf(spec, points, *sweep.anchor, scene, variant);
+            const SeededRateQualityCurve anchorFovea =
+                CurveOf(spec, points, *sweep.anchor, scene, variant, CurveQuality::kFovealError);
+            BjontegaardIntervalOptions fovea;
+            fovea.quality = kFovealErrorName;
             for (size_t d = 0; d < sweep.designs.size(); ++d) {
                 if (d == *sweep.anchor) continue;
                 const SeededRateQualityCurve test = CurveOf(spec, points, d, scene, variant);
+                const SeededRateQualityCurve testFovea =
+                    CurveOf(spec, points, d, scene, variant, CurveQuality::kFovealError);
                 rows.push_back({scene, variant, sweep.designs[d].name,
                                 BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kRaysSaved),
-                                BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kJodGain)});
+                                BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kJodGain),
+                                BootstrapBjontegaardDelta(anchorFovea, testFovea, RateQualityDelta::kRaysSaved, fovea)});
             }
         }
     return rows;
@@ -261,7 +284,9 @@ std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::
 
 std::string RaysSavedTable(const ExperimentSpec& spec, const std::vector<RaysSavedRow>& rows) {
     const ReportTable t = HeadlineReportTable(spec, rows);
-    std::string out = t.title + " (FovVideoVDP JOD; Bjøntegaard delta on PCHIP fits, 95 % seed bootstrap)\n";
+    std::string out = t.title +
+                      " (FovVideoVDP JOD, and foveal relMSE: what the eye looks at; Bjøntegaard delta on PCHIP fits, 95 % "
+                      "seed bootstrap)\n";
     if (rows.empty()) {
         return out + (spec.sweep.anchor ? "  (no design besides the anchor)\n"
                                         : "  (no anchor: name one with experiment.anchor_design, or list one uniform design)\n");

@@ -50,6 +50,10 @@ struct RaysSavedRow {
     std::string scene, variant, design;
     BjontegaardInterval raysSaved;  // anchor rays / design rays at equal JOD
     BjontegaardInterval jodGain;    // design JOD − anchor JOD at equal rays
+    // anchor rays / design rays at equal foveal relMSE (the fit's quality: −ln relMSE, so the seeds
+    // average as a geometric mean): what the rays buy where the eye looks, which the whole-image
+    // JOD can outweigh with the periphery.
+    BjontegaardInterval raysSavedFovea;
 };
 // Every design but the anchor against the anchor, per scene and variant (none without an anchor
 // or with fewer than two budgets).

@@ -73,14 +73,14 @@ double FitIntegral(const std::vector<double>& x, const std::vector<double>& y, R
 }
 
 // The curve sorted by rays, or the reason it is not a rate–quality curve.
-std::string CheckCurve(const RateQualityCurve& curve, const char* name, size_t minPoints,
+std::string CheckCurve(const RateQualityCurve& curve, const char* name, const std::string& quality, size_t minPoints,
                        RateQualityCurve& sorted) {
     if (curve.size() < minPoints)
         return fmt::format("{} curve: {} point(s); the fit needs at least {}", name, curve.size(), minPoints);
     for (size_t i = 0; i < curve.size(); ++i) {
         const RateQualityPoint& p = curve[i];
         if (!std::isfinite(p.rays) || !std::isfinite(p.jod))
-            return fmt::format("{} curve: point {} is not finite (rays {}, JOD {})", name, i, p.rays, p.jod);
+            return fmt::format("{} curve: point {} is not finite (rays {}, {} {})", name, i, p.rays, quality, p.jod);
         if (p.rays <= 0.0) return fmt::format("{} curve: point {} has rays {}; rays must be > 0", name, i, p.rays);
     }
     sorted = curve;
@@ -91,9 +91,9 @@ std::string CheckCurve(const RateQualityCurve& curve, const char* name, size_t m
         if (hi.rays == lo.rays) return fmt::format("{} curve: two points at {} rays", name, hi.rays);
         if (!(hi.jod > lo.jod))
             return fmt::format(
-                "{} curve: not monotone: JOD {} at {} rays is not above JOD {} at {} rays (a rate-quality "
-                "curve needs JOD strictly increasing with rays)",
-                name, hi.jod, hi.rays, lo.jod, lo.rays);
+                "{0} curve: not monotone: {1} {2} at {3} rays is not above {1} {4} at {5} rays (a rate-quality "
+                "curve needs {1} strictly increasing with rays)",
+                name, quality, hi.jod, hi.rays, lo.jod, lo.rays);
     }
     return {};
 }
@@ -195,12 +195,12 @@ double Pchip::Integral(double a, double b) const {
 }
 
 BjontegaardResult BjontegaardDelta(const RateQualityCurve& anchor, const RateQualityCurve& test,
-                                   RateQualityDelta delta, RateQualityFit fit) {
+                                   RateQualityDelta delta, RateQualityFit fit, const std::string& quality) {
     BjontegaardResult result;
     const size_t minPoints = fit == RateQualityFit::kCubic ? 4 : 2;
     RateQualityCurve sortedAnchor, sortedTest;
-    result.reason = CheckCurve(anchor, "anchor", minPoints, sortedAnchor);
-    if (result.reason.empty()) result.reason = CheckCurve(test, "test", minPoints, sortedTest);
+    result.reason = CheckCurve(anchor, "anchor", quality, minPoints, sortedAnchor);
+    if (result.reason.empty()) result.reason = CheckCurve(test, "test", quality, minPoints, sortedTest);
     if (!result.Ok()) return result;
 
     std::vector<double> xa, ya, xt, yt;
@@ -214,7 +214,7 @@ BjontegaardResult BjontegaardDelta(const RateQualityCurve& anchor, const RateQua
             return jod ? fmt::format("[{}, {}]", c.front().jod, c.back().jod)
                        : fmt::format("[{}, {}]", c.front().rays, c.back().rays);
         };
-        result.reason = fmt::format("the curves' {} do not overlap: anchor {}, test {}", jod ? "JOD" : "rays",
+        result.reason = fmt::format("the curves' {} do not overlap: anchor {}, test {}", jod ? quality : "rays",
                                     range(sortedAnchor), range(sortedTest));
         return result;
     }
@@ -240,7 +240,7 @@ BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anch
     }
     std::vector<uint32_t> draw(seeds);
     for (size_t s = 0; s < seeds; ++s) draw[s] = uint32_t(s);
-    interval.estimate = BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit);
+    interval.estimate = BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit, options.quality);
     if (!interval.estimate.Ok()) {
         interval.intervalReason = "no estimate";
         return interval;
@@ -253,7 +253,7 @@ BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anch
     for (int r = 0; r < options.resamples; ++r) {
         for (uint32_t& s : draw) s = rng.NextBounded(uint32_t(seeds));
         const BjontegaardResult replicate =
-            BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit);
+            BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit, options.quality);
         if (replicate.Ok()) {
             replicates.push_back(replicate.value);
         } else {

@@ -61,8 +61,10 @@ struct BjontegaardResult {
     bool Ok() const { return reason.empty(); }
 };
 
+// `quality` names the ordinate in the reasons (the sweep also fits −ln foveal relMSE as a quality).
 BjontegaardResult BjontegaardDelta(const RateQualityCurve& anchor, const RateQualityCurve& test,
-                                   RateQualityDelta delta, RateQualityFit fit = RateQualityFit::kPchip);
+                                   RateQualityDelta delta, RateQualityFit fit = RateQualityFit::kPchip,
+                                   const std::string& quality = "JOD");
 inline BjontegaardResult RaysSavedAtEqualJod(const RateQualityCurve& anchor, const RateQualityCurve& test,
                                              RateQualityFit fit = RateQualityFit::kPchip) {
     return BjontegaardDelta(anchor, test, RateQualityDelta::kRaysSaved, fit);
@@ -85,6 +87,7 @@ struct BjontegaardIntervalOptions {
     int resamples = 2000;
     double confidence = 0.95;
     uint64_t rngSeed = 0x5eedb007;  // fixed: reports are reproducible
+    std::string quality = "JOD";     // the ordinate's name in the reasons
 };
 
 struct BjontegaardInterval {
