@@ -218,7 +218,8 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
 // fallback on the listed pixels only: shaders/common/reprojection.glsl); the reference does both in
 // one loop. FallbackFrame sends every patch-edge column through the fallback.
 // Pixels without a path sample (test::ZeroSampleFrame): svgf-weighted keeps their histories or,
-// disoccluded, lets them hold nothing for the à-trous to fill; svgf reads no sample count.
+// disoccluded, lets them hold nothing for the à-trous to fill; so does svgf where the spp map may
+// hold zeros (sampleCountsMayBeZero: it reads the counts), and without that it takes them black.
 TEST_CASE("vulkan svgf matches the reference with zero-sample pixels", "[vulkan][svgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
@@ -238,6 +239,20 @@ TEST_CASE("vulkan svgf matches the reference with zero-sample pixels", "[vulkan]
             RunPair(p, "svgf-weighted", 5, tol, true, 64, 64, ZeroSampleFrame);
         }
         SECTION("svgf" + suffix) {
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf, sample counts may be zero, feedback of iteration 1" + suffix) {
+            p.sampleCountsMayBeZero = true;
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf, sample counts may be zero, unfiltered colour history" + suffix) {
+            p.sampleCountsMayBeZero = true;
+            p.svgf.feedbackIteration = 0;
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf, sample counts may be zero, combined" + suffix) {
+            p.sampleCountsMayBeZero = true;
+            p.svgf.filterCombined = true;
             RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
         }
     }
