@@ -144,7 +144,10 @@ void LiveLoop::OnFrameDone(std::function<void(const LiveFrame&)> callback) {
 }
 
 void LiveLoop::ApplyDenoiser(const std::string& name) {
-    const DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
+    DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
+    // The foveation changes at run time (ApplyFoveation), and with it whether the spp map holds
+    // zeros: every denoiser is built to keep a pixel without a path sample.
+    params.sampleCountsMayBeZero = true;
     for (auto& d : denoisers_) d = CreateDenoiser(name, config_.denoise.device, params, context_);
     if (!runningDenoiser_.empty())
         std::fprintf(stderr, "fovrt: denoiser %s -> %s (histories reset)\n",
