@@ -10,6 +10,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <glm/gtc/packing.hpp>
 
@@ -296,10 +297,13 @@ TEST_CASE("sigma_normal = 2^k specialises w_n to k squarings, anything else to l
 TEST_CASE("vulkan allocator accounting equals the memory plan", "[vulkan][svgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     auto ctx = TestContext();
-    for (const char* name : {"svgf", "svgf-weighted"})
+    // svgf also with the sample counts it uploads where the spp map may hold zeros.
+    for (auto [name, zeroAware] : {std::pair{"svgf", false}, std::pair{"svgf-weighted", false}, std::pair{"svgf", true}})
         for (Precision prec : {Precision::Fp32, Precision::Fp16}) {
+            INFO(name << (zeroAware ? " with sampleCountsMayBeZero" : ""));
             DenoiserParams p;
             p.precision = prec;
+            p.sampleCountsMayBeZero = zeroAware;
             size_t before = ctx->allocator().LiveBytes();
             {
                 auto d = CreateDenoiser(name, "vulkan", p, ctx.get());
