@@ -485,6 +485,9 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     else manifest["config"]["scene"]["name"] = spec.scenes;
     if (spec.merge) manifest["merged_shards"] = true;
     manifest["denoise_device"] = part.deviceDescription;
+    // Derived from the foveation, not a config key: whether svgf, asvgf and asvgf-antilag read the
+    // sample counts to keep pixels without a path sample.
+    manifest["denoise_sample_counts_may_be_zero"] = RunDenoiseConfig(base).params.sampleCountsMayBeZero;
     manifest["pass_ms"] = part.timings.MeansJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     manifest["cpu_s"] = CpuSeconds();
