@@ -105,9 +105,9 @@ float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2&,
     return std::max(p.sppMin, float(p.sppMax) * g.sensitivity->At(e));
 }
 
-// The models by name: the one list of foveation.model's values. `least`: the key of the density's
-// least value (no pixel's density lies below it: ZeroSppKey). `readsSensitivity`: the density
-// reads the eye's contrast sensitivity (GazeContext::sensitivity).
+// The models by name: the one list of foveation.model's values. `leastKey`, `least`: the key and
+// member of the density's least value (no pixel's density lies below it; ZeroSppKey reads them).
+// `readsSensitivity`: the density reads the eye's contrast sensitivity (GazeContext::sensitivity).
 struct ModelRow {
     const char* name;
     DensityFn density;
