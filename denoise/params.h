@@ -69,6 +69,12 @@ struct DenoiserParams {
     TwoHistoryStableParams twoHistoryStable;
     RaeParams rae;
     Precision precision = Precision::Fp32;
+    // The spp map may hold 0 (a density below 1: docs/algorithms.md, "Pixels with zero path
+    // samples"): the variants that read no sample count otherwise (svgf, asvgf, asvgf-antilag)
+    // upload and read it so that a pixel without a path sample keeps its history, as the
+    // count-weighted variants always do. Not a config key: a run derives it from its foveation
+    // (RunDenoiseConfig, pipeline/denoiser_set.h), the live preview sets it. Off: no plane more.
+    bool sampleCountsMayBeZero = false;
 };
 
 // ---- Parameter tables -------------------------------------------------------------------------

@@ -191,6 +191,7 @@ struct StagePlane {
 // (TwoHistoryReprojectRef): `outputs` the illumination planes written (Illum0, WIllum0).
 struct ReprojectStage {
     bool twoHistory = false;
+    bool zeroSamples = false;  // the ZERO_SAMPLES flag: an unweighted history keeps n = 0 pixels
     std::vector<StagePlane> outputs;
 };
 struct FilterMomentsStage {  // SvgfFilterMomentsRef per plane

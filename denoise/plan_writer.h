@@ -67,12 +67,18 @@ struct Family {
     bool pair;                      // both channels in one dispatch
     bool twoHistoryFamily;          // the two-history family's passes (vs SVGF's)
     int feedback;                   // FeedbackIteration
+    // A variant that weighs by no sample count reads them anyway, only to keep a pixel without a
+    // path sample (DenoiserParams::sampleCountsMayBeZero; the ZERO_SAMPLES reprojection flags).
+    bool zeroSamples;
+    bool readsSampleCounts;  // the sample counts are uploaded: needsSampleCount or zeroSamples
     ivec2 size, grid;
 
     Family(const DenoiserVariant& variant, const DenoiserParams& p, int w, int h)
         : v(variant), params(p), svgf(p.svgf), width(w), height(h), channels(FilteredChannels(p.svgf)),
           pair(channels.size() == 2), twoHistoryFamily(variant.family == DenoiserFamily::TwoHistory),
-          feedback(FeedbackIteration(p.svgf, variant.twoHistory)), size(w, h), grid(StratumGridSize(w, h)) {}
+          feedback(FeedbackIteration(p.svgf, variant.twoHistory)),
+          zeroSamples(p.sampleCountsMayBeZero && !variant.needsSampleCount),
+          readsSampleCounts(variant.needsSampleCount || zeroSamples), size(w, h), grid(StratumGridSize(w, h)) {}
 
     Channel First() const { return channels.front(); }
     Channel Last() const { return channels.back(); }

@@ -33,7 +33,7 @@ Bindings SvgfReprojectBindings(const Family& f) {
     const bool weighted = f.svgf.weightBySampleCount, writeColor = f.feedback == 0;
     Bindings b;
     ReprojectionInputs(b, f);
-    b.ReadIf(weighted, SVGF_REPROJECT_B_SAMPLE_COUNT, Shared(PlaneKind::SampleCount));
+    b.ReadIf(f.readsSampleCounts, SVGF_REPROJECT_B_SAMPLE_COUNT, Shared(PlaneKind::SampleCount));
     b.ReadWrite(SVGF_REPROJECT_B_STATS, Shared(PlaneKind::Stats));
     for (size_t c = 0; c < f.channels.size(); ++c) {
         const Channel ch = f.channels[c];
@@ -65,7 +65,7 @@ Bindings TwoHistoryReprojectBindings(const Family& f) {
     const Channel ch0 = f.First(), ch1 = f.Last();
     Bindings b;
     ReprojectionInputs(b, f);
-    if (two) b.Read(TH_REPROJECT_B_SAMPLE_COUNT, Shared(K::SampleCount));
+    if (f.readsSampleCounts) b.Read(TH_REPROJECT_B_SAMPLE_COUNT, Shared(K::SampleCount));
     else b.Placeholder(TH_REPROJECT_B_SAMPLE_COUNT, kUnreadSlot, 2.0);  // loaded on every pixel
     b.ReadIf(f.v.asvgfGradient, TH_REPROJECT_B_ALPHA, Shared(K::AsvgfAlpha))
         .Read(TH_REPROJECT_B_PREV_IU, Previous(K::Color, ch0))
@@ -116,7 +116,7 @@ Bindings TwoHistoryReprojectBindings(const Family& f) {
 // anyway). Mode bits are a specialization constant of both.
 void Reproject(Writer& w, const Family& f) {
     const bool th = f.twoHistoryFamily;
-    ReprojectStage stage{th, {}};
+    ReprojectStage stage{th, f.zeroSamples, {}};
     const bool writeColor = f.feedback == 0;
     auto output = [&](PlaneKind illum, PlaneKind history, Channel ch) {
         stage.outputs.push_back({ch, {}, {illum, ch}, writeColor ? std::optional(This(history, ch)) : std::nullopt});
@@ -132,7 +132,8 @@ void Reproject(Writer& w, const Family& f) {
         flags = (f.v.twoHistory ? TH_REPROJECT_FLAG_TWO_HISTORY : 0u) | (f.v.emaGradient ? TH_REPROJECT_FLAG_GRADIENT : 0u) |
                 (f.pair ? 0u : TH_REPROJECT_FLAG_COMBINED) | (f.v.asvgfGradient ? TH_REPROJECT_FLAG_ALPHA_MAP : 0u) |
                 (writeColor ? TH_REPROJECT_FLAG_WRITE_COLOR : 0u) | (f.v.antilag ? TH_REPROJECT_FLAG_ANTILAG : 0u) |
-                (f.v.suppressFireflies ? TH_REPROJECT_FLAG_FIREFLY : 0u);
+                (f.v.suppressFireflies ? TH_REPROJECT_FLAG_FIREFLY : 0u) |
+                (f.zeroSamples ? TH_REPROJECT_FLAG_ZERO_SAMPLES : 0u);
         push = PushBlock::Of(TwoHistoryReprojectPush{f.size, f.svgf.alphaColor, f.svgf.alphaMoments,
                                                      f.params.twoHistory.gradientBeta, 0u,
                                                      f.params.asvgf.antilagPower, f.params.twoHistory.fireflySigma});
@@ -141,7 +142,8 @@ void Reproject(Writer& w, const Family& f) {
     } else {
         flags = (f.svgf.weightBySampleCount ? SVGF_REPROJECT_FLAG_WEIGHTED : 0u) |
                 (f.svgf.filterCombined ? SVGF_REPROJECT_FLAG_COMBINED : 0u) |
-                (writeColor ? SVGF_REPROJECT_FLAG_WRITE_COLOR : 0u);
+                (writeColor ? SVGF_REPROJECT_FLAG_WRITE_COLOR : 0u) |
+                (f.zeroSamples ? SVGF_REPROJECT_FLAG_ZERO_SAMPLES : 0u);
         push = PushBlock::Of(SvgfReprojectPush{f.size, f.svgf.alphaColor, f.svgf.alphaMoments, 0u});
         FOVRT_PUSH_PER_FRAME(push, SvgfReprojectPush, has_prev, FrameValue::HasPrevious);
         b = SvgfReprojectBindings(f);

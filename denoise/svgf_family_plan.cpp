@@ -10,7 +10,8 @@ namespace plan {
 namespace {
 
 // Every FrameInputs plane a frame uploads (this frame's geometry into its history side), the
-// sample counts where a history weighs by them, A-SVGF's gradient samples; a reset first clears
+// sample counts where a history weighs by them or the map may hold zeros, A-SVGF's gradient
+// samples; a reset first clears
 // every plane. The two-history family stages its per-frame extras apart (staging.extra).
 void Upload(Writer& w, const Family& f) {
     w.Pass("upload", "", std::monostate{});
@@ -20,7 +21,7 @@ void Upload(Writer& w, const Family& f) {
         w.Upload(IsHistory(kind) ? This(kind) : Shared(kind), PlaneKind::Staging);
     w.Fill(Shared(PlaneKind::Stats), 0u);
     const PlaneKind extras = f.twoHistoryFamily ? PlaneKind::StagingExtra : PlaneKind::Staging;
-    if (f.v.needsSampleCount) w.Upload(Shared(PlaneKind::SampleCount), extras);
+    if (f.readsSampleCounts) w.Upload(Shared(PlaneKind::SampleCount), extras);
     if (f.v.needsGradientSamples)
         w.Upload(Shared(PlaneKind::AsvgfSamples), extras, Coverage::UploadedSamples, When::GradientSamples);
     w.Barrier();

@@ -5,7 +5,10 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -102,19 +105,22 @@ float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2&,
     return std::max(p.sppMin, float(p.sppMax) * g.sensitivity->At(e));
 }
 
-// The models by name: the one list of foveation.model's values. `readsSensitivity`: the density
-// reads the eye's contrast sensitivity (GazeContext::sensitivity).
+// The models by name: the one list of foveation.model's values. `leastKey`, `least`: the key and
+// member of the density's least value (no pixel's density lies below it; ZeroSppKey reads them).
+// `readsSensitivity`: the density reads the eye's contrast sensitivity (GazeContext::sensitivity).
 struct ModelRow {
     const char* name;
     DensityFn density;
+    const char* leastKey;
+    float FoveationParams::*least;
     bool readsSensitivity = false;
 };
 constexpr std::array<ModelRow, 5> kModels{{
-    {"disc", DiscDensity},
-    {"linear", LinearDensity},
-    {"acuity", AcuityDensity},
-    {"uniform", UniformDensity},
-    {"perceptual", PerceptualDensity, true},
+    {"disc", DiscDensity, "foveation.spp_outside", &FoveationParams::sppOutside},
+    {"linear", LinearDensity, "foveation.spp_min", &FoveationParams::sppMin},
+    {"acuity", AcuityDensity, "foveation.spp_min", &FoveationParams::sppMin},
+    {"uniform", UniformDensity, "foveation.uniform_spp", &FoveationParams::uniformSpp},
+    {"perceptual", PerceptualDensity, "foveation.spp_min", &FoveationParams::sppMin, true},
 }};
 constexpr std::array<const char*, kModels.size()> kModelNames = [] {
     std::array<const char*, kModels.size()> names{};
@@ -278,6 +284,15 @@ std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, 
 }
 
 NameList FoveationModelNames() { return kModelNames; }
+
+std::optional<std::string> ZeroSppKey(const FoveationParams& p) {
+    // Under a ray budget every pixel is scaled into [spp_floor, kMaxSpp], whatever the model's least.
+    if (p.rayBudget > 0)
+        return p.sppFloor < 1.0f ? std::optional(fmt::format("foveation.spp_floor = {}", p.sppFloor)) : std::nullopt;
+    for (const ModelRow& row : kModels)
+        if (p.model == row.name && p.*row.least < 1.0f) return fmt::format("{} = {}", row.leastKey, p.*row.least);
+    return std::nullopt;
+}
 
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const ContrastSensitivity& sensitivity) {
     ValidateFoveationParams(p);

@@ -103,6 +103,15 @@ std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& params
 // Throws fovrt::Error naming the first bad foveation.* key and its range.
 void ValidateFoveationParams(const FoveationParams& params);
 
+// The key that lets the spp map hold 0 (a density below 1, traced through a sample mask), as
+// "foveation.spp_outside = 0.25": the model's least density (disc: spp_outside; linear, acuity,
+// perceptual: spp_min; uniform: uniform_spp) below 1, or under a ray budget spp_floor below 1 (the
+// budget scales every pixel into [spp_floor, kMaxSpp], whatever the model's least). nullopt: every
+// pixel is traced every frame. Read from the keys, so it says "may": a budget above W·H may keep
+// every pixel at 1 or more.
+std::optional<std::string> ZeroSppKey(const FoveationParams& params);
+inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSppKey(params).has_value(); }
+
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
 // out-of-range parameters throw fovrt::Error naming the foveation.* key; so does the perceptual
 // model without a `sensitivity`.

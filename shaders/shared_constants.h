@@ -62,6 +62,7 @@
 #define SVGF_REPROJECT_FLAG_WEIGHTED 1u    // svgf-weighted: W ← (1−α)W + n, C += n(x − C)/W
 #define SVGF_REPROJECT_FLAG_COMBINED 2u    // one channel = direct + indirect
 #define SVGF_REPROJECT_FLAG_WRITE_COLOR 4u // write the colour history (no à-trous feedback)
+#define SVGF_REPROJECT_FLAG_ZERO_SAMPLES 8u // unweighted, read n only for n = 0 (maps below 1 spp)
 
 // bandwidth_copy (src/vk/bandwidth.cpp): bindings in shaders/bindings/bandwidth_copy.h.
 #define BANDWIDTH_EXP2_PER_ELEMENT 64     // exp2 per element of the ALU probe (multiple of 4)

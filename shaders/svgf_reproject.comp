@@ -7,8 +7,9 @@
 //   blend: C' = lerp(C_prev, C, α_c) with α_c = max(α, 1/length) — or, in weighted mode (svgf-weighted,
 //   SPEC §5), W ← (1−α)·W_prev + n, C' = C_prev + n·(C − C_prev)/W. Moments (l, l²) use
 //   α_m = max(α_m, 1/length). History length is interpolated from the valid taps, +1, capped.
-//   Weighted, n = 0 (no path sample): the reprojected history is kept as it is (length, weight,
-//   moments, colour); without one the pixel holds nothing (length 0, FOVRT_EMPTY_VARIANCE).
+//   n = 0 (no path sample; weighted, or ZERO_SAMPLES: the unweighted mode reading the counts
+//   because the spp map may hold zeros): the reprojected history is kept as it is (length,
+//   weight, moments, colour); without one the pixel holds nothing (length 0, FOVRT_EMPTY_VARIANCE).
 // Passes: "svgf_reproject[_pair]" runs on every pixel with the bilinear taps and lists the pixels
 //   whose taps all failed (their disocclusion result is written meanwhile); "…_box" runs on the
 //   listed pixels only (indirect dispatch) with the 3×3 fallback taps and overwrites their results
@@ -19,7 +20,8 @@
 //   each channel's arithmetic is the one-channel arithmetic.
 // Modes: SVGF_REPROJECT_FLAG_* as the specialization constant FOVRT_SPEC_REPROJECT_FLAGS.
 // Reads:  colour in (+ second channel), depth/normal/object of both frames, depth gradient,
-//         previous pixel, sample counts (weighted), previous colour/moments/length/weight per channel.
+//         previous pixel, sample counts (weighted, ZERO_SAMPLES), previous colour/moments/length/weight
+//         per channel.
 // Writes: per channel this frame's moments/length/weight (and colour history when no à-trous
 //         feedback), illumination + temporal variance (vec4); sanitising counters; the list.
 #include "shared_constants.h"
@@ -43,6 +45,7 @@ layout(constant_id = FOVRT_SPEC_REPROJECT_FLAGS) const uint kFlags = 0u;
 const bool kWeighted = (kFlags & SVGF_REPROJECT_FLAG_WEIGHTED) != 0u;
 const bool kCombined = (kFlags & SVGF_REPROJECT_FLAG_COMBINED) != 0u;
 const bool kWriteColor = (kFlags & SVGF_REPROJECT_FLAG_WRITE_COLOR) != 0u;
+const bool kZeroSamples = (kFlags & SVGF_REPROJECT_FLAG_ZERO_SAMPLES) != 0u;
 
 FOVRT_DECLARE_BINDINGS(SVGF_REPROJECT_BINDING_LIST)  // shaders/bindings/svgf_reproject.h
 #if NCH == 2
@@ -131,7 +134,7 @@ bool reproject_pixel(int i) {
     GATHER_HISTORY(1);
 #endif
     bool success = taps.count > 0;
-    float n = kWeighted ? float(LOAD_U16(sample_count, i)) : 1.0;
+    float n = REPROJ_SAMPLE_COUNT(sample_count, i, kWeighted, kZeroSamples);
 
     vec3 c_acc[NCH];
     vec2 m_acc[NCH];
@@ -139,7 +142,7 @@ bool reproject_pixel(int i) {
     [[unroll]] for (int k = 0; k < NCH; ++k) {
         float l = luminance(c[k]);
         vec2 m = vec2(l, l * l);
-        if (n == 0.0) {  // weighted, no path sample: the reprojected history as it is, or nothing
+        if (n == 0.0) {  // no path sample: the reprojected history as it is, or nothing
             bool held = success && len_prev[k] > 0.0;
             total[k] = held ? w_prev[k] : 0.0;
             c_acc[k] = held ? c_prev[k] : vec3(0.0);

@@ -11,8 +11,9 @@
 //   W_u ← βW_u + 1, W_w ← βW_w + n, S_k ← β²S_k + n^k; I_u += (x − I_u)/W_u,
 //   I_w += n(x − I_w)/W_w; moments with max(α_m, 1/W_u); g ← β_g g + (1 − β_g)·lum(Σx − ΣI_u,prev)
 //   over the channels (GRADIENT flag; g is one float, the signed luminance of the gradient).
-//   n = 0 (no path sample; TWO_HISTORY only, the others read no sample count): every history
-//   stays as reprojected, W_u included; without one the pixel holds nothing (FOVRT_EMPTY_VARIANCE).
+//   n = 0 (no path sample; TWO_HISTORY, or ZERO_SAMPLES: A-SVGF's one history reading the counts
+//   because the spp map may hold zeros): every history stays as reprojected, W_u included;
+//   without one the pixel holds nothing (FOVRT_EMPTY_VARIANCE).
 // Channels: FOVRT_CHANNELS (1: "two_history_reproject", one channel = direct + indirect summed
 //   (combined); 2: "two_history_reproject_pair", direct at the base bindings and indirect at
 //   COLOR_IN2 / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
@@ -21,8 +22,8 @@
 // Passes: as svgf_reproject — this shader on every pixel with the bilinear taps, listing the pixels
 //   whose taps all failed; "…_box" on the listed pixels with the 3×3 fallback taps (indirect).
 // Modes: TH_REPROJECT_FLAG_* as the specialization constant FOVRT_SPEC_REPROJECT_FLAGS.
-// Reads:  illumination, geometry of both frames, depth gradient, previous pixel, sample counts,
-//         per-pixel α (A-SVGF), previous histories.
+// Reads:  illumination, geometry of both frames, depth gradient, previous pixel, sample counts
+//         (TWO_HISTORY, ZERO_SAMPLES), per-pixel α (A-SVGF), previous histories.
 // Writes: this frame's histories (per channel moments, W_u into the channel's length, colours
 //         when no à-trous iteration feeds back; W_w, S, g once), (I_u, Var) and (I_w, Var), counters,
 //         the list.
@@ -53,6 +54,7 @@ const bool kWriteColor = (kFlags & TH_REPROJECT_FLAG_WRITE_COLOR) != 0u;
 const bool kGradient = (kFlags & TH_REPROJECT_FLAG_GRADIENT) != 0u;
 const bool kAntilag = (kFlags & TH_REPROJECT_FLAG_ANTILAG) != 0u;
 const bool kFirefly = (kFlags & TH_REPROJECT_FLAG_FIREFLY) != 0u;
+const bool kZeroSamples = (kFlags & TH_REPROJECT_FLAG_ZERO_SAMPLES) != 0u;
 
 FOVRT_DECLARE_BINDINGS(TH_REPROJECT_BINDING_LIST)  // shaders/bindings/two_history_reproject.h
 #if NCH == 2
@@ -165,8 +167,9 @@ bool reproject_pixel(int i) {
                                       max(abs(dzv.x), abs(dzv.y)));
     }
     bool success = taps.count > 0;
-    // The sample count is read by the two-history variants only (A-SVGF's own takes n = 1).
-    float n = kTwo ? float(LOAD_U16(sample_count, i)) : 1.0;
+    // The two-history variants weigh by the sample count; A-SVGF's own history reads it only
+    // with ZERO_SAMPLES, to keep a pixel without a path sample (else n = 1).
+    float n = REPROJ_SAMPLE_COUNT(sample_count, i, kTwo, kZeroSamples);
 
     // Per-pixel state, once for all channels (W_u from channel 0's length: both channels hold the same).
     float wu_prev = 0.0, ww_prev = 0.0;

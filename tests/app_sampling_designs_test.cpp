@@ -4,6 +4,10 @@
 // form.
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -124,6 +128,54 @@ TEST_CASE("a bad design is refused in one line naming the design and key", "[app
     ConfigOptions noVdp = DesignOptions("no-vdp", kTwoDesigns);
     noVdp.sets = {"metric.vdp=false"};
     CHECK_THAT(LoadError(noVdp), Contains("metric.vdp"));
+}
+
+namespace {
+
+// The options of SmallExperimentOptions' experiment with `variants` in place of its own.
+// `sets`: --set options (the file already has its [foveation] table).
+ConfigOptions VariantsOptions(const std::string& name, const std::string& variants, const std::string& lines,
+                              std::vector<std::string> sets = {}) {
+    ConfigOptions options = DesignOptions(name, lines);
+    options.sets = std::move(sets);
+    std::ifstream in(options.configPath);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string from = "variants = [\"svgf\", \"two-history\"]";
+    const size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), "variants = " + variants);
+    std::ofstream(options.configPath) << text;
+    return options;
+}
+
+}  // namespace
+
+// The RAE cannot take pixels without a path sample: refused wherever the spp map may hold zeros,
+// in one line naming where, the variant and the foveation key.
+TEST_CASE("the RAE is refused by every point whose sampling goes below 1 spp, and by the experiment's own",
+          "[app][designs]") {
+    using Catch::Matchers::Contains;
+    // No designs: the experiment's own foveation.
+    CHECK_THAT(LoadError(VariantsOptions("rae-own", "[\"svgf\", \"rae\"]", "", {"foveation.spp_outside=0.5"})),
+               Contains("experiment.variants") && Contains("rae cannot") && Contains("foveation.spp_outside = 0.5"));
+    CHECK_NOTHROW(LoadExperiment(VariantsOptions("rae-own-1", "[\"svgf\", \"rae\"]", "")));
+    // Designs × budgets: each point, by its design and budget.
+    CHECK_THAT(LoadError(VariantsOptions("rae-budget", "[\"rae-spp\"]",
+                                         "budgets = [0.5, 1]\n[experiment.designs.u]\n"
+                                         "foveation = { model = \"uniform\", spp_floor = 0.0625 }\n")),
+               Contains("experiment.designs.u at budget 0.5 spp") && Contains("rae-spp cannot") &&
+                   Contains("foveation.spp_floor = 0.0625"));
+    // A design of its own sampling, below 1 spp.
+    CHECK_THAT(LoadError(VariantsOptions("rae-design", "[\"rae\"]",
+                                         "[experiment.designs.ok]\nfoveation.spp_outside = 1\n"
+                                         "[experiment.designs.masked]\nfoveation.spp_outside = 0.25\n")),
+               Contains("experiment.designs.masked:") && Contains("rae cannot") &&
+                   Contains("foveation.spp_outside = 0.25"));
+    // Points at 1 spp and above run the RAE, whatever the experiment's own foveation (a sweep runs
+    // its points only).
+    CHECK_NOTHROW(LoadExperiment(VariantsOptions("rae-points-ok", "[\"rae\"]",
+                                                 "budgets = [1, 2]\n[experiment.designs.d]\nfoveation.model = \"disc\"\n",
+                                                 {"foveation.spp_outside=0.5"})));
 }
 
 namespace {

@@ -313,6 +313,18 @@ if "$fovrt" run "${small[@]}" "${ends[@]}" --set run.frames=5 --set gaze.trace_e
 else
   bad "trace_end hold run failed: $(cat err.txt)"
 fi
+# A periphery below 1 spp: the run's denoisers read the sample counts (the manifest says so; run1's
+# map never holds 0), and the RAE, which cannot take a pixel without a path sample, is refused.
+if "$fovrt" run "${small[@]}" --set foveation.spp_outside=0.25 --set output.dir=zero1 --set denoise.device=cpu \
+    >/dev/null 2>err.txt; then
+  python3 -c 'import json,sys; sys.exit(not (json.load(open("zero1/manifest.json"))["denoise_sample_counts_may_be_zero"] is True and json.load(open("run1/manifest.json"))["denoise_sample_counts_may_be_zero"] is False))' &&
+    ok "spp_outside 0.25: the manifest records that sample counts may be zero, run1's that they may not" ||
+    bad "manifest denoise_sample_counts_may_be_zero"
+else
+  bad "run with spp_outside 0.25 failed: $(cat err.txt)"
+fi
+expect_error "rae below 1 spp" "rae cannot take pixels without a path sample.*foveation.spp_outside = 0.25" \
+  run "${small[@]}" --set 'denoise.denoisers=["rae"]' --set foveation.spp_outside=0.25 --set output.dir=e43
 # A scene with no light would score as perfect: refused naming it.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > tri.obj
 printf 'name = "dark"\n[[mesh]]\nfile = "tri.obj"\n' > dark.toml
@@ -324,7 +336,7 @@ mkdir -p elsewhere
   ok "preset paths from the preset's folder" || bad "preset paths: $(grep recording_path latency.toml) $(cat err.txt)"
 
 left=""
-for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19 e30 e31 e32-$'\xff' e33 e34 e35 e36c e40 e41 e42; do
+for d in e1 e2 e3 e4 e5 e6 e7 e8 e9 e10 e11 e12 e13 e14 e15 e16 e17 e18 e19 e30 e31 e32-$'\xff' e33 e34 e35 e36c e40 e41 e42 e43; do
   [[ -e $d/manifest.json ]] && bad "$d has a manifest after an error"
   [[ -e $d ]] && left="$left $d"
 done

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <glm/gtc/packing.hpp>
 
@@ -218,7 +219,8 @@ TEST_CASE("vulkan svgf passes match the C++ reference", "[vulkan][svgf]") {
 // fallback on the listed pixels only: shaders/common/reprojection.glsl); the reference does both in
 // one loop. FallbackFrame sends every patch-edge column through the fallback.
 // Pixels without a path sample (test::ZeroSampleFrame): svgf-weighted keeps their histories or,
-// disoccluded, lets them hold nothing for the à-trous to fill; svgf reads no sample count.
+// disoccluded, lets them hold nothing for the à-trous to fill; so does svgf where the spp map may
+// hold zeros (sampleCountsMayBeZero: it reads the counts), and without that it takes them black.
 TEST_CASE("vulkan svgf matches the reference with zero-sample pixels", "[vulkan][svgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
@@ -238,6 +240,20 @@ TEST_CASE("vulkan svgf matches the reference with zero-sample pixels", "[vulkan]
             RunPair(p, "svgf-weighted", 5, tol, true, 64, 64, ZeroSampleFrame);
         }
         SECTION("svgf" + suffix) {
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf, sample counts may be zero, feedback of iteration 1" + suffix) {
+            p.sampleCountsMayBeZero = true;
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf, sample counts may be zero, unfiltered colour history" + suffix) {
+            p.sampleCountsMayBeZero = true;
+            p.svgf.feedbackIteration = 0;
+            RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
+        }
+        SECTION("svgf, sample counts may be zero, combined" + suffix) {
+            p.sampleCountsMayBeZero = true;
+            p.svgf.filterCombined = true;
             RunPair(p, "svgf", 5, tol, true, 64, 64, ZeroSampleFrame);
         }
     }
@@ -281,10 +297,13 @@ TEST_CASE("sigma_normal = 2^k specialises w_n to k squarings, anything else to l
 TEST_CASE("vulkan allocator accounting equals the memory plan", "[vulkan][svgf]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     auto ctx = TestContext();
-    for (const char* name : {"svgf", "svgf-weighted"})
+    // svgf also with the sample counts it uploads where the spp map may hold zeros.
+    for (auto [name, zeroAware] : {std::pair{"svgf", false}, std::pair{"svgf-weighted", false}, std::pair{"svgf", true}})
         for (Precision prec : {Precision::Fp32, Precision::Fp16}) {
+            INFO(name << (zeroAware ? " with sampleCountsMayBeZero" : ""));
             DenoiserParams p;
             p.precision = prec;
+            p.sampleCountsMayBeZero = zeroAware;
             size_t before = ctx->allocator().LiveBytes();
             {
                 auto d = CreateDenoiser(name, "vulkan", p, ctx.get());

@@ -443,17 +443,24 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
 }
 
 // Pixels without a path sample (sample count 0; test::WithZeroSamples): kept histories, pixels that
-// hold nothing and are filled by the à-trous, on both backends alike.
+// hold nothing and are filled by the à-trous, on both backends alike. asvgf and asvgf-antilag
+// read the counts where the spp map may hold zeros (sampleCountsMayBeZero), and take such a pixel
+// as black without it; both runs are compared.
 TEST_CASE("vulkan two-history family matches the reference with zero-sample pixels", "[vulkan][two_history]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
         if (precision == Precision::Fp16 && !TestContext()->supports16BitStorage()) continue;
         for (const DenoiserVariant& variant : DenoiserVariants()) {
             if (variant.family != DenoiserFamily::TwoHistory) continue;
-            DenoiserParams params = ParamsForDenoiser(std::string(variant.name), DenoiserParams{});
-            params.precision = precision;
-            INFO(variant.name << (precision == Precision::Fp16 ? " fp16" : " fp32"));
-            RunPair(variant, params, 5, 64, 64, false, true);
+            for (bool zeroAware : {false, true}) {
+                if (zeroAware && variant.needsSampleCount) continue;  // it reads the counts anyway
+                DenoiserParams params = ParamsForDenoiser(std::string(variant.name), DenoiserParams{});
+                params.precision = precision;
+                params.sampleCountsMayBeZero = zeroAware;
+                INFO(variant.name << (precision == Precision::Fp16 ? " fp16" : " fp32")
+                                  << (zeroAware ? ", sample counts may be zero" : ""));
+                RunPair(variant, params, 5, 64, 64, false, true);
+            }
         }
     }
 }

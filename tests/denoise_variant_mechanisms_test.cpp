@@ -43,7 +43,12 @@ TEST_CASE("a name's hidden mechanisms are listed", "[denoise][variants]") {
     const std::vector<std::string> needs = VariantRendererNeeds(FindDenoiserVariant("two-history-asvgf"));
     CHECK(Lists(needs, "gradient samples"));
     CHECK(Lists(needs, "sample counts"));
-    CHECK(VariantRendererNeeds(FindDenoiserVariant("svgf")).empty());
+    // svgf reads the sample counts only where the spp map may hold zeros; the RAE never.
+    const std::vector<std::string> svgfNeeds = VariantRendererNeeds(FindDenoiserVariant("svgf"));
+    REQUIRE(svgfNeeds.size() == 1);
+    CHECK(Lists(svgfNeeds, "may hold zeros"));
+    CHECK_FALSE(Lists(needs, "may hold zeros"));
+    CHECK(VariantRendererNeeds(FindDenoiserVariant("rae")).empty());
 }
 
 TEST_CASE("every variant has one note for docs/denoisers.md, and every note a variant", "[denoise][variants]") {

@@ -3,7 +3,9 @@
 // window of frames when the periphery is masked.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
+#include <string>
 
 #include "foveation/sample_mask.h"
 #include "foveation/spp_model.h"
@@ -176,4 +178,56 @@ TEST_CASE("Ray budget below W*H: met over a window of frames, every pixel within
             const double expected = double(p.rayBudget) * frames;
             CHECK(std::abs(double(total) - expected) <= 0.01 * expected);
         }
+}
+
+// ZeroSppKey is read from the keys, never from a map: every config it clears must give maps
+// without a 0, and the ones it names (with the key that allows it) must give some.
+TEST_CASE("ZeroSppKey names the key that lets the spp map hold 0, and a map without it holds none", "[foveation]") {
+    const int w = 64, h = 48;
+    const int64_t n = int64_t(w) * h;
+    const EyeCamera cam = Camera(w, h);
+    struct Case {
+        const char* what;
+        FoveationParams params;
+        std::optional<std::string> key;
+    };
+    auto with = [](auto set) {
+        FoveationParams p;
+        p.radiusPx = 400.0f;  // 20 px at 64 wide: a periphery around the disc
+        set(p);
+        return p;
+    };
+    const Case cases[] = {
+        {"disc 8/1", with([](FoveationParams&) {}), std::nullopt},
+        {"disc 8/0.25", with([](FoveationParams& p) { p.sppOutside = 0.25f; }), "foveation.spp_outside = 0.25"},
+        {"linear 6..0.125", with([](FoveationParams& p) { p.model = "linear"; p.sppMax = 6; p.sppMin = 0.125f; }),
+         "foveation.spp_min = 0.125"},
+        {"linear 6..1 with spp_outside 0.25 unused",
+         with([](FoveationParams& p) { p.model = "linear"; p.sppMax = 6; p.sppOutside = 0.25f; }), std::nullopt},
+        {"acuity down to 0.5", with([](FoveationParams& p) { p.model = "acuity"; p.sppMin = 0.5f; }),
+         "foveation.spp_min = 0.5"},
+        {"uniform 0.5", with([](FoveationParams& p) { p.model = "uniform"; p.uniformSpp = 0.5f; }),
+         "foveation.uniform_spp = 0.5"},
+        {"uniform 1 under a budget of 0.5 spp, floor 1/16",
+         with([&](FoveationParams& p) { p.model = "uniform"; p.sppFloor = kMinSpp; p.rayBudget = n / 2; }),
+         "foveation.spp_floor = 0.0625"},
+        {"disc 8/0.25 under a budget of 2 spp, floor 1: the budget lifts the periphery to 1",
+         with([&](FoveationParams& p) { p.sppOutside = 0.25f; p.rayBudget = 2 * n; }), std::nullopt},
+    };
+    for (const Case& c : cases) {
+        INFO(c.what);
+        CHECK(ZeroSppKey(c.params) == c.key);
+        CHECK(MapMayHaveZeroSamples(c.params) == c.key.has_value());
+        auto model = CreateSppModel(c.params);
+        Plane<uint16_t> spp;
+        size_t zeros = 0;
+        for (uint32_t t = 0; t < 4; ++t) {
+            model->Generate(cam, GazeDirectionFromAngles(10.0f, -5.0f), t, spp);
+            zeros += size_t(std::count(spp.data(), spp.data() + spp.size(), uint16_t(0)));
+        }
+        if (c.key)
+            CHECK(zeros > 0);
+        else
+            CHECK(zeros == 0);
+    }
 }

@@ -116,6 +116,7 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
         opt.alphaColor = p.alphaColor;
         opt.alphaMoments = p.alphaMoments;
         opt.weighted = p.weightBySampleCount;
+        opt.zeroSamples = s.zeroSamples;
         opt.writeColorHistory = writeColor;
         opt.precision = params_.precision;
         for (const StagePlane& o : s.outputs) {
@@ -134,6 +135,7 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     ro.alphaMoments = p.alphaMoments;
     ro.gradientBeta = params_.twoHistory.gradientBeta;
     ro.twoHistory = variant_.twoHistory;
+    ro.zeroSamples = s.zeroSamples;
     ro.gradient = variant_.emaGradient;
     ro.writeColorHistory = writeColor;
     ro.antilag = variant_.antilag;

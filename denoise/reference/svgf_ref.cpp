@@ -121,6 +121,11 @@ vec3 SanitizeIllumination(const vec3& c, DenoiseStats& stats) {
     return c;
 }
 
+float ReprojectionSampleCount(const FrameInputs& frame, size_t i, bool weighs, bool zeroAware) {
+    if (weighs) return float(frame.sampleCount[i]);
+    return zeroAware && frame.sampleCount[i] == 0 ? 0.0f : 1.0f;
+}
+
 vec4 NothingHeld() { return vec4(0.0f, 0.0f, 0.0f, float(FOVRT_EMPTY_VARIANCE)); }
 bool HoldsNothing(const vec4& illumination) { return illumination.a < 0.0f; }
 
@@ -168,12 +173,13 @@ void SvgfReprojectRef(const Plane<vec3>& color, const Plane<vec3>* color2, const
             vec2 mPrev = GatherTaps(histPrev.moments, taps);
             float lenPrev = GatherTaps(histPrev.length, taps);
             float len = success ? std::min(lenPrev + 1.0f, float(FOVRT_MAX_HISTORY_LENGTH)) : 1.0f;
-            // Weighted: a pixel without a path sample keeps its reprojected history as it is (no
-            // colour enters, the length stays), or holds nothing where it has none.
-            if (options.weighted && cur.sampleCount[i] == 0) {
+            const float n = ReprojectionSampleCount(cur, i, options.weighted, options.zeroSamples);
+            // A pixel without a path sample keeps its reprojected history as it is (no colour
+            // enters, the length stays), or holds nothing where it has none.
+            if (n == 0.0f) {
                 const bool held = success && lenPrev > 0.0f;
-                const float wPrev = GatherTaps(histPrev.weight, taps);
-                histCur.weight[i] = held ? QuantizeHistory(wPrev, prec) : 0.0f;
+                if (options.weighted)
+                    histCur.weight[i] = held ? QuantizeHistory(GatherTaps(histPrev.weight, taps), prec) : 0.0f;
                 histCur.moments[i] = held ? QuantizeHistory(mPrev, prec) : vec2(0.0f);
                 histCur.length[i] = held ? QuantizeHistory(lenPrev, prec) : 0.0f;
                 if (options.writeColorHistory) histCur.color[i] = held ? QuantizeHistory(cPrev, prec) : vec3(0.0f);
@@ -182,7 +188,6 @@ void SvgfReprojectRef(const Plane<vec3>& color, const Plane<vec3>* color2, const
             }
             vec3 cAcc;
             if (options.weighted) {
-                float n = float(cur.sampleCount[i]);
                 float wPrev = GatherTaps(histPrev.weight, taps);
                 float total = (success ? (1.0f - options.alphaColor) * wPrev : 0.0f) + n;
                 cAcc = success ? cPrev + (n / total) * (c - cPrev) : c;

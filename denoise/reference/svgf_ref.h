@@ -68,6 +68,12 @@ T GatherTaps(const Plane<T>& plane, const ReprojectionTaps& taps) {
 // NaN/Inf pixel → 0 (counted non-finite); negative components → 0 (counted negative).
 vec3 SanitizeIllumination(const vec3& c, DenoiseStats& stats);
 
+// The path-sample count n pixel i is accumulated with (REPROJ_SAMPLE_COUNT,
+// shaders/common/reprojection.glsl): frame.sampleCount where the stage weighs by it; 0 or 1 where
+// it only keeps pixels without a sample (`zeroAware`: DenoiserParams::sampleCountsMayBeZero), so
+// a sampled pixel's arithmetic is the one without counts; else 1. n = 0 keeps the history.
+float ReprojectionSampleCount(const FrameInputs& frame, size_t i, bool weighs, bool zeroAware);
+
 // The (illumination, variance) of a pixel that holds nothing: no path sample this frame and no
 // history (FOVRT_EMPTY_VARIANCE); the spatial passes give it weight 0 so its neighbours fill it.
 vec4 NothingHeld();
@@ -87,6 +93,7 @@ struct SvgfReprojectOptions {
     float alphaColor = 0.2f;
     float alphaMoments = 0.2f;
     bool weighted = false;         // svgf-weighted: W ← (1−α)W + n, C += n(x − C)/W
+    bool zeroSamples = false;      // unweighted: a pixel with n = 0 keeps its history (ZERO_SAMPLES)
     bool writeColorHistory = true; // false when an à-trous iteration feeds back the colour
     Precision precision = Precision::Fp32;
 };

@@ -65,8 +65,9 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
             const ReprojectionTaps taps =
                 hasPrev ? FindReprojectionTaps(frame, prevGeometry, x, y) : ReprojectionTaps{};
             const bool success = taps.count > 0;
-            // The sample count is read by the two-history variants only (A-SVGF's own takes n = 1).
-            const float n = two ? float(frame.sampleCount[i]) : 1.0f;
+            // The two-history variants weigh by the sample count; A-SVGF's own history reads it
+            // only with zeroSamples, to keep a pixel without a path sample (else n = 1).
+            const float n = ReprojectionSampleCount(frame, i, two, options.zeroSamples);
 
             TwoHistoryWeights wPrev;
             if (success) {

@@ -64,6 +64,9 @@ struct TwoHistoryReprojectOptions {
     float alphaMoments = 0.2f;       // temporal α of moments (ignored where alphaMap is given)
     float gradientBeta = 0.8f;       // β_g
     bool twoHistory = true;          // also accumulate I_w, W_w and S_k
+    // One history (asvgf): a pixel with n = 0 keeps its history (TH_REPROJECT_FLAG_ZERO_SAMPLES);
+    // the two-history variants always do.
+    bool zeroSamples = false;
     bool gradient = true;            // and g (two-history only)
     bool writeColorHistory = false;  // feed back the unfiltered accumulation (no à-trous feedback)
     // Anti-lag variants: alphaMap holds the anti-lag factor a; α = AntilagAlpha(a, alpha, W_u,prev,

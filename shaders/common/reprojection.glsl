@@ -131,4 +131,14 @@ int reproj_tap_index(ReprojTaps taps, int t, ivec2 size) {
         }                                                                          \
     } while (false)
 
+// The path-sample count n a reprojection stage accumulates pixel i with (`counts`: the packed
+// uint16 sample counts, common/packing.glsl): the count itself where the stage weighs by it
+// (`weighs`: svgf-weighted, the two-history variants); where it only needs to know whether the
+// pixel had a sample (`zero_aware`: the unweighted stages when the spp map may hold zeros), 0 or
+// 1, so that a sampled pixel's arithmetic is the one without counts; else 1 (nothing is read).
+// n = 0 keeps the reprojected history as it is. Mirrored by ReprojectionSampleCount
+// (denoise/reference/svgf_ref.h).
+#define REPROJ_SAMPLE_COUNT(counts, i, weighs, zero_aware) \
+    ((weighs) ? float(LOAD_U16(counts, i)) : ((zero_aware) && LOAD_U16(counts, i) == 0u) ? 0.0 : 1.0)
+
 #endif

@@ -23,6 +23,7 @@
 #define TH_REPROJECT_FLAG_GRADIENT 16u     // accumulate g (two-history; not two-history-asvgf)
 #define TH_REPROJECT_FLAG_ANTILAG 32u      // the map holds the anti-lag factor a (ALPHA_MAP too)
 #define TH_REPROJECT_FLAG_FIREFLY 64u      // clamp a sample above μ + kσ and its neighbours (firefly variants)
+#define TH_REPROJECT_FLAG_ZERO_SAMPLES 128u // one history (asvgf): read n only for n = 0 (maps below 1 spp)
 
 // Firefly suppression clamps a sample only where the reprojected moments span this many frames of
 // history (W_u,prev): younger moments do not yet estimate the pixel's spread (SVGF's own threshold

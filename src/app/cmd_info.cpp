@@ -98,9 +98,10 @@ void PrintDenoisersPage() {
                 "([experiments.md](experiments.md#the-full-protocol-with-the-perceptual-metric-and-two-history-stable),\n"
                 "[two_history_stable.md](../denoise/two_history_stable.md)); empty: not measured at full size.\n"
                 "Bytes per pixel: one eye's buffers at 1280×720 (`fovrt memory`), fp32 / fp16 histories.\n"
-                "Pixels without a path sample (an spp map of 0 there): the variants that need per-pixel sample\n"
-                "counts add nothing to such a pixel's histories and let a disoccluded one be filled by its\n"
-                "neighbours; the others take its colour 0 as a sample\n"
+                "Pixels without a path sample (an spp map of 0 there): every SVGF-family variant adds nothing\n"
+                "to such a pixel's histories and lets a disoccluded one be filled by its neighbours (svgf,\n"
+                "asvgf and asvgf-antilag read the sample counts for it only where the foveation goes below\n"
+                "1 spp); rae and rae-spp refuse such a foveation\n"
                 "([algorithms.md](algorithms.md#what-is-implemented-and-the-choices-the-papers-leave-open)).\n"
                 "Per-pass time: `fovrt bench --denoisers` ([performance.md](performance.md)).\n\n");
     std::printf("| denoiser | status | from | B/pixel fp32 / fp16 | cornell: fovea relMSE, flicker, JOD | "

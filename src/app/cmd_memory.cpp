@@ -29,6 +29,7 @@ struct MemoryOptions {
     std::string denoiser = "two-history";
     std::string precision = "fp32";
     bool filterCombined = false;
+    bool zeroSamples = false;  // the spp map may hold zeros (DenoiserParams::sampleCountsMayBeZero)
     std::string budget;  // bytes for all eyes, "2GiB" style accepted; empty = none
     int scoredFrames = 0;  // > 0: also FovVideoVDP's frames of a scored run of this many frames
 };
@@ -38,13 +39,15 @@ void PrintMemory(const MemoryOptions& o) {
     params.precision = ParsePrecision(o.precision, "--precision");
     FindDenoiserVariant(o.denoiser, "--denoiser");
     params.svgf.filterCombined = o.filterCombined;
+    params.sampleCountsMayBeZero = o.zeroSamples;
     const uint64_t budget = o.budget.empty() ? 0 : ParseByteSize(o.budget, "--memory-budget");
     const DenoiserPlan denoiser = BuildDenoiserPlan(o.denoiser, params, o.width, o.height);
     const std::vector<BufferPlan>& plan = denoiser.buffers;
     const double pixels = double(o.width) * double(o.height);
-    std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination\n", o.denoiser.c_str(),
+    std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination%s\n", o.denoiser.c_str(),
                 o.width, o.height, o.precision.c_str(),
-                o.filterCombined ? "combined" : "direct + indirect separate");
+                o.filterCombined ? "combined" : "direct + indirect separate",
+                o.zeroSamples ? ", spp map may hold zeros" : "");
     std::printf("%s", FormatMemoryPlan(denoiser, o.width, o.height).c_str());
     const size_t total = TotalBytes(plan), transient = TransientBytes(plan);
     std::printf("all %d eye(s): peak %zu bytes (%.1f MiB): permanent %.1f MiB, transient %.1f MiB\n", o.eyes,
@@ -110,6 +113,9 @@ void RegisterMemoryCommand(CLI::App& app) {
     cmd->add_option("--denoiser", o->denoiser, "Denoiser name");
     cmd->add_option("--precision", o->precision, "History storage: fp32 or fp16");
     cmd->add_flag("--filter-combined", o->filterCombined, "Plan for direct+indirect filtered together");
+    cmd->add_flag("--zero-samples", o->zeroSamples,
+                  "Plan for an spp map that may hold zeros (a foveation below 1 spp): svgf, asvgf and "
+                  "asvgf-antilag then upload the sample counts");
     cmd->add_option("--memory-budget", o->budget, "Fail when all eyes' peak (permanent buffers + transient pool) exceeds BYTES (e.g. 1GiB)");
     cmd->add_option("--scored-frames", o->scoredFrames,
                     "Also list FovVideoVDP's frames when N frames are scored (run --score, experiment)")

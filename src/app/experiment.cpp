@@ -100,8 +100,9 @@ ReportTable MemoryTable(const RunConfig& config) {
     ReportTable table{fmt::format("Denoiser memory per eye at {}×{}", w, h),
                       {"variant", "history bytes/pixel", "total bytes/pixel", "total MiB"},
                       {}};
-    for (const std::string& name : config.denoise.denoisers) {
-        auto plan = PlanDenoiserMemory(name, w, h, ParamsForDenoiser(name, config.denoise.params));
+    const DenoiseConfig denoise = RunDenoiseConfig(config);
+    for (const std::string& name : denoise.denoisers) {
+        auto plan = PlanDenoiserMemory(name, w, h, ParamsForDenoiser(name, denoise.params));
         table.rows.push_back({name, fmt::format("{:.1f}", double(HistoryBytes(plan)) / pixels),
                               fmt::format("{:.1f}", double(TotalBytes(plan)) / pixels),
                               fmt::format("{:.2f}", double(TotalBytes(plan)) / (1024.0 * 1024.0))});
@@ -211,7 +212,12 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
         if (spec.sweep.Active() && !spec.config.metric.vdp)
             Fail("{}: experiment.designs needs metric.vdp = true (the curves are FovVideoVDP's JOD against rays)",
                  experiment.Origin("designs"));
-    } else if (experiment.table.contains("designs")) {
+    }
+    // A sweep runs its points only (each checked by LoadSamplingSweep), else the config's sampling.
+    if (!spec.sweep.Active())
+        if (std::optional<std::string> problem = DenoisersZeroSampleProblem(spec.variants, spec.config.foveation))
+            Fail("{}: experiment.variants: {}", experiment.Origin("variants"), *problem);
+    if (!replayPath.empty() && experiment.table.contains("designs")) {
         Fail("{}: experiment.designs and --replay exclude each other (a recording has its own sampling)",
              experiment.Origin("designs"));
     }
@@ -479,6 +485,9 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     else manifest["config"]["scene"]["name"] = spec.scenes;
     if (spec.merge) manifest["merged_shards"] = true;
     manifest["denoise_device"] = part.deviceDescription;
+    // Derived from the foveation, not a config key: whether svgf, asvgf and asvgf-antilag read the
+    // sample counts to keep pixels without a path sample.
+    manifest["denoise_sample_counts_may_be_zero"] = RunDenoiseConfig(base).params.sampleCountsMayBeZero;
     manifest["pass_ms"] = part.timings.MeansJson();
     manifest["total_s"] = MsSince(totalStart) / 1000.0;
     manifest["cpu_s"] = CpuSeconds();

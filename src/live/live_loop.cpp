@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
@@ -144,7 +146,10 @@ void LiveLoop::OnFrameDone(std::function<void(const LiveFrame&)> callback) {
 }
 
 void LiveLoop::ApplyDenoiser(const std::string& name) {
-    const DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
+    DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
+    // The foveation changes at run time (ApplyFoveation), and with it whether the spp map holds
+    // zeros: every denoiser is built to keep a pixel without a path sample.
+    params.sampleCountsMayBeZero = true;
     for (auto& d : denoisers_) d = CreateDenoiser(name, config_.denoise.device, params, context_);
     if (!runningDenoiser_.empty())
         std::fprintf(stderr, "fovrt: denoiser %s -> %s (histories reset)\n",
@@ -231,6 +236,11 @@ std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
         tracedDenoiser_ = controls.denoiser;
     }
     if (!(controls.foveation == runningFoveation_)) ApplyFoveation(controls.foveation);
+    // A config refuses the RAE below 1 spp; a live session's foveation moves under it, so it says so.
+    const std::optional<std::string> problem = DenoisersZeroSampleProblem({tracedDenoiser_}, runningFoveation_);
+    if (problem && !zeroSampleProblem_)
+        std::fprintf(stderr, "fovrt: %s; the live preview runs it anyway, those pixels black\n", problem->c_str());
+    zeroSampleProblem_ = problem.has_value();
 
     auto frame = std::make_shared<LiveFrame>();
     frame->startedAt = LiveClock::now();

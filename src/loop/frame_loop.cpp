@@ -19,7 +19,7 @@ bool SeedWork::Runs(size_t variant, int eye) const {
 FrameLoop::FrameLoop(const RunConfig& config, bool references, const RunConfig* pipelineConfig)
     : config_(config),
       pipeline_(pipelineConfig ? *pipelineConfig : config),
-      denoisers_(config.denoise),
+      denoisers_(RunDenoiseConfig(config)),
       outputs_(denoisers_.size()) {
     if (references) {
         cache_.emplace(config.reference.cacheDir);

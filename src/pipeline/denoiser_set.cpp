@@ -7,10 +7,17 @@
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
 #include "denoise/variants.h"
+#include "foveation/spp_model.h"
 #include "render/visibility_buffer.h"
 #include "vk/device_choice.h"
 
 namespace fovrt {
+
+DenoiseConfig RunDenoiseConfig(const RunConfig& config) {
+    DenoiseConfig denoise = config.denoise;
+    denoise.params.sampleCountsMayBeZero = MapMayHaveZeroSamples(config.foveation);
+    return denoise;
+}
 
 DenoiserSet::DenoiserSet(const DenoiseConfig& config) {
     if (!config.denoisers.empty()) {
@@ -53,12 +60,13 @@ constexpr size_t kVisibilityPixelBytes = 0 FOVRT_VISIBILITY_PLANES(FOVRT_PLANE_P
 
 std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
     const size_t pixels = size_t(config.camera.width) * size_t(config.camera.height);
+    const DenoiseConfig denoise = RunDenoiseConfig(config);
     std::vector<BufferPlan> plan;
-    for (const std::string& name : config.denoise.denoisers) {
+    for (const std::string& name : denoise.denoisers) {
         for (int eye = 0; eye < 2; ++eye) {
             for (BufferPlan buffer : PlanDenoiserMemory(name, config.camera.width,
                                                         config.camera.height,
-                                                        ParamsForDenoiser(name, config.denoise.params))) {
+                                                        ParamsForDenoiser(name, denoise.params))) {
                 buffer.name = name + ".eye" + std::to_string(eye) + "." + buffer.name;
                 plan.push_back(std::move(buffer));
             }

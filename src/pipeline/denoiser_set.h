@@ -14,6 +14,12 @@
 
 namespace fovrt {
 
+// The denoise config a run gives its denoisers: config.denoise with
+// params.sampleCountsMayBeZero set where the run's foveation may put 0 in the spp map
+// (MapMayHaveZeroSamples), so that every SVGF-family variant keeps a pixel without a path sample.
+// Every command that renders, or plans a run's memory, builds its denoisers from it.
+DenoiseConfig RunDenoiseConfig(const RunConfig& config);
+
 class DenoiserSet {
 public:
     explicit DenoiserSet(const DenoiseConfig& config);
