@@ -4,6 +4,7 @@
 // two places: its member here and its row there.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -75,6 +76,10 @@ struct DenoiserParams {
     // count-weighted variants always do. Not a config key: a run derives it from its foveation
     // (RunDenoiseConfig, pipeline/denoiser_set.h), the live preview sets it. Off: no plane more.
     bool sampleCountsMayBeZero = false;
+    // Room of the host-visible ring a frame's uploads and downloads stream through
+    // (vk/transfer_ring.h): a frame whose transfers exceed it is submitted in parts. Not a config
+    // key: it trades submits for memory only; tests shrink it to stream small frames.
+    size_t transferRingBytes = size_t(16) << 20;
 };
 
 // ---- Parameter tables -------------------------------------------------------------------------

@@ -39,7 +39,7 @@ void ForEachPlaneRef(const Command& command, F&& f) {
                 f(op.from);
                 f(op.to);
             } else if constexpr (std::is_same_v<T, UploadCommand> || std::is_same_v<T, DownloadCommand>) {
-                f(PlaneRef{{op.staging, Channel::None}, HistorySide::None});
+                f(PlaneRef{{PlaneKind::Staging, Channel::None}, HistorySide::None});
                 if constexpr (std::is_same_v<T, UploadCommand>) f(op.to);
                 else f(op.from);
             }
@@ -48,16 +48,16 @@ void ForEachPlaneRef(const Command& command, F&& f) {
 }
 
 // The memory plan: every plane a command names (a history: both sides), in plane-table order,
-// sized by its row (a staging plane by the larger of its uploads and its downloads), marked when the host
-// reads it after the frame; then placed: permanent planes in buffers of their own, the others in
-// the transient pool.
-void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent, const std::set<BufferKey>& readAfterFrame) {
+// sized by its row (the staging ring by the frame's transfers, up to `ringBytes`), marked when the
+// host reads it after the frame; then placed: permanent planes in buffers of their own, the others
+// in the transient pool.
+void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent, size_t ringBytes,
+                  const std::set<BufferKey>& readAfterFrame) {
     std::set<BufferKey> keys;
-    // Per staging plane the bytes of its uploads and of its downloads: the host writes every
-    // upload before the frame is submitted, and the downloads land in the same room after a
-    // barrier every frame records has ordered them behind the uploads' copies.
-    std::map<PlaneKind, size_t> uploads, downloads;
-    bool barrierSinceUpload = true;
+    // The bytes the frame moves through the staging ring, each transfer 16-byte aligned: when
+    // they fit, one submit carries the frame, as without a ring.
+    size_t transfers = 0;
+    bool uploaded = false, downloaded = false, barrierSinceUpload = true;
     for (const PlannedPass& pass : plan.passes)
         for (const Command& command : pass.commands) {
             if (std::holds_alternative<BarrierCommand>(command.op) && pass.when == When::Always &&
@@ -71,20 +71,24 @@ void DeriveMemory(DenoiserPlan& plan, const PlaneExtent& extent, const std::set<
                     keys.insert({ref.id, BufferSide::None});
                 }
             });
+            // Every upload before the first download, a barrier between them: the ring may flush
+            // between any two transfers, and a download must read what the frame computed.
             if (const auto* up = std::get_if<UploadCommand>(&command.op)) {
-                FOVRT_CHECK(downloads.empty());  // every upload before the first download
-                uploads[up->staging] += StagingAlign(PlaneBytes(up->to.id.kind, extent));
+                FOVRT_CHECK(!downloaded);
+                transfers += StagingAlign(PlaneBytes(up->to.id.kind, extent));
+                uploaded = true;
                 barrierSinceUpload = false;
             }
             if (const auto* down = std::get_if<DownloadCommand>(&command.op)) {
-                FOVRT_CHECK(barrierSinceUpload);
-                downloads[down->staging] += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+                FOVRT_CHECK(barrierSinceUpload || !uploaded);
+                transfers += StagingAlign(PlaneBytes(down->from.id.kind, extent));
+                downloaded = true;
             }
         }
     for (const BufferKey& key : keys) {
         const PlaneKind kind = key.id.kind;
         const size_t planeBytes = PlaneBytes(kind, extent);
-        const size_t bytes = IsStaging(kind) && planeBytes == 0 ? std::max(uploads[kind], downloads[kind]) : planeBytes;
+        const size_t bytes = IsStaging(kind) ? std::min(transfers, ringBytes) : planeBytes;
         plan.planes.push_back({key, bytes, 0, readAfterFrame.count(key) > 0});
     }
     PlaceInTransientPool(plan);
@@ -153,7 +157,7 @@ DenoiserPlan PlanSvgfFamilyDenoiser(const DenoiserVariant& v, const DenoiserPara
     DenoiserPlan plan;
     plan.passes = PlanSvgfFamily(v, p, width, height);
     const PlaneExtent extent{width, height, p.precision};
-    DeriveMemory(plan, extent, ReadAfterFrame(v, p, plan));
+    DeriveMemory(plan, extent, p.transferRingBytes, ReadAfterFrame(v, p, plan));
     for (PlannedPass& pass : plan.passes) {
         if (pass.when == When::NoPrevious) continue;
         UseCounter counter(extent, pass.uses);

@@ -156,15 +156,15 @@ struct FillCommand {
 struct CopyCommand {
     PlaneRef from, to;
 };
-// A FrameInputs plane (FrameSource of the plane's kind) through `staging` into the device plane.
+// A FrameInputs plane (FrameSource of the plane's kind) through the staging ring into the device
+// plane.
 struct UploadCommand {
     PlaneRef to;
-    PlaneKind staging = PlaneKind::Staging;
     Coverage coverage = Coverage::EveryPixel;
 };
+// A device plane through the staging ring to the host.
 struct DownloadCommand {
     PlaneRef from;
-    PlaneKind staging = PlaneKind::Staging;
 };
 // Every device plane to its ClearValue: histories dropped (Reset, cut, resize).
 struct ClearCommand {};

@@ -100,10 +100,10 @@ class Writer {
     void Dispatch(DispatchCommand d, When when = When::Always) { Add(when, std::move(d)); }
     void Fill(PlaneRef p, uint32_t value, When when = When::Always) { Add(when, FillCommand{p, value}); }
     void Copy(PlaneRef from, PlaneRef to) { Add(When::Always, CopyCommand{from, to}); }
-    void Upload(PlaneRef to, PlaneKind staging, Coverage c = Coverage::EveryPixel, When when = When::Always) {
-        Add(when, UploadCommand{to, staging, c});
+    void Upload(PlaneRef to, Coverage c = Coverage::EveryPixel, When when = When::Always) {
+        Add(when, UploadCommand{to, c});
     }
-    void Download(PlaneRef from) { Add(When::Always, DownloadCommand{from, PlaneKind::Staging}); }
+    void Download(PlaneRef from) { Add(When::Always, DownloadCommand{from}); }
     void Clear(When when) { Add(when, ClearCommand{}); }
     void Barrier(When when = When::Always) { Add(when, BarrierCommand{}); }
 

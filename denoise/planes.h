@@ -28,8 +28,8 @@ namespace fovrt {
 //   FIXED(b)          b bytes whatever the size (counters, dispatch arguments)
 //   SAMPLE_COUNTS     uint16 per pixel, padded to whole 32-bit words (the shaders read pairs)
 //   GRADIENT_SAMPLES  the gradient-sample capacity, two per stratum
-//   TRANSFERS         the transfers the plan routes through it, each 16-byte aligned: the larger
-//                     of its uploads and its downloads (downloads reuse the uploads' room)
+//   TRANSFERS         the ring the frame's uploads and downloads stream through (vk/transfer_ring.h):
+//                     their sum, each 16-byte aligned, or DenoiserParams::transferRingBytes if smaller
 // Sources: EVERY_FRAME(m) uploaded from FrameInputs::m every frame; MODULATION from
 // FrameInputs::Modulation() (the albedo, or F_β under brdf demodulation); WHEN_READ(m) uploaded
 // only by the variants that read it; NONE written on the device.
@@ -87,8 +87,7 @@ namespace fovrt {
     X(Output, "output", Shared, Scratch, PIXELS(12), NONE)                                          \
     /* sanitising counters: non-finite and negative inputs */                                      \
     X(Stats, "stats", Shared, Scratch, FIXED(8), NONE)                                              \
-    X(Staging, "staging", Shared, Staging, TRANSFERS, NONE)                                         \
-    X(StagingExtra, "staging.extra", Shared, Staging, TRANSFERS, NONE)
+    X(Staging, "staging", Shared, Staging, TRANSFERS, NONE)
 
 #define FOVRT_PLANE_KIND(kind, name, scope, lifetime, size, source) kind,
 enum class PlaneKind : uint8_t { FOVRT_DENOISER_PLANES(FOVRT_PLANE_KIND) };

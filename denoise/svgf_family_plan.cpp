@@ -11,19 +11,17 @@ namespace {
 
 // Every FrameInputs plane a frame uploads (this frame's geometry into its history side), the
 // sample counts where a history weighs by them or the map may hold zeros, A-SVGF's gradient
-// samples; a reset first clears
-// every plane. The two-history family stages its per-frame extras apart (staging.extra).
+// samples; a reset first clears every plane.
 void Upload(Writer& w, const Family& f) {
     w.Pass("upload", "", std::monostate{});
     w.Clear(When::NoPrevious);
     w.Barrier(When::NoPrevious);
     for (PlaneKind kind : PlanesUploadedEveryFrame())
-        w.Upload(IsHistory(kind) ? This(kind) : Shared(kind), PlaneKind::Staging);
+        w.Upload(IsHistory(kind) ? This(kind) : Shared(kind));
     w.Fill(Shared(PlaneKind::Stats), 0u);
-    const PlaneKind extras = f.twoHistoryFamily ? PlaneKind::StagingExtra : PlaneKind::Staging;
-    if (f.readsSampleCounts) w.Upload(Shared(PlaneKind::SampleCount), extras);
+    if (f.readsSampleCounts) w.Upload(Shared(PlaneKind::SampleCount));
     if (f.v.needsGradientSamples)
-        w.Upload(Shared(PlaneKind::AsvgfSamples), extras, Coverage::UploadedSamples, When::GradientSamples);
+        w.Upload(Shared(PlaneKind::AsvgfSamples), Coverage::UploadedSamples, When::GradientSamples);
     w.Barrier();
 }
 

@@ -22,43 +22,50 @@ size_t Bytes(const DenoiserPlan& plan, const std::string& name) {
 }
 }  // namespace
 
-TEST_CASE("staging holds what the host writes, and the downloads reuse its room") {
+TEST_CASE("staging is the transfer ring: the frame's transfers when they fit, else the ring's size") {
     const int w = 40, h = 24;
     const size_t pixels = size_t(w) * size_t(h);
     // Every frame uploads direct, indirect, modulation, emission (4 × 12 B), the depth gradient and
     // the previous pixel (2 × 8 B), this frame's normal, depth and object id (12 + 4 + 4 B), then
-    // downloads the 12 B output and the counters into the same room.
-    const size_t uploads = pixels * (4 * 12 + 2 * 8 + 12 + 4 + 4);
-    for (const char* name : {"svgf", "two-history"})
-        CHECK(Bytes(BuildDenoiserPlan(name, DenoiserParams{}, w, h), "staging") == uploads);
-    // The two-history family stages its sample counts apart, and only what it uploads: A-SVGF's
-    // gradient samples only where the variant reads them.
+    // downloads the 12 B output and the 8 B counters (aligned to 16).
+    const size_t every = pixels * (4 * 12 + 2 * 8 + 12 + 4 + 4) + pixels * 12 + 16;
     const size_t counts = StagingAlign(PlaneBytes(PlaneKind::SampleCount, {w, h}));
     const size_t samples = StagingAlign(GradientSampleCapacity(w, h) * sizeof(GradientSample));
-    CHECK(Bytes(BuildDenoiserPlan("two-history", DenoiserParams{}, w, h), "staging.extra") == counts);
-    CHECK(Bytes(BuildDenoiserPlan("two-history-asvgf", DenoiserParams{}, w, h), "staging.extra") == counts + samples);
+    CHECK(Bytes(BuildDenoiserPlan("svgf", DenoiserParams{}, w, h), "staging") == every);
+    // Only what a variant uploads: the sample counts where it reads them, A-SVGF's gradient
+    // samples where it reads those.
+    CHECK(Bytes(BuildDenoiserPlan("two-history", DenoiserParams{}, w, h), "staging") == every + counts);
+    CHECK(Bytes(BuildDenoiserPlan("two-history-asvgf", DenoiserParams{}, w, h), "staging") ==
+          every + counts + samples);
+    DenoiserParams small;
+    small.transferRingBytes = 4096;
+    for (const char* name : {"svgf", "two-history-asvgf"})
+        CHECK(Bytes(BuildDenoiserPlan(name, small, w, h), "staging") == 4096);
+    // At a headset's size the default ring is a few bytes per pixel, whatever the variant.
+    const DenoiserPlan headset = BuildDenoiserPlan("two-history", DenoiserParams{}, 2064, 2208);
+    CHECK(Bytes(headset, "staging") == DenoiserParams{}.transferRingBytes);
 }
 
 // `fovrt memory --width 2064 --height 2208 --denoiser NAME` (fp32, the default parameters): the
 // peak per eye, permanent buffers and transient pool, in bytes per pixel.
 TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
     const std::map<std::string, double> expected = {
-        {"svgf", 344.00},
-        {"svgf-weighted", 364.00},
-        {"asvgf", 372.44},
-        {"two-history", 494.00},
-        {"two-history-asvgf", 514.44},
-        {"asvgf-antilag", 372.44},
-        {"two-history-asvgf-antilag", 514.44},
-        {"two-history-stable", 518.00},
-        {"two-history-stable-firefly", 518.00},
-        {"two-history-stable-antilag", 518.00},
-        {"two-history-asvgf-stable-antilag", 538.44},
-        {"two-history-clamp", 494.00},
-        {"two-history-stable-clamp", 518.00},
-        {"two-history-hysteresis", 510.00},
-        {"two-history-stable-hysteresis", 526.00},
-        {"two-history-asvgf-stable-hysteresis", 546.44},
+        {"svgf", 263.68},
+        {"svgf-weighted", 281.68},
+        {"asvgf", 285.01},
+        {"two-history", 411.68},
+        {"two-history-asvgf", 425.01},
+        {"asvgf-antilag", 285.01},
+        {"two-history-asvgf-antilag", 425.01},
+        {"two-history-stable", 435.68},
+        {"two-history-stable-firefly", 435.68},
+        {"two-history-stable-antilag", 435.68},
+        {"two-history-asvgf-stable-antilag", 449.01},
+        {"two-history-clamp", 411.68},
+        {"two-history-stable-clamp", 435.68},
+        {"two-history-hysteresis", 427.68},
+        {"two-history-stable-hysteresis", 443.68},
+        {"two-history-asvgf-stable-hysteresis", 457.01},
         {"rae", 432.49},
         {"rae-spp", 440.55},
     };

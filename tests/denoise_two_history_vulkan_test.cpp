@@ -503,3 +503,34 @@ TEST_CASE("factory creates the two-history family on both backends", "[vulkan][t
         CHECK(vk->Backend() == "vulkan");
     }
 }
+
+// The staging ring (DenoiserParams::transferRingBytes, vk/transfer_ring.h): a frame whose
+// uploads and downloads go through a ring far smaller than they are, in hundreds of submits, gives
+// the bytes that one submit gives, frame after frame (histories carried), for a variant that
+// uploads every kind of plane (sample counts, A-SVGF's gradient samples).
+TEST_CASE("a frame streamed through a small staging ring equals the frame submitted at once", "[vulkan][two_history]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    auto ctx = TestContext();
+    for (const char* name : {"svgf", "two-history-asvgf-stable-antilag"}) {
+        INFO(name);
+        const DenoiserVariant& variant = FindDenoiserVariant(name);
+        DenoiserParams whole = ParamsForDenoiser(name, DenoiserParams{});
+        DenoiserParams streamed = whole;
+        streamed.transferRingBytes = 1000;  // not a multiple of the 16-byte alignment
+        REQUIRE(BuildDenoiserPlan(name, streamed, 64, 64).buffers.size() ==
+                BuildDenoiserPlan(name, whole, 64, 64).buffers.size());
+        SvgfFamilyVulkanDenoiser a(variant, ctx, whole), b(variant, ctx, streamed);
+        Plane<vec3> outA, outB;
+        for (uint32_t frame = 0; frame < 4; ++frame) {
+            const FrameInputs f = RandomTwoHistoryFrame(64, 64, frame);
+            a.Denoise(f, outA);
+            b.Denoise(f, outB);
+            REQUIRE(outA.size() == outB.size());
+            CHECK(std::memcmp(outA.data(), outB.data(), outA.bytes()) == 0);
+        }
+        const std::string length = "direct.length." + a.LastWrittenSide();
+        CHECK(a.ReadBuffer(length) == b.ReadBuffer(length));
+        CHECK(a.Stats().nonFiniteSamples == b.Stats().nonFiniteSamples);
+    }
+    CHECK(ctx->validationErrors() == 0);
+}

@@ -12,6 +12,7 @@
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/recorder.h"
+#include "vk/transfer_ring.h"
 #include "vk/vk_check.h"
 
 using namespace fovrt;
@@ -172,4 +173,49 @@ TEST_CASE("the debug messenger counts validation errors", "[vk][vulkan]") {
     if (vkCreateBuffer(c.device(), &info, nullptr, &buffer) == VK_SUCCESS && buffer != VK_NULL_HANDLE)
         vkDestroyBuffer(c.device(), buffer, nullptr);
     CHECK(c.validationErrors() >= 1);
+}
+
+// The transfer ring (vk/transfer_ring.h): transfers larger than the ring arrive whole, in order,
+// through as many submits as they need; a pass spanning the flushes keeps its timestamps; what
+// fits is one submit.
+TEST_CASE("the transfer ring streams uploads and downloads larger than itself", "[vk][vulkan]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    VulkanContext c = VulkanContext::Create(TestOptions());
+    std::vector<uint8_t> first(1000), second(300);
+    for (size_t i = 0; i < first.size(); ++i) first[i] = uint8_t(i * 7 + 3);
+    for (size_t i = 0; i < second.size(); ++i) second[i] = uint8_t(255 - i);
+    Buffer a = c.allocator().CreateBuffer("a", first.size());
+    Buffer b = c.allocator().CreateBuffer("b", second.size());
+    Buffer copy = c.allocator().CreateBuffer("copy", first.size());
+    for (const size_t ringBytes : {size_t(40), size_t(4096)}) {
+        INFO("ring " << ringBytes << " bytes");
+        Buffer ring = c.allocator().CreateBuffer("ring", ringBytes, MemoryUsage::Staging);
+        TimestampPool ts(c, 1);
+        CommandRecorder rec(c, &ts);
+        TransferRing transfers(rec, ring);
+        rec.BeginPass("frame");
+        transfers.Upload(first.data(), first.size(), a);
+        transfers.Upload(second.data(), second.size(), b);
+        rec.Barrier();
+        rec.Copy(a, copy, first.size());  // device work between the uploads and the downloads
+        rec.Barrier();
+        rec.EndPass();
+        std::vector<uint8_t> gotCopy(first.size()), gotB(second.size());
+        transfers.Download(copy, gotCopy.size(), gotCopy.data());
+        transfers.Download(b, gotB.size(), gotB.data());
+        transfers.Submit();
+        CHECK(gotCopy == first);
+        CHECK(gotB == second);
+        // 2,600 bytes of transfers through 40: a flush every 40 bytes or fewer (the ring's room
+        // after 16-byte alignment); through 4,096: none.
+        if (ringBytes == 40) CHECK(transfers.flushes() >= 2600 / 40);
+        else CHECK(transfers.flushes() == 0);
+        if (ts.enabled()) {
+            const auto passes = ts.Results();
+            REQUIRE(passes.size() == 1);
+            CHECK(passes[0].first == "frame");
+            CHECK(passes[0].second >= 0.0);
+        }
+    }
+    CHECK(c.validationErrors() == 0);
 }

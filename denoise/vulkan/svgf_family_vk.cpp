@@ -1,6 +1,5 @@
 #include "denoise/vulkan/svgf_family_vk.h"
 
-#include <cstring>
 #include <span>
 
 #include "core/error.h"
@@ -130,7 +129,6 @@ void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const DispatchComman
 void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const Command& command, const PreparedDispatch& prepared,
                                       Frame& frame) {
     auto buffer = [&](const PlaneRef& ref) -> Buffer& { return buffers_[ResolveSide(ref, parity_)]; };
-    auto staging = [&](PlaneKind kind) -> Buffer& { return buffers_[{{kind, Channel::None}, BufferSide::None}]; };
     std::visit(
         [&](const auto& op) {
             using T = std::decay_t<decltype(op)>;
@@ -142,13 +140,14 @@ void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const Command& comma
                 rec.Copy(buffer(op.from), buffer(op.to), buffers_.Bytes(ResolveSide(op.from, parity_)));
             } else if constexpr (std::is_same_v<T, UploadCommand>) {
                 const HostBytes source = FrameSource(op.to.id.kind, frame.inputs);
-                size_t& offset = frame.stagingOffsets[op.staging];
-                offset = rec.Upload(source.data, source.bytes, staging(op.staging), offset, buffer(op.to));
+                frame.transfers.Upload(source.data, source.bytes, buffer(op.to));
             } else if constexpr (std::is_same_v<T, DownloadCommand>) {
-                size_t& offset = frame.downloadEnd[op.staging];
-                frame.downloadOffsets[op.from.id.kind] = offset;
-                offset = rec.Download(buffer(op.from), buffers_.Bytes(ResolveSide(op.from, parity_)), staging(op.staging),
-                                      offset);
+                const Buffer& from = buffer(op.from);
+                switch (op.from.id.kind) {
+                    case PlaneKind::Output: frame.transfers.Download(from, frame.output.bytes(), frame.output.data()); break;
+                    case PlaneKind::Stats: frame.transfers.Download(from, sizeof(frame.counters), frame.counters.data()); break;
+                    default: Fail("{}: the host has no place for a download of {}", Name(), PlaneName(op.from.id));
+                }
             } else if constexpr (std::is_same_v<T, ClearCommand>) {
                 buffers_.RecordClear(rec);
             } else {
@@ -168,9 +167,12 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     if (samples > GradientSampleCapacity(w, h))
         Fail("{}: {} gradient samples exceed the capacity {} (two per 3x3 stratum)", Name(), samples,
              GradientSampleCapacity(w, h));
-    Frame frame{in, {!needsClear_, samples > 0}, uint32_t(samples), {}, {}, {}};
-
+    output.Resize(w, h);
+    std::array<uint32_t, 2> counters{};
     CommandRecorder rec(*context_, commands_, &timestamps_);
+    TransferRing transfers(rec, buffers_[{{PlaneKind::Staging, Channel::None}, BufferSide::None}]);
+    Frame frame{in, {!needsClear_, samples > 0}, uint32_t(samples), transfers, output, counters};
+
     for (size_t p = 0; p < plan_.passes.size(); ++p) {
         const PlannedPass& pass = plan_.passes[p];
         if (!Holds(pass.when, frame.conditions)) continue;
@@ -179,16 +181,8 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
             if (Holds(pass.commands[c].when, frame.conditions)) Record(rec, pass.commands[c], prepared_[p][c], frame);
         if (!pass.name.empty()) rec.EndPass();
     }
-    rec.Submit();
+    transfers.Submit();  // the output and the sanitising counters land
     needsClear_ = false;
-
-    // The output and the sanitising counters, from where the download pass put them.
-    const char* staging =
-        static_cast<const char*>(buffers_[{{PlaneKind::Staging, Channel::None}, BufferSide::None}].mapped());
-    output.Resize(w, h);
-    std::memcpy(output.data(), staging + frame.downloadOffsets.at(PlaneKind::Output), output.bytes());
-    uint32_t counters[2];
-    std::memcpy(counters, staging + frame.downloadOffsets.at(PlaneKind::Stats), sizeof(counters));
     stats_.nonFiniteSamples += counters[0];
     stats_.negativeSamples += counters[1];
     timings_ = PassTimings(timestamps_);

@@ -20,6 +20,7 @@
 #include "vk/context.h"
 #include "vk/pipeline.h"
 #include "vk/recorder.h"
+#include "vk/transfer_ring.h"
 
 namespace fovrt {
 
@@ -55,10 +56,9 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
         const FrameInputs& inputs;
         FrameConditions conditions;
         uint32_t gradientSamples;
-        std::map<PlaneKind, size_t> stagingOffsets;   // next free offset per staging plane: uploads
-        std::map<PlaneKind, size_t> downloadEnd;      // … downloads, from 0 again (the plan orders
-                                                      // them behind the uploads' copies)
-        std::map<PlaneKind, size_t> downloadOffsets;  // where each downloaded plane landed
+        TransferRing& transfers;            // the frame's uploads and downloads
+        Plane<vec3>& output;                // where the output plane's download lands
+        std::array<uint32_t, 2>& counters;  // … and the sanitising counters'
     };
     // A planned dispatch, ready to record: its pipeline and its set per history parity.
     struct PreparedDispatch {

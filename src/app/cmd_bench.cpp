@@ -54,6 +54,7 @@ struct BenchOptions {
     std::vector<std::string> denoiserNames;  // --denoiser: empty = all
     bool reference = true;
     std::string precision = "fp32";
+    int stagingRingMiB = -1;  // --staging-ring-mib: -1 the default ring, 0 the frame's transfers at once
     std::string device = "auto";
 };
 
@@ -342,6 +343,9 @@ void RegisterBenchCommand(CLI::App& app) {
     cmd->add_option("--denoiser", o->denoiserNames, "With --denoisers: only these (repeatable; default all)");
     cmd->add_flag("!--no-reference", o->reference, "With --denoisers: skip the C++ reference");
     cmd->add_option("--precision", o->precision, "With --denoisers: history storage (fp32 or fp16)");
+    cmd->add_option("--staging-ring-mib", o->stagingRingMiB,
+                    "With --denoisers: the staging ring's MiB (0: as large as a frame's transfers, one submit per frame; default: the denoisers' ring)")
+        ->check(CLI::Range(0, 65536));
     cmd->add_option("--device", o->device, "With --denoisers: device, as denoise.device (auto, vulkan, cpu or an index from `fovrt info`)");
     cmd->callback([o] {
         // Every figure says where it was measured.
@@ -352,6 +356,8 @@ void RegisterBenchCommand(CLI::App& app) {
             options.height = o->height;
             for (const std::string& name : o->denoiserNames) FindDenoiserVariant(name, "bench --denoiser");
             options.params.precision = ParsePrecision(o->precision, "bench --precision");
+            if (o->stagingRingMiB == 0) options.params.transferRingBytes = SIZE_MAX;
+            if (o->stagingRingMiB > 0) options.params.transferRingBytes = size_t(o->stagingRingMiB) << 20;
             options.denoisers = o->denoiserNames;
             options.reference = o->reference;
             options.device = o->device;

@@ -124,11 +124,12 @@ CommandRecorder::~CommandRecorder() {
     }
 }
 
-void CommandRecorder::Begin() {
+void CommandRecorder::Begin(bool resetTimestamps) {
     auto info = VkInit<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     FOVRT_VK(vkBeginCommandBuffer(cmd_, &info));
     recording_ = true;
+    if (!resetTimestamps) return;
     nextQuery_ = 0;
     if (timestamps_) {
         timestamps_->names_.clear();
@@ -136,22 +137,24 @@ void CommandRecorder::Begin() {
     }
 }
 
-size_t CommandRecorder::Upload(const void* data, size_t bytes, Buffer& staging, size_t offset, Buffer& dst) {
+size_t CommandRecorder::Upload(const void* data, size_t bytes, Buffer& staging, size_t offset, Buffer& dst,
+                               size_t dstOffset) {
     if (bytes == 0) return offset;
     FOVRT_CHECK(staging.mapped() != nullptr);
     FOVRT_CHECK_OP(offset + bytes, <=, staging.size());
-    FOVRT_CHECK_OP(bytes, <=, dst.size());
+    FOVRT_CHECK_OP(dstOffset + bytes, <=, dst.size());
     std::memcpy(static_cast<char*>(staging.mapped()) + offset, data, bytes);
-    VkBufferCopy region{offset, 0, bytes};
+    VkBufferCopy region{offset, dstOffset, bytes};
     vkCmdCopyBuffer(Cmd(), staging.handle(), dst.handle(), 1, &region);
     return (offset + bytes + 15) & ~size_t(15);
 }
 
-size_t CommandRecorder::Download(const Buffer& src, size_t bytes, Buffer& staging, size_t offset) {
+size_t CommandRecorder::Download(const Buffer& src, size_t bytes, Buffer& staging, size_t offset,
+                                 size_t srcOffset) {
     if (bytes == 0) return offset;
     FOVRT_CHECK_OP(offset + bytes, <=, staging.size());
-    FOVRT_CHECK_OP(bytes, <=, src.size());
-    VkBufferCopy region{0, offset, bytes};
+    FOVRT_CHECK_OP(srcOffset + bytes, <=, src.size());
+    VkBufferCopy region{srcOffset, offset, bytes};
     vkCmdCopyBuffer(Cmd(), src.handle(), staging.handle(), 1, &region);
     return (offset + bytes + 15) & ~size_t(15);
 }
@@ -225,6 +228,11 @@ void CommandRecorder::BeginPass(const std::string& name) {
 void CommandRecorder::EndPass() {
     if (!timestamps_) return;
     vkCmdWriteTimestamp(Cmd(), VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_->pool_, nextQuery_++);
+}
+
+void CommandRecorder::Flush() {
+    Submit();
+    Begin(/*resetTimestamps=*/false);
 }
 
 void CommandRecorder::Submit() {

@@ -85,11 +85,13 @@ public:
     ~CommandRecorder();
 
     // Copies `bytes` from host memory into `staging` at `stagingOffset` and records a copy into
-    // `dst`. Returns the next free staging offset.
-    size_t Upload(const void* data, size_t bytes, Buffer& staging, size_t stagingOffset, Buffer& dst);
-    // Records a copy of `bytes` from `src` into `staging` at `stagingOffset`; the data is readable
-    // at staging.mapped() + offset after Submit(). Returns the next free staging offset.
-    size_t Download(const Buffer& src, size_t bytes, Buffer& staging, size_t stagingOffset);
+    // `dst` at `dstOffset`. Returns the next free staging offset.
+    size_t Upload(const void* data, size_t bytes, Buffer& staging, size_t stagingOffset, Buffer& dst,
+                  size_t dstOffset = 0);
+    // Records a copy of `bytes` from `src` at `srcOffset` into `staging` at `stagingOffset`; the
+    // data is readable at staging.mapped() + offset after Submit(). Returns the next free staging
+    // offset.
+    size_t Download(const Buffer& src, size_t bytes, Buffer& staging, size_t stagingOffset, size_t srcOffset = 0);
     void Copy(const Buffer& src, Buffer& dst, size_t bytes);
     void Fill(Buffer& dst, uint32_t value);
     void Dispatch(const ComputePipeline& pipeline, VkDescriptorSet set, const void* push,
@@ -112,9 +114,13 @@ public:
     // Ends recording, submits, waits on a fence. Recording again starts a new command buffer
     // (and resets the timestamp pool, so read its Results() before that).
     void Submit();
+    // Submits what is recorded so far and waits, then goes on recording the same piece of work:
+    // the passes' timestamps carry on (a pass may span the flush). For work whose host data
+    // streams through a buffer smaller than the whole (vk/transfer_ring.h).
+    void Flush();
 
 private:
-    void Begin();
+    void Begin(bool resetTimestamps = true);
     VkCommandBuffer Cmd();  // begins recording when needed
     VulkanContext& context_;
     TimestampPool* timestamps_;
