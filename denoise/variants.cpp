@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <deque>
+#include <mutex>
 
 #include "core/error.h"
 #include "core/nearest_name.h"
@@ -10,186 +12,366 @@
 
 namespace fovrt {
 
-const std::vector<DenoiserVariant>& DenoiserVariants() {
-    using F = DenoiserFamily;
-    static const std::vector<DenoiserVariant> rows = {
-        {.name = "svgf", .summary = "SVGF (Schied 2017)", .family = F::Svgf},
-        {.name = "svgf-weighted",
-         .summary = "SVGF with temporal weights x sample count",
-         .family = F::Svgf,
-         .weightBySampleCount = true,
-         .needsSampleCount = true},
-        {.name = "asvgf",
-         .summary = "A-SVGF temporal gradients (Schied 2018)",
-         .family = F::TwoHistory,
-         .asvgfGradient = true,
-         .needsGradientSamples = true},
-        {.name = "two-history",
-         .summary = "two-history SVGF (Tu 2024)",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .needsSampleCount = true},
-        {.name = "two-history-asvgf",
-         .summary = "two-history SVGF with A-SVGF's gradient as q",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .asvgfGradient = true,
-         .needsGradientSamples = true,
-         .needsSampleCount = true},
-        // Anti-lag variants: the paper-faithful rows above, with λ shrinking the history length.
-        {.name = "asvgf-antilag",
-         .summary = "A-SVGF with gradient-driven history-length reduction (Q2RTX anti-lag), SVGF's base alpha",
-         .family = F::TwoHistory,
-         .asvgfGradient = true,
-         .antilag = true,
-         .needsGradientSamples = true},
-        {.name = "two-history-asvgf-antilag",
-         .summary = "two-history-asvgf with the anti-lag history-length reduction",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .asvgfGradient = true,
-         .antilag = true,
-         .needsGradientSamples = true,
-         .needsSampleCount = true},
-        {.name = "two-history-stable",
-         .summary = "two-history SVGF with a clamped luminance stabilisation pass (less flicker)",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .stabilize = true,
-         .needsSampleCount = true},
-        {.name = "two-history-stable-firefly",
-         .summary = "two-history-stable with firefly suppression before accumulation (outliers vs their past and neighbours clamped)",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .stabilize = true,
-         .suppressFireflies = true,
-         .needsSampleCount = true},
-        {.name = "two-history-stable-antilag",
-         .summary = "two-history-stable whose stabilisation follows two-history's change detector q (no lag under changing light)",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .stabilize = true,
-         .stabilizeAntilag = true,
-         .needsSampleCount = true},
-        {.name = "two-history-asvgf-stable-antilag",
-         .summary = "two-history-asvgf-antilag with the stabilisation pass, its weight driven by A-SVGF's lambda",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .asvgfGradient = true,
-         .antilag = true,
-         .stabilize = true,
-         .stabilizeAntilag = true,
-         .needsGradientSamples = true,
-         .needsSampleCount = true},
-        {.name = "two-history-clamp",
-         .summary = "two-history with I_u clamped to I_w's neighbourhood (mean +- k sigma) instead of the choice p",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .clampHistory = true,
-         .needsSampleCount = true},
-        {.name = "two-history-stable-clamp",
-         .summary = "two-history-clamp with two-history-stable's luminance stabilisation pass",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .stabilize = true,
-         .clampHistory = true,
-         .needsSampleCount = true},
-        {.name = "two-history-hysteresis",
-         .summary = "two-history with a temporally filtered, hysteretic history choice p (held within a band, moved at a rate)",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .hystereticChoice = true,
-         .needsSampleCount = true},
-        {.name = "two-history-stable-hysteresis",
-         .summary = "two-history-hysteresis with two-history-stable's luminance stabilisation pass",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .emaGradient = true,
-         .stabilize = true,
-         .hystereticChoice = true,
-         .needsSampleCount = true},
-        {.name = "two-history-asvgf-stable-hysteresis",
-         .summary = "two-history-asvgf-stable-antilag with the held history choice of two-history-hysteresis",
-         .family = F::TwoHistory,
-         .twoHistory = true,
-         .asvgfGradient = true,
-         .antilag = true,
-         .stabilize = true,
-         .stabilizeAntilag = true,
-         .hystereticChoice = true,
-         .needsGradientSamples = true,
-         .needsSampleCount = true},
-        {.name = "rae",
-         .summary = "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights",
-         .family = F::Rae},
-        {.name = "rae-spp",
-         .summary = "rae with the per-pixel sample count as an 8th input, denoise.rae.weights_spp",
-         .family = F::Rae,
-         .raeSampleCount = true},
-    };
-    return rows;
-}
-
 namespace {
 
-// Splits "<base>+<demodulation>"; false when `name` has no (known) suffix.
-bool SplitSuffix(std::string_view name, std::string_view& base, Demodulation& d) {
-    const size_t plus = name.rfind('+');
-    if (plus == std::string_view::npos || !ParseDemodulation(name.substr(plus + 1), d)) return false;
-    base = name.substr(0, plus);
-    return true;
+// The families a name starts from (any position in it; exactly one). A family's own mechanisms
+// are implied: two-history keeps the second, sample-count-weighted history and, unless A-SVGF's
+// gradient replaces it, the EMA luminance gradient as its change detector q.
+enum class MethodFamily : uint8_t { Svgf, TwoHistory, Rae };
+struct FamilyToken {
+    MethodFamily family;
+    std::string_view token;
+    std::string_view summary;
+};
+constexpr FamilyToken kFamilies[] = {
+    {MethodFamily::Svgf, "svgf", "SVGF (Schied 2017)"},
+    {MethodFamily::TwoHistory, "two-history", "two-history SVGF (Tu 2024)"},
+    {MethodFamily::Rae, "rae", "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights"},
+};
+constexpr unsigned Bit(MethodFamily f) { return 1u << unsigned(f); }
+constexpr unsigned kSvgfFamilies = Bit(MethodFamily::Svgf) | Bit(MethodFamily::TwoHistory);
+
+// One row per mechanism flag of DenoiserVariant, in the order a frame runs them: the token a name
+// writes it with (empty: implied by the family, or derived), what `fovrt info` calls it, and its
+// rules: the families it joins, the token it requires, the token it excludes, each with the reason
+// a refusal gives.
+struct Mechanism {
+    bool DenoiserVariant::*flag;
+    std::string_view token;
+    std::string_view description;
+    unsigned families = 0;
+    std::string_view requiresToken = {};
+    std::string_view excludesToken = {};
+    std::string_view why = {};  // the reason behind `requiresToken` / `excludesToken`
+};
+const Mechanism kMechanisms[] = {
+    {&DenoiserVariant::weightBySampleCount, "weighted", "temporal weights x sample count (svgf-weighted)",
+     Bit(MethodFamily::Svgf), {}, "asvgf",
+     "the sample-count weights are SVGF's reprojection's, A-SVGF runs the gradient family's"},
+    {&DenoiserVariant::asvgfGradient, "asvgf", "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)",
+     kSvgfFamilies},
+    {&DenoiserVariant::antilag, "antilag", "anti-lag: lambda shortens the history (Q2RTX)", kSvgfFamilies, "asvgf",
+     {}, "the anti-lag factor is A-SVGF's lambda"},
+    {&DenoiserVariant::suppressFireflies, "firefly", "firefly suppression before accumulation",
+     Bit(MethodFamily::TwoHistory)},
+    {&DenoiserVariant::twoHistory, {},
+     "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)"},
+    {&DenoiserVariant::emaGradient, {}, "EMA luminance gradient -> q (Tu 2024)"},
+    {&DenoiserVariant::hystereticChoice, "hysteresis", "held history choice (band and rate)",
+     Bit(MethodFamily::TwoHistory), {}, "clamp", "both replace the choice p between the two histories"},
+    {&DenoiserVariant::clampHistory, "clamp", "history clamp to the weighted history's neighbourhood",
+     Bit(MethodFamily::TwoHistory)},
+    {&DenoiserVariant::stabilize, "stabilize", "luminance stabilisation pass", Bit(MethodFamily::TwoHistory)},
+    {&DenoiserVariant::stabilizeAntilag, "stabilize-antilag", "stabilisation weight driven by the change detector",
+     Bit(MethodFamily::TwoHistory), "stabilize", {}, "it drives the stabilisation's weight"},
+    {&DenoiserVariant::raeSampleCount, "spp", "sample count as an extra network input", Bit(MethodFamily::Rae)},
+};
+
+// Today's names: aliases of compositions, each with the summary it had as a row of its own.
+struct Alias {
+    std::string_view name, composition, summary;
+};
+constexpr Alias kAliases[] = {
+    {"svgf", "svgf", "SVGF (Schied 2017)"},
+    {"svgf-weighted", "svgf+weighted", "SVGF with temporal weights x sample count"},
+    {"asvgf", "svgf+asvgf", "A-SVGF temporal gradients (Schied 2018)"},
+    {"two-history", "two-history", "two-history SVGF (Tu 2024)"},
+    {"two-history-asvgf", "two-history+asvgf", "two-history SVGF with A-SVGF's gradient as q"},
+    {"asvgf-antilag", "svgf+asvgf+antilag",
+     "A-SVGF with gradient-driven history-length reduction (Q2RTX anti-lag), SVGF's base alpha"},
+    {"two-history-asvgf-antilag", "two-history+asvgf+antilag",
+     "two-history-asvgf with the anti-lag history-length reduction"},
+    {"two-history-stable", "two-history+stabilize",
+     "two-history SVGF with a clamped luminance stabilisation pass (less flicker)"},
+    {"two-history-stable-firefly", "two-history+firefly+stabilize",
+     "two-history-stable with firefly suppression before accumulation (outliers vs their past and neighbours "
+     "clamped)"},
+    {"two-history-stable-antilag", "two-history+stabilize+stabilize-antilag",
+     "two-history-stable whose stabilisation follows two-history's change detector q (no lag under changing "
+     "light)"},
+    {"two-history-asvgf-stable-antilag", "two-history+asvgf+antilag+stabilize+stabilize-antilag",
+     "two-history-asvgf-antilag with the stabilisation pass, its weight driven by A-SVGF's lambda"},
+    {"two-history-clamp", "two-history+clamp",
+     "two-history with I_u clamped to I_w's neighbourhood (mean +- k sigma) instead of the choice p"},
+    {"two-history-stable-clamp", "two-history+clamp+stabilize",
+     "two-history-clamp with two-history-stable's luminance stabilisation pass"},
+    {"two-history-hysteresis", "two-history+hysteresis",
+     "two-history with a temporally filtered, hysteretic history choice p (held within a band, moved at a rate)"},
+    {"two-history-stable-hysteresis", "two-history+hysteresis+stabilize",
+     "two-history-hysteresis with two-history-stable's luminance stabilisation pass"},
+    {"two-history-asvgf-stable-hysteresis", "two-history+asvgf+antilag+hysteresis+stabilize+stabilize-antilag",
+     "two-history-asvgf-stable-antilag with the held history choice of two-history-hysteresis"},
+    {"rae", "rae", "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights"},
+    {"rae-spp", "rae+spp", "rae with the per-pixel sample count as an 8th input, denoise.rae.weights_spp"},
+};
+
+std::vector<std::string_view> SplitTokens(std::string_view name) {
+    std::vector<std::string_view> tokens;
+    for (size_t start = 0;;) {
+        const size_t plus = name.find('+', start);
+        tokens.push_back(name.substr(start, plus == std::string_view::npos ? plus : plus - start));
+        if (plus == std::string_view::npos) return tokens;
+        start = plus + 1;
+    }
 }
 
-}  // namespace
-
-std::optional<Demodulation> DenoiserDemodulation(std::string_view name) {
-    std::string_view base;
-    Demodulation d;
-    if (!SplitSuffix(name, base, d)) return std::nullopt;
-    return d;
-}
-
-std::string_view DenoiserBaseName(std::string_view name) {
-    std::string_view base;
-    Demodulation d;
-    return SplitSuffix(name, base, d) ? base : name;
-}
-
-const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
-    const std::string_view base = DenoiserBaseName(name);
-    for (const DenoiserVariant& v : DenoiserVariants())
-        if (v.name == base) return &v;
+const Alias* FindAlias(std::string_view name) {
+    for (const Alias& a : kAliases)
+        if (a.name == name) return &a;
     return nullptr;
 }
 
+// Every token a name may hold, for suggestions.
+std::vector<std::string> KnownTokens() {
+    std::vector<std::string> tokens;
+    for (const FamilyToken& f : kFamilies) tokens.emplace_back(f.token);
+    for (const Mechanism& m : kMechanisms)
+        if (!m.token.empty()) tokens.emplace_back(m.token);
+    for (const Alias& a : kAliases) tokens.emplace_back(a.name);
+    for (const char* d : DemodulationNames()) tokens.emplace_back(d);
+    return tokens;
+}
 
-namespace {
+// A name read into its family, mechanisms and demodulation.
+struct Composition {
+    std::optional<MethodFamily> family;
+    std::vector<bool> mechanisms = std::vector<bool>(std::size(kMechanisms), false);
+    std::optional<Demodulation> demodulation;
+};
 
-std::string UnknownDenoiserMessage(std::string_view name) {
-    return fmt::format("unknown denoiser '{}' (did you mean '{}'? known: {}; each also as <name>+brdf or "
-                       "<name>+albedo)",
-                       name, NearestName(DenoiserBaseName(name), DenoiserNames()), fmt::join(DenoiserNames(), ", "));
+bool Has(const Composition& c, std::string_view token) {
+    for (size_t i = 0; i < std::size(kMechanisms); ++i)
+        if (c.mechanisms[i] && kMechanisms[i].token == token) return true;
+    return false;
+}
+
+// Reads `name`'s tokens (a family, mechanisms, a demodulation, or an alias standing for its
+// composition; in any order) and checks the rules; the problem in one line otherwise.
+std::optional<std::string> Read(std::string_view name, Composition& c) {
+    auto setFamily = [&](MethodFamily f) -> std::optional<std::string> {
+        if (c.family && *c.family != f) return fmt::format("'{}' names two families; a name has one", name);
+        c.family = f;
+        return std::nullopt;
+    };
+    auto isMechanism = [](std::string_view token) {
+        return std::any_of(std::begin(kMechanisms), std::end(kMechanisms),
+                           [&](const Mechanism& m) { return !m.token.empty() && m.token == token; });
+    };
+    auto isFamily = [](std::string_view token) {
+        return std::any_of(std::begin(kFamilies), std::end(kFamilies), [&](const FamilyToken& f) { return f.token == token; });
+    };
+    // "asvgf" is both a mechanism and the alias of svgf+asvgf: the alias where nothing else in the
+    // name gives the family ("asvgf+antilag"), the mechanism where something does ("two-history+asvgf").
+    const std::vector<std::string_view> tokens = SplitTokens(name);
+    const bool familyElsewhere = std::any_of(tokens.begin(), tokens.end(), [&](std::string_view t) {
+        return isFamily(t) || (FindAlias(t) && !isMechanism(t));
+    });
+    for (std::string_view token : tokens) {
+        if (token.empty()) return fmt::format("'{}' has an empty part between '+'", name);
+        const Alias* alias = FindAlias(token);
+        if (alias && alias->composition != token && !(isMechanism(token) && familyElsewhere)) {
+            Composition inner;
+            if (auto problem = Read(alias->composition, inner)) return problem;
+            if (auto problem = setFamily(*inner.family)) return problem;
+            for (size_t i = 0; i < inner.mechanisms.size(); ++i) c.mechanisms[i] = c.mechanisms[i] || inner.mechanisms[i];
+            continue;
+        }
+        bool known = false;
+        for (const FamilyToken& f : kFamilies)
+            if (f.token == token) {
+                if (auto problem = setFamily(f.family)) return problem;
+                known = true;
+            }
+        for (size_t i = 0; i < std::size(kMechanisms); ++i)
+            if (!kMechanisms[i].token.empty() && kMechanisms[i].token == token) {
+                c.mechanisms[i] = true;
+                known = true;
+            }
+        Demodulation d;
+        if (ParseDemodulation(token, d)) {
+            if (c.demodulation && *c.demodulation != d)
+                return fmt::format("'{}' names two demodulations; a name has at most one", name);
+            c.demodulation = d;
+            known = true;
+        }
+        if (!known)
+            return fmt::format("unknown denoiser '{}'{} (did you mean '{}'? known names: {}; or a family ({}) and "
+                               "mechanisms joined by '+': {}; each also +brdf or +albedo)",
+                               name,
+                               tokens.size() > 1 ? fmt::format(": '{}' is no family, mechanism or demodulation", token)
+                                                 : std::string(),
+                               NearestName(token, KnownTokens()), fmt::join(DenoiserNames(), ", "),
+                               fmt::join(FamilyTokens(), ", "), fmt::join(MechanismTokens(), ", "));
+    }
+    if (!c.family)
+        return fmt::format("'{}' names no family: start from one of {}", name, fmt::join(FamilyTokens(), ", "));
+    for (size_t i = 0; i < std::size(kMechanisms); ++i) {
+        if (!c.mechanisms[i]) continue;
+        const Mechanism& m = kMechanisms[i];
+        if (!(m.families & Bit(*c.family)))
+            return fmt::format("'{}': {} does not join the {} family ({})", name, m.token,
+                               kFamilies[size_t(*c.family)].token, m.description);
+        if (!m.requiresToken.empty() && !Has(c, m.requiresToken))
+            return fmt::format("'{}': {} requires {} ({})", name, m.token, m.requiresToken, m.why);
+        if (!m.excludesToken.empty() && Has(c, m.excludesToken))
+            return fmt::format("'{}': {} excludes {} ({})", name, m.token, m.excludesToken, m.why);
+    }
+    // The network's weights were trained on albedo-demodulated illumination (Chaitanya et al. 2017,
+    // §3.2); F_β input would need weights trained on it.
+    if (*c.family == MethodFamily::Rae && c.demodulation == Demodulation::Brdf)
+        return fmt::format("'{}': the RAE's weights were trained on albedo-demodulated illumination; use it "
+                           "without +brdf (it re-divides an F_beta-demodulated frame by the albedo itself)",
+                           name);
+    return std::nullopt;
+}
+
+std::string CanonicalBaseName(const Composition& c) {
+    std::string name(kFamilies[size_t(*c.family)].token);
+    for (size_t i = 0; i < std::size(kMechanisms); ++i)
+        if (c.mechanisms[i] && !kMechanisms[i].token.empty()) name.append("+").append(kMechanisms[i].token);
+    return name;
+}
+
+// The row a composition runs as: its mechanisms' flags, the ones its family implies, and what the
+// renderer must produce, derived from them.
+DenoiserVariant Derive(const Composition& c) {
+    DenoiserVariant v;
+    for (size_t i = 0; i < std::size(kMechanisms); ++i)
+        if (c.mechanisms[i]) v.*kMechanisms[i].flag = true;
+    v.twoHistory = *c.family == MethodFamily::TwoHistory;
+    v.emaGradient = v.twoHistory && !v.asvgfGradient;
+    v.family = *c.family == MethodFamily::Rae                  ? DenoiserFamily::Rae
+               : v.twoHistory || v.asvgfGradient ? DenoiserFamily::TwoHistory
+                                                               : DenoiserFamily::Svgf;
+    v.needsGradientSamples = v.asvgfGradient;
+    v.needsSampleCount = v.twoHistory || v.weightBySampleCount;
+    return v;
+}
+
+Composition MustRead(std::string_view name) {
+    Composition c;
+    if (std::optional<std::string> problem = Read(name, c)) Fail("denoiser table: {}", *problem);
+    return c;
+}
+
+// Compositions that are no alias, made once per canonical name and kept (the denoisers hold
+// references to their row).
+struct ComposedRows {
+    std::mutex mutex;
+    std::deque<DenoiserVariant> rows;
+    std::deque<std::string> text;  // the rows' names and summaries
+};
+ComposedRows& Composed() {
+    static ComposedRows composed;
+    return composed;
 }
 
 }  // namespace
 
-std::optional<std::string> DenoiserNameProblem(std::string_view name) {
-    const DenoiserVariant* v = LookupDenoiserVariant(name);
-    if (!v) return UnknownDenoiserMessage(name);
-    // The network's weights were trained on albedo-demodulated illumination (Chaitanya et al. 2017,
-    // §3.2); F_β input would need weights trained on it.
-    if (v->family == DenoiserFamily::Rae && DenoiserDemodulation(name) == Demodulation::Brdf)
-        return fmt::format("'{}': the RAE's weights were trained on albedo-demodulated illumination; use '{}' "
-                           "(it re-divides an F_β-demodulated frame by the albedo itself)",
-                           name, v->name);
+std::vector<std::string> FamilyTokens() {
+    std::vector<std::string> tokens;
+    for (const FamilyToken& f : kFamilies) tokens.emplace_back(f.token);
+    return tokens;
+}
+
+std::vector<std::string> MechanismRules() {
+    std::vector<std::string> lines;
+    for (const Mechanism& m : kMechanisms) {
+        if (m.token.empty()) continue;
+        std::vector<std::string_view> families;
+        for (const FamilyToken& f : kFamilies)
+            if (m.families & Bit(f.family)) families.push_back(f.token);
+        std::string line = fmt::format("`{}`: {}; joins {}", m.token, m.description, fmt::join(families, ", "));
+        if (!m.requiresToken.empty()) line += fmt::format("; requires `{}` ({})", m.requiresToken, m.why);
+        if (!m.excludesToken.empty()) line += fmt::format("; excludes `{}` ({})", m.excludesToken, m.why);
+        lines.push_back(std::move(line));
+    }
+    return lines;
+}
+
+std::vector<std::string> MechanismTokens() {
+    std::vector<std::string> tokens;
+    for (const Mechanism& m : kMechanisms)
+        if (!m.token.empty()) tokens.emplace_back(m.token);
+    return tokens;
+}
+
+const std::vector<DenoiserVariant>& DenoiserVariants() {
+    static const std::vector<DenoiserVariant> rows = [] {
+        std::vector<DenoiserVariant> out;
+        for (const Alias& a : kAliases) {
+            DenoiserVariant v = Derive(MustRead(a.composition));
+            v.name = a.name;
+            v.summary = a.summary;
+            out.push_back(v);
+        }
+        return out;
+    }();
+    return rows;
+}
+
+std::string CanonicalDenoiserName(std::string_view name) {
+    Composition c;
+    if (std::optional<std::string> problem = Read(name, c)) Fail("denoiser: {}", *problem);
+    std::string canonical = CanonicalBaseName(c);
+    if (c.demodulation) canonical.append("+").append(DemodulationName(*c.demodulation));
+    return canonical;
+}
+
+std::vector<std::string> DenoiserCompositions() {
+    std::vector<std::string> names;
+    const size_t tokens = std::size(kMechanisms);
+    for (const FamilyToken& f : kFamilies)
+        for (size_t mask = 0; mask < (size_t(1) << tokens); ++mask) {
+            std::string name(f.token);
+            bool skip = false;
+            for (size_t i = 0; i < tokens; ++i)
+                if (mask >> i & 1) {
+                    if (kMechanisms[i].token.empty()) skip = true;
+                    else name.append("+").append(kMechanisms[i].token);
+                }
+            Composition c;
+            if (!skip && !Read(name, c)) names.push_back(name);
+        }
+    return names;
+}
+
+std::optional<Demodulation> DenoiserDemodulation(std::string_view name) {
+    Demodulation d;
+    for (std::string_view token : SplitTokens(name))
+        if (ParseDemodulation(token, d)) return d;
     return std::nullopt;
+}
+
+const DenoiserVariant* LookupDenoiserVariant(std::string_view name) {
+    // An alias, bare or with a demodulation suffix: its row, named as it always was.
+    const size_t plus = name.rfind('+');
+    Demodulation d;
+    const std::string_view stem =
+        plus != std::string_view::npos && ParseDemodulation(name.substr(plus + 1), d) ? name.substr(0, plus) : name;
+    for (const DenoiserVariant& v : DenoiserVariants())
+        if (v.name == stem) return &v;
+    Composition c;
+    if (Read(name, c)) return nullptr;
+    const std::string canonical = CanonicalBaseName(c);
+    ComposedRows& composed = Composed();
+    std::lock_guard lock(composed.mutex);
+    for (const DenoiserVariant& v : composed.rows)
+        if (v.name == canonical) return &v;
+    DenoiserVariant v = Derive(c);
+    v.name = composed.text.emplace_back(canonical);
+    std::string summary(kFamilies[size_t(*c.family)].summary);
+    for (size_t i = 0; i < std::size(kMechanisms); ++i)
+        if (c.mechanisms[i] && !kMechanisms[i].token.empty())
+            summary += fmt::format("{} {}", summary.find(" with ") == std::string::npos ? " with" : ";",
+                                   kMechanisms[i].description);
+    v.summary = composed.text.emplace_back(std::move(summary));
+    return &composed.rows.emplace_back(v);
+}
+
+std::optional<std::string> DenoiserNameProblem(std::string_view name) {
+    Composition c;
+    return Read(name, c);
 }
 
 const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_view what) {
@@ -217,29 +399,6 @@ RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string
     return needs;
 }
 
-namespace {
-
-struct MechanismName {
-    bool DenoiserVariant::*flag;
-    std::string_view name;
-};
-// One row per mechanism flag of DenoiserVariant, in the order a frame runs them.
-constexpr MechanismName kMechanismNames[] = {
-    {&DenoiserVariant::weightBySampleCount, "temporal weights x sample count (svgf-weighted)"},
-    {&DenoiserVariant::asvgfGradient, "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)"},
-    {&DenoiserVariant::antilag, "anti-lag: lambda shortens the history (Q2RTX)"},
-    {&DenoiserVariant::suppressFireflies, "firefly suppression before accumulation"},
-    {&DenoiserVariant::twoHistory, "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)"},
-    {&DenoiserVariant::emaGradient, "EMA luminance gradient -> q (Tu 2024)"},
-    {&DenoiserVariant::hystereticChoice, "held history choice (band and rate)"},
-    {&DenoiserVariant::clampHistory, "history clamp to the weighted history's neighbourhood"},
-    {&DenoiserVariant::stabilize, "luminance stabilisation pass"},
-    {&DenoiserVariant::stabilizeAntilag, "stabilisation weight driven by the change detector"},
-    {&DenoiserVariant::raeSampleCount, "sample count as an extra network input"},
-};
-
-}  // namespace
-
 std::string_view DenoiserFamilyName(DenoiserFamily family) {
     switch (family) {
         case DenoiserFamily::Svgf: return "svgf";
@@ -251,8 +410,8 @@ std::string_view DenoiserFamilyName(DenoiserFamily family) {
 
 std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant) {
     std::vector<std::string> names;
-    for (const MechanismName& m : kMechanismNames)
-        if (variant.*m.flag) names.emplace_back(m.name);
+    for (const Mechanism& m : kMechanisms)
+        if (variant.*m.flag) names.emplace_back(m.description);
     return names;
 }
 

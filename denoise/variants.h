@@ -1,12 +1,19 @@
-// The one table of denoiser variants: every name `run`, `experiment`, `bench` and `memory` accept,
-// with the family whose passes it runs, the options it implies, and what it needs from the
-// renderer. Adding a variant is one row here (plus a pass file if it brings a new pass).
+// The denoisers: every name `run`, `experiment`, `bench` and `memory` accept, read into the row the
+// passes run from (the family, the mechanisms it turns on, what it needs from the renderer).
 //
-// Every name also comes with a demodulation suffix: "<variant>+brdf" filters illumination
-// demodulated by the BRDF pre-integration F_β, "<variant>+albedo" by the albedo (Zhuang et al.
-// §4.3: the filter is a black box, only the demodulation factor changes; denoise/demodulation.h).
-// A name without a suffix filters what the tracer wrote (render.demodulation, default albedo).
-// The suffixed names are not rows: they resolve to the row of their base name.
+// A name is a family and mechanisms joined by '+', in any order: `two-history+stabilize+clamp`,
+// `svgf+asvgf+antilag`, `rae+spp`. The canonical form (CanonicalDenoiserName) writes the family,
+// then the mechanisms in the order a frame runs them. Each mechanism declares the families it
+// joins, the mechanism it requires and the one it excludes (kMechanisms in variants.cpp); a name
+// that breaks a rule is refused in one line naming the rule. What the renderer must produce is
+// derived from the mechanisms, never stored. Today's names (svgf-weighted, two-history-stable, …)
+// are aliases of compositions, in one table (kAliases), and may stand in a name for theirs
+// (`two-history-stable+clamp`).
+//
+// Every name also takes a demodulation: "+brdf" filters illumination demodulated by the BRDF
+// pre-integration F_β, "+albedo" by the albedo (Zhuang et al. §4.3: the filter is a black box,
+// only the demodulation factor changes; denoise/demodulation.h). A name without one filters what
+// the tracer wrote (render.demodulation, default albedo). The demodulation is no part of the row.
 #pragma once
 
 #include <optional>
@@ -66,22 +73,35 @@ struct DenoiserVariant {
     bool raeSampleCount = false;  // rae: the network with the sample-count input (weights_spp)
 };
 
-// Every variant, in the order tables list them.
+// The aliases' rows, in the order tables list them.
 const std::vector<DenoiserVariant>& DenoiserVariants();
+// The family and mechanism tokens a name is written with, in table order.
+std::vector<std::string> FamilyTokens();
+std::vector<std::string> MechanismTokens();
+// One line per mechanism token: what it does, the families it joins, what it requires and
+// excludes, and why (docs/denoisers.md).
+std::vector<std::string> MechanismRules();
+// `name` written canonically: the family, the mechanisms in frame order, the demodulation last
+// ("stabilize+two-history+brdf" → "two-history+stabilize+brdf"; an alias → its composition).
+// fovrt::Error when `name` is none.
+std::string CanonicalDenoiserName(std::string_view name);
+// Every valid composition without a demodulation, canonical, family by family: what the tests
+// walk.
+std::vector<std::string> DenoiserCompositions();
 // The row of `name`; fovrt::Error naming the key `what` (e.g. "denoise.denoisers"), listing the
 // known names and suggesting the nearest one otherwise.
 const DenoiserVariant& FindDenoiserVariant(std::string_view name,
                                            std::string_view what = "denoiser");
-// Why `name` cannot be used, for callers that name the key themselves: "unknown denoiser 'x' (did
-// you mean 'y'? known: ...)", or a suffix its family refuses (rae+brdf); nullopt when it can.
+// Why `name` cannot be used, for callers that name the key themselves: an unknown part ("unknown
+// denoiser 'x': ... did you mean 'y'?"), a broken rule ("'two-history+antilag': antilag requires
+// asvgf (...)"), or a demodulation its family refuses (rae+brdf); nullopt when it can.
 std::optional<std::string> DenoiserNameProblem(std::string_view name);
-// Null when `name` is not a variant (with or without a demodulation suffix).
+// Null when `name` is no denoiser. An alias gives its row; any other composition a row made once
+// per canonical name and kept for the process (its name the canonical one, without demodulation).
 const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 
-// The demodulation a name's suffix asks for ("+brdf", "+albedo"); nullopt without a suffix.
+// The demodulation a name asks for ("+brdf", "+albedo"); nullopt without one.
 std::optional<Demodulation> DenoiserDemodulation(std::string_view name);
-// `name` without its demodulation suffix ("svgf+brdf" → "svgf").
-std::string_view DenoiserBaseName(std::string_view name);
 
 // Whether the variant accepts pixels without a path sample (spp-map entries of 0): the SVGF and
 // two-history families keep such a pixel's history (the ones that weigh by no sample count with
@@ -102,12 +122,12 @@ RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string
 
 // The mechanisms a row turns on, by name, in the order the frame runs them ("weighted history",
 // "A-SVGF gradient", …; none for plain SVGF): what `fovrt info --denoiser` prints. Read from the
-// row's flags through one table (kMechanismNames in variants.cpp).
+// row's flags through the mechanism table (kMechanisms in variants.cpp).
 std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant);
 // What the renderer must produce for the row, in words (empty: the noisy inputs alone).
 std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant);
 
-// Names accepted by CreateDenoiser, in table order.
+// The aliases, in table order (every composition is accepted too).
 const std::vector<std::string>& DenoiserNames();
 
 // Names of the channels the SVGF stages filter (FilteredChannels, denoise/planes.h): {"direct",

@@ -534,3 +534,20 @@ TEST_CASE("a frame streamed through a small staging ring equals the frame submit
     }
     CHECK(ctx->validationErrors() == 0);
 }
+
+// Every composition of the gradient / two-history pass family (denoise/variants.h: 54 with the
+// two-history family, and svgf+asvgf with and without anti-lag), on Vulkan against the C++
+// reference: both follow the row's flags, so a combination that no alias names runs on both alike.
+TEST_CASE("every composition of the two-history pass family matches the reference on Vulkan", "[vulkan][two_history]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    size_t run = 0;
+    for (const std::string& name : DenoiserCompositions()) {
+        const DenoiserVariant& variant = FindDenoiserVariant(name);
+        if (variant.family != DenoiserFamily::TwoHistory) continue;
+        INFO(name);
+        RunPair(variant, ParamsForDenoiser(name, DenoiserParams{}), 3);
+        ++run;
+    }
+    CHECK(run == 2 + 3 * 2 * 3 * 3);
+    CHECK(TestContext()->validationErrors() == 0);
+}
