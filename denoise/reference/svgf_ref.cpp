@@ -8,6 +8,7 @@
 #include <glm/gtc/packing.hpp>
 #include <tbb/parallel_for.h>
 
+#include "shaders/common/edge_stopping_weights.glsl"
 #include "shaders/shared_constants.h"
 
 namespace fovrt {
@@ -138,17 +139,17 @@ vec3 QuantizeHistory(const vec3& v, Precision p) {
     return {QuantizeHistory(v.x, p), QuantizeHistory(v.y, p), QuantizeHistory(v.z, p)};
 }
 
+// The shaders' functions (shaders/common/edge_stopping_weights.glsl, one text for both languages).
 float DepthWeight(float zp, float zq, const vec2& depthGrad, const vec2& offset, float sigmaDepth) {
-    float denom = sigmaDepth * std::abs(glm::dot(depthGrad, offset)) + float(FOVRT_ATROUS_DEPTH_EPSILON);
-    return std::exp(-std::abs(zp - zq) / denom);
+    return glsl::depth_weight(zp, zq, depthGrad, offset, sigmaDepth);
 }
 
 float NormalWeight(const vec3& np, const vec3& nq, float sigmaNormal) {
-    return std::pow(std::max(0.0f, glm::dot(np, nq)), sigmaNormal);
+    return glsl::normal_weight_pow(np, nq, sigmaNormal);
 }
 
 float LuminanceWeight(float lp, float lq, float sigmaLStd) {
-    return std::exp(-std::abs(lp - lq) / (sigmaLStd + float(FOVRT_ATROUS_LUMINANCE_EPSILON)));
+    return glsl::luminance_weight(lp, lq, sigmaLStd);
 }
 
 void SvgfReprojectRef(const Plane<vec3>& color, const Plane<vec3>* color2, const FrameInputs& cur,

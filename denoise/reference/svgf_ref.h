@@ -84,7 +84,8 @@ float QuantizeHistory(float v, Precision precision);
 vec2 QuantizeHistory(const vec2& v, Precision precision);
 vec3 QuantizeHistory(const vec3& v, Precision precision);
 
-// Edge-stopping weights (shaders/common/edge_stopping.glsl).
+// Edge-stopping weights: the shaders' functions (shaders/common/edge_stopping_weights.glsl, one text
+// for GLSL and C++).
 float DepthWeight(float zp, float zq, const vec2& depthGrad, const vec2& offset, float sigmaDepth);
 float NormalWeight(const vec3& np, const vec3& nq, float sigmaNormal);
 float LuminanceWeight(float lp, float lq, float sigmaLStd);

@@ -3,7 +3,8 @@
 // history of its own, reprojected, clamped to the neighbourhood's spread and blended with a small
 // weight, so that a pixel whose two-history blend jumps between the histories from frame to
 // frame (a moving fovea changes its sample count) shows the jump spread over ~1/α_s frames. The
-// per-pixel maths is shared with the tests and mirrored by shaders/common/two_history_stable.glsl.
+// per-pixel maths is the shader's own text (shaders/common/two_history_stable.glsl), called here
+// under the names the tests use.
 #pragma once
 
 #include <algorithm>
@@ -13,32 +14,31 @@
 #include "core/math.h"
 #include "denoise/params.h"
 #include "denoise/reference/svgf_ref.h"
-#include "shaders/common/two_history_constants.glsl"
+#include "shaders/common/two_history_stable.glsl"
 
 namespace fovrt {
 
 // The stabilisation weight: α_s, raised to 1/W_u while the accumulation warms up. `changeWeight`
 // (two-history-stable-antilag's StabilizationChangeWeight, else 0) raises it where the light changes.
 inline float StabilizationWeight(float alphaS, float wu, float changeWeight) {
-    return std::max(std::max(alphaS, 1.0f / std::max(wu, 1.0f)), changeWeight);
+    return glsl::stabilization_weight(alphaS, wu, changeWeight);
 }
 
 // two-history-stable-antilag: (q − q0)/(1 − q0), clamped to [0, 1]. q, two-history's change
 // detector (S·|g| / std(lum I_u)), stays below ~0.5 on a static view's noise and reaches 1 where
 // the light changes faster than the noise hides (a sliding penumbra).
 inline float StabilizationChangeWeight(float q, float q0) {
-    return std::clamp((q - q0) / (1.0f - q0), 0.0f, 1.0f);
+    return glsl::stabilization_change_weight(q, q0);
 }
 
 // L_s = lerp(clamp(L_s,prev, m − kσ, m + kσ), L, a), a the StabilizationWeight.
 inline float StabilizedLuminance(float history, float l, float mean, float sigma, float k, float a) {
-    const float h = std::clamp(history, mean - k * sigma, mean + k * sigma);
-    return h * (1.0f - a) + l * a;  // GLSL mix()
+    return glsl::stabilized_luminance(history, l, mean, sigma, k, a);
 }
 
 // The colour with luminance L_s and the hue of c (luminance L); shifted instead of scaled near black.
 inline vec3 StabilizedColor(const vec3& c, float l, float ls) {
-    return l > float(FOVRT_STABLE_LUMINANCE_FLOOR) ? c * (ls / l) : c + vec3(ls - l);
+    return glsl::stabilized_color(c, l, ls);
 }
 
 // Stage two_history_stabilize for one channel: `filtered` (illumination, variance) → `out`;

@@ -1,16 +1,11 @@
-// Edge-stopping weights of the SVGF spatial filters (paper §4.3, SPEC §3):
-//   w_z = exp(−|z(p)−z(q)| / (σz |∇z(p)·(p−q)| + ε)),  w_n = max(0, n·n')^σn,
-//   w_l = exp(−|l(p)−l(q)| / (σl sqrt(g3×3(Var l(p))) + ε)).
-// Mirrored by denoise/reference/svgf_ref.cpp (DepthWeight, NormalWeight, LuminanceWeight).
+// Edge-stopping weights of the SVGF spatial filters: w_z, w_n and w_l as edge_stopping_weights.glsl
+// writes them once for GLSL and C++, plus the shaders' fast forms (σn = 2^k as squarings, the
+// product as one exp2).
 #ifndef FOVRT_EDGE_STOPPING_GLSL
 #define FOVRT_EDGE_STOPPING_GLSL
 #extension GL_EXT_control_flow_attributes : require
 #include "shared_constants.h"
-
-float depth_weight(float zp, float zq, vec2 depth_grad, vec2 offset, float sigma_depth) {
-    float denom = sigma_depth * abs(dot(depth_grad, offset)) + FOVRT_ATROUS_DEPTH_EPSILON;
-    return exp(-abs(zp - zq) / denom);
-}
+#include "edge_stopping_weights.glsl"
 
 // σn = 2^k (the default 128 = 2^7) is a specialization constant: w_n is then k squarings.
 layout(constant_id = FOVRT_SPEC_NORMAL_SQUARINGS) const int kNormalSquarings = -1;
@@ -24,11 +19,7 @@ float normal_weight_squared(float cos_nq) {
 
 float normal_weight(vec3 np, vec3 nq, float sigma_normal) {
     if (kNormalSquarings >= 0) return normal_weight_squared(dot(np, nq));
-    return pow(max(0.0, dot(np, nq)), sigma_normal);
-}
-
-float luminance_weight(float lp, float lq, float sigma_l_std) {
-    return exp(-abs(lp - lq) / (sigma_l_std + FOVRT_ATROUS_LUMINANCE_EPSILON));
+    return normal_weight_pow(np, nq, sigma_normal);
 }
 
 // The product w_z·w_n(·w_l) as one exp2 (one transcendental pair per tap instead of three; same
@@ -38,8 +29,7 @@ float luminance_weight(float lp, float lq, float sigma_l_std) {
 // σn = 2^k the normal term is a factor (k squarings) instead of a log2 in the exponent:
 // geometry_normal_log2 is then 0 and geometry_normal_factor carries w_n (else it is 1).
 float geometry_depth_term(float zp, float zq, vec2 depth_grad, vec2 offset, float sigma_depth) {
-    float denom = sigma_depth * abs(dot(depth_grad, offset)) + FOVRT_ATROUS_DEPTH_EPSILON;
-    return abs(zp - zq) / denom;
+    return abs(zp - zq) / depth_weight_denominator(depth_grad, offset, sigma_depth);
 }
 float geometry_normal_log2(vec3 np, vec3 nq, float sigma_normal) {
     if (kNormalSquarings >= 0) return 0.0;

@@ -80,7 +80,7 @@ constexpr std::array<SettingRow<RenderConfig>, 1> kRenderRows{{
 }};
 
 constexpr std::array<SettingRow<DenoiseConfig>, 2> kDenoiseRows{{
-    {{.key = "denoise.denoisers", .doc = "denoiser variants to run (denoise/variants.cpp, `fovrt list`)"},
+    {{.key = "denoise.denoisers", .doc = "denoisers to run: names, or a family and mechanisms joined by + (docs/denoisers.md, `fovrt info`)"},
      &DenoiseConfig::denoisers},
     {{.key = "denoise.device", .doc = "auto, vulkan, cpu or a Vulkan device index (vk/device_choice.h)"},
      &DenoiseConfig::device},
