@@ -140,6 +140,14 @@ TEST_CASE("Unknown keys are errors naming the key and the file", "[config]") {
     CHECK_THROWS_WITH(Resolve("", {"denoise.denoisers=[\"rae+brdf\"]"}),
                       Catch::Contains("denoise.denoisers") && Catch::Contains("albedo-demodulated"));
     CHECK(Resolve("", {"denoise.denoisers=[\"rae+albedo\", \"svgf+brdf\"]"}).denoise.denoisers.size() == 2);
+    // A composition in any order; two spellings of one denoiser are refused, naming both.
+    CHECK(Resolve("", {"denoise.denoisers=[\"clamp+two-history\", \"two-history+stabilize+brdf\"]"})
+              .denoise.denoisers.size() == 2);
+    CHECK_THROWS_WITH(Resolve("", {"denoise.denoisers=[\"two-history-stable\", \"stabilize+two-history\"]"}),
+                      Catch::Contains("'two-history-stable' and 'stabilize+two-history' are the same denoiser "
+                                      "(two-history+stabilize)"));
+    CHECK_THROWS_WITH(Resolve("", {"denoise.denoisers=[\"two-history+antilag\"]"}),
+                      Catch::Contains("denoise.denoisers") && Catch::Contains("antilag requires asvgf"));
 }
 
 TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {

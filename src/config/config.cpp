@@ -353,9 +353,18 @@ void CheckRules(const RunConfig& c, const Reader& r) {
                           "foveation.spp_floor = {} is the least spp it may scale a pixel to)",
                           f.rayBudget, kMaxSpp, leastBudget, pixels * kMaxSpp, f.sppFloor));
     const DenoiseConfig& d = c.denoise;
+    std::map<std::string, std::string> spelled;  // canonical name → the first spelling of it
     for (const std::string& name : d.denoisers) {
         if (name.empty()) r.Bad("denoise.denoisers", "names must not be empty");
-        if (auto problem = DenoiserNameProblem(name)) r.Bad("denoise.denoisers", *problem);
+        if (auto problem = DenoiserNameProblem(name)) {
+            r.Bad("denoise.denoisers", *problem);
+            continue;
+        }
+        // Two spellings of one composition would run the same denoiser twice under two names.
+        const auto [first, fresh] = spelled.emplace(CanonicalDenoiserName(name), name);
+        if (!fresh)
+            r.Bad("denoise.denoisers", fmt::format("'{}' and '{}' are the same denoiser ({}); list it once",
+                                                   first->second, name, first->first));
     }
     if (!ParseDeviceSetting(d.device))
         r.Bad("denoise.device", fmt::format("'{}' is not {} (Vulkan devices present: {})", d.device,
