@@ -10,6 +10,7 @@
 #include "core/data_dir.h"
 #include "core/error.h"
 #include "denoise/denoiser.h"
+#include "denoise/planes.h"
 
 namespace fovrt {
 namespace {
@@ -219,12 +220,19 @@ std::vector<BufferPlan> PlanRaeMemory(int width, int height, const DenoiserParam
     const RaeWeights& w = *SharedRaeWeights(params);
     const int L = w.Levels();
     const int pw = RaePaddedSize(width, L), ph = RaePaddedSize(height, L);
+    const size_t element = params.precision == Precision::Fp16 ? 2 : 4;
     std::vector<BufferPlan> plan;
-    for (const RaeTensorSlot& s : RaeTensorLayout(w, pw, ph)) plan.push_back({s.name, s.Floats() * 4, s.history});
+    for (const RaeTensorSlot& s : RaeTensorLayout(w, pw, ph)) plan.push_back({s.name, s.Floats() * element, s.history});
     plan.push_back({"rae.weights", w.Parameters() * 4, false});
-    // Staging: the input up, the output down.
-    plan.push_back({"staging", size_t(pw) * size_t(ph) * size_t(w.inChannels + 3) * 4, false});
+    plan.push_back({"staging", RaeStagingBytes(w, pw, ph, params), false});
     return plan;
+}
+
+size_t RaeStagingBytes(const RaeWeights& weights, int paddedWidth, int paddedHeight, const DenoiserParams& params) {
+    const size_t element = params.precision == Precision::Fp16 ? 2 : 4;
+    const size_t pixels = size_t(paddedWidth) * size_t(paddedHeight);
+    const size_t transfers = StagingAlign(pixels * size_t(weights.inChannels) * element) + StagingAlign(pixels * 3 * element);
+    return std::min(transfers, params.transferRingBytes);
 }
 
 }  // namespace fovrt

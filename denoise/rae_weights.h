@@ -96,7 +96,12 @@ std::vector<RaeTensorSlot> RaeTensorLayout(const RaeWeights& weights, int padded
 const RaeTensorSlot& FindRaeSlot(const std::vector<RaeTensorSlot>& layout, const std::string& name);
 
 // Every buffer the rae variant holds for one eye at W×H: each tensor of RaeTensorLayout (the
-// hidden state's A/B pairs as history), the weights, and the host-visible staging.
+// hidden state's A/B pairs as history; 2 bytes a value with denoise.precision = fp16), the
+// weights, and the host-visible staging ring.
 std::vector<BufferPlan> PlanRaeMemory(int width, int height, const DenoiserParams& params);
+// The staging ring of the rae variant at the padded size: the input's upload and the output's
+// download in the activations' storage, each 16-byte aligned, or DenoiserParams::transferRingBytes
+// if smaller (vk/transfer_ring.h streams a frame through it).
+size_t RaeStagingBytes(const RaeWeights& weights, int paddedWidth, int paddedHeight, const DenoiserParams& params);
 
 }  // namespace fovrt

@@ -66,8 +66,8 @@ TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
         {"two-history-hysteresis", 427.68},
         {"two-history-stable-hysteresis", 443.68},
         {"two-history-asvgf-stable-hysteresis", 457.01},
-        {"rae", 432.49},
-        {"rae-spp", 440.55},
+        {"rae", 395.86},
+        {"rae-spp", 399.89},
     };
     const int w = 2064, h = 2208;
     const double pixels = double(w) * double(h);

@@ -145,3 +145,35 @@ TEST_CASE("rae on Vulkan: denoised frames follow the reference, and a camera cut
     CHECK(passes == std::vector<std::string>{"rae_features", "upload", "rae_encoder", "rae_decoder", "download",
                                              "rae_remodulate"});
 }
+
+// The staging ring (vk/transfer_ring.h): frames streamed through a ring far smaller than their
+// input and output give the bytes of frames submitted at once, fp32 and fp16 activations.
+TEST_CASE("rae on Vulkan: a frame streamed through a small staging ring equals one submit", "[vulkan][rae]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
+        if (precision == Precision::Fp16 && !TestContext()->supports16BitStorage()) continue;
+        INFO((precision == Precision::Fp16 ? "fp16" : "fp32"));
+        const DenoiserParams whole = GoldenParams(precision);
+        DenoiserParams streamed = whole;
+        streamed.transferRingBytes = 1000;
+        RaeVulkanDenoiser a("rae-spp", TestContext(), whole), b("rae-spp", TestContext(), streamed);
+        Pcg32 rng(5);
+        for (int frame = 0; frame < 3; ++frame) {
+            FrameInputs f;
+            f.Allocate(37, 21);
+            for (int y = 0; y < 21; ++y)
+                for (int x = 0; x < 37; ++x) {
+                    f.direct(x, y) = vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+                    f.albedo(x, y) = vec3(0.6f);
+                    f.normal(x, y) = vec3(0, 0, 1);
+                    f.linearDepth(x, y) = 3.0f;
+                    f.sampleCount(x, y) = uint16_t(1 + y % 4);
+                }
+            Plane<vec3> outA, outB;
+            a.Denoise(f, outA);
+            b.Denoise(f, outB);
+            REQUIRE(outA.size() == outB.size());
+            CHECK(std::equal(outA.data(), outA.data() + outA.size(), outB.data()));
+        }
+    }
+}

@@ -11,6 +11,7 @@
 #include "denoise/reference/rae_net.h"
 #include "shaders/push_constants.h"
 #include "shaders/shared_constants.h"
+#include "vk/transfer_ring.h"
 
 namespace fovrt {
 namespace {
@@ -23,7 +24,7 @@ uint32_t Groups(int n, int per) { return uint32_t((n + per - 1) / per); }
 RaeVulkanDenoiser::RaeVulkanDenoiser(std::string name, std::shared_ptr<VulkanContext> context,
                                      const DenoiserParams& params)
     : name_(std::move(name)), context_(std::move(context)), weights_(SharedRaeWeights(params)),
-      fp16_(params.precision == Precision::Fp16), slot_(*context_), timestamps_(*context_, 8) {
+      params_(params), fp16_(params.precision == Precision::Fp16), slot_(*context_), timestamps_(*context_, 8) {
     if (fp16_ && !context_->supports16BitStorage())
         Fail("rae: denoise.precision = fp16 needs 16-bit storage, which {} lacks", context_->deviceName());
     // Weights: each conv's [out][in][3][3], then its bias.
@@ -58,8 +59,8 @@ void RaeVulkanDenoiser::Allocate(int pw, int ph) {
     conv_.ResetSets();
     pool_.ResetSets();
     activations_ = context_->allocator().CreateBuffer("rae.activations", floats * element);
-    const size_t stagingBytes = size_t(pw) * size_t(ph) * size_t(weights_->inChannels + 3) * 4;
-    staging_ = context_->allocator().CreateBuffer("rae.staging", stagingBytes, MemoryUsage::Staging);
+    staging_ = context_->allocator().CreateBuffer("rae.staging", RaeStagingBytes(*weights_, pw, ph, params_),
+                                                  MemoryUsage::Staging);
     const Buffer* convBuffers[RAE_CONV_BINDINGS] = {};
     convBuffers[RAE_CONV_B_ACT] = &activations_;
     convBuffers[RAE_CONV_B_WEIGHTS] = &weightBuffer_;
@@ -142,40 +143,37 @@ void RaeVulkanDenoiser::Forward(const Tensor& input, Tensor& out) {
     const RaeTensorSlot& o = Slot("rae.output");
     const size_t element = fp16_ ? 2 : 4;
     CommandRecorder rec(*context_, slot_, &timestamps_);
+    TransferRing transfers(rec, staging_);
     rec.BeginPass("upload");
     if (needsClear_) {  // a reset: the previous hidden side reads zeros
         rec.Fill(activations_, 0u);
         rec.Barrier();
         needsClear_ = false;
     }
+    FOVRT_CHECK(in.offset == 0);  // the upload fills activations_ from its start
     if (fp16_) {
         std::vector<uint16_t> half(input.data.size());
         for (size_t i = 0; i < half.size(); ++i) half[i] = glm::packHalf1x16(input.data[i]);
-        rec.Upload(half.data(), half.size() * 2, staging_, 0, activations_);  // rae.input is at offset 0
+        transfers.Upload(half.data(), half.size() * 2, activations_);
     } else {
-        rec.Upload(input.data.data(), input.Bytes(), staging_, 0, activations_);
+        transfers.Upload(input.data.data(), input.Bytes(), activations_);
     }
     rec.Barrier();
     rec.EndPass();
     RecordNetwork(rec);
+    out = Tensor(3, o.height, o.width);
+    std::vector<uint16_t> halfOut(fp16_ ? out.data.size() : 0);
     rec.BeginPass("download");
-    const VkBufferCopy region{o.offset * element, 0, o.Floats() * element};
-    vkCmdCopyBuffer(rec.commandBuffer(), activations_.handle(), staging_.handle(), 1, &region);
-    rec.Barrier();
+    if (fp16_)
+        transfers.Download(activations_, halfOut.size() * 2, halfOut.data(), o.offset * element);
+    else
+        transfers.Download(activations_, out.Bytes(), out.data.data(), o.offset * element);
     rec.EndPass();
-    (void)in;
-    rec.Submit();
+    transfers.Submit();
     timings_.clear();
     if (timestamps_.enabled())
         for (const auto& [pass, ms] : timestamps_.Results()) timings_.push_back({pass, ms});
-    out = Tensor(3, o.height, o.width);
-    const char* mapped = static_cast<const char*>(staging_.mapped());
-    if (fp16_) {
-        const uint16_t* h = reinterpret_cast<const uint16_t*>(mapped);
-        for (size_t i = 0; i < out.data.size(); ++i) out.data[i] = glm::unpackHalf1x16(h[i]);
-    } else {
-        std::memcpy(out.data.data(), mapped, out.Bytes());
-    }
+    for (size_t i = 0; i < halfOut.size(); ++i) out.data[i] = glm::unpackHalf1x16(halfOut[i]);
     parity_ ^= 1;
 }
 

@@ -54,6 +54,7 @@ private:
     std::string name_;
     std::shared_ptr<VulkanContext> context_;
     std::shared_ptr<const RaeWeights> weights_;
+    DenoiserParams params_;
     bool fp16_ = false;
     std::vector<uint32_t> weightOffsets_, biasOffsets_;  // per conv, in floats of the weight buffer
     int paddedWidth_ = 0, paddedHeight_ = 0;

@@ -27,12 +27,12 @@ void TransferRing::Upload(const void* data, size_t bytes, Buffer& dst) {
     }
 }
 
-void TransferRing::Download(const Buffer& src, size_t bytes, void* out) {
+void TransferRing::Download(const Buffer& src, size_t bytes, void* out, size_t srcOffset) {
     char* to = static_cast<char*>(out);
     for (size_t done = 0; done < bytes;) {
         const size_t piece = std::min(bytes - done, Room());
         landings_.push_back({offset_, piece, to + done});
-        offset_ = recorder_.Download(src, piece, ring_, offset_, done);
+        offset_ = recorder_.Download(src, piece, ring_, offset_, srcOffset + done);
         done += piece;
     }
 }

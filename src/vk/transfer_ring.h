@@ -26,9 +26,9 @@ public:
 
     // Copies `bytes` of host memory into `dst` (from offset 0).
     void Upload(const void* data, size_t bytes, Buffer& dst);
-    // Copies `bytes` of `src` (from offset 0) into host memory at `out`, which holds them once
+    // Copies `bytes` of `src` from `srcOffset` into host memory at `out`, which holds them once
     // Submit() has returned.
-    void Download(const Buffer& src, size_t bytes, void* out);
+    void Download(const Buffer& src, size_t bytes, void* out, size_t srcOffset = 0);
     // Submits the rest and waits; every download has landed. Call instead of the recorder's Submit().
     void Submit();
 
