@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <limits>
 #include <tuple>
@@ -201,6 +202,44 @@ TEST_CASE("photometry: sRGB, linear and absolute values to cd/m², clamped to th
     CHECK(absolute.Luminance(std::numeric_limits<float>::quiet_NaN()) == 0.005f);
     CHECK(srgb.Luminance(std::numeric_limits<float>::infinity()) == Approx(100.0));
     CHECK(VdpBlackLevel(200.0, 1000.0, 250.0) == Approx(0.2 + 250.0 / kPiD * 0.005));
+}
+
+TEST_CASE("integer codes through VdpCodeLuminance's tables equal VdpLuminance of their values bit for bit",
+          "[vdp]") {
+    // Every code of both bit depths, on each EOTF, grey (1 and 2 channels) and RGB (3 and 4): the
+    // value a reader of floats would see (code·(65535/(2^b−1)) / 65535) through VdpLuminance.
+    const VdpPhotometry photometries[] = {
+        {100.0, 0.1, VdpEotf::Srgb}, {200.0, 0.6, VdpEotf::Linear}, {1000.0, 0.005, VdpEotf::Absolute}};
+    for (const VdpPhotometry& photometry : photometries)
+        for (const int bits : {8, 16}) {
+            const uint32_t codes = 1u << bits, widen = 65535u / (codes - 1u);
+            const int w = 256, h = int(codes) / w;
+            auto value = [&](uint32_t c) { return float(c * widen) / 65535.0f; };
+            for (const int channels : {1, 2, 3, 4}) {
+                // Pixel i: code i on R (and grey), rotated codes on G and B, alpha the largest code.
+                std::vector<uint16_t> c16(size_t(codes) * size_t(channels));
+                Plane<vec3> rgb(w, h);
+                for (uint32_t i = 0; i < codes; ++i) {
+                    const uint32_t g = (i * 7919u) % codes, b = (i * 104729u + 13u) % codes;
+                    const uint32_t pixel[4] = {i, channels < 3 ? codes - 1 : g, b, codes - 1};
+                    for (int k = 0; k < channels; ++k) c16[size_t(i) * size_t(channels) + size_t(k)] = uint16_t(pixel[k]);
+                    rgb[i] = channels < 3 ? vec3(value(i)) : vec3(value(i), value(g), value(b));
+                }
+                const VdpCodeLuminance table(photometry, bits);
+                Plane<float> looked;
+                if (bits == 8) {
+                    const std::vector<uint8_t> c8(c16.begin(), c16.end());
+                    looked = table.Image(c8.data(), w, h, channels);
+                } else {
+                    looked = table.Image(c16.data(), w, h, channels);
+                }
+                const Plane<float> computed = VdpLuminance(rgb, photometry);
+                size_t differing = 0;
+                for (size_t i = 0; i < computed.size(); ++i) differing += looked[i] != computed[i];
+                INFO(bits << "-bit, " << channels << " channel(s), EOTF " << int(photometry.eotf));
+                CHECK(differing == 0);
+            }
+        }
 }
 
 TEST_CASE("the CSF table reproduces the model at its nodes and interpolates between", "[vdp]") {

@@ -15,6 +15,7 @@
 #include <string>
 #include <type_traits>
 #include <unistd.h>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -157,17 +158,18 @@ void RunVdp(const VdpCommandOptions& o) {
     refPhotometry.eotf = SequenceEotf(refSeq, eotf);
 
     std::vector<Plane<float>> test, reference;
-    size_t clampedTest = 0, clampedRef = 0;
+    VdpLuminanceReader testReader(testSeq, testPhotometry, o.layer, o.clampNegative),
+        refReader(refSeq, refPhotometry, o.layer, o.clampNegative);
     for (size_t f = 0; f < size_t(frames); ++f) {
-        const Plane<vec3> t = ReadVdpFrame(testSeq, f, o.layer, o.clampNegative, clampedTest),
-                          r = ReadVdpFrame(refSeq, f, o.layer, o.clampNegative, clampedRef);
+        Plane<float> t = testReader.Read(f), r = refReader.Read(f);
         const int w0 = f == 0 ? r.width() : reference[0].width(), h0 = f == 0 ? r.height() : reference[0].height();
         if (t.width() != w0 || t.height() != h0 || r.width() != w0 || r.height() != h0)
             Fail("{} ({}x{}) and {} ({}x{}): frames must all be {}x{}", testSeq.files[f].string(), t.width(),
                  t.height(), refSeq.files[f].string(), r.width(), r.height(), w0, h0);
-        test.push_back(VdpLuminance(t, testPhotometry));
-        reference.push_back(VdpLuminance(r, refPhotometry));
+        test.push_back(std::move(t));
+        reference.push_back(std::move(r));
     }
+    const size_t clampedTest = testReader.clamped(), clampedRef = refReader.clamped();
     const int width = reference[0].width(), height = reference[0].height();
     if (o.ppd) display.geometry = VdpGeometry::FromPixelsPerDegree(*o.ppd);
     if (o.fov) {
