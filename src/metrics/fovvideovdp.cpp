@@ -70,11 +70,11 @@ private:
     std::vector<std::unique_ptr<FrameWorkspace>> free_;
 };
 
-// Per-row working arrays of the band loop (one set per row task).
+// Per-row working arrays of the band loop.
 struct RowScratch {
     std::vector<float> values, log2S, log2D;
     VdpCsfAxisRow rho, luminance, eccentricity;
-    explicit RowScratch(size_t n) : values(n), log2S(n), log2D(n) {}
+    void Resize(size_t n) { values.resize(n), log2S.resize(n), log2D.resize(n); }
 };
 
 // Equal counts of equal-size frames, a frame rate for video, one fixation or one per frame.
@@ -214,7 +214,10 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
             metrics_detail::ParallelRows(h, [&](int y) {
                 const size_t row = size_t(y) * size_t(w), n = size_t(w);
                 const float gx = gazeDir.x, gy = gazeDir.y, rho = rhoBand, pool = beta;  // locals: no aliasing
-                RowScratch s(n);
+                // Per thread, not per row: a row runs to its end on its thread (nothing in it waits on
+                // other tasks), and the arrays keep their memory from row to row.
+                thread_local RowScratch s;
+                s.Resize(n);
                 csf_[0].LocateRow(VdpCsfTable::AxisName::Luminance, &adapt[row], n, s.luminance);
                 if (options.foveated) {
                     const BandGeometry& g = bandGeometry[size_t(b)];

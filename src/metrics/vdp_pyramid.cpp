@@ -43,10 +43,17 @@ std::vector<int> ExpandSources(int n, int inCount) {
 }  // namespace
 
 Plane<float> VdpGaussReduce(const Plane<float>& x) {
+    Plane<float> out, rows;
+    VdpGaussReduce(x, out, rows);
+    return out;
+}
+
+void VdpGaussReduce(const Plane<float>& x, Plane<float>& out, Plane<float>& rows) {
     const int w = x.width(), h = x.height();
     const int h2 = (h + 1) / 2, w2 = (w + 1) / 2;
     const bool oddRule = (h % 2) == 1;  // the reference tests the height for both directions
-    Plane<float> rows(w, h2), out(w2, h2);
+    rows.ResizeForOverwrite(w, h2);  // every pixel of both is written below
+    out.ResizeForOverwrite(w2, h2);
     // Vertical pass row by row (the same sums as Reduce1D down each column).
     metrics_detail::ParallelRows(h2, [&](int i) {
         float* dst = &rows(0, i);
@@ -66,20 +73,19 @@ Plane<float> VdpGaussReduce(const Plane<float>& x) {
         }
     });
     metrics_detail::ParallelRows(h2, [&](int r) { Reduce1D(&rows(0, r), w, 1, &out(0, r), 1, oddRule); });
-    return out;
 }
 
 Plane<float> VdpGaussExpand(const Plane<float>& x, int w, int h) {
-    Plane<float> out;
-    VdpGaussExpand(x, w, h, out);
+    Plane<float> out, rows;
+    VdpGaussExpand(x, w, h, out, rows);
     return out;
 }
 
-void VdpGaussExpand(const Plane<float>& x, int w, int h, Plane<float>& out) {
+void VdpGaussExpand(const Plane<float>& x, int w, int h, Plane<float>& out, Plane<float>& rows) {
     const std::vector<int> srcRow = ExpandSources(h, x.height());
     const std::vector<int> srcCol = ExpandSources(w, x.width());
-    Plane<float> rows(x.width(), h);
-    out.ResizeForOverwrite(w, h);  // every pixel is written below
+    rows.ResizeForOverwrite(x.width(), h);  // every pixel of both is written below
+    out.ResizeForOverwrite(w, h);
     metrics_detail::ParallelRows(h, [&](int r) {
         float* dst = &rows(0, r);
         std::fill(dst, dst + x.width(), 0.0f);
@@ -135,28 +141,28 @@ void VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingIm
     const size_t n = images.size();
     pyr.contrast.resize(size_t(bands));
     pyr.adaptation.resize(size_t(bands));
+    pyr.scratch.resize(size_t(bands));
     std::vector<const Plane<float>*> level = images;  // band 0 reads the inputs themselves
-    std::vector<Plane<float>> reduced(n), next(n);
-    Plane<float> adaptingExpanded, expanded;  // reused across bands (they only shrink)
     for (int b = 0; b < bands; ++b) {
         const int w = level[0]->width(), h = level[0]->height();
-        for (size_t i = 0; i < n; ++i) next[i] = VdpGaussReduce(*level[i]);
-        VdpGaussExpand(next[size_t(adaptingImage)], w, h, adaptingExpanded);
+        VdpContrastPyramid::BandScratch& s = pyr.scratch[size_t(b)];
+        s.next.resize(n);
+        for (size_t i = 0; i < n; ++i) VdpGaussReduce(*level[i], s.next[i], s.reduceRows);
+        VdpGaussExpand(s.next[size_t(adaptingImage)], w, h, s.expandedAdapting, s.expandRows);
         Plane<float>& adapt = pyr.adaptation[size_t(b)];
         adapt.ResizeForOverwrite(w, h);
-        for (size_t p = 0; p < adapt.size(); ++p) adapt[p] = std::max(adaptingExpanded[p], 0.1f);
+        for (size_t p = 0; p < adapt.size(); ++p) adapt[p] = std::max(s.expandedAdapting[p], 0.1f);
         const float gain = b == 0 ? 1.0f : 2.0f;
         pyr.contrast[size_t(b)].resize(n);
         for (size_t i = 0; i < n; ++i) {
-            const Plane<float>* e = &adaptingExpanded;
-            if (i != size_t(adaptingImage)) VdpGaussExpand(next[i], w, h, expanded), e = &expanded;
+            const Plane<float>* e = &s.expandedAdapting;
+            if (i != size_t(adaptingImage)) VdpGaussExpand(s.next[i], w, h, s.expanded, s.expandRows), e = &s.expanded;
             const Plane<float>& l = *level[i];
             Plane<float>& c = pyr.contrast[size_t(b)][i];
             c.ResizeForOverwrite(w, h);
             for (size_t p = 0; p < c.size(); ++p) c[p] = std::min((l[p] - (*e)[p]) / adapt[p], 1000.0f) * gain;
         }
-        reduced.swap(next);
-        for (size_t i = 0; i < n; ++i) level[i] = &reduced[i];
+        for (size_t i = 0; i < n; ++i) level[i] = &s.next[i];
     }
 }
 
