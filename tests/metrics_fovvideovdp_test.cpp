@@ -53,6 +53,38 @@ TEST_CASE("the vectorised metric keeps the scalar metric's JOD within 1e-4 on ev
     }
 }
 
+TEST_CASE("a sequence read and scored in chunks gives Score's result on the whole sequence, bit for bit", "[vdp]") {
+    // Every video golden case (moving fixations, 60 fps filters reaching 15 frames back, HDR) and
+    // a still, with difference maps, in chunks of 1 frame up to longer than the sequence.
+    for (const GoldenCase& c : GoldenCases()) {
+        if (c.frames == 1 && c.name != GoldenCases()[1].name) continue;
+        const Frames frames = MakeFrames(c);
+        const VdpPhotometry photometry = PhotometryOf(c);
+        VdpOptions options = OptionsOf(c);
+        options.diffMaps = true;
+        const FovVideoVdp vdp(GeometryOf(c));
+        const VdpResult whole = ScoreCase(c, true);
+        for (const int chunk : {1, 7, 16, 1000}) {
+            int asked = 0;  // frames are asked for once each, in order
+            auto read = [&](int f, Plane<float>& test, Plane<float>& reference) {
+                CHECK(f == asked++);
+                test = VdpLuminance(frames.test[size_t(f)], photometry);
+                reference = VdpLuminance(frames.reference[size_t(f)], photometry);
+            };
+            const VdpResult r = vdp.ScoreSequence(c.frames, read, c.fps, options, chunk);
+            INFO(c.name << ", chunks of " << chunk);
+            CHECK(asked == c.frames);
+            CHECK(r.frames == whole.frames);
+            CHECK(r.q == whole.q);
+            CHECK(r.jod == whole.jod);
+            CHECK(r.jodSustained == whole.jodSustained);
+            CHECK(r.jodTransient == whole.jodTransient);
+            REQUIRE(r.diffMaps.size() == whole.diffMaps.size());
+            for (size_t f = 0; f < r.diffMaps.size(); ++f) CHECK(r.diffMaps[f].vector() == whole.diffMaps[f].vector());
+        }
+    }
+}
+
 namespace {
 
 // A still 160×90 frame pair whose test has `noise` in the box [x0, x1) × [y0, y1) (whole frame
@@ -229,9 +261,9 @@ TEST_CASE("integer codes through VdpCodeLuminance's tables equal VdpLuminance of
                 Plane<float> looked;
                 if (bits == 8) {
                     const std::vector<uint8_t> c8(c16.begin(), c16.end());
-                    looked = table.Image(c8.data(), w, h, channels);
+                    table.Image(c8.data(), w, h, channels, looked);
                 } else {
-                    looked = table.Image(c16.data(), w, h, channels);
+                    table.Image(c16.data(), w, h, channels, looked);
                 }
                 const Plane<float> computed = VdpLuminance(rgb, photometry);
                 size_t differing = 0;

@@ -89,14 +89,17 @@ VdpLuminanceReader::VdpLuminanceReader(const VdpSequence& sequence, const VdpPho
                                        std::string layer, bool clampNegative)
     : sequence_(sequence), photometry_(photometry), layer_(std::move(layer)), clampNegative_(clampNegative) {}
 
-Plane<float> VdpLuminanceReader::Read(size_t index) {
-    if (!sequence_.png) return VdpLuminance(ReadVdpFrame(sequence_, index, layer_, clampNegative_, clamped_), photometry_);
+void VdpLuminanceReader::Read(size_t index, Plane<float>& out) {
+    if (!sequence_.png) {
+        out = VdpLuminance(ReadVdpFrame(sequence_, index, layer_, clampNegative_, clamped_), photometry_);
+        return;
+    }
     // A PNG's codes are finite values in [0, 1]: nothing for ReadVdpFrame's checks to find.
     const PngPixels p = ReadPngPixels(sequence_.files[index]);
     std::optional<VdpCodeLuminance>& table = p.bits == 16 ? codes16_ : codes8_;
     if (!table) table.emplace(photometry_, p.bits);
-    return p.bits == 16 ? table->Image(p.words(), p.width, p.height, p.channels)
-                        : table->Image(p.bytes(), p.width, p.height, p.channels);
+    if (p.bits == 16) table->Image(p.words(), p.width, p.height, p.channels, out);
+    else table->Image(p.bytes(), p.width, p.height, p.channels, out);
 }
 
 std::vector<VdpFixation> ReadVdpGaze(const std::string& path, int frames, int width, int height) {

@@ -45,7 +45,8 @@ class VdpLuminanceReader {
 public:
     VdpLuminanceReader(const VdpSequence& sequence, const VdpPhotometry& photometry, std::string layer,
                        bool clampNegative);
-    Plane<float> Read(size_t index);
+    // Frame `index` into `out`, reusing its memory when it has the frame's size (PNG frames).
+    void Read(size_t index, Plane<float>& out);
     size_t clamped() const { return clamped_; }  // negative pixels set to 0 so far
 
 private:

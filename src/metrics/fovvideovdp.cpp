@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <mutex>
 
@@ -70,6 +71,33 @@ private:
     std::vector<std::unique_ptr<FrameWorkspace>> free_;
 };
 
+}  // namespace
+
+// What Score keeps between calls (FovVideoVdp::cache_).
+struct VdpScoreCache {
+    WorkspacePool workspaces;
+    // The band geometry of the last frame size a foveated Score saw.
+    std::shared_ptr<const std::vector<BandGeometry>> BandGeometryFor(const VdpGeometry& g, int width, int height,
+                                                                     int bands) {
+        std::lock_guard lock(mutex_);
+        if (!bandGeometry_ || width != width_ || height != height_ || int(bandGeometry_->size()) != bands) {
+            auto made = std::make_shared<std::vector<BandGeometry>>();
+            int w = width, h = height;
+            for (int b = 0; b < bands; ++b, w = (w + 1) / 2, h = (h + 1) / 2)
+                made->push_back(MakeBandGeometry(g, w, h, width, height));
+            bandGeometry_ = std::move(made), width_ = width, height_ = height;
+        }
+        return bandGeometry_;
+    }
+
+private:
+    std::mutex mutex_;
+    int width_ = 0, height_ = 0;
+    std::shared_ptr<const std::vector<BandGeometry>> bandGeometry_;
+};
+
+namespace {
+
 // Per-row working arrays of the band loop.
 struct RowScratch {
     std::vector<float> values, log2S, log2D;
@@ -115,6 +143,12 @@ double PoolToJod(const VdpResult& r, const VdpParams& params, bool useSustained,
     return VdpJod(std::pow(frameSum / r.frames, 1.0 / params.betaT), params);
 }
 
+void PoolAll(VdpResult& r, const VdpParams& params) {
+    r.jod = PoolToJod(r, params, true, true);
+    r.jodSustained = PoolToJod(r, params, true, false);
+    r.jodTransient = r.channels > 1 ? PoolToJod(r, params, false, true) : 10.0;
+}
+
 }  // namespace
 
 FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
@@ -122,7 +156,8 @@ FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
       params_(params),
       csf_{VdpCsfTable(kVdpChannelOmega[0], params.csfSigma, params.kCm),
            VdpCsfTable(kVdpChannelOmega[1], params.csfSigma, params.kCm)},
-      sensitivityGain_(float(std::pow(10.0, params.sensitivityCorrection / 20.0))) {}
+      sensitivityGain_(float(std::pow(10.0, params.sensitivityCorrection / 20.0))),
+      cache_(std::make_shared<VdpScoreCache>()) {}
 
 float FovVideoVdp::Sensitivity(int channel, float rho, float luminance, float eccentricity) const {
     return csf_[channel].Sensitivity(rho, luminance, eccentricity) * sensitivityGain_;
@@ -156,17 +191,11 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     if (video) filters = MakeVdpTemporalFilters(fps, params_);
 
     // Per band: pixel geometry (foveated) or the CSF sliced at the band's frequency (not foveated).
-    std::vector<BandGeometry> bandGeometry;
+    std::shared_ptr<const std::vector<BandGeometry>> bandGeometry;
+    if (options.foveated) bandGeometry = cache_->BandGeometryFor(geometry_, width, height, bands);
     std::vector<VdpCsfTable::LuminanceSlice> slices;  // [band * 2 + channel]
-    {
-        int w = width, h = height;
-        for (int b = 0; b < bands; ++b) {
-            if (options.foveated) bandGeometry.push_back(MakeBandGeometry(geometry_, w, h, width, height));
-            for (int c = 0; c < 2; ++c)
-                slices.push_back(csf_[c].Slice(float(result.bandFrequencies[size_t(b)]), 0.0f));
-            w = (w + 1) / 2, h = (h + 1) / 2;
-        }
-    }
+    for (int b = 0; b < bands; ++b)
+        for (int c = 0; c < 2; ++c) slices.push_back(csf_[c].Slice(float(result.bandFrequencies[size_t(b)]), 0.0f));
     auto gaze = [&](int f) {
         const VdpFixation fix = fixCount == 0   ? VdpFixation{float(width / 2), float(height / 2)}
                                 : fixCount == 1 ? options.fixations[0]
@@ -180,7 +209,7 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     const float beta = float(params_.beta);
     const float channelWeight[2] = {1.0f, float(params_.wTransient)};
 
-    WorkspacePool workspaces;
+    WorkspacePool& workspaces = cache_->workspaces;
     tbb::parallel_for(first, frames, [&](int f) {
         const size_t out = size_t(f - first);  // the frame's place in the result
         std::unique_ptr<FrameWorkspace> workspace = workspaces.Take();
@@ -220,7 +249,7 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
                 s.Resize(n);
                 csf_[0].LocateRow(VdpCsfTable::AxisName::Luminance, &adapt[row], n, s.luminance);
                 if (options.foveated) {
-                    const BandGeometry& g = bandGeometry[size_t(b)];
+                    const BandGeometry& g = (*bandGeometry)[size_t(b)];
                     const float* mag = &g.magnification[row];
                     for (size_t x = 0; x < n; ++x) s.values[x] = rho * mag[x];
                     csf_[0].LocateRow(VdpCsfTable::AxisName::Rho, s.values.data(), n, s.rho);
@@ -269,10 +298,54 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
         workspaces.Give(std::move(workspace));
     });
 
-    result.jod = PoolToJod(result, params_, true, true);
-    result.jodSustained = PoolToJod(result, params_, true, false);
-    result.jodTransient = video ? PoolToJod(result, params_, false, true) : 10.0;
+    PoolAll(result, params_);
     return result;
+}
+
+VdpResult FovVideoVdp::ScoreSequence(int frames, const FrameReader& read, double fps, const VdpOptions& options,
+                                     int chunkFrames) const {
+    if (frames < 1) Fail("FovVideoVDP: a sequence of {} frames", frames);
+    if (frames > 1 && !(fps > 0)) Fail("FovVideoVDP: {} frames need a frame rate > 0 (got {})", frames, fps);
+    if (options.firstScoredFrame != 0) Fail("FovVideoVDP: a sequence read in chunks is scored from its first frame");
+    const size_t fixCount = options.fixations.size();
+    if (options.foveated && fixCount > 1 && fixCount != size_t(frames))
+        Fail("FovVideoVDP: {} fixations for {} frames (need 1 or one per frame)", fixCount, frames);
+    // A chunk of a video holds two frames at least, with the frames before it that the temporal
+    // filters of its first frame reach (one at least): never a single frame, which Score would
+    // take for a still.
+    chunkFrames = std::max(chunkFrames, frames > 1 ? 2 : 1);
+    const int context = frames > 1 ? std::max(VdpTemporalFilterLength(fps), 2) - 1 : 0;
+
+    std::vector<Plane<float>> test, reference;  // the window: frames [windowStart, windowStart + size)
+    int windowStart = 0;
+    VdpResult all;
+    for (int start = 0; start < frames; start += chunkFrames) {
+        const int end = std::min(start + chunkFrames, frames), keepFrom = std::max(start - context, 0);
+        // Frames before keepFrom leave the window; their planes go to its end for the new frames.
+        const auto dropped = std::ptrdiff_t(keepFrom - windowStart);
+        std::rotate(test.begin(), test.begin() + dropped, test.end());
+        std::rotate(reference.begin(), reference.begin() + dropped, reference.end());
+        test.resize(size_t(end - keepFrom));
+        reference.resize(size_t(end - keepFrom));
+        windowStart = keepFrom;
+        for (int f = start; f < end; ++f) read(f, test[size_t(f - keepFrom)], reference[size_t(f - keepFrom)]);
+
+        VdpOptions chunk = options;
+        chunk.firstScoredFrame = start - keepFrom;
+        if (fixCount > 1)
+            chunk.fixations.assign(options.fixations.begin() + keepFrom, options.fixations.begin() + end);
+        VdpResult r = Score(test, reference, fps, chunk);
+        if (start == 0) {
+            all = std::move(r);
+            continue;
+        }
+        // Per-frame results follow one another (VdpResult::q is frame-major).
+        all.frames += r.frames;
+        all.q.insert(all.q.end(), r.q.begin(), r.q.end());
+        for (Plane<float>& map : r.diffMaps) all.diffMaps.push_back(std::move(map));
+    }
+    PoolAll(all, params_);
+    return all;
 }
 
 }  // namespace fovrt

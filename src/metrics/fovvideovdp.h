@@ -7,6 +7,8 @@
 // (vdp_display.h turns pixel values into it); geometry is the pixel's, at the frames' own size.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "core/image.h"
@@ -51,6 +53,8 @@ struct VdpResult {
     }
 };
 
+struct VdpScoreCache;  // fovvideovdp.cpp
+
 class FovVideoVdp {
 public:
     explicit FovVideoVdp(VdpGeometry geometry, VdpParams params = {});
@@ -59,6 +63,15 @@ public:
     // more than one frame (one frame is scored as an image, without temporal channels).
     VdpResult Score(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference,
                     double fps, const VdpOptions& options = {}) const;
+
+    // Score of a `frames`-long sequence that is never held whole: `read(f, test, reference)` fills
+    // frame f's planes (given back from earlier frames, to reuse their memory), asked for in order;
+    // frames are scored `chunkFrames` at a time with the frames before each chunk that its
+    // temporal filters reach. The result equals Score's on the whole sequence (options as there,
+    // firstScoredFrame 0), while memory holds one chunk and its filters' reach.
+    using FrameReader = std::function<void(int frame, Plane<float>& test, Plane<float>& reference)>;
+    VdpResult ScoreSequence(int frames, const FrameReader& read, double fps, const VdpOptions& options = {},
+                            int chunkFrames = 16) const;
 
     const VdpGeometry& geometry() const { return geometry_; }
     const VdpParams& params() const { return params_; }
@@ -71,6 +84,10 @@ private:
     VdpParams params_;
     VdpCsfTable csf_[2];
     float sensitivityGain_;
+    // Per-frame workspaces and per-band pixel geometry kept from one Score call to the next (and
+    // shared by copies; thread-safe), so a sequence scored in chunks, a stream or the variants of
+    // an experiment map memory and compute a tan per band pixel once, not per call.
+    std::shared_ptr<VdpScoreCache> cache_;
 };
 
 }  // namespace fovrt

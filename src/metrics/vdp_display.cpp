@@ -92,12 +92,11 @@ VdpCodeLuminance::VdpCodeLuminance(const VdpPhotometry& photometry, int bits) : 
 }
 
 template <typename Code>
-Plane<float> VdpCodeLuminance::Image(const Code* codes, int width, int height, int channels) const {
+void VdpCodeLuminance::Image(const Code* codes, int width, int height, int channels, Plane<float>& out) const {
     static_assert(std::is_same_v<Code, uint8_t> || std::is_same_v<Code, uint16_t>);
     if (int(sizeof(Code)) * 8 != bits_ || channels < 1 || channels > 4)
         Fail("VdpCodeLuminance: a {}-bit table for {}-bit codes, {} channels", bits_, sizeof(Code) * 8, channels);
-    Plane<float> out;
-    out.ResizeForOverwrite(width, height);
+    out.ResizeForOverwrite(width, height);  // every pixel is written below
     const size_t n = out.size(), stride = size_t(channels);
     if (channels < 3) {
         for (size_t i = 0; i < n; ++i) out[i] = grey_[codes[i * stride]];
@@ -107,10 +106,9 @@ Plane<float> VdpCodeLuminance::Image(const Code* codes, int width, int height, i
             out[i] = fovrt::Luminance(vec3(channel_[c[0]], channel_[c[1]], channel_[c[2]]));
         }
     }
-    return out;
 }
-template Plane<float> VdpCodeLuminance::Image(const uint8_t*, int, int, int) const;
-template Plane<float> VdpCodeLuminance::Image(const uint16_t*, int, int, int) const;
+template void VdpCodeLuminance::Image(const uint8_t*, int, int, int, Plane<float>&) const;
+template void VdpCodeLuminance::Image(const uint16_t*, int, int, int, Plane<float>&) const;
 
 VdpGeometry VdpGeometry::FromPixelsPerDegree(double ppd) {
     return {2.0 * std::tan(DegToRad(0.5 / ppd))};

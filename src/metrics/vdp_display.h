@@ -48,9 +48,10 @@ public:
     VdpCodeLuminance(const VdpPhotometry& photometry, int bits);  // bits: 8 or 16
     int bits() const { return bits_; }
     // A width × height image of `channels` codes per pixel (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA;
-    // alpha ignored); the codes' type is uint8_t for 8 bits, uint16_t for 16.
+    // alpha ignored) into `out`, reusing its memory when it has that size; the codes' type is
+    // uint8_t for 8 bits, uint16_t for 16.
     template <typename Code>
-    Plane<float> Image(const Code* codes, int width, int height, int channels) const;
+    void Image(const Code* codes, int width, int height, int channels, Plane<float>& out) const;
 
 private:
     int bits_;
