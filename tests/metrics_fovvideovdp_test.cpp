@@ -254,7 +254,8 @@ TEST_CASE("integer codes through VdpCodeLuminance's tables equal VdpLuminance of
                 for (uint32_t i = 0; i < codes; ++i) {
                     const uint32_t g = (i * 7919u) % codes, b = (i * 104729u + 13u) % codes;
                     const uint32_t pixel[4] = {i, channels < 3 ? codes - 1 : g, b, codes - 1};
-                    for (int k = 0; k < channels; ++k) c16[size_t(i) * size_t(channels) + size_t(k)] = uint16_t(pixel[k]);
+                    for (int k = 0; k < channels; ++k)
+                        c16[size_t(i) * size_t(channels) + size_t(k)] = uint16_t(pixel[k]);
                     rgb[i] = channels < 3 ? vec3(value(i)) : vec3(value(i), value(g), value(b));
                 }
                 const VdpCodeLuminance table(photometry, bits);

@@ -105,6 +105,42 @@ struct RowScratch {
     void Resize(size_t n) { values.resize(n), log2S.resize(n), log2D.resize(n); }
 };
 
+// Where each pixel of a foveated band's row lies for the CSF: its frequency (the band's scaled by
+// the pixel's magnification) in `rho` and its eccentricity from the gaze in `eccentricity`.
+FOVRT_VDP_ROW_CLONES void FoveatedRow(const float* magnification, const float* directionX, const float* directionY,
+                                      std::size_t n, float bandRho, float gazeX, float gazeY, float* rho,
+                                      float* eccentricity) {
+    for (std::size_t x = 0; x < n; ++x) rho[x] = bandRho * magnification[x];
+    for (std::size_t x = 0; x < n; ++x) {
+        const float ex = directionX[x] - gazeX, ey = directionY[x] - gazeY;
+        eccentricity[x] = std::sqrt(ex * ex + ey * ey);
+    }
+}
+
+// One row of one band and channel after the CSF: masking (VdpLog2MaskedDifferenceRow) with the
+// sensitivity correction added to log2 S, then Σ D^β (D^β in float per pixel, 0 where T = R:
+// VdpFastExp2 of −∞), summed in double over eight interleaved partial sums so the loop
+// vectorises; with `map`, adds mapGain·D to it.
+struct MaskingConstants {
+    float log2SensitivityGain, p, q, log2MaskGain, beta;
+};
+FOVRT_VDP_ROW_CLONES double MaskAndPoolRow(const float* test, const float* reference, float* log2S, std::size_t n,
+                                           MaskingConstants k, float* log2D, float* map, float mapGain) {
+    for (std::size_t x = 0; x < n; ++x) log2S[x] += k.log2SensitivityGain;
+    VdpLog2MaskedDifferenceRow(test, reference, log2S, n, k.p, k.q, k.log2MaskGain, log2D);
+    constexpr std::size_t kLanes = 8;
+    double lanes[kLanes] = {};
+    std::size_t x = 0;
+    for (; x + kLanes <= n; x += kLanes)
+        for (std::size_t l = 0; l < kLanes; ++l) lanes[l] += double(VdpFastExp2(k.beta * log2D[x + l]));
+    for (; x < n; ++x) lanes[0] += double(VdpFastExp2(k.beta * log2D[x]));
+    if (map)
+        for (std::size_t i = 0; i < n; ++i) map[i] += mapGain * VdpFastExp2(log2D[i]);
+    double sum = 0.0;
+    for (const double lane : lanes) sum += lane;
+    return sum;
+}
+
 // Equal counts of equal-size frames, a frame rate for video, one fixation or one per frame.
 void ValidateSequence(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference, double fps,
                       const VdpOptions& options) {
@@ -242,7 +278,6 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
             std::vector<double> rowSums(size_t(channels) * size_t(h), 0.0);
             metrics_detail::ParallelRows(h, [&](int y) {
                 const size_t row = size_t(y) * size_t(w), n = size_t(w);
-                const float gx = gazeDir.x, gy = gazeDir.y, rho = rhoBand, pool = beta;  // locals: no aliasing
                 // Per thread, not per row: a row runs to its end on its thread (nothing in it waits on
                 // other tasks), and the arrays keep their memory from row to row.
                 thread_local RowScratch s;
@@ -250,35 +285,21 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
                 csf_[0].LocateRow(VdpCsfTable::AxisName::Luminance, &adapt[row], n, s.luminance);
                 if (options.foveated) {
                     const BandGeometry& g = (*bandGeometry)[size_t(b)];
-                    const float* mag = &g.magnification[row];
-                    for (size_t x = 0; x < n; ++x) s.values[x] = rho * mag[x];
+                    FoveatedRow(&g.magnification[row], &g.directionX[row], &g.directionY[row], n, rhoBand, gazeDir.x,
+                                gazeDir.y, s.values.data(), s.log2D.data());
                     csf_[0].LocateRow(VdpCsfTable::AxisName::Rho, s.values.data(), n, s.rho);
-                    const float* dx = &g.directionX[row];
-                    const float* dy = &g.directionY[row];
-                    for (size_t x = 0; x < n; ++x) {
-                        const float ex = dx[x] - gx, ey = dy[x] - gy;
-                        s.values[x] = std::sqrt(ex * ex + ey * ey);
-                    }
-                    csf_[0].LocateRow(VdpCsfTable::AxisName::Eccentricity, s.values.data(), n, s.eccentricity);
+                    csf_[0].LocateRow(VdpCsfTable::AxisName::Eccentricity, s.log2D.data(), n, s.eccentricity);
                 }
                 for (int c = 0; c < channels; ++c) {
                     if (options.foveated) csf_[c].Log2Sensitivity(s.rho, s.luminance, s.eccentricity, n, s.log2S.data());
                     else csf_[c].Log2Sensitivity(slices[size_t(b) * 2 + size_t(c)], s.luminance, n, s.log2S.data());
-                    for (float& v : s.log2S) v += log2SensitivityGain;
-                    const float q = float(c == 0 ? params_.maskQSustained : params_.maskQTransient);
-                    VdpLog2MaskedDifferenceRow(&pyr.contrast[size_t(b)][size_t(2 * c)][row],
-                                               &pyr.contrast[size_t(b)][size_t(2 * c + 1)][row], s.log2S.data(), n, p, q,
-                                               log2MaskGain, s.log2D.data());
-                    // D^β (0 where T = R: VdpFastExp2 of −∞), in float per pixel, summed in double.
-                    for (size_t x = 0; x < n; ++x) s.values[x] = VdpFastExp2(pool * s.log2D[x]);
-                    double sum = 0.0;
-                    for (size_t x = 0; x < n; ++x) sum += double(s.values[x]);
-                    rowSums[size_t(c) * size_t(h) + size_t(y)] = sum;
-                    if (options.diffMaps) {
-                        const float gain = channelWeight[c] / bandGain;
-                        float* map = &diffBands[size_t(b)][row];
-                        for (size_t x = 0; x < n; ++x) map[x] += gain * VdpFastExp2(s.log2D[x]);
-                    }
+                    const MaskingConstants k{log2SensitivityGain, p,
+                                             float(c == 0 ? params_.maskQSustained : params_.maskQTransient),
+                                             log2MaskGain, beta};
+                    rowSums[size_t(c) * size_t(h) + size_t(y)] = MaskAndPoolRow(
+                        &pyr.contrast[size_t(b)][size_t(2 * c)][row], &pyr.contrast[size_t(b)][size_t(2 * c + 1)][row],
+                        s.log2S.data(), n, k, s.log2D.data(), options.diffMaps ? &diffBands[size_t(b)][row] : nullptr,
+                        channelWeight[c] / bandGain);
                 }
             });
             for (int c = 0; c < channels; ++c) {

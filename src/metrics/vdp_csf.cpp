@@ -175,9 +175,11 @@ namespace {
 
 // Locate's interpolant on a uniform grid g0 + i·step, for values already in the grid's domain:
 // i1 = ⌈(q − g0)/step⌉ clamped to [1, 31] (below the first node i1 = 1 with fraction 0 gives
-// Locate's i0 = i1 = 0), computed with truncation (no ceil call) so the loop vectorises.
+// Locate's i0 = i1 = 0), computed with truncation (no ceil call) so the loop vectorises; always
+// inlined, so it is compiled for each target of LocateRow.
 template <typename ToGrid>
-void LocateUniform(const float* values, std::size_t n, float lo, float hi, float g0, float step, ToGrid toGrid,
+[[gnu::always_inline]]
+inline void LocateUniform(const float* values, std::size_t n, float lo, float hi, float g0, float step, ToGrid toGrid,
                    int32_t* node, float* fraction) {
     constexpr int kLast = VdpCsfTable::kSize - 1;
     const float invStep = 1.0f / step, denominator = step + 0.000001f;
@@ -195,6 +197,7 @@ void LocateUniform(const float* values, std::size_t n, float lo, float hi, float
 
 }  // namespace
 
+FOVRT_VDP_ROW_CLONES
 void VdpCsfTable::LocateRow(AxisName axis, const float* values, std::size_t n, VdpCsfAxisRow& out) const {
     const Axis& a = AxisOf(axis);
     out.Resize(n);
@@ -207,6 +210,7 @@ void VdpCsfTable::LocateRow(AxisName axis, const float* values, std::size_t n, V
                       out.fraction.data());
 }
 
+FOVRT_VDP_ROW_CLONES
 void VdpCsfTable::Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow& luminance,
                                   const VdpCsfAxisRow& eccentricity, std::size_t n, float* out) const {
     constexpr std::size_t kRho = kSize, kLum = std::size_t(kSize) * kSize;  // strides in logS_
@@ -223,6 +227,7 @@ void VdpCsfTable::Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow&
     }
 }
 
+FOVRT_VDP_ROW_CLONES
 void VdpCsfTable::Log2Sensitivity(const LuminanceSlice& slice, const VdpCsfAxisRow& luminance, std::size_t n,
                                   float* out) const {
     for (std::size_t i = 0; i < n; ++i) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/vdp_fastmath.h"
+
 namespace fovrt {
 
 int VdpTemporalFilterLength(double fps) { return int(std::ceil(250.0 / (1000.0 / fps))); }
@@ -36,6 +38,7 @@ Plane<float> VdpFilterFrame(const std::vector<Plane<float>>& frames, int frame, 
     return out;
 }
 
+FOVRT_VDP_ROW_CLONES
 void VdpFilterFrameChannels(const std::vector<Plane<float>>& frames, int frame, const VdpTemporalFilters& filters,
                             Plane<float>& sustained, Plane<float>& transient) {
     const int w = frames[0].width(), h = frames[0].height();
