@@ -306,6 +306,84 @@ TEST_CASE("temporal filters: sustained sums to 1, transient is its scaled deriva
     CHECK(f.transient.back() == 0.0f);
 }
 
+namespace {
+
+// The 5-tap reduce and expand of one row, tap by tap with every bounds test (the form
+// VdpGaussReduce and VdpGaussExpand take at the edges; inside they skip the tests).
+constexpr float kTap[5] = {0.25f - 0.4f / 2.0f, 0.25f, 0.4f, 0.25f, 0.25f - 0.4f / 2.0f};
+
+std::vector<float> ReduceRowTapByTap(const std::vector<float>& in, bool oddRule) {
+    const int n = int(in.size()), m = (n + 1) / 2;
+    std::vector<float> out(size_t(m), 0.0f);
+    for (int i = 0; i < m; ++i)
+        for (int k = 0; k < 5; ++k)
+            if (const int j = 2 * i + k - 2; j >= 0 && j < n) out[size_t(i)] += kTap[k] * in[size_t(j)];
+    out[0] += in[0] * kTap[1] + in[n > 1 ? 1 : 0] * kTap[0];
+    if (oddRule) out[size_t(m - 1)] += in[size_t(n - 1)] * kTap[3] + in[size_t(std::max(n - 2, 0))] * kTap[4];
+    else out[size_t(m - 1)] += in[size_t(n - 1)] * kTap[4];
+    return out;
+}
+
+std::vector<float> ExpandRowTapByTap(const std::vector<float>& in, int n) {
+    const int inCount = int(in.size());
+    std::vector<int> src(size_t(n) + 4, -1);  // the zero-interleaved, edge-padded signal
+    for (int j = 0; 2 + 2 * j < n + 2 && j < inCount; ++j) src[size_t(2 + 2 * j)] = j;
+    src[0] = 0;
+    src[size_t(n + 4 - 2 + (n % 2))] = inCount - 1;
+    std::vector<float> out(size_t(n), 0.0f);
+    for (int c = 0; c < n; ++c)
+        for (int k = 0; k < 5; ++k)
+            if (const int j = src[size_t(c + k)]; j >= 0) out[size_t(c)] += 2.0f * kTap[k] * in[size_t(j)];
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("reduce and expand equal their tap-by-tap definition bit for bit along rows of every width", "[vdp]") {
+    // Two-row images (reduce) and one-row images (expand) of widths 2 to 41, odd and even, with
+    // values that make every tap count; the vertical pass of each, whose code has no fast path,
+    // is written out as the pyramid sums it.
+    for (int w = 2; w <= 41; ++w) {
+        Plane<float> image(w, 2);
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < w; ++x) image(x, y) = float(1.0 + 0.37 * x + 0.011 * x * x - 0.2 * y);
+        // Height 2 → 1 (even: the even end rule): taps 2, 3 inside, then 1, 0 (first row), 4 (last).
+        std::vector<float> column(static_cast<size_t>(w));
+        for (int x = 0; x < w; ++x) {
+            float v = 0.0f;
+            v += kTap[2] * image(x, 0);
+            v += kTap[3] * image(x, 1);
+            v += kTap[1] * image(x, 0);
+            v += kTap[0] * image(x, 1);
+            v += kTap[4] * image(x, 1);
+            column[size_t(x)] = v;
+        }
+        const Plane<float> reduced = VdpGaussReduce(image);
+        const std::vector<float> reducedRow = ReduceRowTapByTap(column, false);
+        REQUIRE(reduced.height() == 1);
+        for (int x = 0; x < reduced.width(); ++x) {
+            INFO("reduce " << w << "x2, x = " << x);
+            CHECK(reduced(x, 0) == reducedRow[size_t(x)]);
+        }
+
+        Plane<float> half((w + 1) / 2, 1);
+        for (int x = 0; x < half.width(); ++x) half(x, 0) = float(0.5 + 0.29 * x - 0.013 * x * x);
+        // Height 1 → 1: taps 0, 2 and 4 all read the one row.
+        std::vector<float> row(static_cast<size_t>(half.width()));
+        for (int x = 0; x < half.width(); ++x) {
+            float v = 0.0f;
+            for (const int k : {0, 2, 4}) v += 2.0f * kTap[k] * half(x, 0);
+            row[size_t(x)] = v;
+        }
+        const Plane<float> expanded = VdpGaussExpand(half, w, 1);
+        const std::vector<float> expandedRow = ExpandRowTapByTap(row, w);
+        for (int x = 0; x < w; ++x) {
+            INFO("expand to " << w << ", x = " << x);
+            CHECK(expanded(x, 0) == expandedRow[size_t(x)]);
+        }
+    }
+}
+
 TEST_CASE("a pyramid decomposed into an earlier frame's planes equals a fresh decomposition", "[vdp]") {
     const Frames still = MakeFrames(CaseNamed("still, noise, 20 ppd"));  // 160×90
     const Frames video = MakeFrames(CaseNamed("video, dynamic noise, 20 ppd"));  // 96×72

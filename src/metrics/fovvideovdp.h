@@ -71,7 +71,7 @@ public:
     // firstScoredFrame 0), while memory holds one chunk and its filters' reach.
     using FrameReader = std::function<void(int frame, Plane<float>& test, Plane<float>& reference)>;
     VdpResult ScoreSequence(int frames, const FrameReader& read, double fps, const VdpOptions& options = {},
-                            int chunkFrames = 16) const;
+                            int chunkFrames = 8) const;
 
     const VdpGeometry& geometry() const { return geometry_; }
     const VdpParams& params() const { return params_; }
