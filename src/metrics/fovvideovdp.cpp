@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/error.h"
 #include "metrics/filter.h"
@@ -334,6 +335,7 @@ VdpResult FovVideoVdp::ScoreSequence(int frames, const FrameReader& read, double
     // A chunk of a video holds two frames at least, with the frames before it that the temporal
     // filters of its first frame reach (one at least): never a single frame, which Score would
     // take for a still.
+    if (chunkFrames == 0) chunkFrames = tbb::this_task_arena::max_concurrency();
     chunkFrames = std::max(chunkFrames, frames > 1 ? 2 : 1);
     const int context = frames > 1 ? std::max(VdpTemporalFilterLength(fps), 2) - 1 : 0;
 

@@ -66,12 +66,13 @@ public:
 
     // Score of a `frames`-long sequence that is never held whole: `read(f, test, reference)` fills
     // frame f's planes (given back from earlier frames, to reuse their memory), asked for in order;
-    // frames are scored `chunkFrames` at a time with the frames before each chunk that its
-    // temporal filters reach. The result equals Score's on the whole sequence (options as there,
-    // firstScoredFrame 0), while memory holds one chunk and its filters' reach.
+    // frames are scored `chunkFrames` at a time (0: as many as the threads score at once) with the
+    // frames before each chunk that its temporal filters reach. The result equals Score's on the
+    // whole sequence (options as there, firstScoredFrame 0), while memory holds one chunk and its
+    // filters' reach: the fewer frames held, the less memory to map and fault in.
     using FrameReader = std::function<void(int frame, Plane<float>& test, Plane<float>& reference)>;
     VdpResult ScoreSequence(int frames, const FrameReader& read, double fps, const VdpOptions& options = {},
-                            int chunkFrames = 8) const;
+                            int chunkFrames = 0) const;
 
     const VdpGeometry& geometry() const { return geometry_; }
     const VdpParams& params() const { return params_; }
