@@ -191,8 +191,7 @@ void PoolAll(VdpResult& r, const VdpParams& params) {
 FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
     : geometry_(geometry),
       params_(params),
-      csf_{VdpCsfTable(kVdpChannelOmega[0], params.csfSigma, params.kCm),
-           VdpCsfTable(kVdpChannelOmega[1], params.csfSigma, params.kCm)},
+      csf_(VdpCsfTable::ForOmegas(kVdpChannelOmega[0], kVdpChannelOmega[1], params.csfSigma, params.kCm)),
       sensitivityGain_(float(std::pow(10.0, params.sensitivityCorrection / 20.0))),
       cache_(std::make_shared<VdpScoreCache>()) {}
 

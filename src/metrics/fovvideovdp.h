@@ -7,6 +7,7 @@
 // (vdp_display.h turns pixel values into it); geometry is the pixel's, at the frames' own size.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -83,7 +84,7 @@ public:
 private:
     VdpGeometry geometry_;
     VdpParams params_;
-    VdpCsfTable csf_[2];
+    std::array<VdpCsfTable, 2> csf_;  // per channel
     float sensitivityGain_;
     // Per-frame workspaces and per-band pixel geometry kept from one Score call to the next (and
     // shared by copies; thread-safe), so a sequence scored in chunks, a stream or the variants of

@@ -122,37 +122,72 @@ double VdpCsfModel(double rho, double omega, double luminance, double ecc, doubl
     return AchromaticSensitivity(s.rhoCm, s.area, TermsAt(luminance)) * s.temporal;
 }
 
-VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm) : logS_(size_t(kSize) * kSize * kSize) {
-    // Grid: log-spaced L in [0.001, 10⁴] and ρ in [2⁻⁴, 64], e = (uniform in [0, √120])², each
-    // value rounded to float like the reference's single-precision table.
+namespace {
+
+// The table's nodes: log-spaced L in [0.001, 10⁴] and ρ in [2⁻⁴, 64], e = (uniform in
+// [0, √120])², each value rounded to float like the reference's single-precision table.
+struct TableNodes {
+    static constexpr int kSize = VdpCsfTable::kSize;
     std::array<double, kSize> lum, rho, ecc;
-    for (int i = 0; i < kSize; ++i) {
-        const double t = double(i) / (kSize - 1);
-        lum[i] = float(std::pow(10.0, -3.0 + 7.0 * t));
-        rho[i] = float(std::pow(10.0, std::log10(0.0625) + (std::log10(64.0) - std::log10(0.0625)) * t));
-        ecc[i] = float(std::pow(std::sqrt(120.0) * t, 2.0));
-        lum_.grid[i] = float(std::log2(lum[i]));
-        rho_.grid[i] = float(std::log2(rho[i]));
-        ecc_.grid[i] = float(std::sqrt(ecc[i]));
+    TableNodes() {
+        for (int i = 0; i < kSize; ++i) {
+            const double t = double(i) / (kSize - 1);
+            lum[i] = float(std::pow(10.0, -3.0 + 7.0 * t));
+            rho[i] = float(std::pow(10.0, std::log10(0.0625) + (std::log10(64.0) - std::log10(0.0625)) * t));
+            ecc[i] = float(std::pow(std::sqrt(120.0) * t, 2.0));
+        }
     }
-    lum_.lo = float(lum[0]), lum_.hi = float(lum[kSize - 1]);
-    rho_.lo = float(rho[0]), rho_.hi = float(rho[kSize - 1]);
-    ecc_.lo = float(ecc[0]), ecc_.hi = float(ecc[kSize - 1]);
-    // VdpCsfModel at every node, its luminance and stimulus parts computed once per node of
-    // their axes (the same operations, so the same values).
-    std::vector<Stimulus> stimuli(size_t(kSize) * kSize);  // [rho][ecc]
+};
+
+// VdpCsfModel's spatial part (all but the temporal factor) at every node, [lum][rho][ecc]: its
+// luminance terms computed once per luminance node and its stimulus once per ρ–e pair.
+std::vector<double> SpatialAtNodes(double sigma, double kCm) {
+    constexpr size_t n = VdpCsfTable::kSize;
+    const TableNodes nodes;
+    std::vector<Stimulus> stimuli(n * n);  // [rho][ecc]; ω only changes the temporal factor
+    for (size_t r = 0; r < n; ++r)
+        for (size_t e = 0; e < n; ++e) stimuli[r * n + e] = StimulusAt(nodes.rho[r], 0.0, nodes.ecc[e], sigma, kCm);
+    std::vector<double> spatial(n * n * n);
+    for (size_t l = 0; l < n; ++l) {
+        const LuminanceTerms terms = TermsAt(nodes.lum[l]);
+        for (size_t i = 0; i < n * n; ++i)
+            spatial[l * n * n + i] = AchromaticSensitivity(stimuli[i].rhoCm, stimuli[i].area, terms);
+    }
+    return spatial;
+}
+
+}  // namespace
+
+VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm)
+    : VdpCsfTable(omega, sigma, kCm, SpatialAtNodes(sigma, kCm)) {}
+
+std::array<VdpCsfTable, 2> VdpCsfTable::ForOmegas(double omega0, double omega1, double sigma, double kCm) {
+    const std::vector<double> spatial = SpatialAtNodes(sigma, kCm);
+    return {VdpCsfTable(omega0, sigma, kCm, spatial), VdpCsfTable(omega1, sigma, kCm, spatial)};
+}
+
+VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm, const std::vector<double>& spatial)
+    : logS_(size_t(kSize) * kSize * kSize) {
+    const TableNodes nodes;
+    for (int i = 0; i < kSize; ++i) {
+        lum_.grid[i] = float(std::log2(nodes.lum[i]));
+        rho_.grid[i] = float(std::log2(nodes.rho[i]));
+        ecc_.grid[i] = float(std::sqrt(nodes.ecc[i]));
+    }
+    lum_.lo = float(nodes.lum[0]), lum_.hi = float(nodes.lum[kSize - 1]);
+    rho_.lo = float(nodes.rho[0]), rho_.hi = float(nodes.rho[kSize - 1]);
+    ecc_.lo = float(nodes.ecc[0]), ecc_.hi = float(nodes.ecc[kSize - 1]);
+    // VdpCsfModel at every node: the spatial part times the temporal factor at ω.
+    std::vector<double> temporal(size_t(kSize) * kSize);  // [rho][ecc]
     for (int r = 0; r < kSize; ++r)
         for (int e = 0; e < kSize; ++e)
-            stimuli[size_t(r) * kSize + size_t(e)] = StimulusAt(rho[r], omega, ecc[e], sigma, kCm);
-    for (int l = 0; l < kSize; ++l) {
-        const LuminanceTerms terms = TermsAt(lum[l]);
-        for (int r = 0; r < kSize; ++r)
-            for (int e = 0; e < kSize; ++e) {
-                const Stimulus& st = stimuli[size_t(r) * kSize + size_t(e)];
-                const double s = std::max(AchromaticSensitivity(st.rhoCm, st.area, terms) * st.temporal, 1e-4);
-                logS_[(size_t(l) * kSize + r) * kSize + e] = float(std::log2(s));
-            }
-    }
+            temporal[size_t(r) * kSize + size_t(e)] =
+                StimulusAt(nodes.rho[r], omega, nodes.ecc[e], sigma, kCm).temporal;
+    for (size_t l = 0; l < size_t(kSize); ++l)
+        for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+            const size_t node = l * kSize * kSize + i;
+            logS_[node] = float(std::log2(std::max(spatial[node] * temporal[i], 1e-4)));
+        }
 }
 
 // The reference's interpolant: i1 = first grid point ≥ q, i0 = i1 − 1, fraction with a 1e-6
