@@ -7,6 +7,9 @@ python3-imageio; the two modules it imports but does not need for arrays, `ffmpe
 `imageio.v2`, are stubbed here). Frames: the golden cases' pattern (tests/vdp_golden_cases.h)
 with uniform noise, written as 8-bit grey PNG folders; both metrics read the same 8-bit values,
 sRGB EOTF, 100 cd/m² peak, 0.1 cd/m² black, 20 pixels per degree, foveated at a fixed gaze.
+Sizes (--sizes, WxHxFRAMES): the issue's range, 320×180 to a headset eye's 2064×2208, each timed
+for both (the reference on fewer frames where it takes minutes a frame), and 1280×720 × 60 for
+fovrt alone (its CPU-seconds per frame end to end); a size given as WxHxFRAMES! is fovrt's only.
 
     /usr/bin/python3 scripts/bench-vdp.py --fovrt build/src/app/fovrt --reference-dir /path/to/FovVideoVDP
 """
@@ -77,12 +80,16 @@ def main():
     ap.add_argument("--fovrt", required=True)
     ap.add_argument("--reference-dir", help="checkout of gfxdisp/FovVideoVDP (omit to time fovrt only)")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--sizes", default="320x180x30,1280x720x8,2064x2208x4,1280x720x60!",
+                    help="comma-separated WxHxFRAMES; a trailing ! times fovrt alone")
     a = ap.parse_args()
     cpu = [l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")]
     print(f"CPU: {cpu[0]} x {len(cpu)} logical cores; load average {os.getloadavg()[0]:.1f}; best of {a.repeats}")
     with tempfile.TemporaryDirectory() as tmp:
-        for (w, h, n, with_ref) in ((320, 180, 30, True), (1280, 720, 60, False)):
-            d = f"{tmp}/{w}x{h}"
+        for size in a.sizes.split(","):
+            with_ref = not size.endswith("!")
+            w, h, n = (int(v) for v in size.rstrip("!").split("x"))
+            d = f"{tmp}/{w}x{h}x{n}"
             test, ref = frames(w, h, n, 1)
             write(f"{d}/test", test)
             write(f"{d}/ref", ref)
@@ -91,12 +98,14 @@ def main():
                 g.write("frame,x,y\n")
                 g.writelines(f"{f},{fix[0]},{fix[1]}\n" for f in range(n))
             secs, cpu, line, cmd = time_fovrt(a.fovrt, d, n, f"{d}/gaze.csv", a.repeats)
-            print(f"{w}x{h} x {n} frames, fovrt vdp (incl. PNG reading): {secs:.2f} s wall, {cpu:.2f} s CPU  [{line}]")
+            print(f"{w}x{h} x {n} frames, fovrt vdp (incl. PNG reading): {secs:.2f} s wall, {cpu:.2f} s CPU "
+                  f"({cpu / n:.4f} per frame)  [{line}]  load {os.getloadavg()[0]:.1f}")
             print(f"  command: {cmd}")
             if with_ref and a.reference_dir:
                 rs, rcpu, rq = time_reference(a.reference_dir, test, ref, fix, a.repeats)
                 print(f"{w}x{h} x {n} frames, reference (arrays in memory): {rs:.2f} s wall, {rcpu:.2f} s CPU  [{rq:.4f} JOD]"
-                      f"  -> fovrt {rs / secs:.1f}x faster (wall), {rcpu / cpu:.1f}x less CPU")
+                      f"  -> fovrt {rs / secs:.1f}x faster (wall), {rcpu / cpu:.1f}x less CPU  load {os.getloadavg()[0]:.1f}")
+            sys.stdout.flush()
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <limits>
 #include <tuple>
@@ -49,6 +50,39 @@ TEST_CASE("the vectorised metric keeps the scalar metric's JOD within 1e-4 on ev
         CHECK(std::abs(r.jod - kScalar[i][0]) < 1e-4);
         CHECK(std::abs(r.jodSustained - kScalar[i][1]) < 1e-4);
         CHECK(std::abs(r.jodTransient - kScalar[i][2]) < 1e-4);
+    }
+}
+
+TEST_CASE("a sequence read and scored in chunks gives Score's result on the whole sequence, bit for bit", "[vdp]") {
+    // Every video golden case (moving fixations, 60 fps filters reaching 15 frames back, HDR) and
+    // a still, with difference maps, in chunks of 1 frame up to longer than the sequence (0: as
+    // many as the threads).
+    for (const GoldenCase& c : GoldenCases()) {
+        if (c.frames == 1 && c.name != GoldenCases()[1].name) continue;
+        const Frames frames = MakeFrames(c);
+        const VdpPhotometry photometry = PhotometryOf(c);
+        VdpOptions options = OptionsOf(c);
+        options.diffMaps = true;
+        const FovVideoVdp vdp(GeometryOf(c));
+        const VdpResult whole = ScoreCase(c, true);
+        for (const int chunk : {0, 1, 7, 16, 1000}) {
+            int asked = 0;  // frames are asked for once each, in order
+            auto read = [&](int f, Plane<float>& test, Plane<float>& reference) {
+                CHECK(f == asked++);
+                test = VdpLuminance(frames.test[size_t(f)], photometry);
+                reference = VdpLuminance(frames.reference[size_t(f)], photometry);
+            };
+            const VdpResult r = vdp.ScoreSequence(c.frames, read, c.fps, options, chunk);
+            INFO(c.name << ", chunks of " << chunk);
+            CHECK(asked == c.frames);
+            CHECK(r.frames == whole.frames);
+            CHECK(r.q == whole.q);
+            CHECK(r.jod == whole.jod);
+            CHECK(r.jodSustained == whole.jodSustained);
+            CHECK(r.jodTransient == whole.jodTransient);
+            REQUIRE(r.diffMaps.size() == whole.diffMaps.size());
+            for (size_t f = 0; f < r.diffMaps.size(); ++f) CHECK(r.diffMaps[f].vector() == whole.diffMaps[f].vector());
+        }
     }
 }
 
@@ -203,6 +237,45 @@ TEST_CASE("photometry: sRGB, linear and absolute values to cd/m², clamped to th
     CHECK(VdpBlackLevel(200.0, 1000.0, 250.0) == Approx(0.2 + 250.0 / kPiD * 0.005));
 }
 
+TEST_CASE("integer codes through VdpCodeLuminance's tables equal VdpLuminance of their values bit for bit",
+          "[vdp]") {
+    // Every code of both bit depths, on each EOTF, grey (1 and 2 channels) and RGB (3 and 4): the
+    // value a reader of floats would see (code·(65535/(2^b−1)) / 65535) through VdpLuminance.
+    const VdpPhotometry photometries[] = {
+        {100.0, 0.1, VdpEotf::Srgb}, {200.0, 0.6, VdpEotf::Linear}, {1000.0, 0.005, VdpEotf::Absolute}};
+    for (const VdpPhotometry& photometry : photometries)
+        for (const int bits : {8, 16}) {
+            const uint32_t codes = 1u << bits, widen = 65535u / (codes - 1u);
+            const int w = 256, h = int(codes) / w;
+            auto value = [&](uint32_t c) { return float(c * widen) / 65535.0f; };
+            for (const int channels : {1, 2, 3, 4}) {
+                // Pixel i: code i on R (and grey), rotated codes on G and B, alpha the largest code.
+                std::vector<uint16_t> c16(size_t(codes) * size_t(channels));
+                Plane<vec3> rgb(w, h);
+                for (uint32_t i = 0; i < codes; ++i) {
+                    const uint32_t g = (i * 7919u) % codes, b = (i * 104729u + 13u) % codes;
+                    const uint32_t pixel[4] = {i, channels < 3 ? codes - 1 : g, b, codes - 1};
+                    for (int k = 0; k < channels; ++k)
+                        c16[size_t(i) * size_t(channels) + size_t(k)] = uint16_t(pixel[k]);
+                    rgb[i] = channels < 3 ? vec3(value(i)) : vec3(value(i), value(g), value(b));
+                }
+                const VdpCodeLuminance table(photometry, bits);
+                Plane<float> looked;
+                if (bits == 8) {
+                    const std::vector<uint8_t> c8(c16.begin(), c16.end());
+                    table.Image(c8.data(), w, h, channels, looked);
+                } else {
+                    table.Image(c16.data(), w, h, channels, looked);
+                }
+                const Plane<float> computed = VdpLuminance(rgb, photometry);
+                size_t differing = 0;
+                for (size_t i = 0; i < computed.size(); ++i) differing += looked[i] != computed[i];
+                INFO(bits << "-bit, " << channels << " channel(s), EOTF " << int(photometry.eotf));
+                CHECK(differing == 0);
+            }
+        }
+}
+
 TEST_CASE("the CSF table reproduces the model at its nodes and interpolates between", "[vdp]") {
     const VdpCsfTable table(5.0, -1.5, 0.604562);
     // Nodes: ρ = 2^(−4 + 10 i/31), L = 10^(−3 + 7 j/31), e = (√120 k/31)².
@@ -232,6 +305,84 @@ TEST_CASE("temporal filters: sustained sums to 1, transient is its scaled deriva
     for (size_t i = 0; i + 1 < f.sustained.size(); ++i)
         CHECK(f.transient[i] == Approx(kVdpTransientGain * (f.sustained[i + 1] - f.sustained[i]) / dt).epsilon(1e-4));
     CHECK(f.transient.back() == 0.0f);
+}
+
+namespace {
+
+// The 5-tap reduce and expand of one row, tap by tap with every bounds test (the form
+// VdpGaussReduce and VdpGaussExpand take at the edges; inside they skip the tests).
+constexpr float kTap[5] = {0.25f - 0.4f / 2.0f, 0.25f, 0.4f, 0.25f, 0.25f - 0.4f / 2.0f};
+
+std::vector<float> ReduceRowTapByTap(const std::vector<float>& in, bool oddRule) {
+    const int n = int(in.size()), m = (n + 1) / 2;
+    std::vector<float> out(size_t(m), 0.0f);
+    for (int i = 0; i < m; ++i)
+        for (int k = 0; k < 5; ++k)
+            if (const int j = 2 * i + k - 2; j >= 0 && j < n) out[size_t(i)] += kTap[k] * in[size_t(j)];
+    out[0] += in[0] * kTap[1] + in[n > 1 ? 1 : 0] * kTap[0];
+    if (oddRule) out[size_t(m - 1)] += in[size_t(n - 1)] * kTap[3] + in[size_t(std::max(n - 2, 0))] * kTap[4];
+    else out[size_t(m - 1)] += in[size_t(n - 1)] * kTap[4];
+    return out;
+}
+
+std::vector<float> ExpandRowTapByTap(const std::vector<float>& in, int n) {
+    const int inCount = int(in.size());
+    std::vector<int> src(size_t(n) + 4, -1);  // the zero-interleaved, edge-padded signal
+    for (int j = 0; 2 + 2 * j < n + 2 && j < inCount; ++j) src[size_t(2 + 2 * j)] = j;
+    src[0] = 0;
+    src[size_t(n + 4 - 2 + (n % 2))] = inCount - 1;
+    std::vector<float> out(size_t(n), 0.0f);
+    for (int c = 0; c < n; ++c)
+        for (int k = 0; k < 5; ++k)
+            if (const int j = src[size_t(c + k)]; j >= 0) out[size_t(c)] += 2.0f * kTap[k] * in[size_t(j)];
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("reduce and expand equal their tap-by-tap definition bit for bit along rows of every width", "[vdp]") {
+    // Two-row images (reduce) and one-row images (expand) of widths 2 to 41, odd and even, with
+    // values that make every tap count; the vertical pass of each, whose code has no fast path,
+    // is written out as the pyramid sums it.
+    for (int w = 2; w <= 41; ++w) {
+        Plane<float> image(w, 2);
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < w; ++x) image(x, y) = float(1.0 + 0.37 * x + 0.011 * x * x - 0.2 * y);
+        // Height 2 → 1 (even: the even end rule): taps 2, 3 inside, then 1, 0 (first row), 4 (last).
+        std::vector<float> column(static_cast<size_t>(w));
+        for (int x = 0; x < w; ++x) {
+            float v = 0.0f;
+            v += kTap[2] * image(x, 0);
+            v += kTap[3] * image(x, 1);
+            v += kTap[1] * image(x, 0);
+            v += kTap[0] * image(x, 1);
+            v += kTap[4] * image(x, 1);
+            column[size_t(x)] = v;
+        }
+        const Plane<float> reduced = VdpGaussReduce(image);
+        const std::vector<float> reducedRow = ReduceRowTapByTap(column, false);
+        REQUIRE(reduced.height() == 1);
+        for (int x = 0; x < reduced.width(); ++x) {
+            INFO("reduce " << w << "x2, x = " << x);
+            CHECK(reduced(x, 0) == reducedRow[size_t(x)]);
+        }
+
+        Plane<float> half((w + 1) / 2, 1);
+        for (int x = 0; x < half.width(); ++x) half(x, 0) = float(0.5 + 0.29 * x - 0.013 * x * x);
+        // Height 1 → 1: taps 0, 2 and 4 all read the one row.
+        std::vector<float> row(static_cast<size_t>(half.width()));
+        for (int x = 0; x < half.width(); ++x) {
+            float v = 0.0f;
+            for (const int k : {0, 2, 4}) v += 2.0f * kTap[k] * half(x, 0);
+            row[size_t(x)] = v;
+        }
+        const Plane<float> expanded = VdpGaussExpand(half, w, 1);
+        const std::vector<float> expandedRow = ExpandRowTapByTap(row, w);
+        for (int x = 0; x < w; ++x) {
+            INFO("expand to " << w << ", x = " << x);
+            CHECK(expanded(x, 0) == expandedRow[size_t(x)]);
+        }
+    }
 }
 
 TEST_CASE("a pyramid decomposed into an earlier frame's planes equals a fresh decomposition", "[vdp]") {

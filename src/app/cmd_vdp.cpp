@@ -15,6 +15,7 @@
 #include <string>
 #include <type_traits>
 #include <unistd.h>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -156,19 +157,21 @@ void RunVdp(const VdpCommandOptions& o) {
     testPhotometry.eotf = SequenceEotf(testSeq, eotf);
     refPhotometry.eotf = SequenceEotf(refSeq, eotf);
 
-    std::vector<Plane<float>> test, reference;
-    size_t clampedTest = 0, clampedRef = 0;
-    for (size_t f = 0; f < size_t(frames); ++f) {
-        const Plane<vec3> t = ReadVdpFrame(testSeq, f, o.layer, o.clampNegative, clampedTest),
-                          r = ReadVdpFrame(refSeq, f, o.layer, o.clampNegative, clampedRef);
-        const int w0 = f == 0 ? r.width() : reference[0].width(), h0 = f == 0 ? r.height() : reference[0].height();
-        if (t.width() != w0 || t.height() != h0 || r.width() != w0 || r.height() != h0)
-            Fail("{} ({}x{}) and {} ({}x{}): frames must all be {}x{}", testSeq.files[f].string(), t.width(),
-                 t.height(), refSeq.files[f].string(), r.width(), r.height(), w0, h0);
-        test.push_back(VdpLuminance(t, testPhotometry));
-        reference.push_back(VdpLuminance(r, refPhotometry));
-    }
-    const int width = reference[0].width(), height = reference[0].height();
+    // Frames are read as the metric asks for them (a chunk at a time): a sequence is never held
+    // whole. The first pair is read now, for the size that geometry and gaze depend on.
+    VdpLuminanceReader testReader(testSeq, testPhotometry, o.layer, o.clampNegative),
+        refReader(refSeq, refPhotometry, o.layer, o.clampNegative);
+    Plane<float> firstTest, firstRef;
+    testReader.Read(0, firstTest);
+    refReader.Read(0, firstRef);
+    const int width = firstRef.width(), height = firstRef.height();
+    auto readPair = [&](int f, Plane<float>& t, Plane<float>& r) {
+        if (f == 0) t = std::move(firstTest), r = std::move(firstRef);
+        else testReader.Read(size_t(f), t), refReader.Read(size_t(f), r);
+        if (t.width() != width || t.height() != height || r.width() != width || r.height() != height)
+            Fail("{} ({}x{}) and {} ({}x{}): frames must all be {}x{}", testSeq.files[size_t(f)].string(), t.width(),
+                 t.height(), refSeq.files[size_t(f)].string(), r.width(), r.height(), width, height);
+    };
     if (o.ppd) display.geometry = VdpGeometry::FromPixelsPerDegree(*o.ppd);
     if (o.fov) {
         display.geometry = VdpGeometry::FromHorizontalFov(width, *o.fov);
@@ -182,7 +185,8 @@ void RunVdp(const VdpCommandOptions& o) {
     if (!o.gaze.empty()) options.fixations = ReadVdpGaze(o.gaze, frames, width, height);
     options.diffMaps = !o.diffMaps.empty();
     const FovVideoVdp vdp(display.geometry);
-    const VdpResult r = vdp.Score(test, reference, o.fps, options);
+    const VdpResult r = vdp.ScoreSequence(frames, readPair, o.fps, options);
+    const size_t clampedTest = testReader.clamped(), clampedRef = refReader.clamped();
 
     const std::string mode = !o.gaze.empty() ? "foveated along " + o.gaze : options.foveated ? "foveated at the centre" : "not foveated";
     const std::string eotfs = testPhotometry.eotf == refPhotometry.eotf

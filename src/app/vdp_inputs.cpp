@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <utility>
 
 #include "core/error.h"
 #include "gaze/csv_fields.h"
@@ -82,6 +83,23 @@ Plane<vec3> ReadVdpFrame(const VdpSequence& s, size_t index, const std::string& 
         clamped += bad.negative;
     }
     return frame;
+}
+
+VdpLuminanceReader::VdpLuminanceReader(const VdpSequence& sequence, const VdpPhotometry& photometry,
+                                       std::string layer, bool clampNegative)
+    : sequence_(sequence), photometry_(photometry), layer_(std::move(layer)), clampNegative_(clampNegative) {}
+
+void VdpLuminanceReader::Read(size_t index, Plane<float>& out) {
+    if (!sequence_.png) {
+        out = VdpLuminance(ReadVdpFrame(sequence_, index, layer_, clampNegative_, clamped_), photometry_);
+        return;
+    }
+    // A PNG's codes are finite values in [0, 1]: nothing for ReadVdpFrame's checks to find.
+    const PngPixels p = ReadPngPixels(sequence_.files[index]);
+    std::optional<VdpCodeLuminance>& table = p.bits == 16 ? codes16_ : codes8_;
+    if (!table) table.emplace(photometry_, p.bits);
+    if (p.bits == 16) table->Image(p.words(), p.width, p.height, p.channels, out);
+    else table->Image(p.bytes(), p.width, p.height, p.channels, out);
 }
 
 std::vector<VdpFixation> ReadVdpGaze(const std::string& path, int frames, int width, int height) {

@@ -38,6 +38,26 @@ VdpEotf SequenceEotf(const VdpSequence& sequence, std::optional<VdpEotf> eotf);
 Plane<vec3> ReadVdpFrame(const VdpSequence& sequence, size_t index, const std::string& layer, bool clampNegative,
                          size_t& clamped);
 
+// A sequence's frames as luminance in cd/m²: VdpLuminance of ReadVdpFrame's values, bit for bit.
+// PNG codes go through VdpCodeLuminance's tables (made once per bit depth the sequence uses),
+// never through RGB floats: decoding and the EOTF were half of `fovrt vdp`'s time.
+class VdpLuminanceReader {
+public:
+    VdpLuminanceReader(const VdpSequence& sequence, const VdpPhotometry& photometry, std::string layer,
+                       bool clampNegative);
+    // Frame `index` into `out`, reusing its memory when it has the frame's size (PNG frames).
+    void Read(size_t index, Plane<float>& out);
+    size_t clamped() const { return clamped_; }  // negative pixels set to 0 so far
+
+private:
+    const VdpSequence& sequence_;
+    VdpPhotometry photometry_;
+    std::string layer_;
+    bool clampNegative_;
+    size_t clamped_ = 0;
+    std::optional<VdpCodeLuminance> codes8_, codes16_;
+};
+
 // A gaze CSV read by its header's column names, as gaze traces are (gaze/sources.cpp): a header
 // naming `frame`, `x` and `y` (any order, any case; other named columns are ignored), then rows
 // with the header's field count ('#' comments and blank lines skipped). `frame` a whole number in

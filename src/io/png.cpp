@@ -70,4 +70,15 @@ Plane<vec3> ReadPngRgb(const std::filesystem::path& path) {
     return image;
 }
 
+PngPixels ReadPngPixels(const std::filesystem::path& path) {
+    PngPixels p;
+    const std::string name = path.string();
+    p.bits = stbi_is_16_bit(name.c_str()) ? 16 : 8;
+    void* data = p.bits == 16 ? static_cast<void*>(stbi_load_16(name.c_str(), &p.width, &p.height, &p.channels, 0))
+                              : static_cast<void*>(stbi_load(name.c_str(), &p.width, &p.height, &p.channels, 0));
+    if (!data) Fail("{}: cannot read PNG ({})", name, stbi_failure_reason());
+    p.data = std::shared_ptr<void>(data, stbi_image_free);
+    return p;
+}
+
 }  // namespace fovrt

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "core/image.h"
@@ -40,5 +41,16 @@ void WriteRgb8Png(const std::filesystem::path& path, int width, int height,
 // Reads an 8- or 16-bit PNG (grey, grey+alpha, RGB or RGBA; alpha ignored) as its encoded values
 // in [0,1], no transfer function applied. fovrt::Error naming the file when it cannot be read.
 Plane<vec3> ReadPngRgb(const std::filesystem::path& path);
+
+// A PNG's pixels as stored, for a reader that maps code values through a table instead of
+// converting each to float: `channels` codes per pixel (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA),
+// 8 or 16 bits each, row 0 at the top. Code c of a b-bit image is the value c / (2^b − 1).
+struct PngPixels {
+    int width = 0, height = 0, channels = 0, bits = 8;
+    const uint8_t* bytes() const { return static_cast<const uint8_t*>(data.get()); }    // bits == 8
+    const uint16_t* words() const { return static_cast<const uint16_t*>(data.get()); }  // bits == 16
+    std::shared_ptr<void> data;  // stb's buffer
+};
+PngPixels ReadPngPixels(const std::filesystem::path& path);
 
 }  // namespace fovrt

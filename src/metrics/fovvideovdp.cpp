@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <mutex>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/error.h"
 #include "metrics/filter.h"
@@ -70,12 +72,75 @@ private:
     std::vector<std::unique_ptr<FrameWorkspace>> free_;
 };
 
-// Per-row working arrays of the band loop (one set per row task).
+}  // namespace
+
+// What Score keeps between calls (FovVideoVdp::cache_).
+struct VdpScoreCache {
+    WorkspacePool workspaces;
+    // The band geometry of the last frame size a foveated Score saw.
+    std::shared_ptr<const std::vector<BandGeometry>> BandGeometryFor(const VdpGeometry& g, int width, int height,
+                                                                     int bands) {
+        std::lock_guard lock(mutex_);
+        if (!bandGeometry_ || width != width_ || height != height_ || int(bandGeometry_->size()) != bands) {
+            auto made = std::make_shared<std::vector<BandGeometry>>();
+            int w = width, h = height;
+            for (int b = 0; b < bands; ++b, w = (w + 1) / 2, h = (h + 1) / 2)
+                made->push_back(MakeBandGeometry(g, w, h, width, height));
+            bandGeometry_ = std::move(made), width_ = width, height_ = height;
+        }
+        return bandGeometry_;
+    }
+
+private:
+    std::mutex mutex_;
+    int width_ = 0, height_ = 0;
+    std::shared_ptr<const std::vector<BandGeometry>> bandGeometry_;
+};
+
+namespace {
+
+// Per-row working arrays of the band loop.
 struct RowScratch {
     std::vector<float> values, log2S, log2D;
     VdpCsfAxisRow rho, luminance, eccentricity;
-    explicit RowScratch(size_t n) : values(n), log2S(n), log2D(n) {}
+    void Resize(size_t n) { values.resize(n), log2S.resize(n), log2D.resize(n); }
 };
+
+// Where each pixel of a foveated band's row lies for the CSF: its frequency (the band's scaled by
+// the pixel's magnification) in `rho` and its eccentricity from the gaze in `eccentricity`.
+FOVRT_VDP_ROW_CLONES void FoveatedRow(const float* magnification, const float* directionX, const float* directionY,
+                                      std::size_t n, float bandRho, float gazeX, float gazeY, float* rho,
+                                      float* eccentricity) {
+    for (std::size_t x = 0; x < n; ++x) rho[x] = bandRho * magnification[x];
+    for (std::size_t x = 0; x < n; ++x) {
+        const float ex = directionX[x] - gazeX, ey = directionY[x] - gazeY;
+        eccentricity[x] = std::sqrt(ex * ex + ey * ey);
+    }
+}
+
+// One row of one band and channel after the CSF: masking (VdpLog2MaskedDifferenceRow) with the
+// sensitivity correction added to log2 S, then Σ D^β (D^β in float per pixel, 0 where T = R:
+// VdpFastExp2 of −∞), summed in double over eight interleaved partial sums so the loop
+// vectorises; with `map`, adds mapGain·D to it.
+struct MaskingConstants {
+    float log2SensitivityGain, p, q, log2MaskGain, beta;
+};
+FOVRT_VDP_ROW_CLONES double MaskAndPoolRow(const float* test, const float* reference, float* log2S, std::size_t n,
+                                           MaskingConstants k, float* log2D, float* map, float mapGain) {
+    for (std::size_t x = 0; x < n; ++x) log2S[x] += k.log2SensitivityGain;
+    VdpLog2MaskedDifferenceRow(test, reference, log2S, n, k.p, k.q, k.log2MaskGain, log2D);
+    constexpr std::size_t kLanes = 8;
+    double lanes[kLanes] = {};
+    std::size_t x = 0;
+    for (; x + kLanes <= n; x += kLanes)
+        for (std::size_t l = 0; l < kLanes; ++l) lanes[l] += double(VdpFastExp2(k.beta * log2D[x + l]));
+    for (; x < n; ++x) lanes[0] += double(VdpFastExp2(k.beta * log2D[x]));
+    if (map)
+        for (std::size_t i = 0; i < n; ++i) map[i] += mapGain * VdpFastExp2(log2D[i]);
+    double sum = 0.0;
+    for (const double lane : lanes) sum += lane;
+    return sum;
+}
 
 // Equal counts of equal-size frames, a frame rate for video, one fixation or one per frame.
 void ValidateSequence(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference, double fps,
@@ -115,14 +180,20 @@ double PoolToJod(const VdpResult& r, const VdpParams& params, bool useSustained,
     return VdpJod(std::pow(frameSum / r.frames, 1.0 / params.betaT), params);
 }
 
+void PoolAll(VdpResult& r, const VdpParams& params) {
+    r.jod = PoolToJod(r, params, true, true);
+    r.jodSustained = PoolToJod(r, params, true, false);
+    r.jodTransient = r.channels > 1 ? PoolToJod(r, params, false, true) : 10.0;
+}
+
 }  // namespace
 
 FovVideoVdp::FovVideoVdp(VdpGeometry geometry, VdpParams params)
     : geometry_(geometry),
       params_(params),
-      csf_{VdpCsfTable(kVdpChannelOmega[0], params.csfSigma, params.kCm),
-           VdpCsfTable(kVdpChannelOmega[1], params.csfSigma, params.kCm)},
-      sensitivityGain_(float(std::pow(10.0, params.sensitivityCorrection / 20.0))) {}
+      csf_(VdpCsfTable::ForOmegas(kVdpChannelOmega[0], kVdpChannelOmega[1], params.csfSigma, params.kCm)),
+      sensitivityGain_(float(std::pow(10.0, params.sensitivityCorrection / 20.0))),
+      cache_(std::make_shared<VdpScoreCache>()) {}
 
 float FovVideoVdp::Sensitivity(int channel, float rho, float luminance, float eccentricity) const {
     return csf_[channel].Sensitivity(rho, luminance, eccentricity) * sensitivityGain_;
@@ -156,17 +227,11 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     if (video) filters = MakeVdpTemporalFilters(fps, params_);
 
     // Per band: pixel geometry (foveated) or the CSF sliced at the band's frequency (not foveated).
-    std::vector<BandGeometry> bandGeometry;
+    std::shared_ptr<const std::vector<BandGeometry>> bandGeometry;
+    if (options.foveated) bandGeometry = cache_->BandGeometryFor(geometry_, width, height, bands);
     std::vector<VdpCsfTable::LuminanceSlice> slices;  // [band * 2 + channel]
-    {
-        int w = width, h = height;
-        for (int b = 0; b < bands; ++b) {
-            if (options.foveated) bandGeometry.push_back(MakeBandGeometry(geometry_, w, h, width, height));
-            for (int c = 0; c < 2; ++c)
-                slices.push_back(csf_[c].Slice(float(result.bandFrequencies[size_t(b)]), 0.0f));
-            w = (w + 1) / 2, h = (h + 1) / 2;
-        }
-    }
+    for (int b = 0; b < bands; ++b)
+        for (int c = 0; c < 2; ++c) slices.push_back(csf_[c].Slice(float(result.bandFrequencies[size_t(b)]), 0.0f));
     auto gaze = [&](int f) {
         const VdpFixation fix = fixCount == 0   ? VdpFixation{float(width / 2), float(height / 2)}
                                 : fixCount == 1 ? options.fixations[0]
@@ -180,7 +245,7 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
     const float beta = float(params_.beta);
     const float channelWeight[2] = {1.0f, float(params_.wTransient)};
 
-    WorkspacePool workspaces;
+    WorkspacePool& workspaces = cache_->workspaces;
     tbb::parallel_for(first, frames, [&](int f) {
         const size_t out = size_t(f - first);  // the frame's place in the result
         std::unique_ptr<FrameWorkspace> workspace = workspaces.Take();
@@ -213,40 +278,28 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
             std::vector<double> rowSums(size_t(channels) * size_t(h), 0.0);
             metrics_detail::ParallelRows(h, [&](int y) {
                 const size_t row = size_t(y) * size_t(w), n = size_t(w);
-                const float gx = gazeDir.x, gy = gazeDir.y, rho = rhoBand, pool = beta;  // locals: no aliasing
-                RowScratch s(n);
+                // Per thread, not per row: a row runs to its end on its thread (nothing in it waits on
+                // other tasks), and the arrays keep their memory from row to row.
+                thread_local RowScratch s;
+                s.Resize(n);
                 csf_[0].LocateRow(VdpCsfTable::AxisName::Luminance, &adapt[row], n, s.luminance);
                 if (options.foveated) {
-                    const BandGeometry& g = bandGeometry[size_t(b)];
-                    const float* mag = &g.magnification[row];
-                    for (size_t x = 0; x < n; ++x) s.values[x] = rho * mag[x];
+                    const BandGeometry& g = (*bandGeometry)[size_t(b)];
+                    FoveatedRow(&g.magnification[row], &g.directionX[row], &g.directionY[row], n, rhoBand, gazeDir.x,
+                                gazeDir.y, s.values.data(), s.log2D.data());
                     csf_[0].LocateRow(VdpCsfTable::AxisName::Rho, s.values.data(), n, s.rho);
-                    const float* dx = &g.directionX[row];
-                    const float* dy = &g.directionY[row];
-                    for (size_t x = 0; x < n; ++x) {
-                        const float ex = dx[x] - gx, ey = dy[x] - gy;
-                        s.values[x] = std::sqrt(ex * ex + ey * ey);
-                    }
-                    csf_[0].LocateRow(VdpCsfTable::AxisName::Eccentricity, s.values.data(), n, s.eccentricity);
+                    csf_[0].LocateRow(VdpCsfTable::AxisName::Eccentricity, s.log2D.data(), n, s.eccentricity);
                 }
                 for (int c = 0; c < channels; ++c) {
                     if (options.foveated) csf_[c].Log2Sensitivity(s.rho, s.luminance, s.eccentricity, n, s.log2S.data());
                     else csf_[c].Log2Sensitivity(slices[size_t(b) * 2 + size_t(c)], s.luminance, n, s.log2S.data());
-                    for (float& v : s.log2S) v += log2SensitivityGain;
-                    const float q = float(c == 0 ? params_.maskQSustained : params_.maskQTransient);
-                    VdpLog2MaskedDifferenceRow(&pyr.contrast[size_t(b)][size_t(2 * c)][row],
-                                               &pyr.contrast[size_t(b)][size_t(2 * c + 1)][row], s.log2S.data(), n, p, q,
-                                               log2MaskGain, s.log2D.data());
-                    // D^β (0 where T = R: VdpFastExp2 of −∞), in float per pixel, summed in double.
-                    for (size_t x = 0; x < n; ++x) s.values[x] = VdpFastExp2(pool * s.log2D[x]);
-                    double sum = 0.0;
-                    for (size_t x = 0; x < n; ++x) sum += double(s.values[x]);
-                    rowSums[size_t(c) * size_t(h) + size_t(y)] = sum;
-                    if (options.diffMaps) {
-                        const float gain = channelWeight[c] / bandGain;
-                        float* map = &diffBands[size_t(b)][row];
-                        for (size_t x = 0; x < n; ++x) map[x] += gain * VdpFastExp2(s.log2D[x]);
-                    }
+                    const MaskingConstants k{log2SensitivityGain, p,
+                                             float(c == 0 ? params_.maskQSustained : params_.maskQTransient),
+                                             log2MaskGain, beta};
+                    rowSums[size_t(c) * size_t(h) + size_t(y)] = MaskAndPoolRow(
+                        &pyr.contrast[size_t(b)][size_t(2 * c)][row], &pyr.contrast[size_t(b)][size_t(2 * c + 1)][row],
+                        s.log2S.data(), n, k, s.log2D.data(), options.diffMaps ? &diffBands[size_t(b)][row] : nullptr,
+                        channelWeight[c] / bandGain);
                 }
             });
             for (int c = 0; c < channels; ++c) {
@@ -266,10 +319,55 @@ VdpResult FovVideoVdp::Score(const std::vector<Plane<float>>& test, const std::v
         workspaces.Give(std::move(workspace));
     });
 
-    result.jod = PoolToJod(result, params_, true, true);
-    result.jodSustained = PoolToJod(result, params_, true, false);
-    result.jodTransient = video ? PoolToJod(result, params_, false, true) : 10.0;
+    PoolAll(result, params_);
     return result;
+}
+
+VdpResult FovVideoVdp::ScoreSequence(int frames, const FrameReader& read, double fps, const VdpOptions& options,
+                                     int chunkFrames) const {
+    if (frames < 1) Fail("FovVideoVDP: a sequence of {} frames", frames);
+    if (frames > 1 && !(fps > 0)) Fail("FovVideoVDP: {} frames need a frame rate > 0 (got {})", frames, fps);
+    if (options.firstScoredFrame != 0) Fail("FovVideoVDP: a sequence read in chunks is scored from its first frame");
+    const size_t fixCount = options.fixations.size();
+    if (options.foveated && fixCount > 1 && fixCount != size_t(frames))
+        Fail("FovVideoVDP: {} fixations for {} frames (need 1 or one per frame)", fixCount, frames);
+    // A chunk of a video holds two frames at least, with the frames before it that the temporal
+    // filters of its first frame reach (one at least): never a single frame, which Score would
+    // take for a still.
+    if (chunkFrames == 0) chunkFrames = tbb::this_task_arena::max_concurrency();
+    chunkFrames = std::max(chunkFrames, frames > 1 ? 2 : 1);
+    const int context = frames > 1 ? std::max(VdpTemporalFilterLength(fps), 2) - 1 : 0;
+
+    std::vector<Plane<float>> test, reference;  // the window: frames [windowStart, windowStart + size)
+    int windowStart = 0;
+    VdpResult all;
+    for (int start = 0; start < frames; start += chunkFrames) {
+        const int end = std::min(start + chunkFrames, frames), keepFrom = std::max(start - context, 0);
+        // Frames before keepFrom leave the window; their planes go to its end for the new frames.
+        const auto dropped = std::ptrdiff_t(keepFrom - windowStart);
+        std::rotate(test.begin(), test.begin() + dropped, test.end());
+        std::rotate(reference.begin(), reference.begin() + dropped, reference.end());
+        test.resize(size_t(end - keepFrom));
+        reference.resize(size_t(end - keepFrom));
+        windowStart = keepFrom;
+        for (int f = start; f < end; ++f) read(f, test[size_t(f - keepFrom)], reference[size_t(f - keepFrom)]);
+
+        VdpOptions chunk = options;
+        chunk.firstScoredFrame = start - keepFrom;
+        if (fixCount > 1)
+            chunk.fixations.assign(options.fixations.begin() + keepFrom, options.fixations.begin() + end);
+        VdpResult r = Score(test, reference, fps, chunk);
+        if (start == 0) {
+            all = std::move(r);
+            continue;
+        }
+        // Per-frame results follow one another (VdpResult::q is frame-major).
+        all.frames += r.frames;
+        all.q.insert(all.q.end(), r.q.begin(), r.q.end());
+        for (Plane<float>& map : r.diffMaps) all.diffMaps.push_back(std::move(map));
+    }
+    PoolAll(all, params_);
+    return all;
 }
 
 }  // namespace fovrt

@@ -7,6 +7,9 @@
 // (vdp_display.h turns pixel values into it); geometry is the pixel's, at the frames' own size.
 #pragma once
 
+#include <array>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "core/image.h"
@@ -51,6 +54,8 @@ struct VdpResult {
     }
 };
 
+struct VdpScoreCache;  // fovvideovdp.cpp
+
 class FovVideoVdp {
 public:
     explicit FovVideoVdp(VdpGeometry geometry, VdpParams params = {});
@@ -59,6 +64,16 @@ public:
     // more than one frame (one frame is scored as an image, without temporal channels).
     VdpResult Score(const std::vector<Plane<float>>& test, const std::vector<Plane<float>>& reference,
                     double fps, const VdpOptions& options = {}) const;
+
+    // Score of a `frames`-long sequence that is never held whole: `read(f, test, reference)` fills
+    // frame f's planes (given back from earlier frames, to reuse their memory), asked for in order;
+    // frames are scored `chunkFrames` at a time (0: as many as the threads score at once) with the
+    // frames before each chunk that its temporal filters reach. The result equals Score's on the
+    // whole sequence (options as there, firstScoredFrame 0), while memory holds one chunk and its
+    // filters' reach: the fewer frames held, the less memory to map and fault in.
+    using FrameReader = std::function<void(int frame, Plane<float>& test, Plane<float>& reference)>;
+    VdpResult ScoreSequence(int frames, const FrameReader& read, double fps, const VdpOptions& options = {},
+                            int chunkFrames = 0) const;
 
     const VdpGeometry& geometry() const { return geometry_; }
     const VdpParams& params() const { return params_; }
@@ -69,8 +84,12 @@ public:
 private:
     VdpGeometry geometry_;
     VdpParams params_;
-    VdpCsfTable csf_[2];
+    std::array<VdpCsfTable, 2> csf_;  // per channel
     float sensitivityGain_;
+    // Per-frame workspaces and per-band pixel geometry kept from one Score call to the next (and
+    // shared by copies; thread-safe), so a sequence scored in chunks, a stream or the variants of
+    // an experiment map memory and compute a tan per band pixel once, not per call.
+    std::shared_ptr<VdpScoreCache> cache_;
 };
 
 }  // namespace fovrt

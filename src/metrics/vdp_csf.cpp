@@ -29,22 +29,15 @@ const Mechanism kMechanisms[3] = {
     {{11811.9, 196.342, 0.339396}, {7.1099e-08}, {5.3416}, {1.47263}, 0.282573},
 };
 
-// Log-parabola in frequency (low-pass below the peak for chromatic mechanisms) times Rovamo's
-// area summation sqrt(A^γ ρ² / (A'_c + A f₀ + A^γ ρ²)), f₀ = 0.65.
-double MechanismSensitivity(int m, double rho, double area, double lum) {
-    const Mechanism& c = kMechanisms[m];
-    const double sMax = LumDep(c.sMax, lum), fMax = LumDep(c.fMax, lum);
-    const double bw = LumDep(c.bw, lum), gamma = LumDep(c.gamma, lum);
-    double sPeak = sMax / std::pow(10.0, std::pow(std::log10(rho) - std::log10(fMax), 2.0) / (0.5 * std::pow(2.0, bw)));
-    if (m > 0 && rho < fMax) sPeak = sMax;
-    const double k = c.acPrime + area * 0.65;
-    const double a = std::pow(area, gamma) * rho * rho;
-    return sPeak * std::sqrt(a / (k + a));
-}
+// The parts of the achromatic sensitivity that depend on the background luminance alone: the
+// CSF table computes them once per luminance node rather than at each of its 32 × 32 nodes.
+struct LuminanceTerms {
+    double sMax[3], fMax[3], log10FMax[3], halfBandwidth[3], gamma[3];  // per mechanism
+    double weight[3];  // |achromatic direction in mechanism m| (cone contrast → mechanism)
+    double norm2;      // squared norm of the achromatic cone contrast
+};
 
-// Achromatic sensitivity on a D65 background of luminance `lum`: the detection contrast of the
-// achromatic cone-contrast direction, combined over the three mechanisms (exponent 2).
-double AchromaticSensitivity(double rho, double lum, double area) {
+LuminanceTerms TermsAt(double lum) {
     // CIE 1931 XYZ of D65 (0.95047, 1, 1.08883) to CIE 2006 LMS (matrix for an LED LCD).
     static const double kXyzToLms[3][3] = {
         {0.187596268556126, 0.585168649077728, -0.026384263306304},
@@ -62,15 +55,41 @@ double AchromaticSensitivity(double rho, double lum, double area) {
         coneContrast[i] = kAchromaticDelta[i] / lms[i];
     }
     const double mechanismLum = lms[0] + lms[1];
-    double c2 = 0.0, norm2 = 0.0;
+    LuminanceTerms t{};
+    t.norm2 = 0.0;
     for (int m = 0; m < 3; ++m) {
-        const double acc = kLmsToAcc[m][0] * coneContrast[0] + kLmsToAcc[m][1] * coneContrast[1] +
-                           kLmsToAcc[m][2] * coneContrast[2];
-        const double cn = std::abs(acc) * MechanismSensitivity(m, rho, area, mechanismLum);
-        c2 += cn * cn;
-        norm2 += coneContrast[m] * coneContrast[m];
+        const Mechanism& mech = kMechanisms[m];
+        t.sMax[m] = LumDep(mech.sMax, mechanismLum);
+        t.fMax[m] = LumDep(mech.fMax, mechanismLum);
+        t.log10FMax[m] = std::log10(t.fMax[m]);
+        t.halfBandwidth[m] = 0.5 * std::pow(2.0, LumDep(mech.bw, mechanismLum));
+        t.gamma[m] = LumDep(mech.gamma, mechanismLum);
+        t.weight[m] = std::abs(kLmsToAcc[m][0] * coneContrast[0] + kLmsToAcc[m][1] * coneContrast[1] +
+                               kLmsToAcc[m][2] * coneContrast[2]);
+        t.norm2 += coneContrast[m] * coneContrast[m];
     }
-    return std::sqrt(c2) * std::sqrt(3.0) / std::sqrt(norm2);
+    return t;
+}
+
+// Log-parabola in frequency (low-pass below the peak for chromatic mechanisms) times Rovamo's
+// area summation sqrt(A^γ ρ² / (A'_c + A f₀ + A^γ ρ²)), f₀ = 0.65.
+double MechanismSensitivity(int m, double rho, double area, const LuminanceTerms& t) {
+    double sPeak = t.sMax[m] / std::pow(10.0, std::pow(std::log10(rho) - t.log10FMax[m], 2.0) / t.halfBandwidth[m]);
+    if (m > 0 && rho < t.fMax[m]) sPeak = t.sMax[m];
+    const double k = kMechanisms[m].acPrime + area * 0.65;
+    const double a = std::pow(area, t.gamma[m]) * rho * rho;
+    return sPeak * std::sqrt(a / (k + a));
+}
+
+// Achromatic sensitivity on a D65 background: the detection contrast of the achromatic
+// cone-contrast direction, combined over the three mechanisms (exponent 2).
+double AchromaticSensitivity(double rho, double area, const LuminanceTerms& t) {
+    double c2 = 0.0;
+    for (int m = 0; m < 3; ++m) {
+        const double cn = t.weight[m] * MechanismSensitivity(m, rho, area, t);
+        c2 += cn * cn;
+    }
+    return std::sqrt(c2) * std::sqrt(3.0) / std::sqrt(t.norm2);
 }
 
 // Laird et al.'s fit of Daly's spatio-velocity CSF; velocity floored at 0.1 deg/s.
@@ -82,39 +101,93 @@ double SpatioVelocityCsf(double rho, double velocity) {
     return k * c0 * c1 * c2 * v * std::pow(c1 * 2.0 * kPiD * rho, 2.0) * std::exp(-(c1 * 4.0 * kPiD * rho) / rhoMax);
 }
 
+// The stimulus at frequency ρ and eccentricity e, whatever the luminance: frequency and area
+// after cortical magnification, and the temporal factor at ω.
+struct Stimulus {
+    double rhoCm, area, temporal;
+};
+
+Stimulus StimulusAt(double rho, double omega, double ecc, double sigma, double kCm) {
+    if (sigma < 0) sigma = -sigma / rho;
+    const double mRel = std::pow(3.67 / (ecc + 3.67), kCm);  // M(e)/M(0), Dougherty's A cancels
+    const double rhoCm = rho / mRel;
+    return {rhoCm, kPiD * std::pow(sigma * mRel, 2.0),
+            SpatioVelocityCsf(rhoCm, omega / rhoCm) / (SpatioVelocityCsf(rhoCm, 0.0) + 1e-5)};
+}
+
 }  // namespace
 
 double VdpCsfModel(double rho, double omega, double luminance, double ecc, double sigma, double kCm) {
-    if (sigma < 0) sigma = -sigma / rho;
-    const double mRel = std::pow(3.67 / (ecc + 3.67), kCm);  // M(e)/M(0), Dougherty's A cancels
-    const double area = kPiD * std::pow(sigma * mRel, 2.0);
-    const double rhoCm = rho / mRel;
-    const double temporal = SpatioVelocityCsf(rhoCm, omega / rhoCm) / (SpatioVelocityCsf(rhoCm, 0.0) + 1e-5);
-    return AchromaticSensitivity(rhoCm, luminance, area) * temporal;
+    const Stimulus s = StimulusAt(rho, omega, ecc, sigma, kCm);
+    return AchromaticSensitivity(s.rhoCm, s.area, TermsAt(luminance)) * s.temporal;
 }
 
-VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm) : logS_(size_t(kSize) * kSize * kSize) {
-    // Grid: log-spaced L in [0.001, 10⁴] and ρ in [2⁻⁴, 64], e = (uniform in [0, √120])², each
-    // value rounded to float like the reference's single-precision table.
+namespace {
+
+// The table's nodes: log-spaced L in [0.001, 10⁴] and ρ in [2⁻⁴, 64], e = (uniform in
+// [0, √120])², each value rounded to float like the reference's single-precision table.
+struct TableNodes {
+    static constexpr int kSize = VdpCsfTable::kSize;
     std::array<double, kSize> lum, rho, ecc;
-    for (int i = 0; i < kSize; ++i) {
-        const double t = double(i) / (kSize - 1);
-        lum[i] = float(std::pow(10.0, -3.0 + 7.0 * t));
-        rho[i] = float(std::pow(10.0, std::log10(0.0625) + (std::log10(64.0) - std::log10(0.0625)) * t));
-        ecc[i] = float(std::pow(std::sqrt(120.0) * t, 2.0));
-        lum_.grid[i] = float(std::log2(lum[i]));
-        rho_.grid[i] = float(std::log2(rho[i]));
-        ecc_.grid[i] = float(std::sqrt(ecc[i]));
+    TableNodes() {
+        for (int i = 0; i < kSize; ++i) {
+            const double t = double(i) / (kSize - 1);
+            lum[i] = float(std::pow(10.0, -3.0 + 7.0 * t));
+            rho[i] = float(std::pow(10.0, std::log10(0.0625) + (std::log10(64.0) - std::log10(0.0625)) * t));
+            ecc[i] = float(std::pow(std::sqrt(120.0) * t, 2.0));
+        }
     }
-    lum_.lo = float(lum[0]), lum_.hi = float(lum[kSize - 1]);
-    rho_.lo = float(rho[0]), rho_.hi = float(rho[kSize - 1]);
-    ecc_.lo = float(ecc[0]), ecc_.hi = float(ecc[kSize - 1]);
-    for (int l = 0; l < kSize; ++l)
-        for (int r = 0; r < kSize; ++r)
-            for (int e = 0; e < kSize; ++e) {
-                const double s = std::max(VdpCsfModel(rho[r], omega, lum[l], ecc[e], sigma, kCm), 1e-4);
-                logS_[(size_t(l) * kSize + r) * kSize + e] = float(std::log2(s));
-            }
+};
+
+// VdpCsfModel's spatial part (all but the temporal factor) at every node, [lum][rho][ecc]: its
+// luminance terms computed once per luminance node and its stimulus once per ρ–e pair.
+std::vector<double> SpatialAtNodes(double sigma, double kCm) {
+    constexpr size_t n = VdpCsfTable::kSize;
+    const TableNodes nodes;
+    std::vector<Stimulus> stimuli(n * n);  // [rho][ecc]; ω only changes the temporal factor
+    for (size_t r = 0; r < n; ++r)
+        for (size_t e = 0; e < n; ++e) stimuli[r * n + e] = StimulusAt(nodes.rho[r], 0.0, nodes.ecc[e], sigma, kCm);
+    std::vector<double> spatial(n * n * n);
+    for (size_t l = 0; l < n; ++l) {
+        const LuminanceTerms terms = TermsAt(nodes.lum[l]);
+        for (size_t i = 0; i < n * n; ++i)
+            spatial[l * n * n + i] = AchromaticSensitivity(stimuli[i].rhoCm, stimuli[i].area, terms);
+    }
+    return spatial;
+}
+
+}  // namespace
+
+VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm)
+    : VdpCsfTable(omega, sigma, kCm, SpatialAtNodes(sigma, kCm)) {}
+
+std::array<VdpCsfTable, 2> VdpCsfTable::ForOmegas(double omega0, double omega1, double sigma, double kCm) {
+    const std::vector<double> spatial = SpatialAtNodes(sigma, kCm);
+    return {VdpCsfTable(omega0, sigma, kCm, spatial), VdpCsfTable(omega1, sigma, kCm, spatial)};
+}
+
+VdpCsfTable::VdpCsfTable(double omega, double sigma, double kCm, const std::vector<double>& spatial)
+    : logS_(size_t(kSize) * kSize * kSize) {
+    const TableNodes nodes;
+    for (int i = 0; i < kSize; ++i) {
+        lum_.grid[i] = float(std::log2(nodes.lum[i]));
+        rho_.grid[i] = float(std::log2(nodes.rho[i]));
+        ecc_.grid[i] = float(std::sqrt(nodes.ecc[i]));
+    }
+    lum_.lo = float(nodes.lum[0]), lum_.hi = float(nodes.lum[kSize - 1]);
+    rho_.lo = float(nodes.rho[0]), rho_.hi = float(nodes.rho[kSize - 1]);
+    ecc_.lo = float(nodes.ecc[0]), ecc_.hi = float(nodes.ecc[kSize - 1]);
+    // VdpCsfModel at every node: the spatial part times the temporal factor at ω.
+    std::vector<double> temporal(size_t(kSize) * kSize);  // [rho][ecc]
+    for (int r = 0; r < kSize; ++r)
+        for (int e = 0; e < kSize; ++e)
+            temporal[size_t(r) * kSize + size_t(e)] =
+                StimulusAt(nodes.rho[r], omega, nodes.ecc[e], sigma, kCm).temporal;
+    for (size_t l = 0; l < size_t(kSize); ++l)
+        for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+            const size_t node = l * kSize * kSize + i;
+            logS_[node] = float(std::log2(std::max(spatial[node] * temporal[i], 1e-4)));
+        }
 }
 
 // The reference's interpolant: i1 = first grid point ≥ q, i0 = i1 − 1, fraction with a 1e-6
@@ -175,9 +248,11 @@ namespace {
 
 // Locate's interpolant on a uniform grid g0 + i·step, for values already in the grid's domain:
 // i1 = ⌈(q − g0)/step⌉ clamped to [1, 31] (below the first node i1 = 1 with fraction 0 gives
-// Locate's i0 = i1 = 0), computed with truncation (no ceil call) so the loop vectorises.
+// Locate's i0 = i1 = 0), computed with truncation (no ceil call) so the loop vectorises; always
+// inlined, so it is compiled for each target of LocateRow.
 template <typename ToGrid>
-void LocateUniform(const float* values, std::size_t n, float lo, float hi, float g0, float step, ToGrid toGrid,
+[[gnu::always_inline]]
+inline void LocateUniform(const float* values, std::size_t n, float lo, float hi, float g0, float step, ToGrid toGrid,
                    int32_t* node, float* fraction) {
     constexpr int kLast = VdpCsfTable::kSize - 1;
     const float invStep = 1.0f / step, denominator = step + 0.000001f;
@@ -195,6 +270,7 @@ void LocateUniform(const float* values, std::size_t n, float lo, float hi, float
 
 }  // namespace
 
+FOVRT_VDP_ROW_CLONES
 void VdpCsfTable::LocateRow(AxisName axis, const float* values, std::size_t n, VdpCsfAxisRow& out) const {
     const Axis& a = AxisOf(axis);
     out.Resize(n);
@@ -207,6 +283,7 @@ void VdpCsfTable::LocateRow(AxisName axis, const float* values, std::size_t n, V
                       out.fraction.data());
 }
 
+FOVRT_VDP_ROW_CLONES
 void VdpCsfTable::Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow& luminance,
                                   const VdpCsfAxisRow& eccentricity, std::size_t n, float* out) const {
     constexpr std::size_t kRho = kSize, kLum = std::size_t(kSize) * kSize;  // strides in logS_
@@ -223,6 +300,7 @@ void VdpCsfTable::Log2Sensitivity(const VdpCsfAxisRow& rho, const VdpCsfAxisRow&
     }
 }
 
+FOVRT_VDP_ROW_CLONES
 void VdpCsfTable::Log2Sensitivity(const LuminanceSlice& slice, const VdpCsfAxisRow& luminance, std::size_t n,
                                   float* out) const {
     for (std::size_t i = 0; i < n; ++i) {

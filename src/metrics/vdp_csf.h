@@ -42,6 +42,9 @@ public:
     enum class AxisName { Rho, Luminance, Eccentricity };
 
     VdpCsfTable(double omega, double sigma, double kCm);
+    // Tables at two temporal frequencies (the metric's two channels), sharing the model's spatial
+    // part, which does not depend on ω: half the setup of two tables made apart, the same values.
+    static std::array<VdpCsfTable, 2> ForOmegas(double omega0, double omega1, double sigma, double kCm);
 
     // Sensitivity (1/threshold Weber contrast), before the metric's sensitivity correction.
     float Sensitivity(float rho, float luminance, float eccentricity) const;
@@ -64,6 +67,8 @@ public:
     void Log2Sensitivity(const LuminanceSlice& slice, const VdpCsfAxisRow& luminance, std::size_t n, float* out) const;
 
 private:
+    // `spatial`: the model's achromatic sensitivity at every node, [lum][rho][ecc].
+    VdpCsfTable(double omega, double sigma, double kCm, const std::vector<double>& spatial);
     struct Axis {
         std::array<float, kSize> grid;  // in the interpolated domain (log2 or sqrt)
         float lo, hi;                   // clamp range in the input domain

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -77,6 +79,36 @@ Plane<float> VdpLuminance(const Plane<vec3>& frame, const VdpPhotometry& photome
     });
     return out;
 }
+
+VdpCodeLuminance::VdpCodeLuminance(const VdpPhotometry& photometry, int bits) : bits_(bits) {
+    if (bits != 8 && bits != 16) Fail("VdpCodeLuminance: {}-bit codes (8 or 16 only)", bits);
+    const uint32_t codes = 1u << bits, widen = 65535u / (codes - 1u);  // a code's 16-bit equal (8 bits: ·257)
+    std::vector<float> values(codes);
+    for (uint32_t c = 0; c < codes; ++c) values[c] = float(c * widen) / 65535.0f;  // as ReadPngRgb divides
+    channel_.resize(codes);
+    grey_.resize(codes);
+    LuminanceRow(photometry, values.data(), codes, channel_.data());
+    for (uint32_t c = 0; c < codes; ++c) grey_[c] = fovrt::Luminance(vec3(channel_[c]));
+}
+
+template <typename Code>
+void VdpCodeLuminance::Image(const Code* codes, int width, int height, int channels, Plane<float>& out) const {
+    static_assert(std::is_same_v<Code, uint8_t> || std::is_same_v<Code, uint16_t>);
+    if (int(sizeof(Code)) * 8 != bits_ || channels < 1 || channels > 4)
+        Fail("VdpCodeLuminance: a {}-bit table for {}-bit codes, {} channels", bits_, sizeof(Code) * 8, channels);
+    out.ResizeForOverwrite(width, height);  // every pixel is written below
+    const size_t n = out.size(), stride = size_t(channels);
+    if (channels < 3) {
+        for (size_t i = 0; i < n; ++i) out[i] = grey_[codes[i * stride]];
+    } else {
+        for (size_t i = 0; i < n; ++i) {
+            const Code* c = codes + i * stride;
+            out[i] = fovrt::Luminance(vec3(channel_[c[0]], channel_[c[1]], channel_[c[2]]));
+        }
+    }
+}
+template void VdpCodeLuminance::Image(const uint8_t*, int, int, int, Plane<float>&) const;
+template void VdpCodeLuminance::Image(const uint16_t*, int, int, int, Plane<float>&) const;
 
 VdpGeometry VdpGeometry::FromPixelsPerDegree(double ppd) {
     return {2.0 * std::tan(DegToRad(0.5 / ppd))};

@@ -39,6 +39,25 @@ double VdpBlackLevel(double peak, double contrast, double ambientLux = 0.0, doub
 Plane<float> VdpLuminance(const Plane<float>& frame, const VdpPhotometry& photometry);
 Plane<float> VdpLuminance(const Plane<vec3>& frame, const VdpPhotometry& photometry);
 
+// VdpLuminance of an image stored as integer codes (a PNG's; code c of a b-bit image is the
+// value c / (2^b − 1)) by table lookup: the luminance of every code on one channel and on all
+// three (a grey pixel), made once with VdpLuminance's own float operations, so a pixel looked up
+// equals VdpLuminance of its value bit for bit.
+class VdpCodeLuminance {
+public:
+    VdpCodeLuminance(const VdpPhotometry& photometry, int bits);  // bits: 8 or 16
+    int bits() const { return bits_; }
+    // A width × height image of `channels` codes per pixel (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA;
+    // alpha ignored) into `out`, reusing its memory when it has that size; the codes' type is
+    // uint8_t for 8 bits, uint16_t for 16.
+    template <typename Code>
+    void Image(const Code* codes, int width, int height, int channels, Plane<float>& out) const;
+
+private:
+    int bits_;
+    std::vector<float> channel_, grey_;  // indexed by code
+};
+
 struct VdpGeometry {
     double tanPerPixel = 0.0;  // pixel pitch / viewing distance (tangent of one pixel's angle)
 

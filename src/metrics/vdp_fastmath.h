@@ -13,6 +13,12 @@
 #include <cstdint>
 #include <limits>
 
+// The metric's per-pixel row functions are compiled twice, for baseline x86-64 (SSE2) and for
+// AVX2 (twice the vector width), and the loader picks one by the CPU it runs on: the binary stays
+// generic (no -march). Not FMA: the AVX2 clone computes the same floats as the SSE2 one, so a
+// score is the same on every x86-64.
+#define FOVRT_VDP_ROW_CLONES [[gnu::target_clones("avx2", "default")]]
+
 namespace fovrt {
 
 // log2 x for x > 0; −∞ for x below the smallest normal float (0 included: "no signal").

@@ -38,7 +38,9 @@ inline float VdpLog2MaskedDifference(float test, float reference, float sensitiv
 
 // VdpLog2MaskedDifference over a row of pixels, as the metric runs it: log2 S per pixel (the CSF
 // table's own form, sensitivity correction included) and VdpFastLog2/VdpFastExp2, so the loop
-// vectorises. log2(1 + 2^y) is taken as max(y, 0) + log2(1 + 2^−|y|), which cannot overflow.
+// vectorises (always inlined: compiled for its caller's target). log2(1 + 2^y) is taken as
+// max(y, 0) + log2(1 + 2^−|y|), which cannot overflow.
+[[gnu::always_inline]]
 inline void VdpLog2MaskedDifferenceRow(const float* test, const float* reference, const float* log2Sensitivity,
                                        std::size_t n, float p, float q, float log2MaskGain, float* log2D) {
     for (std::size_t i = 0; i < n; ++i) {

@@ -16,10 +16,13 @@
 namespace fovrt {
 
 Plane<float> VdpGaussReduce(const Plane<float>& image);
+// The same into `out`, with `rows` for the vertical pass: both reuse their memory when they
+// already have the sizes they need.
+void VdpGaussReduce(const Plane<float>& image, Plane<float>& out, Plane<float>& rows);
 // Expands `image` to width × height (each at most twice the input's size).
 Plane<float> VdpGaussExpand(const Plane<float>& image, int width, int height);
-// The same into `out`, reusing its memory when it already has that size.
-void VdpGaussExpand(const Plane<float>& image, int width, int height, Plane<float>& out);
+// The same into `out`, with `rows` for the vertical pass, reusing their memory as above.
+void VdpGaussExpand(const Plane<float>& image, int width, int height, Plane<float>& out, Plane<float>& rows);
 
 // Number of contrast bands for an image at `pixelsPerDegree` (the base band is not one of them):
 // bands stop at the first whose peak frequency falls to 0.5 cpd, and at log2(min(w, h)) − 1.
@@ -33,14 +36,22 @@ struct VdpContrastPyramid {
     std::vector<std::vector<Plane<float>>> contrast;
     // adaptation[band]: local adaptation luminance (cd/m², ≥ 0.1) of each band.
     std::vector<Plane<float>> adaptation;
+
+    // VdpDecompose's working planes, one set per band so that each keeps its size from one
+    // decomposition to the next: reused, they cost neither fresh memory nor clearing.
+    struct BandScratch {
+        std::vector<Plane<float>> next;  // [image]: the next Gaussian level
+        Plane<float> expandedAdapting, expanded, reduceRows, expandRows;
+    };
+    std::vector<BandScratch> scratch;
 };
 // Decomposes each of `images` (same size, cd/m²) into `bands` contrast bands, adapting every
 // image to image `adaptingImage` (the reference's sustained channel).
 VdpContrastPyramid VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage,
                                 int bands);
-// The same into `pyramid`, reusing its planes' memory where the sizes match: the metric keeps one
-// pyramid per frame in flight, since mapping and clearing fresh memory for every frame's planes
-// cost a tenth of its time at 1280×720.
+// The same into `pyramid`, reusing its planes' memory (scratch included) where the sizes match:
+// the metric keeps one pyramid per frame in flight, since mapping and clearing fresh memory for
+// every frame's planes cost a fifth of its time at 1280×720.
 void VdpDecompose(const std::vector<const Plane<float>*>& images, int adaptingImage, int bands,
                   VdpContrastPyramid& pyramid);
 

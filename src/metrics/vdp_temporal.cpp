@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/vdp_fastmath.h"
+
 namespace fovrt {
 
 int VdpTemporalFilterLength(double fps) { return int(std::ceil(250.0 / (1000.0 / fps))); }
@@ -36,22 +38,25 @@ Plane<float> VdpFilterFrame(const std::vector<Plane<float>>& frames, int frame, 
     return out;
 }
 
+FOVRT_VDP_ROW_CLONES
 void VdpFilterFrameChannels(const std::vector<Plane<float>>& frames, int frame, const VdpTemporalFilters& filters,
                             Plane<float>& sustained, Plane<float>& transient) {
     const int w = frames[0].width(), h = frames[0].height();
-    // Zeroed in place: the metric passes the planes of an earlier frame, whose memory is reused.
+    // Written in place: the metric passes the planes of an earlier frame, whose memory is reused.
     sustained.ResizeForOverwrite(w, h);
-    sustained.Fill(0.0f);
     transient.ResizeForOverwrite(w, h);
-    transient.Fill(0.0f);
     // Row by row, so the taps' rows and the two outputs stay in cache; per pixel the taps are
-    // summed in VdpFilterFrame's order.
+    // summed in VdpFilterFrame's order, the first tap's product standing for 0 + it.
     for (int y = 0; y < h; ++y) {
         float* s = &sustained(0, y);
         float* t = &transient(0, y);
         for (size_t k = 0; k < filters.sustained.size(); ++k) {
             const float* src = &frames[size_t(std::max(frame - int(k), 0))](0, y);
             const float gs = filters.sustained[k], gt = filters.transient[k];
+            if (k == 0) {
+                for (int x = 0; x < w; ++x) s[x] = gs * src[x], t[x] = gt * src[x];
+                continue;
+            }
             for (int x = 0; x < w; ++x) {
                 s[x] += gs * src[x];
                 t[x] += gt * src[x];
