@@ -81,7 +81,7 @@ TEST_CASE("pass byte models cover the compulsory traffic of the memory plan", "[
                     const double compulsory =
                         CompulsoryBytesPerPixel(BuildDenoiserPlan(name, params, 96, 64), 96, 64);
                     INFO(name << " " << backend << " combined " << combined);
-                    CHECK(compulsory > 50.0);
+                    CHECK(compulsory > 40.0);  // the least: the RAE's fp16 activations, 48 B/pixel
                     CHECK(compute >= compulsory);
                     CHECK(compute < 40 * compulsory);  // sanity: not counting every gather tap
                 }
