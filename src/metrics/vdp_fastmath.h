@@ -17,7 +17,13 @@
 // AVX2 (twice the vector width), and the loader picks one by the CPU it runs on: the binary stays
 // generic (no -march). Not FMA: the AVX2 clone computes the same floats as the SSE2 one, so a
 // score is the same on every x86-64.
+// Sanitized builds keep the baseline alone: the loader runs a clone's resolver (an ifunc) while it
+// relocates, before the sanitizer's runtime is set up, and an instrumented resolver crashes there.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+#define FOVRT_VDP_ROW_CLONES
+#else
 #define FOVRT_VDP_ROW_CLONES [[gnu::target_clones("avx2", "default")]]
+#endif
 
 namespace fovrt {
 
