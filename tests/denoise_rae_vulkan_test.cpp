@@ -31,6 +31,23 @@ DenoiserParams GoldenParams(Precision precision) {
     return p;
 }
 
+// A 37×21 frame of random direct light over a flat grey surface facing the camera, with per-pixel
+// sample counts 1 + x mod 8.
+FrameInputs RandomFlatFrame(Pcg32& rng) {
+    FrameInputs f;
+    f.Allocate(37, 21);
+    for (int y = 0; y < 21; ++y)
+        for (int x = 0; x < 37; ++x) {
+            f.direct(x, y) = vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+            f.albedo(x, y) = vec3(0.7f);
+            f.normal(x, y) = vec3(0, 0, 1);
+            f.linearDepth(x, y) = 2.0f;
+            f.objectId(x, y) = 0;
+            f.sampleCount(x, y) = uint16_t(1 + x % 8);
+        }
+    return f;
+}
+
 Tensor RandomInput(const RaeWeights& w, int width, int height, uint64_t seed) {
     Tensor x(w.inChannels, height, width);
     Pcg32 rng(seed);
@@ -117,17 +134,7 @@ TEST_CASE("rae on Vulkan: denoised frames follow the reference, and a camera cut
     RaeReferenceDenoiser ref("rae-spp", p);
     Pcg32 rng(3);
     for (int frame = 0; frame < 4; ++frame) {
-        FrameInputs f;
-        f.Allocate(37, 21);
-        for (int y = 0; y < 21; ++y)
-            for (int x = 0; x < 37; ++x) {
-                f.direct(x, y) = vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
-                f.albedo(x, y) = vec3(0.7f);
-                f.normal(x, y) = vec3(0, 0, 1);
-                f.linearDepth(x, y) = 2.0f;
-                f.objectId(x, y) = 0;
-                f.sampleCount(x, y) = uint16_t(1 + x % 8);
-            }
+        FrameInputs f = RandomFlatFrame(rng);
         f.cameraCut = frame == 2;
         Plane<vec3> a, b;
         vk.Denoise(f, a);
@@ -159,16 +166,7 @@ TEST_CASE("rae on Vulkan: a frame streamed through a small staging ring equals o
         RaeVulkanDenoiser a("rae-spp", TestContext(), whole), b("rae-spp", TestContext(), streamed);
         Pcg32 rng(5);
         for (int frame = 0; frame < 3; ++frame) {
-            FrameInputs f;
-            f.Allocate(37, 21);
-            for (int y = 0; y < 21; ++y)
-                for (int x = 0; x < 37; ++x) {
-                    f.direct(x, y) = vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
-                    f.albedo(x, y) = vec3(0.6f);
-                    f.normal(x, y) = vec3(0, 0, 1);
-                    f.linearDepth(x, y) = 3.0f;
-                    f.sampleCount(x, y) = uint16_t(1 + y % 4);
-                }
+            const FrameInputs f = RandomFlatFrame(rng);
             Plane<vec3> outA, outB;
             a.Denoise(f, outA);
             b.Denoise(f, outB);
