@@ -152,9 +152,9 @@ void RaeVulkanDenoiser::Forward(const Tensor& input, Tensor& out) {
     }
     FOVRT_CHECK(in.offset == 0);  // the upload fills activations_ from its start
     if (fp16_) {
-        std::vector<uint16_t> half(input.data.size());
-        for (size_t i = 0; i < half.size(); ++i) half[i] = glm::packHalf1x16(input.data[i]);
-        transfers.Upload(half.data(), half.size() * 2, activations_);
+        half_.resize(input.data.size());  // the ring copies it at once: free again after Upload
+        for (size_t i = 0; i < half_.size(); ++i) half_[i] = glm::packHalf1x16(input.data[i]);
+        transfers.Upload(half_.data(), half_.size() * 2, activations_);
     } else {
         transfers.Upload(input.data.data(), input.Bytes(), activations_);
     }
@@ -162,10 +162,10 @@ void RaeVulkanDenoiser::Forward(const Tensor& input, Tensor& out) {
     rec.EndPass();
     RecordNetwork(rec);
     out = Tensor(3, o.height, o.width);
-    std::vector<uint16_t> halfOut(fp16_ ? out.data.size() : 0);
+    half_.resize(fp16_ ? out.data.size() : 0);
     rec.BeginPass("download");
     if (fp16_)
-        transfers.Download(activations_, halfOut.size() * 2, halfOut.data(), o.offset * element);
+        transfers.Download(activations_, half_.size() * 2, half_.data(), o.offset * element);
     else
         transfers.Download(activations_, out.Bytes(), out.data.data(), o.offset * element);
     rec.EndPass();
@@ -173,7 +173,7 @@ void RaeVulkanDenoiser::Forward(const Tensor& input, Tensor& out) {
     timings_.clear();
     if (timestamps_.enabled())
         for (const auto& [pass, ms] : timestamps_.Results()) timings_.push_back({pass, ms});
-    for (size_t i = 0; i < halfOut.size(); ++i) out.data[i] = glm::unpackHalf1x16(halfOut[i]);
+    for (size_t i = 0; i < half_.size(); ++i) out.data[i] = glm::unpackHalf1x16(half_[i]);
     parity_ ^= 1;
 }
 

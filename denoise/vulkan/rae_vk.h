@@ -67,6 +67,7 @@ private:
     int parity_ = 0;  // hidden side written this frame: 0 → A, 1 → B
     bool needsClear_ = true;
     std::vector<PassTiming> timings_;
+    std::vector<uint16_t> half_;  // fp16 activations: the input before its upload, the output after its download
 };
 
 }  // namespace fovrt
