@@ -14,7 +14,7 @@
 
 namespace fovrt {
 
-enum class Precision { Fp32, Fp16 };  // storage of history buffers
+enum class Precision { Fp32, Fp16 };  // storage of the histories and the illumination ping-pong
 
 struct SvgfParams {
     float alphaColor = 0.2f;      // paper 0.2
@@ -99,7 +99,7 @@ std::span<const SettingRow<RaeParams>> RaeParamTable();            // [denoise.r
 
 // The precision enum's table: the names the key denoise.precision takes.
 inline constexpr const char* kPrecisionKey = "denoise.precision";
-inline constexpr const char* kPrecisionDoc = "storage of history buffers";
+inline constexpr const char* kPrecisionDoc = "storage of histories and filtered illumination";
 struct PrecisionRow {
     Precision value;
     const char* name;

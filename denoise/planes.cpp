@@ -12,7 +12,7 @@ namespace {
 enum class Scope : uint8_t { Shared, PerChannel };
 enum class Lifetime : uint8_t { Scratch, History, Staging };
 enum class SizeRule : uint8_t {
-    PixelsOf, Pixels, History, Strata, Fixed, SampleCounts, GradientSamples, Transfers
+    PixelsOf, Pixels, Stored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
 };
 enum class Source : uint8_t { None, EveryFrame, WhenRead };
 
@@ -29,7 +29,7 @@ struct PlaneRow {
 
 #define PIXELS_OF(member) SizeRule::PixelsOf, FOVRT_FRAME_ELEMENT(member)
 #define PIXELS(bytes) SizeRule::Pixels, bytes
-#define HISTORY(scalars) SizeRule::History, scalars
+#define STORED(scalars) SizeRule::Stored, scalars
 #define STRATA(bytes) SizeRule::Strata, bytes
 #define FIXED(bytes) SizeRule::Fixed, bytes
 #define SAMPLE_COUNTS SizeRule::SampleCounts, 0
@@ -45,7 +45,7 @@ const PlaneRow kRows[] = {FOVRT_DENOISER_PLANES(FOVRT_PLANE_ROW)};
 #undef FOVRT_PLANE_ROW
 #undef PIXELS_OF
 #undef PIXELS
-#undef HISTORY
+#undef STORED
 #undef STRATA
 #undef FIXED
 #undef SAMPLE_COUNTS
@@ -84,6 +84,9 @@ bool IsPerChannel(PlaneKind kind) { return Row(kind).scope == Scope::PerChannel;
 bool IsHistory(PlaneKind kind) { return Row(kind).lifetime == Lifetime::History; }
 bool IsStaging(PlaneKind kind) { return Row(kind).lifetime == Lifetime::Staging; }
 bool IsFixedSize(PlaneKind kind) { return Row(kind).size == SizeRule::Fixed; }
+size_t ScalarBytes(PlaneKind kind, Precision precision) {
+    return Row(kind).size == SizeRule::Stored ? StoredScalarBytes(precision) : 4;
+}
 uint32_t ClearValue(PlaneKind kind) {
     constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f
     if (kind == PlaneKind::ObjectId) return kNoObject;
@@ -118,7 +121,7 @@ size_t PlaneElementBytes(PlaneKind kind, Precision precision) {
     switch (row.size) {
         case SizeRule::PixelsOf:
         case SizeRule::Pixels: return row.amount;
-        case SizeRule::History: return row.amount * HistoryScalarBytes(precision);
+        case SizeRule::Stored: return row.amount * StoredScalarBytes(precision);
         default: return 0;
     }
 }
@@ -131,7 +134,7 @@ size_t PlaneBytes(PlaneKind kind, const PlaneExtent& e) {
     switch (row.size) {
         case SizeRule::PixelsOf:
         case SizeRule::Pixels:
-        case SizeRule::History: return PlaneElementBytes(kind, e.precision) * pixels;
+        case SizeRule::Stored: return PlaneElementBytes(kind, e.precision) * pixels;
         case SizeRule::Strata: return row.amount * strata;
         case SizeRule::Fixed: return row.amount;
         case SizeRule::SampleCounts: return ((sizeof(uint16_t) * pixels + 3) / 4) * 4;

@@ -23,7 +23,8 @@ namespace fovrt {
 // Size rules of the rows below (W×H pixels, strata of 3×3 pixels):
 //   PIXELS_OF(m)      one element of FrameInputs::m per pixel
 //   PIXELS(b)         b bytes per pixel
-//   HISTORY(k)        k history scalars per pixel (4 bytes each, 2 in fp16)
+//   STORED(k)         k scalars per pixel stored at the denoiser's precision (4 bytes each, 2 in
+//                     fp16): the histories and the (illumination, variance) ping-pong
 //   STRATA(b)         b bytes per stratum
 //   FIXED(b)          b bytes whatever the size (counters, dispatch arguments)
 //   SAMPLE_COUNTS     uint16 per pixel, padded to whole 32-bit words (the shaders read pairs)
@@ -39,42 +40,42 @@ namespace fovrt {
     X(Indirect, "input.indirect", Shared, Scratch, PIXELS_OF(indirect), EVERY_FRAME(indirect))      \
     X(Modulation, "input.modulation", Shared, Scratch, PIXELS_OF(albedo), MODULATION)               \
     X(Emission, "input.emission", Shared, Scratch, PIXELS_OF(emission), EVERY_FRAME(emission))      \
-    X(DepthGradient, "input.depthGradient", Shared, Scratch, PIXELS_OF(depthGradient),             \
+    X(DepthGradient, "input.depthGradient", Shared, Scratch, PIXELS_OF(depthGradient),              \
       EVERY_FRAME(depthGradient))                                                                   \
     X(PrevPixel, "input.prevPixel", Shared, Scratch, PIXELS_OF(prevPixel), EVERY_FRAME(prevPixel))  \
     X(SampleCount, "input.sampleCount", Shared, Scratch, SAMPLE_COUNTS, WHEN_READ(sampleCount))     \
-    /* this frame's geometry, the next frame's previous one */                                     \
+    /* this frame's geometry, the next frame's previous one */                                      \
     X(Normal, "geometry.normal", Shared, History, PIXELS_OF(normal), EVERY_FRAME(normal))           \
     X(Depth, "geometry.depth", Shared, History, PIXELS_OF(linearDepth), EVERY_FRAME(linearDepth))   \
     X(ObjectId, "geometry.objectId", Shared, History, PIXELS_OF(objectId), EVERY_FRAME(objectId))   \
-    /* edge-stopping guide (svgf_pack_guide): normal, depth */                                     \
+    /* edge-stopping guide (svgf_pack_guide): normal, depth */                                      \
     X(Guide, "geometry.guide", Shared, Scratch, PIXELS(16), NONE)                                   \
-    /* per channel: SVGF's histories; W_u of two-history is the channel's length */                \
-    X(Color, "color", PerChannel, History, HISTORY(3), NONE)                                        \
-    X(Moments, "moments", PerChannel, History, HISTORY(2), NONE)                                    \
-    X(Length, "length", PerChannel, History, HISTORY(1), NONE)                                      \
-    X(Weight, "weight", PerChannel, History, HISTORY(1), NONE)                                      \
-    X(WColor, "wcolor", PerChannel, History, HISTORY(3), NONE)                                      \
-    /* per channel: (illumination, variance) ping-pong of the unweighted / weighted history */     \
-    X(Illum0, "illum0", PerChannel, Scratch, PIXELS(16), NONE)                                      \
-    X(Illum1, "illum1", PerChannel, Scratch, PIXELS(16), NONE)                                      \
-    X(WIllum0, "willum0", PerChannel, Scratch, PIXELS(16), NONE)                                    \
-    X(WIllum1, "willum1", PerChannel, Scratch, PIXELS(16), NONE)                                    \
-    /* pixels needing the spatial variance estimate (svgf_moments_classify) and the indirect */    \
-    /* dispatch arguments (groups x, y, z, count); earlier in the frame channel 0's list holds */  \
-    /* the reprojection's box-fallback pixels, used up before the classify pass refills it */      \
+    /* per channel: SVGF's histories; W_u of two-history is the channel's length */                 \
+    X(Color, "color", PerChannel, History, STORED(3), NONE)                                         \
+    X(Moments, "moments", PerChannel, History, STORED(2), NONE)                                     \
+    X(Length, "length", PerChannel, History, STORED(1), NONE)                                       \
+    X(Weight, "weight", PerChannel, History, STORED(1), NONE)                                       \
+    X(WColor, "wcolor", PerChannel, History, STORED(3), NONE)                                       \
+    /* per channel: (illumination, variance) ping-pong of the unweighted / weighted history */      \
+    X(Illum0, "illum0", PerChannel, Scratch, STORED(4), NONE)                                       \
+    X(Illum1, "illum1", PerChannel, Scratch, STORED(4), NONE)                                       \
+    X(WIllum0, "willum0", PerChannel, Scratch, STORED(4), NONE)                                     \
+    X(WIllum1, "willum1", PerChannel, Scratch, STORED(4), NONE)                                     \
+    /* pixels needing the spatial variance estimate (svgf_moments_classify) and the indirect */     \
+    /* dispatch arguments (groups x, y, z, count); earlier in the frame channel 0's list holds */   \
+    /* the reprojection's box-fallback pixels, used up before the classify pass refills it */       \
     X(SpatialList, "spatialList", PerChannel, Scratch, PIXELS(4), NONE)                             \
     X(SpatialArgs, "spatialArgs", PerChannel, Scratch, FIXED(16), NONE)                             \
-    /* two-history: W_w, (S_-1, S_0, S_1), the luminance gradient g, and q */                      \
-    X(WWeight, "wweight", Shared, History, HISTORY(1), NONE)                                        \
-    X(PowerSums, "powerSums", Shared, History, HISTORY(3), NONE)                                    \
-    X(Gradient, "gradient", Shared, History, HISTORY(1), NONE)                                      \
+    /* two-history: W_w, (S_-1, S_0, S_1), the luminance gradient g, and q */                       \
+    X(WWeight, "wweight", Shared, History, STORED(1), NONE)                                         \
+    X(PowerSums, "powerSums", Shared, History, STORED(3), NONE)                                     \
+    X(Gradient, "gradient", Shared, History, STORED(1), NONE)                                       \
     X(Q, "q", Shared, Scratch, PIXELS(4), NONE)                                                     \
-    /* two-history-stable: the stabilised luminance of each channel's filtered illumination */   \
-    X(StableLum, "stableLum", PerChannel, History, HISTORY(1), NONE)                                \
-    /* two-history hysteresis variants: the held history choice p (HystereticChoice) */          \
-    X(Choice, "choice", Shared, History, HISTORY(1), NONE)                                          \
-    /* A-SVGF: samples, stratum claims, (δ, Δ) ping-pong, stratum guide, σ_l·std, α, λ */          \
+    /* two-history-stable: the stabilised luminance of each channel's filtered illumination */      \
+    X(StableLum, "stableLum", PerChannel, History, STORED(1), NONE)                                 \
+    /* two-history hysteresis variants: the held history choice p (HystereticChoice) */             \
+    X(Choice, "choice", Shared, History, STORED(1), NONE)                                           \
+    /* A-SVGF: samples, stratum claims, (δ, Δ) ping-pong, stratum guide, σ_l·std, α, λ */           \
     X(AsvgfSamples, "asvgf.samples", Shared, Scratch, GRADIENT_SAMPLES, WHEN_READ(gradientSamples)) \
     X(AsvgfClaim, "asvgf.claim", Shared, Scratch, STRATA(4), NONE)                                  \
     X(AsvgfGrad0, "asvgf.grad0", Shared, Scratch, STRATA(8), NONE)                                  \
@@ -85,7 +86,7 @@ namespace fovrt {
     X(AsvgfAlpha, "asvgf.alpha", Shared, Scratch, PIXELS(4), NONE)                                  \
     X(AsvgfLambda, "asvgf.lambda", Shared, Scratch, PIXELS(4), NONE)                                \
     X(Output, "output", Shared, Scratch, PIXELS(12), NONE)                                          \
-    /* sanitising counters: non-finite and negative inputs */                                      \
+    /* sanitising counters: non-finite and negative inputs */                                       \
     X(Stats, "stats", Shared, Scratch, FIXED(8), NONE)                                              \
     X(Staging, "staging", Shared, Staging, TRANSFERS, NONE)
 
@@ -145,7 +146,10 @@ struct PlaneExtent {
     int width = 0, height = 0;
     Precision precision = Precision::Fp32;
 };
-inline size_t HistoryScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }
+inline size_t StoredScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }
+// Bytes of one scalar of a plane: StoredScalarBytes for the STORED planes, 4 for the others
+// (how a host reading a plane back converts it).
+size_t ScalarBytes(PlaneKind kind, Precision precision);
 // Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
 inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
 // Bytes of one buffer of `kind` (one side of a history). Staging (TRANSFERS) is sized by the

@@ -1,13 +1,14 @@
 // Bindings declared once for GLSL and C++. A pass lists its bindings (set 0) in
 // shaders/bindings/<pass>.h as a macro of rows B(PASS, NAME, slot, KIND, FORMAT, variable):
 //   TEXEL   read-only uniform texel buffer (samplerBuffer) of VkBufferView format FORMAT
-//   HTEXEL  read-only history plane as a texel buffer: FORMAT in fp32, its 16-bit twin in the
-//           _fp16 variants (the fetch converts, so the shader code is the same)
+//   HTEXEL  read-only plane stored at the denoiser's precision (a history, the illumination
+//           ping-pong) as a texel buffer: FORMAT in fp32, its 16-bit twin in the _fp16 variants
+//           (the fetch converts, so the shader code is the same)
 //   UTEXEL  read-only usamplerBuffer of format FORMAT
 //   HTEXEL3 an RGB history plane: a texel buffer of FORMAT in fp32, a readonly std430 hfloat array
 //           in the _fp16 variants (RGB16F texel buffers are rarely supported)
 //   READ    std430 readonly array of GLSL type FORMAT (uint, GradientSample, …)
-//   WRITE   std430 writeonly array of GLSL type FORMAT (vec4, float, hfloat, …)
+//   WRITE   std430 writeonly array of GLSL type FORMAT (vec4, float, hfloat, hvec4, …)
 //   RW      std430 array of GLSL type FORMAT, read and written
 //   LIST    a pixel list / its dispatch arguments, declared by common/pixel_list.glsl
 // From the rows, GLSL gets `const int PASS_B_NAME = slot;` and the declaration

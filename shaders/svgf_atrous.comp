@@ -189,10 +189,10 @@ void main() {
             result[c] = filtered[k] && sum_w[k][c] > 0.0
                             ? vec4(sum_c[k][c] / sum_w[k][c], sum_v[k][c] / (sum_w[k][c] * sum_w[k][c]))
                             : center[k][c];
-        illum_out0[i] = result[0];
+        illum_out0[i] = TO_ILLUM(result[0]);
         if (kWriteHistory) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
 #if NCH == 2
-        illum_out1[i] = result[1];
+        illum_out1[i] = TO_ILLUM(result[1]);
         if (kWriteHistory) STORE3(hist_color1, i, to_history(result[1].rgb), hfloat);
 #endif
     }

@@ -54,12 +54,12 @@ void filter_pixel(int i) {
     // The centre has weight 1, so sum_w ≥ 1, unless it holds nothing: then its neighbours fill it,
     // and where none holds anything it stays as it is.
     if (sum_w == 0.0) {
-        illum_out[i] = FETCH4(illum_in, i);
+        illum_out[i] = hvec4(FETCH4(illum_in, i));
         return;
     }
     vec2 m = sum_m / sum_w;
     float variance = max(0.0, m.y - m.x * m.x) * (pc.threshold / max(len, 1.0));
-    illum_out[i] = vec4(sum_c / sum_w, variance);
+    illum_out[i] = TO_ILLUM(vec4(sum_c / sum_w, variance));
 }
 
 void main() {

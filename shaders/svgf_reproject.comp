@@ -100,9 +100,9 @@ vec3 sanitise(vec3 c) {
         STORE2(hist_moments##k, i, to_history(m_acc[k]), hfloat);                                            \
         hist_length##k[i] = hfloat(len[k]);                                                                  \
         if (kWriteColor) STORE3(hist_color##k, i, to_history(c_acc[k]), hfloat);                             \
-        illum_out##k[i] = n == 0.0 && len[k] == 0.0                                                           \
-                              ? vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)                                        \
-                              : vec4(c_acc[k], max(0.0, m_acc[k].y - m_acc[k].x * m_acc[k].x));             \
+        illum_out##k[i] = TO_ILLUM(n == 0.0 && len[k] == 0.0                                                  \
+                                       ? vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)                               \
+                                       : vec4(c_acc[k], max(0.0, m_acc[k].y - m_acc[k].x * m_acc[k].x)));    \
     } while (false)
 
 // Accumulates pixel i with this pass's taps; true when the main pass found no bilinear tap on an

@@ -49,13 +49,13 @@ void main() {
     if (pc.clamp_history != 0u) {
         vec3 mean, sigma;
         neighbourhood_mean_sigma(p, mean, sigma);
-        illum_u[i] = two_history_clamp_blend(illum_u[i], FETCH4(illum_w, i), mean, sigma, pc.clamp_sigma,
-                                             FETCH1(q, i));
+        illum_u[i] = TO_ILLUM(two_history_clamp_blend(vec4(illum_u[i]), FETCH4(illum_w, i), mean, sigma,
+                                                      pc.clamp_sigma, FETCH1(q, i)));
         return;
     }
     float pb = pc.held_choice != 0u ? FETCH1(choice, i)
                                     : two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, i), LOAD_S(i));
     float qi = FETCH1(q, i);
     float t = pb + qi - pb * qi;
-    illum_u[i] = mix(FETCH4(illum_w, i), illum_u[i], t);
+    illum_u[i] = TO_ILLUM(mix(FETCH4(illum_w, i), vec4(illum_u[i]), t));
 }

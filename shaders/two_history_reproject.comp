@@ -144,12 +144,12 @@ float neighbour_max_luminance(int k, int i) {
         float variance_ = max(0.0, m_.y - m_.x * m_.x);                                        \
         STORE2(cur_m##k, i, to_history(m_), hfloat);                                           \
         cur_wu##k[i] = hfloat(to_history(wu));                                                 \
-        illum_u##k[i] = held ? vec4(iu_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE);   \
+        illum_u##k[i] = TO_ILLUM(held ? vec4(iu_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)); \
         if (kWriteColor) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
         if (kTwo) {                                                                            \
             vec3 iw_ = !sampled ? (held ? iw_prev_ : vec3(0.0))                                \
                                 : iw_prev_ + (x[k] - iw_prev_) * (n / ww);                     \
-            illum_w##k[i] = held ? vec4(iw_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE); \
+            illum_w##k[i] = TO_ILLUM(held ? vec4(iw_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)); \
             if (kWriteColor) STORE3(cur_iw##k, i, to_history(iw_), hfloat);                    \
         }                                                                                      \
     } while (false)

@@ -60,5 +60,5 @@ void main() {
         }
     }
     cur_stable[i] = hfloat(to_history(ls));
-    illum_out[i] = vec4(stabilized_color(c.rgb, l, ls), c.a);
+    illum_out[i] = TO_ILLUM(vec4(stabilized_color(c.rgb, l, ls), c.a));
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "denoise/gradient_strata.h"
 #include "denoise/memory_plan.h"
@@ -46,38 +47,44 @@ TEST_CASE("staging is the transfer ring: the frame's transfers when they fit, el
     CHECK(Bytes(headset, "staging") == DenoiserParams{}.transferRingBytes);
 }
 
-// `fovrt memory --width 2064 --height 2208 --denoiser NAME` (fp32, the default parameters): the
-// peak per eye, permanent buffers and transient pool, in bytes per pixel.
+// `fovrt memory --width 2064 --height 2208 --denoiser NAME [--precision fp16]` (the default
+// parameters): the peak per eye, permanent buffers and transient pool, in bytes per pixel, with
+// fp32 and with fp16 storage.
 TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
-    const std::map<std::string, double> expected = {
-        {"svgf", 263.68},
-        {"svgf-weighted", 281.68},
-        {"asvgf", 285.01},
-        {"two-history", 411.68},
-        {"two-history-asvgf", 425.01},
-        {"asvgf-antilag", 285.01},
-        {"two-history-asvgf-antilag", 425.01},
-        {"two-history-stable", 435.68},
-        {"two-history-stable-firefly", 435.68},
-        {"two-history-stable-antilag", 435.68},
-        {"two-history-asvgf-stable-antilag", 449.01},
-        {"two-history-clamp", 411.68},
-        {"two-history-stable-clamp", 435.68},
-        {"two-history-hysteresis", 427.68},
-        {"two-history-stable-hysteresis", 443.68},
-        {"two-history-asvgf-stable-hysteresis", 457.01},
-        {"rae", 395.86},
-        {"rae-spp", 399.89},
+    const std::map<std::string, std::pair<double, double>> expected = {  // fp32, fp16
+        {"svgf", {263.68, 191.68}},
+        {"svgf-weighted", {281.68, 201.68}},
+        {"asvgf", {285.01, 213.01}},
+        {"two-history", {411.68, 263.68}},
+        {"two-history-asvgf", {425.01, 281.01}},
+        {"asvgf-antilag", {285.01, 213.01}},
+        {"two-history-asvgf-antilag", {425.01, 281.01}},
+        {"two-history-stable", {435.68, 279.68}},
+        {"two-history-stable-firefly", {435.68, 279.68}},
+        {"two-history-stable-antilag", {435.68, 279.68}},
+        {"two-history-asvgf-stable-antilag", {449.01, 297.01}},
+        {"two-history-clamp", {411.68, 263.68}},
+        {"two-history-stable-clamp", {435.68, 279.68}},
+        {"two-history-hysteresis", {427.68, 275.68}},
+        {"two-history-stable-hysteresis", {443.68, 283.68}},
+        {"two-history-asvgf-stable-hysteresis", {457.01, 301.01}},
+        {"rae", {395.86, 199.83}},
+        {"rae-spp", {399.89, 201.84}},
     };
     const int w = 2064, h = 2208;
     const double pixels = double(w) * double(h);
     for (const std::string& name : DenoiserNames()) {
         INFO(name);
-        const DenoiserPlan plan = BuildDenoiserPlan(name, DenoiserParams{}, w, h);
-        const double perPixel = double(TotalBytes(plan.buffers)) / pixels;
-        std::printf("%-40s %8.2f B/pixel\n", name.c_str(), perPixel);
         REQUIRE(expected.count(name) == 1);
-        CHECK(perPixel == Approx(expected.at(name)).margin(0.01));
+        for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
+            DenoiserParams params;
+            params.precision = precision;
+            const DenoiserPlan plan = BuildDenoiserPlan(name, params, w, h);
+            const double perPixel = double(TotalBytes(plan.buffers)) / pixels;
+            const bool fp16 = precision == Precision::Fp16;
+            std::printf("%-40s %s %8.2f B/pixel\n", name.c_str(), fp16 ? "fp16" : "fp32", perPixel);
+            CHECK(perPixel == Approx(fp16 ? expected.at(name).second : expected.at(name).first).margin(0.01));
+        }
     }
 }
 

@@ -116,8 +116,9 @@ TEST_CASE("SVGF pass bytes follow the shaders' bindings", "[bench]") {
     CHECK(SvgfPassBytes(64, 64, p, all)[3].bytesPerPixel > passes[3].bytesPerPixel + 2 * 60);
     p.precision = Precision::Fp16;
     CHECK(SvgfPassBytes(64, 64, p)[2].bytesPerPixel < passes[2].bytesPerPixel);
+    CHECK(SvgfPassBytes(64, 64, p)[5].bytesPerPixel == Approx(2 * 16 + 16 + 8));  // fp16 illumination in/out 8 + 8
     p.svgf.filterCombined = true;
-    CHECK(SvgfPassBytes(64, 64, p)[5].bytesPerPixel == Approx(32 + 16 + 8));
+    CHECK(SvgfPassBytes(64, 64, p)[5].bytesPerPixel == Approx(16 + 16 + 8));
 }
 
 TEST_CASE("two-history pass bytes follow the shaders' bindings", "[bench]") {

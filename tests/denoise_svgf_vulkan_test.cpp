@@ -75,9 +75,9 @@ void RunPair(const DenoiserParams& params, const std::string& name, int frames, 
     SvgfFamilyReferenceDenoiser ref(FindDenoiserVariant(name), params);
     Plane<vec3> outVk, outRef;
     const bool fp16 = params.precision == Precision::Fp16;
-    auto read = [&](const std::string& buffer, bool history) {
+    auto read = [&](const std::string& buffer, bool atPrecision) {  // a history or an illumination plane
         auto bytes = vk.ReadBuffer(buffer);
-        return history && fp16 ? HalfsToFloats(bytes) : AsFloats(bytes);
+        return atPrecision && fp16 ? HalfsToFloats(bytes) : AsFloats(bytes);
     };
     for (int t = 0; t < frames; ++t) {
         FrameInputs f = makeFrame(width, height, 1234, uint32_t(t));
@@ -109,7 +109,7 @@ void RunPair(const DenoiserParams& params, const std::string& name, int frames, 
                 for (int k = 0; k < 2; ++k) {
                     if (!vk.Readable(ch + ".illum" + std::to_string(k))) continue;
                     ++held;
-                    auto eI = Compare(read(ch + ".illum" + std::to_string(k), false), ref.Illum(c, k), 4, tol);
+                    auto eI = Compare(read(ch + ".illum" + std::to_string(k), true), ref.Illum(c, k), 4, tol);
                     INFO("illum" << k << " max rel " << eI.maxRel << " max abs " << eI.maxAbs);
                     CHECK(eI.bad == 0);
                 }

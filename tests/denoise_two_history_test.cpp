@@ -500,7 +500,7 @@ TEST_CASE("two-history memory plan: the thesis's 88 B/pixel (44 fp16) with separ
         }
         CHECK(hasSvgfColor);
         CHECK(hasWeighted);
-        CHECK(gradientBytes == 4096 * HistoryScalarBytes(prec));  // one scalar per pixel
+        CHECK(gradientBytes == 4096 * StoredScalarBytes(prec));  // one scalar per pixel
     }
 }
 

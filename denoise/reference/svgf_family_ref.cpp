@@ -124,6 +124,7 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
             const Plane<vec3>& color = combined || c == 0 ? in.direct : in.indirect;
             SvgfReprojectRef(color, combined ? &in.indirect : nullptr, in, prevGeometry_.View(), svgf_[prev][c],
                              svgf_[cur][c], Illum(o.out), opt, stats_);
+            StoreIllum(o.out);
         }
         return;
     }
@@ -147,6 +148,7 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     TwoHistoryReprojectRef(colors, int(channels_.size()), combined ? &in.indirect : nullptr, in, prevGeometry_.View(),
                            hasPrev_, state_[prev], state_[cur], variant_.asvgfGradient ? &alpha_ : nullptr,
                            illum_[IllumIndex(PlaneKind::Illum0)], illum_[IllumIndex(PlaneKind::WIllum0)], ro, stats_);
+    for (const StagePlane& o : s.outputs) StoreIllum(o.out);
 }
 
 void SvgfFamilyReferenceDenoiser::Run(const FilterMomentsStage& s, const FrameInputs& in, Plane<vec3>&) {
@@ -155,13 +157,16 @@ void SvgfFamilyReferenceDenoiser::Run(const FilterMomentsStage& s, const FrameIn
         const Plane<float>* length = ScalarPlane({{PlaneKind::Length, p.channel}, HistorySide::This}, parity);
         SvgfFilterMomentsRef(Illum(p.in), GeometryOf(in), in.depthGradient, Moments(p.channel), *length, Illum(p.out),
                              params_.svgf);
+        StoreIllum(p.out);
     }
 }
 
 void SvgfFamilyReferenceDenoiser::Run(const AtrousStage& s, const FrameInputs& in, Plane<vec3>&) {
-    for (const StagePlane& p : s.planes)
+    for (const StagePlane& p : s.planes) {
         SvgfAtrousRef(Illum(p.in), GeometryOf(in), in.depthGradient, s.iteration, Illum(p.out),
                       p.history ? &ColorHistory(*p.history) : nullptr, params_.svgf, params_.precision);
+        StoreIllum(p.out);
+    }
 }
 
 void SvgfFamilyReferenceDenoiser::Run(const BlendStage& s, const FrameInputs&, Plane<vec3>&) {
@@ -172,6 +177,7 @@ void SvgfFamilyReferenceDenoiser::Run(const BlendStage& s, const FrameInputs&, P
                            {variant_.clampHistory, params_.twoHistory.clampSigma},
                            variant_.hystereticChoice ? &choice_[SideIndex(HistorySide::This, parity_)] : nullptr);
         std::swap(Illum(p.out), blendScratch_);
+        StoreIllum(p.out);
     }
 }
 
@@ -215,6 +221,7 @@ void SvgfFamilyReferenceDenoiser::Run(const StabilizeStage& s, const FrameInputs
         const size_t c = ChannelIndex(p.channel);
         TwoHistoryStabilizeRef(Illum(p.in), in, prevGeometry_.View(), hasPrev_, stable_[prev][c], wu,
                                params_.twoHistoryStable, params_.precision, stable_[cur][c], Illum(p.out), q);
+        StoreIllum(p.out);
     }
 }
 
@@ -237,6 +244,12 @@ Plane<vec4>& SvgfFamilyReferenceDenoiser::Illum(const PlaneId& id) {
 }
 const Plane<vec4>& SvgfFamilyReferenceDenoiser::Illum(const PlaneId& id) const {
     return illum_[IllumIndex(id.kind)][ChannelIndex(id.channel)];
+}
+
+void SvgfFamilyReferenceDenoiser::StoreIllum(const PlaneId& id) {
+    if (params_.precision == Precision::Fp32) return;
+    Plane<vec4>& plane = Illum(id);
+    for (size_t i = 0; i < plane.size(); ++i) plane[i] = QuantizeHistory(plane[i], params_.precision);
 }
 
 Plane<vec3>& SvgfFamilyReferenceDenoiser::ColorHistory(const PlaneRef& ref) {

@@ -76,6 +76,8 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     size_t SideIndex(HistorySide side, int parity) const;
     Plane<vec4>& Illum(const PlaneId& id);
     const Plane<vec4>& Illum(const PlaneId& id) const;
+    // Rounds an illumination plane a stage wrote as the Vulkan host stores it (fp16 in fp16 mode).
+    void StoreIllum(const PlaneId& id);
     Plane<vec3>& ColorHistory(const PlaneRef& ref);
     const Plane<vec2>& Moments(Channel channel) const;  // this frame's
     const Plane<float>* ScalarPlane(const PlaneRef& ref, int parity) const;

@@ -138,6 +138,7 @@ vec2 QuantizeHistory(const vec2& v, Precision p) { return {QuantizeHistory(v.x, 
 vec3 QuantizeHistory(const vec3& v, Precision p) {
     return {QuantizeHistory(v.x, p), QuantizeHistory(v.y, p), QuantizeHistory(v.z, p)};
 }
+vec4 QuantizeHistory(const vec4& v, Precision p) { return {QuantizeHistory(vec3(v), p), QuantizeHistory(v.w, p)}; }
 
 // The shaders' functions (shaders/common/edge_stopping_weights.glsl, one text for both languages).
 float DepthWeight(float zp, float zq, const vec2& depthGrad, const vec2& offset, float sigmaDepth) {

@@ -83,6 +83,7 @@ bool HoldsNothing(const vec4& illumination);
 float QuantizeHistory(float v, Precision precision);
 vec2 QuantizeHistory(const vec2& v, Precision precision);
 vec3 QuantizeHistory(const vec3& v, Precision precision);
+vec4 QuantizeHistory(const vec4& v, Precision precision);
 
 // Edge-stopping weights: the shaders' functions (shaders/common/edge_stopping_weights.glsl, one text
 // for GLSL and C++).

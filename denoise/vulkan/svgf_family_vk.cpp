@@ -193,7 +193,7 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
 bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& out) {
     if (!hasFrame_) return false;
     const int lastParity = parity_ ^ 1;
-    auto scalarBytes = [&](PlaneKind kind) { return IsHistory(kind) ? HistoryScalarBytes(params_.precision) : 4; };
+    auto scalarBytes = [&](PlaneKind kind) { return ScalarBytes(kind, params_.precision); };
     const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (view == DebugViewId::P && !ref) {
         // Not stored: the blend evaluates p from this frame's state, and so does this, with the

@@ -13,12 +13,14 @@
 
 namespace fovrt {
 
-// A history plane's format: fp32, or its 16-bit twin in fp16 mode.
+// The format of a plane stored at the denoiser's precision (a history, the illumination
+// ping-pong): fp32, or its 16-bit twin in fp16 mode.
 inline VkFormat HistoryTexelFormat(VkFormat fp32, Precision precision) {
     if (precision != Precision::Fp16) return fp32;
-    return fp32 == VK_FORMAT_R32_SFLOAT      ? VK_FORMAT_R16_SFLOAT
-           : fp32 == VK_FORMAT_R32G32_SFLOAT ? VK_FORMAT_R16G16_SFLOAT
-                                             : VK_FORMAT_UNDEFINED;
+    return fp32 == VK_FORMAT_R32_SFLOAT             ? VK_FORMAT_R16_SFLOAT
+           : fp32 == VK_FORMAT_R32G32_SFLOAT        ? VK_FORMAT_R16G16_SFLOAT
+           : fp32 == VK_FORMAT_R32G32B32A32_SFLOAT ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                    : VK_FORMAT_UNDEFINED;
 }
 
 

@@ -42,7 +42,7 @@ public:
     std::vector<uint8_t> Read(VulkanContext& context, const std::string& name);
     bool Readable(const std::string& name) const;  // a plane of the plan that Read() accepts
     // The same as floats, stored with `scalarBytes` per scalar: 2 for fp16 history storage, 4
-    // otherwise (HistoryScalarBytes of the plan's precision for history planes).
+    // otherwise (ScalarBytes of the plane at the plan's precision).
     std::vector<float> ReadFloats(VulkanContext& context, const BufferKey& key, size_t scalarBytes);
     // A one-scalar-per-pixel buffer as a W×H plane (debug views); checks the buffer's size.
     void ReadPlane(VulkanContext& context, const BufferKey& key, int width, int height,

@@ -13,7 +13,7 @@
     B(SVGF_REPROJECT, CUR_MOMENTS, 18, WRITE, hfloat, hist_moments0)         \
     B(SVGF_REPROJECT, CUR_LENGTH, 19, WRITE, hfloat, hist_length0)           \
     B(SVGF_REPROJECT, CUR_WEIGHT, 20, WRITE, hfloat, hist_weight0)           \
-    B(SVGF_REPROJECT, ILLUM_OUT, 21, WRITE, vec4, illum_out0)                \
+    B(SVGF_REPROJECT, ILLUM_OUT, 21, WRITE, hvec4, illum_out0)               \
     B(SVGF_REPROJECT, STATS, 22, RW, uint, stats)
 // The second channel of "svgf_reproject_pair".
 #define SVGF_REPROJECT_PAIR_BINDING_LIST(B)                                   \
@@ -25,6 +25,6 @@
     B(SVGF_REPROJECT, CUR_MOMENTS2, 28, WRITE, hfloat, hist_moments1)         \
     B(SVGF_REPROJECT, CUR_LENGTH2, 29, WRITE, hfloat, hist_length1)           \
     B(SVGF_REPROJECT, CUR_WEIGHT2, 30, WRITE, hfloat, hist_weight1)           \
-    B(SVGF_REPROJECT, ILLUM_OUT2, 31, WRITE, vec4, illum_out1)
+    B(SVGF_REPROJECT, ILLUM_OUT2, 31, WRITE, hvec4, illum_out1)
 // Every binding of "svgf_reproject_pair".
 #define SVGF_REPROJECT_PAIR_ALL_BINDING_LIST(B) SVGF_REPROJECT_BINDING_LIST(B) SVGF_REPROJECT_PAIR_BINDING_LIST(B)

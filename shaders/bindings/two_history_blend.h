@@ -2,8 +2,8 @@
 // choice) and q, (I_u, Var) ← lerp(I_w, I_u, t) in place. The fp16 power sums stay a storage
 // buffer (RGB16F texel buffers are rarely supported).
 #define TH_BLEND_BINDING_LIST(B)                       \
-    B(TH_BLEND, ILLUM_U, 0, RW, vec4, illum_u)         \
-    B(TH_BLEND, ILLUM_W, 1, TEXEL, RGBA32F, illum_w)   \
+    B(TH_BLEND, ILLUM_U, 0, RW, hvec4, illum_u)        \
+    B(TH_BLEND, ILLUM_W, 1, HTEXEL, RGBA32F, illum_w)  \
     B(TH_BLEND, WU, 2, HTEXEL, R32F, wu)               \
     B(TH_BLEND, WW, 3, HTEXEL, R32F, ww)               \
     B(TH_BLEND, S, 4, HTEXEL3, RGB32F, s)              \

@@ -21,8 +21,8 @@
     B(TH_REPROJECT, CUR_WW, 26, WRITE, hfloat, cur_ww)              \
     B(TH_REPROJECT, CUR_S, 27, WRITE, hfloat, cur_s)                \
     B(TH_REPROJECT, CUR_G, 28, WRITE, hfloat, cur_g)                \
-    B(TH_REPROJECT, ILLUM_U, 29, WRITE, vec4, illum_u0)             \
-    B(TH_REPROJECT, ILLUM_W, 30, WRITE, vec4, illum_w0)             \
+    B(TH_REPROJECT, ILLUM_U, 29, WRITE, hvec4, illum_u0)            \
+    B(TH_REPROJECT, ILLUM_W, 30, WRITE, hvec4, illum_w0)            \
     B(TH_REPROJECT, STATS, 31, RW, uint, stats)
 // Channel 1 of "two_history_reproject_pair".
 #define TH_REPROJECT_PAIR_BINDING_LIST(B)                      \
@@ -33,7 +33,7 @@
     B(TH_REPROJECT, CUR_IW2, 36, WRITE, hfloat, cur_iw1)       \
     B(TH_REPROJECT, CUR_M2, 37, WRITE, hfloat, cur_m1)         \
     B(TH_REPROJECT, CUR_WU2, 38, WRITE, hfloat, cur_wu1)       \
-    B(TH_REPROJECT, ILLUM_U2, 39, WRITE, vec4, illum_u1)       \
-    B(TH_REPROJECT, ILLUM_W2, 40, WRITE, vec4, illum_w1)
+    B(TH_REPROJECT, ILLUM_U2, 39, WRITE, hvec4, illum_u1)      \
+    B(TH_REPROJECT, ILLUM_W2, 40, WRITE, hvec4, illum_w1)
 // Every binding of "two_history_reproject_pair".
 #define TH_REPROJECT_PAIR_ALL_BINDING_LIST(B) TH_REPROJECT_BINDING_LIST(B) TH_REPROJECT_PAIR_BINDING_LIST(B)

@@ -4,8 +4,8 @@
 // previous stabilised luminance, q (two-history-stable-antilag; unused otherwise); writes the
 // stabilised illumination and this frame's luminance.
 #define TH_STABILIZE_BINDING_LIST(B)                            \
-    B(TH_STABILIZE, ILLUM_IN, 0, TEXEL, RGBA32F, illum_in)      \
-    B(TH_STABILIZE, ILLUM_OUT, 1, WRITE, vec4, illum_out)       \
+    B(TH_STABILIZE, ILLUM_IN, 0, HTEXEL, RGBA32F, illum_in)     \
+    B(TH_STABILIZE, ILLUM_OUT, 1, WRITE, hvec4, illum_out)      \
     B(TH_STABILIZE, DEPTH, 2, TEXEL, R32F, depth)               \
     B(TH_STABILIZE, NORMAL, 3, TEXEL, RGB32F, normal)           \
     B(TH_STABILIZE, OBJECT, 4, UTEXEL, R32UI, object_id)        \
