@@ -82,6 +82,9 @@ struct Family {
 
     Channel First() const { return channels.front(); }
     Channel Last() const { return channels.back(); }
+    // The channel whose "length" plane holds `ch`'s history length: the two-history family's
+    // channels share one W_u, channel 0's (its reprojection counts one for both).
+    Channel LengthOf(Channel ch) const { return twoHistoryFamily ? First() : ch; }
     PipelineKey Pipeline(StageShader shader, Specialization spec = {}, bool pairVariant = false) const {
         return {shader, pairVariant, false, false, params.precision == Precision::Fp16, spec};
     }

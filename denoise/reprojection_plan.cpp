@@ -98,9 +98,9 @@ Bindings TwoHistoryReprojectBindings(const Family& f) {
     b.Read(TH_REPROJECT_B_PREV_IU_OTHER, Previous(K::Color, ch1))
         .ReadIf(two, TH_REPROJECT_B_PREV_IW2, Previous(K::WColor, ch1))
         .Read(TH_REPROJECT_B_PREV_M2, Previous(K::Moments, ch1))
-        .Unused(TH_REPROJECT_B_PREV_WU2, Previous(K::Length, ch1))
+        .Unused(TH_REPROJECT_B_PREV_WU2, kUnreadSlot)  // W_u is shared: channel 0's length (above)
         .Write(TH_REPROJECT_B_CUR_M2, This(K::Moments, ch1))
-        .Write(TH_REPROJECT_B_CUR_WU2, This(K::Length, ch1))
+        .Unused(TH_REPROJECT_B_CUR_WU2, kUnwrittenSlot)
         .Write(TH_REPROJECT_B_ILLUM_U2, Scratch(K::Illum0, ch1))
         .WriteIf(two, TH_REPROJECT_B_ILLUM_W2, Scratch(K::WIllum0, ch1));
     colorHistory(TH_REPROJECT_B_CUR_IU2, K::Color, ch1);

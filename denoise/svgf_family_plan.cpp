@@ -58,7 +58,7 @@ void FilterMoments(Writer& w, const Family& f) {
     for (Channel ch : f.channels) {
         Bindings k;
         k.Read(SVGF_CLASSIFY_B_GUIDE, Shared(K::Guide))
-            .Read(SVGF_CLASSIFY_B_LENGTH, This(K::Length, ch))
+            .Read(SVGF_CLASSIFY_B_LENGTH, This(K::Length, f.LengthOf(ch)))
             .ReadWrite(SVGF_CLASSIFY_B_ARGS, Scratch(K::SpatialArgs, ch))
             .Write(SVGF_CLASSIFY_B_LIST, Scratch(K::SpatialList, ch), Coverage::ListedPixels);
         w.Dispatch(OverPixels(f.Pipeline(StageShader::MomentsClassify), std::move(k),
@@ -74,7 +74,7 @@ void FilterMoments(Writer& w, const Family& f) {
             .Read(SVGF_MOMENTS_B_GUIDE, Shared(K::Guide))
             .Read(SVGF_MOMENTS_B_DEPTH_GRAD, Shared(K::DepthGradient))
             .Read(SVGF_MOMENTS_B_MOMENTS, This(K::Moments, p.channel))
-            .Read(SVGF_MOMENTS_B_LENGTH, This(K::Length, p.channel))
+            .Read(SVGF_MOMENTS_B_LENGTH, This(K::Length, f.LengthOf(p.channel)))
             .Write(SVGF_MOMENTS_B_ILLUM_OUT, Scratch(p.out.kind, p.channel))
             .ReadWrite(SVGF_MOMENTS_B_ARGS, Scratch(K::SpatialArgs, p.channel))
             .Read(SVGF_MOMENTS_B_LIST, Scratch(K::SpatialList, p.channel));

@@ -143,7 +143,7 @@ float neighbour_max_luminance(int k, int i) {
         vec2 m_ = !sampled ? (held ? m_prev_ : vec2(0.0)) : mix(m_prev_, vec2(l_, l_ * l_), am); \
         float variance_ = max(0.0, m_.y - m_.x * m_.x);                                        \
         STORE2(cur_m##k, i, to_history(m_), hfloat);                                           \
-        cur_wu##k[i] = hfloat(to_history(wu));                                                 \
+        if (k == 0) cur_wu##k[i] = hfloat(to_history(wu)); /* one W_u for both channels */   \
         illum_u##k[i] = TO_ILLUM(held ? vec4(iu_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)); \
         if (kWriteColor) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
         if (kTwo) {                                                                            \

@@ -1,6 +1,7 @@
 // two_history_reproject: temporal accumulation of both histories (SPEC §5; A-SVGF's per-pixel α,
 // SPEC §4) for channel 0 (direct, or combined); PREV_IU_OTHER is the pair's channel-1 I_u. W_u
-// lives in the channel's "length" buffer. "two_history_reproject_pair" adds channel 1's planes.
+// lives in channel 0's "length" buffer, shared by both channels (PREV_WU2 and CUR_WU2 are bound
+// unused). "two_history_reproject_pair" adds channel 1's planes.
 #include "reprojection_inputs.h"
 #define TH_REPROJECT_BINDING_LIST(B)                                \
     REPROJECT_INPUT_BINDINGS(B, TH_REPROJECT)                       \

@@ -70,7 +70,8 @@ void PrintMemory(const MemoryOptions& o) {
             "   svgf), the gradient as one float (its signed luminance; q uses |lum g|, equal to\n"
             "   the thesis's lum|g| where R, G, B change with one sign, smaller otherwise), float3\n"
             "   power sums: 24+4+4+12 = 44 B with direct and indirect separate (= thesis),\n"
-            "   12+4+4+12 = 32 B with --filter-combined; fp16 halves both)\n");
+            "   12+4+4+12 = 32 B with --filter-combined; fp16 halves both. The two channels\n"
+            "   share one W_u, so against svgf's two lengths the whole history adds 4 B less)\n");
     } catch (const Error& e) {
         std::printf("two-history over svgf: not available (%s)\n", e.what());
     }
