@@ -1,6 +1,10 @@
 #include "denoise/planes.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
+
+#include <glm/gtc/packing.hpp>
 
 #include "core/check.h"
 #include "denoise/gradient_strata.h"
@@ -12,7 +16,7 @@ namespace {
 enum class Scope : uint8_t { Shared, PerChannel };
 enum class Lifetime : uint8_t { Scratch, History, Staging };
 enum class SizeRule : uint8_t {
-    PixelsOf, Pixels, Stored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
+    PixelsOf, InputRgb, Pixels, Stored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
 };
 enum class Source : uint8_t { None, EveryFrame, WhenRead };
 
@@ -28,6 +32,7 @@ struct PlaneRow {
 #define FOVRT_FRAME_ELEMENT(member) sizeof(*std::declval<const FrameInputs&>().member.data())
 
 #define PIXELS_OF(member) SizeRule::PixelsOf, FOVRT_FRAME_ELEMENT(member)
+#define INPUT_RGB(member) SizeRule::InputRgb, FOVRT_FRAME_ELEMENT(member)
 #define PIXELS(bytes) SizeRule::Pixels, bytes
 #define STORED(scalars) SizeRule::Stored, scalars
 #define STRATA(bytes) SizeRule::Strata, bytes
@@ -44,6 +49,7 @@ struct PlaneRow {
 const PlaneRow kRows[] = {FOVRT_DENOISER_PLANES(FOVRT_PLANE_ROW)};
 #undef FOVRT_PLANE_ROW
 #undef PIXELS_OF
+#undef INPUT_RGB
 #undef PIXELS
 #undef STORED
 #undef STRATA
@@ -84,6 +90,26 @@ bool IsPerChannel(PlaneKind kind) { return Row(kind).scope == Scope::PerChannel;
 bool IsHistory(PlaneKind kind) { return Row(kind).lifetime == Lifetime::History; }
 bool IsStaging(PlaneKind kind) { return Row(kind).lifetime == Lifetime::Staging; }
 bool IsFixedSize(PlaneKind kind) { return Row(kind).size == SizeRule::Fixed; }
+bool ConvertedOnUpload(PlaneKind kind, Precision precision) {
+    return Row(kind).size == SizeRule::InputRgb && precision == Precision::Fp16;
+}
+
+namespace {
+uint16_t InputHalf(float v) {
+    return glm::packHalf1x16(std::isfinite(v) ? std::clamp(v, -65000.0f, 65000.0f) : v);
+}
+}  // namespace
+
+float QuantizeInput(float v) { return glm::unpackHalf1x16(InputHalf(v)); }
+
+void StoreInputRgb(const vec3* rgb, size_t pixels, std::vector<uint16_t>& rgba) {
+    rgba.resize(4 * pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = InputHalf(rgb[i][c]);
+        rgba[4 * i + 3] = 0;
+    }
+}
+
 size_t ScalarBytes(PlaneKind kind, Precision precision) {
     return Row(kind).size == SizeRule::Stored ? StoredScalarBytes(precision) : 4;
 }
@@ -122,6 +148,7 @@ size_t PlaneElementBytes(PlaneKind kind, Precision precision) {
         case SizeRule::PixelsOf:
         case SizeRule::Pixels: return row.amount;
         case SizeRule::Stored: return row.amount * StoredScalarBytes(precision);
+        case SizeRule::InputRgb: return precision == Precision::Fp16 ? 4 * sizeof(uint16_t) : row.amount;
         default: return 0;
     }
 }
@@ -133,6 +160,7 @@ size_t PlaneBytes(PlaneKind kind, const PlaneExtent& e) {
     const PlaneRow& row = Row(kind);
     switch (row.size) {
         case SizeRule::PixelsOf:
+        case SizeRule::InputRgb:
         case SizeRule::Pixels:
         case SizeRule::Stored: return PlaneElementBytes(kind, e.precision) * pixels;
         case SizeRule::Strata: return row.amount * strata;

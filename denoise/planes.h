@@ -22,6 +22,8 @@ namespace fovrt {
 
 // Size rules of the rows below (W×H pixels, strata of 3×3 pixels):
 //   PIXELS_OF(m)      one element of FrameInputs::m per pixel
+//   INPUT_RGB(m)      FrameInputs::m, an RGB float plane: 12 bytes per pixel in fp32; in fp16 the
+//                     host uploads it as RGBA16F, 8 bytes (StoreInputRgb)
 //   PIXELS(b)         b bytes per pixel
 //   STORED(k)         k scalars per pixel stored at the denoiser's precision (4 bytes each, 2 in
 //                     fp16): the histories and the (illumination, variance) ping-pong
@@ -36,10 +38,10 @@ namespace fovrt {
 // only by the variants that read it; NONE written on the device.
 // X(kind, name, scope, lifetime, size, source); per-channel names are prefixed by the channel.
 #define FOVRT_DENOISER_PLANES(X)                                                                    \
-    X(Direct, "input.direct", Shared, Scratch, PIXELS_OF(direct), EVERY_FRAME(direct))              \
-    X(Indirect, "input.indirect", Shared, Scratch, PIXELS_OF(indirect), EVERY_FRAME(indirect))      \
-    X(Modulation, "input.modulation", Shared, Scratch, PIXELS_OF(albedo), MODULATION)               \
-    X(Emission, "input.emission", Shared, Scratch, PIXELS_OF(emission), EVERY_FRAME(emission))      \
+    X(Direct, "input.direct", Shared, Scratch, INPUT_RGB(direct), EVERY_FRAME(direct))              \
+    X(Indirect, "input.indirect", Shared, Scratch, INPUT_RGB(indirect), EVERY_FRAME(indirect))      \
+    X(Modulation, "input.modulation", Shared, Scratch, INPUT_RGB(albedo), MODULATION)               \
+    X(Emission, "input.emission", Shared, Scratch, INPUT_RGB(emission), EVERY_FRAME(emission))      \
     X(DepthGradient, "input.depthGradient", Shared, Scratch, PIXELS_OF(depthGradient),              \
       EVERY_FRAME(depthGradient))                                                                   \
     X(PrevPixel, "input.prevPixel", Shared, Scratch, PIXELS_OF(prevPixel), EVERY_FRAME(prevPixel))  \
@@ -150,6 +152,16 @@ inline size_t StoredScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 :
 // Bytes of one scalar of a plane: StoredScalarBytes for the STORED planes, 4 for the others
 // (how a host reading a plane back converts it).
 size_t ScalarBytes(PlaneKind kind, Precision precision);
+// Whether the host converts the plane's FrameInputs data before uploading it: the INPUT_RGB
+// planes in fp16.
+bool ConvertedOnUpload(PlaneKind kind, Precision precision);
+// A colour input as fp16 storage holds it: rounded to the nearest half, finite values beyond
+// ±65000 saturated; NaN and ±inf stay what they are, so that the shaders' sanitising counts them
+// as in fp32. The host's upload and the C++ reference round the same way.
+float QuantizeInput(float v);
+// `pixels` RGB values as RGBA16F texels (alpha 0) rounded by QuantizeInput, into `rgba` (4
+// halves per pixel).
+void StoreInputRgb(const vec3* rgb, size_t pixels, std::vector<uint16_t>& rgba);
 // Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
 inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
 // Bytes of one buffer of `kind` (one side of a history). Staging (TRANSFERS) is sized by the

@@ -2,8 +2,8 @@
 // shaders/bindings/<pass>.h as a macro of rows B(PASS, NAME, slot, KIND, FORMAT, variable):
 //   TEXEL   read-only uniform texel buffer (samplerBuffer) of VkBufferView format FORMAT
 //   HTEXEL  read-only plane stored at the denoiser's precision (a history, the illumination
-//           ping-pong) as a texel buffer: FORMAT in fp32, its 16-bit twin in the _fp16 variants
-//           (the fetch converts, so the shader code is the same)
+//           ping-pong, a colour input) as a texel buffer: FORMAT in fp32, its 16-bit twin in the
+//           _fp16 variants, RGBA16F for RGB32F (the fetch converts, so the shader code is the same)
 //   UTEXEL  read-only usamplerBuffer of format FORMAT
 //   HTEXEL3 an RGB history plane: a texel buffer of FORMAT in fp32, a readonly std430 hfloat array
 //           in the _fp16 variants (RGB16F texel buffers are rarely supported)

@@ -1,16 +1,22 @@
 // The memory plan (denoise/memory_plan.h): staging as large as the transfers need, every
-// variant's bytes per pixel at headset size held (a change that grows one fails here), and the
-// budget checked against the peak.
+// variant's bytes per pixel at headset size held (a change that grows one fails here), the
+// budget checked against the peak, and how fp16 storage holds the colour inputs.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
+
+#include <glm/gtc/packing.hpp>
 
 #include "denoise/gradient_strata.h"
 #include "denoise/memory_plan.h"
 #include "denoise/pass_plan.h"
+#include "denoise/planes.h"
 #include "denoise/variants.h"
 
 using namespace fovrt;
@@ -52,22 +58,22 @@ TEST_CASE("staging is the transfer ring: the frame's transfers when they fit, el
 // fp32 and with fp16 storage.
 TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
     const std::map<std::string, std::pair<double, double>> expected = {  // fp32, fp16
-        {"svgf", {263.68, 191.68}},
-        {"svgf-weighted", {281.68, 201.68}},
-        {"asvgf", {277.01, 209.01}},
-        {"two-history", {403.68, 259.68}},
-        {"two-history-asvgf", {417.01, 277.01}},
-        {"asvgf-antilag", {277.01, 209.01}},
-        {"two-history-asvgf-antilag", {417.01, 277.01}},
-        {"two-history-stable", {427.68, 275.68}},
-        {"two-history-stable-firefly", {427.68, 275.68}},
-        {"two-history-stable-antilag", {427.68, 275.68}},
-        {"two-history-asvgf-stable-antilag", {441.01, 293.01}},
-        {"two-history-clamp", {403.68, 259.68}},
-        {"two-history-stable-clamp", {427.68, 275.68}},
-        {"two-history-hysteresis", {419.68, 271.68}},
-        {"two-history-stable-hysteresis", {435.68, 279.68}},
-        {"two-history-asvgf-stable-hysteresis", {449.01, 297.01}},
+        {"svgf", {263.68, 175.68}},
+        {"svgf-weighted", {281.68, 185.68}},
+        {"asvgf", {277.01, 193.01}},
+        {"two-history", {403.68, 243.68}},
+        {"two-history-asvgf", {417.01, 261.01}},
+        {"asvgf-antilag", {277.01, 193.01}},
+        {"two-history-asvgf-antilag", {417.01, 261.01}},
+        {"two-history-stable", {427.68, 259.68}},
+        {"two-history-stable-firefly", {427.68, 259.68}},
+        {"two-history-stable-antilag", {427.68, 259.68}},
+        {"two-history-asvgf-stable-antilag", {441.01, 277.01}},
+        {"two-history-clamp", {403.68, 243.68}},
+        {"two-history-stable-clamp", {427.68, 259.68}},
+        {"two-history-hysteresis", {419.68, 255.68}},
+        {"two-history-stable-hysteresis", {435.68, 263.68}},
+        {"two-history-asvgf-stable-hysteresis", {449.01, 281.01}},
         {"rae", {395.86, 199.83}},
         {"rae-spp", {399.89, 201.84}},
     };
@@ -97,4 +103,40 @@ TEST_CASE("the budget is checked against the peak: a transient slot counts once,
     CHECK(TransientBytes(plan.buffers) > 0);
     CHECK_NOTHROW(EnforceMemoryBudget(plan.buffers, peak));
     CHECK_THROWS_WITH(EnforceMemoryBudget(plan.buffers, peak - 1), Catch::Contains(std::to_string(peak)));
+}
+
+// fp16 storage uploads the colour inputs as RGBA16F: 8 bytes per pixel instead of 12, rounded to
+// the nearest half, finite values saturated at ±65000, NaN and ±inf kept for the shaders'
+// sanitising to count. The C++ reference rounds its copy of the inputs with the same function.
+TEST_CASE("fp16 storage: the colour inputs are RGBA16F, rounded as the reference rounds them") {
+    for (PlaneKind kind : {PlaneKind::Direct, PlaneKind::Indirect, PlaneKind::Modulation, PlaneKind::Emission}) {
+        CHECK(PlaneElementBytes(kind, Precision::Fp32) == 12);
+        CHECK(PlaneElementBytes(kind, Precision::Fp16) == 8);
+        CHECK(ConvertedOnUpload(kind, Precision::Fp16));
+        CHECK_FALSE(ConvertedOnUpload(kind, Precision::Fp32));
+    }
+    for (PlaneKind kind : {PlaneKind::Normal, PlaneKind::DepthGradient, PlaneKind::PrevPixel, PlaneKind::Guide})
+        CHECK_FALSE(ConvertedOnUpload(kind, Precision::Fp16));
+    CHECK(QuantizeInput(1.0f) == 1.0f);
+    CHECK(QuantizeInput(-2.5f) == -2.5f);
+    CHECK(QuantizeInput(0.1f) == 0.0999755859375f);      // the nearest half: 1638·2⁻¹⁴
+    CHECK(QuantizeInput(1e6f) == 64992.0f);              // saturated at 65000, then rounded (spacing 32)
+    CHECK(QuantizeInput(-1e6f) == -64992.0f);
+    CHECK(QuantizeInput(0x1p-24f) == 0x1p-24f);         // the smallest subnormal half is kept
+    CHECK(QuantizeInput(0x1p-26f) == 0.0f);             // a quarter of it rounds to 0
+    CHECK(std::isinf(QuantizeInput(INFINITY)));
+    CHECK(QuantizeInput(-INFINITY) < 0.0f);
+    CHECK(std::isnan(QuantizeInput(NAN)));
+    const std::vector<vec3> rgb = {vec3(1.0f, 0.1f, 1e6f), vec3(NAN, INFINITY, -0.5f)};
+    std::vector<uint16_t> rgba;
+    StoreInputRgb(rgb.data(), rgb.size(), rgba);
+    REQUIRE(rgba.size() == 8);
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        CHECK(rgba[4 * i + 3] == 0);
+        for (int c = 0; c < 3; ++c) {
+            const float stored = glm::unpackHalf1x16(rgba[4 * i + size_t(c)]);
+            const float rounded = QuantizeInput(rgb[i][c]);
+            CHECK((stored == rounded || (std::isnan(stored) && std::isnan(rounded))));
+        }
+    }
 }

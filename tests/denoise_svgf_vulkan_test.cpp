@@ -363,6 +363,17 @@ TEST_CASE("vulkan svgf: disocclusion, camera cut, NaN never reaches history", "[
         CHECK(timings[1].pass == "pack_guide");
         CHECK(timings[2].pass == "reproject");
     }
+    // fp16 storage uploads the colour as halves: the NaN and the Inf still arrive as such and are
+    // counted, the negative too, and nothing non-finite comes out.
+    if (ctx->supports16BitStorage()) {
+        p.precision = Precision::Fp16;
+        SvgfFamilyVulkanDenoiser h(FindDenoiserVariant("svgf"), ctx, p);
+        for (uint32_t t = 0; t < 6; ++t) h.Denoise(scene.Frame(t), out);
+        h.Denoise(FaultyFrame(scene, 6), out);
+        CHECK(h.Stats().nonFiniteSamples == 2);
+        CHECK(h.Stats().negativeSamples == 1);
+        for (size_t i = 0; i < out.size(); ++i) REQUIRE(IsFinite(out[i]));
+    }
     CHECK(ctx->validationErrors() == 0);
 }
 

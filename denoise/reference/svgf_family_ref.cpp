@@ -89,10 +89,11 @@ void SvgfFamilyReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& ou
     timings_.clear();
     using Clock = std::chrono::steady_clock;
     const FrameConditions frame{hasPrev_, !in.gradientSamples.empty()};
+    const FrameInputs& stored = StoredInputs(in);
     for (const PlannedPass& pass : plan_.passes) {
         if (!Holds(pass.when, frame) || std::holds_alternative<std::monostate>(pass.stage)) continue;
         const auto t0 = Clock::now();
-        std::visit([&](const auto& stage) { Run(stage, in, output); }, pass.stage);
+        std::visit([&](const auto& stage) { Run(stage, stored, output); }, pass.stage);
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         if (!timings_.empty() && timings_.back().pass == pass.referenceTimer)
             timings_.back().ms += ms;
@@ -244,6 +245,16 @@ Plane<vec4>& SvgfFamilyReferenceDenoiser::Illum(const PlaneId& id) {
 }
 const Plane<vec4>& SvgfFamilyReferenceDenoiser::Illum(const PlaneId& id) const {
     return illum_[IllumIndex(id.kind)][ChannelIndex(id.channel)];
+}
+
+const FrameInputs& SvgfFamilyReferenceDenoiser::StoredInputs(const FrameInputs& in) {
+    if (params_.precision == Precision::Fp32) return in;
+    storedInputs_ = in;
+    for (Plane<vec3>* rgb : {&storedInputs_.direct, &storedInputs_.indirect, &storedInputs_.albedo, &storedInputs_.fbeta,
+                             &storedInputs_.emission})
+        for (size_t i = 0; i < rgb->size(); ++i)
+            for (int c = 0; c < 3; ++c) (*rgb)[i][c] = QuantizeInput((*rgb)[i][c]);
+    return storedInputs_;
 }
 
 void SvgfFamilyReferenceDenoiser::StoreIllum(const PlaneId& id) {

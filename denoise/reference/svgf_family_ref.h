@@ -78,6 +78,9 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     const Plane<vec4>& Illum(const PlaneId& id) const;
     // Rounds an illumination plane a stage wrote as the Vulkan host stores it (fp16 in fp16 mode).
     void StoreIllum(const PlaneId& id);
+    // The frame's colour inputs as the Vulkan host uploads them: `in` itself in fp32, a copy
+    // rounded by QuantizeInput in fp16 (planes.h).
+    const FrameInputs& StoredInputs(const FrameInputs& in);
     Plane<vec3>& ColorHistory(const PlaneRef& ref);
     const Plane<vec2>& Moments(Channel channel) const;  // this frame's
     const Plane<float>* ScalarPlane(const PlaneRef& ref, int parity) const;
@@ -98,6 +101,7 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     std::array<TwoHistoryState, 2> state_;          // [side]: two_history_reproject's layout
     std::array<std::array<Plane<vec4>, 2>, 4> illum_;  // [illum0, illum1, willum0, willum1][channel]
     Plane<vec4> blendScratch_;
+    FrameInputs storedInputs_;  // StoredInputs' copy (fp16)
     std::array<Plane<vec2>, 2> gradient_;  // A-SVGF (δ, Δ) ping-pong per stratum
     Plane<StratumGuide> strataGuide_;
     PlaneId reconstructed_;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -88,6 +89,7 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()
     std::vector<PassTiming> timings_;
+    std::vector<uint16_t> halfInput_;  // a colour input converted for upload (fp16 storage)
     DenoiseStats stats_;
 };
 

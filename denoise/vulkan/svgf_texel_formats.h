@@ -14,11 +14,13 @@
 namespace fovrt {
 
 // The format of a plane stored at the denoiser's precision (a history, the illumination
-// ping-pong): fp32, or its 16-bit twin in fp16 mode.
+// ping-pong, a colour input): fp32, or its 16-bit twin in fp16 mode. RGB becomes RGBA16F (RGB16F
+// texel buffers are rarely supported; the colour inputs are uploaded with a 4th half, planes.h).
 inline VkFormat HistoryTexelFormat(VkFormat fp32, Precision precision) {
     if (precision != Precision::Fp16) return fp32;
     return fp32 == VK_FORMAT_R32_SFLOAT             ? VK_FORMAT_R16_SFLOAT
            : fp32 == VK_FORMAT_R32G32_SFLOAT        ? VK_FORMAT_R16G16_SFLOAT
+           : fp32 == VK_FORMAT_R32G32B32_SFLOAT    ? VK_FORMAT_R16G16B16A16_SFLOAT
            : fp32 == VK_FORMAT_R32G32B32A32_SFLOAT ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                     : VK_FORMAT_UNDEFINED;
 }

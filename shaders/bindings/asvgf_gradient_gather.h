@@ -12,7 +12,7 @@
     B(ASVGF_GATHER, NORMAL, 6, TEXEL, RGB32F, normal)                   \
     B(ASVGF_GATHER, OBJECT, 7, UTEXEL, R32UI, object_id)                \
     B(ASVGF_GATHER, DEPTH_GRAD, 8, TEXEL, RG32F, depth_grad)            \
-    B(ASVGF_GATHER, DIRECT, 9, TEXEL, RGB32F, direct)                   \
-    B(ASVGF_GATHER, INDIRECT, 10, TEXEL, RGB32F, indirect)              \
-    B(ASVGF_GATHER, ALBEDO, 11, TEXEL, RGB32F, albedo)                  \
-    B(ASVGF_GATHER, EMISSION, 12, TEXEL, RGB32F, emission)
+    B(ASVGF_GATHER, DIRECT, 9, HTEXEL, RGB32F, direct)                  \
+    B(ASVGF_GATHER, INDIRECT, 10, HTEXEL, RGB32F, indirect)             \
+    B(ASVGF_GATHER, ALBEDO, 11, HTEXEL, RGB32F, albedo)                 \
+    B(ASVGF_GATHER, EMISSION, 12, HTEXEL, RGB32F, emission)

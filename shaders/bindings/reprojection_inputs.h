@@ -4,8 +4,8 @@
 // and motion, and the list of the pixels whose bilinear taps all failed (the box-fallback pass;
 // common/pixel_list.glsl declares it).
 #define REPROJECT_INPUT_BINDINGS(B, P)                 \
-    B(P, COLOR_IN, 0, TEXEL, RGB32F, color_in)         \
-    B(P, COLOR_IN2, 1, TEXEL, RGB32F, color_in2)       \
+    B(P, COLOR_IN, 0, HTEXEL, RGB32F, color_in)        \
+    B(P, COLOR_IN2, 1, HTEXEL, RGB32F, color_in2)      \
     B(P, DEPTH, 2, TEXEL, R32F, depth)                 \
     B(P, NORMAL, 3, TEXEL, RGB32F, normal)             \
     B(P, OBJECT, 4, UTEXEL, R32UI, object_id)          \

@@ -4,6 +4,6 @@
 #define SVGF_MODULATE_BINDING_LIST(B)                        \
     B(SVGF_MODULATE, ILLUM0, 0, HTEXEL, RGBA32F, illum0)     \
     B(SVGF_MODULATE, ILLUM1, 1, HTEXEL, RGBA32F, illum1)     \
-    B(SVGF_MODULATE, ALBEDO, 2, TEXEL, RGB32F, albedo)       \
-    B(SVGF_MODULATE, EMISSION, 3, TEXEL, RGB32F, emission)   \
+    B(SVGF_MODULATE, ALBEDO, 2, HTEXEL, RGB32F, albedo)      \
+    B(SVGF_MODULATE, EMISSION, 3, HTEXEL, RGB32F, emission)  \
     B(SVGF_MODULATE, OUT, 4, WRITE, float, color_out)
