@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "denoise/gradient_strata.h"
+#include "shaders/shared_constants.h"
 
 namespace fovrt {
 
@@ -96,7 +97,8 @@ bool ConvertedOnUpload(PlaneKind kind, Precision precision) {
 
 namespace {
 uint16_t InputHalf(float v) {
-    return glm::packHalf1x16(std::isfinite(v) ? std::clamp(v, -65000.0f, 65000.0f) : v);
+    constexpr float kMax = float(FOVRT_HALF_SATURATION);
+    return glm::packHalf1x16(std::isfinite(v) ? std::clamp(v, -kMax, kMax) : v);
 }
 }  // namespace
 

@@ -8,6 +8,10 @@
 #define FOVRT_WORKGROUP_X 64
 #define FOVRT_WORKGROUP_Y 1
 
+// fp16 storage saturates finite values at ±this (below the largest half, 65504) instead of
+// letting them round to ±inf: the shaders' to_history, the reference's QuantizeHistory, the
+// host's colour-input conversion (QuantizeInput).
+#define FOVRT_HALF_SATURATION 65000.0
 // History length cap (frames). α = max(α, 1/length) makes lengths beyond 1/α irrelevant.
 #define FOVRT_MAX_HISTORY_LENGTH 64.0
 // Reprojection consistency tests (SPEC §3, Falcor): reject a tap when

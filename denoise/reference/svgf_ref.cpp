@@ -132,7 +132,8 @@ bool HoldsNothing(const vec4& illumination) { return illumination.a < 0.0f; }
 
 float QuantizeHistory(float v, Precision precision) {
     if (precision == Precision::Fp32) return v;
-    return glm::unpackHalf1x16(glm::packHalf1x16(std::clamp(v, -65000.0f, 65000.0f)));
+    constexpr float kMax = float(FOVRT_HALF_SATURATION);
+    return glm::unpackHalf1x16(glm::packHalf1x16(std::clamp(v, -kMax, kMax)));
 }
 vec2 QuantizeHistory(const vec2& v, Precision p) { return {QuantizeHistory(v.x, p), QuantizeHistory(v.y, p)}; }
 vec3 QuantizeHistory(const vec3& v, Precision p) {

@@ -7,6 +7,8 @@
 #ifndef FOVRT_PACKING_GLSL
 #define FOVRT_PACKING_GLSL
 
+#include "shared_constants.h"  // FOVRT_HALF_SATURATION
+
 #ifdef FOVRT_FP16
 #extension GL_EXT_shader_16bit_storage : require
 #define hfloat float16_t
@@ -31,7 +33,7 @@
 // Fp16 histories saturate instead of overflowing to +inf.
 float to_history(float v) {
 #ifdef FOVRT_FP16
-    return clamp(v, -65000.0, 65000.0);
+    return clamp(v, -FOVRT_HALF_SATURATION, FOVRT_HALF_SATURATION);
 #else
     return v;
 #endif
