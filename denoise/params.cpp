@@ -103,7 +103,7 @@ constexpr std::array<SettingRow<RaeParams>, 2> kRaeRows{{
 
 constexpr std::array<PrecisionRow, 2> kPrecisionRows{{
     {Precision::Fp32, "fp32", "32-bit float histories"},
-    {Precision::Fp16, "fp16", "16-bit floats for the histories and the filtered illumination"},
+    {Precision::Fp16, "fp16", "16-bit histories, filtered illumination and inputs (octahedral normals)"},
 }};
 
 constexpr std::array<const char*, kPrecisionRows.size()> kPrecisionNames = [] {

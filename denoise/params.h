@@ -14,7 +14,7 @@
 
 namespace fovrt {
 
-enum class Precision { Fp32, Fp16 };  // storage of the histories and the illumination ping-pong
+enum class Precision { Fp32, Fp16 };  // storage of the histories, the illumination ping-pong, the inputs
 
 struct SvgfParams {
     float alphaColor = 0.2f;      // paper 0.2
@@ -99,7 +99,7 @@ std::span<const SettingRow<RaeParams>> RaeParamTable();            // [denoise.r
 
 // The precision enum's table: the names the key denoise.precision takes.
 inline constexpr const char* kPrecisionKey = "denoise.precision";
-inline constexpr const char* kPrecisionDoc = "storage of histories and filtered illumination";
+inline constexpr const char* kPrecisionDoc = "storage of histories, illumination and inputs";
 struct PrecisionRow {
     Precision value;
     const char* name;

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "denoise/gradient_strata.h"
+#include "shaders/common/octahedral_normal.glsl"
 #include "shaders/shared_constants.h"
 
 namespace fovrt {
@@ -17,7 +18,7 @@ namespace {
 enum class Scope : uint8_t { Shared, PerChannel };
 enum class Lifetime : uint8_t { Scratch, History, Staging };
 enum class SizeRule : uint8_t {
-    PixelsOf, InputRgb, Pixels, Stored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
+    PixelsOf, InputRgb, InputNormal, Pixels, Stored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
 };
 enum class Source : uint8_t { None, EveryFrame, WhenRead };
 
@@ -34,6 +35,7 @@ struct PlaneRow {
 
 #define PIXELS_OF(member) SizeRule::PixelsOf, FOVRT_FRAME_ELEMENT(member)
 #define INPUT_RGB(member) SizeRule::InputRgb, FOVRT_FRAME_ELEMENT(member)
+#define INPUT_NORMAL(member) SizeRule::InputNormal, FOVRT_FRAME_ELEMENT(member)
 #define PIXELS(bytes) SizeRule::Pixels, bytes
 #define STORED(scalars) SizeRule::Stored, scalars
 #define STRATA(bytes) SizeRule::Strata, bytes
@@ -51,6 +53,7 @@ const PlaneRow kRows[] = {FOVRT_DENOISER_PLANES(FOVRT_PLANE_ROW)};
 #undef FOVRT_PLANE_ROW
 #undef PIXELS_OF
 #undef INPUT_RGB
+#undef INPUT_NORMAL
 #undef PIXELS
 #undef STORED
 #undef STRATA
@@ -91,27 +94,6 @@ bool IsPerChannel(PlaneKind kind) { return Row(kind).scope == Scope::PerChannel;
 bool IsHistory(PlaneKind kind) { return Row(kind).lifetime == Lifetime::History; }
 bool IsStaging(PlaneKind kind) { return Row(kind).lifetime == Lifetime::Staging; }
 bool IsFixedSize(PlaneKind kind) { return Row(kind).size == SizeRule::Fixed; }
-bool ConvertedOnUpload(PlaneKind kind, Precision precision) {
-    return Row(kind).size == SizeRule::InputRgb && precision == Precision::Fp16;
-}
-
-namespace {
-uint16_t InputHalf(float v) {
-    constexpr float kMax = float(FOVRT_HALF_SATURATION);
-    return glm::packHalf1x16(std::isfinite(v) ? std::clamp(v, -kMax, kMax) : v);
-}
-}  // namespace
-
-float QuantizeInput(float v) { return glm::unpackHalf1x16(InputHalf(v)); }
-
-void StoreInputRgb(const vec3* rgb, size_t pixels, std::vector<uint16_t>& rgba) {
-    rgba.resize(4 * pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = InputHalf(rgb[i][c]);
-        rgba[4 * i + 3] = 0;
-    }
-}
-
 size_t ScalarBytes(PlaneKind kind, Precision precision) {
     return Row(kind).size == SizeRule::Stored ? StoredScalarBytes(precision) : 4;
 }
@@ -151,6 +133,7 @@ size_t PlaneElementBytes(PlaneKind kind, Precision precision) {
         case SizeRule::Pixels: return row.amount;
         case SizeRule::Stored: return row.amount * StoredScalarBytes(precision);
         case SizeRule::InputRgb: return precision == Precision::Fp16 ? 4 * sizeof(uint16_t) : row.amount;
+        case SizeRule::InputNormal: return precision == Precision::Fp16 ? 2 * sizeof(int16_t) : row.amount;
         default: return 0;
     }
 }
@@ -163,6 +146,7 @@ size_t PlaneBytes(PlaneKind kind, const PlaneExtent& e) {
     switch (row.size) {
         case SizeRule::PixelsOf:
         case SizeRule::InputRgb:
+        case SizeRule::InputNormal:
         case SizeRule::Pixels:
         case SizeRule::Stored: return PlaneElementBytes(kind, e.precision) * pixels;
         case SizeRule::Strata: return row.amount * strata;
@@ -188,6 +172,53 @@ HostBytes FrameSource(PlaneKind kind, const FrameInputs& in) {
 #undef WHEN_READ
 #undef NONE
     return {};
+}
+
+bool ConvertedOnUpload(PlaneKind kind, Precision precision) {
+    const SizeRule rule = Row(kind).size;
+    return (rule == SizeRule::InputRgb || rule == SizeRule::InputNormal) && precision == Precision::Fp16;
+}
+
+namespace {
+uint16_t InputHalf(float v) {
+    constexpr float kMax = float(FOVRT_HALF_SATURATION);
+    return glm::packHalf1x16(std::isfinite(v) ? std::clamp(v, -kMax, kMax) : v);
+}
+}  // namespace
+
+float QuantizeInput(float v) { return glm::unpackHalf1x16(InputHalf(v)); }
+
+// Cigolle et al. 2014: project onto the octahedron |x| + |y| + |z| = 1, fold the lower half over
+// the diagonals, round to 16-bit signed integers (scale 32767).
+ivec2 OctahedralCode(const vec3& n) {
+    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    if (!(l1 > 0.0f) || !std::isfinite(l1)) return {-32768, -32768};  // no normal
+    vec2 p = vec2(n.x, n.y) / l1;
+    if (n.z < 0.0f) p = (vec2(1.0f) - glm::abs(vec2(p.y, p.x))) * vec2(p.x >= 0.0f ? 1.0f : -1.0f, p.y >= 0.0f ? 1.0f : -1.0f);
+    return ivec2(glm::round(glm::clamp(p, vec2(-1.0f), vec2(1.0f)) * 32767.0f));
+}
+
+vec3 QuantizeNormal(const vec3& n) { return glsl::octahedral_normal(OctahedralCode(n)); }
+
+void ConvertForUpload(PlaneKind kind, const HostBytes& source, std::vector<uint16_t>& out) {
+    const SizeRule rule = Row(kind).size;
+    FOVRT_CHECK(rule == SizeRule::InputRgb || rule == SizeRule::InputNormal);
+    const auto* values = static_cast<const vec3*>(source.data);
+    const size_t pixels = source.bytes / sizeof(vec3);
+    if (rule == SizeRule::InputNormal) {
+        out.resize(2 * pixels);
+        for (size_t i = 0; i < pixels; ++i) {
+            const ivec2 code = OctahedralCode(values[i]);
+            out[2 * i] = uint16_t(int16_t(code.x));
+            out[2 * i + 1] = uint16_t(int16_t(code.y));
+        }
+        return;
+    }
+    out.resize(4 * pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 3; ++c) out[4 * i + size_t(c)] = InputHalf(values[i][c]);
+        out[4 * i + 3] = 0;
+    }
 }
 
 const std::vector<PlaneKind>& PlanesUploadedEveryFrame() {

@@ -23,7 +23,9 @@ namespace fovrt {
 // Size rules of the rows below (W×H pixels, strata of 3×3 pixels):
 //   PIXELS_OF(m)      one element of FrameInputs::m per pixel
 //   INPUT_RGB(m)      FrameInputs::m, an RGB float plane: 12 bytes per pixel in fp32; in fp16 the
-//                     host uploads it as RGBA16F, 8 bytes (StoreInputRgb)
+//                     host uploads it as RGBA16F, 8 bytes (ConvertForUpload)
+//   INPUT_NORMAL(m)   FrameInputs::m, unit normals: 12 bytes per pixel in fp32; in fp16 the host
+//                     uploads them octahedral, two int16, 4 bytes (ConvertForUpload)
 //   PIXELS(b)         b bytes per pixel
 //   STORED(k)         k scalars per pixel stored at the denoiser's precision (4 bytes each, 2 in
 //                     fp16): the histories and the (illumination, variance) ping-pong
@@ -47,7 +49,7 @@ namespace fovrt {
     X(PrevPixel, "input.prevPixel", Shared, Scratch, PIXELS_OF(prevPixel), EVERY_FRAME(prevPixel))  \
     X(SampleCount, "input.sampleCount", Shared, Scratch, SAMPLE_COUNTS, WHEN_READ(sampleCount))     \
     /* this frame's geometry, the next frame's previous one */                                      \
-    X(Normal, "geometry.normal", Shared, History, PIXELS_OF(normal), EVERY_FRAME(normal))           \
+    X(Normal, "geometry.normal", Shared, History, INPUT_NORMAL(normal), EVERY_FRAME(normal))        \
     X(Depth, "geometry.depth", Shared, History, PIXELS_OF(linearDepth), EVERY_FRAME(linearDepth))   \
     X(ObjectId, "geometry.objectId", Shared, History, PIXELS_OF(objectId), EVERY_FRAME(objectId))   \
     /* edge-stopping guide (svgf_pack_guide): normal, depth */                                      \
@@ -152,16 +154,6 @@ inline size_t StoredScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 :
 // Bytes of one scalar of a plane: StoredScalarBytes for the STORED planes, 4 for the others
 // (how a host reading a plane back converts it).
 size_t ScalarBytes(PlaneKind kind, Precision precision);
-// Whether the host converts the plane's FrameInputs data before uploading it: the INPUT_RGB
-// planes in fp16.
-bool ConvertedOnUpload(PlaneKind kind, Precision precision);
-// A colour input as fp16 storage holds it: rounded to the nearest half, finite values beyond
-// ±65000 saturated; NaN and ±inf stay what they are, so that the shaders' sanitising counts them
-// as in fp32. The host's upload and the C++ reference round the same way.
-float QuantizeInput(float v);
-// `pixels` RGB values as RGBA16F texels (alpha 0) rounded by QuantizeInput, into `rgba` (4
-// halves per pixel).
-void StoreInputRgb(const vec3* rgb, size_t pixels, std::vector<uint16_t>& rgba);
 // Staging offsets are aligned like CommandRecorder::Upload/Download (16 bytes).
 inline size_t StagingAlign(size_t bytes) { return (bytes + 15) & ~size_t(15); }
 // Bytes of one buffer of `kind` (one side of a history). Staging (TRANSFERS) is sized by the
@@ -179,5 +171,21 @@ struct HostBytes {
 HostBytes FrameSource(PlaneKind kind, const FrameInputs& in);
 // The kinds every frame uploads (EVERY_FRAME and MODULATION), in table order.
 const std::vector<PlaneKind>& PlanesUploadedEveryFrame();
+
+// Whether the host converts the plane's FrameInputs data before uploading it: the INPUT_RGB and
+// INPUT_NORMAL planes in fp16.
+bool ConvertedOnUpload(PlaneKind kind, Precision precision);
+// A colour input as fp16 storage holds it: rounded to the nearest half, finite values beyond
+// ±FOVRT_HALF_SATURATION saturated; NaN and ±inf stay what they are, so that the shaders'
+// sanitising counts them as in fp32.
+float QuantizeInput(float v);
+// A normal as fp16 storage holds it: its octahedral code (OctahedralCode), decoded as the shaders
+// decode it (shaders/common/octahedral_normal.glsl); a zero or non-finite normal becomes 0.
+ivec2 OctahedralCode(const vec3& n);
+vec3 QuantizeNormal(const vec3& n);
+// The upload of a ConvertedOnUpload plane, from its FrameSource bytes, into `out` (16-bit words):
+// RGBA16F texels (alpha 0) rounded by QuantizeInput, or octahedral codes. The host uploads these;
+// the C++ reference rounds its copy of the inputs by QuantizeInput and QuantizeNormal.
+void ConvertForUpload(PlaneKind kind, const HostBytes& source, std::vector<uint16_t>& out);
 
 }  // namespace fovrt

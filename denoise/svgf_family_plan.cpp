@@ -25,8 +25,8 @@ void Upload(Writer& w, const Family& f) {
     w.Barrier();
 }
 
-// svgf_pack_guide: this frame's depth, normal, object id → the edge-stopping guide. The shader
-// has no history plane, so its fp32 build serves both precisions.
+// svgf_pack_guide: this frame's depth, normal, object id → the edge-stopping guide (fp32 in both
+// precisions; the _fp16 build decodes the octahedral normals).
 void PackGuide(Writer& w, const Family& f) {
     w.Pass("pack_guide", "", std::monostate{});
     Bindings b;
@@ -34,9 +34,7 @@ void PackGuide(Writer& w, const Family& f) {
         .Read(SVGF_GUIDE_B_NORMAL, This(PlaneKind::Normal))
         .Read(SVGF_GUIDE_B_OBJECT, This(PlaneKind::ObjectId))
         .Write(SVGF_GUIDE_B_OUT, Shared(PlaneKind::Guide));
-    PipelineKey pipeline = f.Pipeline(StageShader::PackGuide);
-    pipeline.fp16 = false;
-    w.Dispatch(OverPixels(pipeline, std::move(b), PushBlock::Of(ImageSizePush{f.size})));
+    w.Dispatch(OverPixels(f.Pipeline(StageShader::PackGuide), std::move(b), PushBlock::Of(ImageSizePush{f.size})));
     w.Barrier();
 }
 

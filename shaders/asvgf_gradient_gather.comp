@@ -36,7 +36,7 @@ void main() {
         j = g.pixel.y * pc.size.x + g.pixel.x;
     }
     bool background = FETCH1(object_id, j) == FOVRT_NO_OBJECT;
-    guide_geometry[k] = vec4(FETCH3(normal, j), background ? -1.0 : FETCH1(depth, j));
+    guide_geometry[k] = vec4(FETCH_NORMAL(normal, j), background ? -1.0 : FETCH1(depth, j));
     float l = luminance(FETCH3(albedo, j) * (FETCH3(direct, j) + FETCH3(indirect, j)) + FETCH3(emission, j));
     guide_luminance[k] = vec4(l, FETCH2(depth_grad, j), 0.0);
 }

@@ -4,6 +4,8 @@
 //   HTEXEL  read-only plane stored at the denoiser's precision (a history, the illumination
 //           ping-pong, a colour input) as a texel buffer: FORMAT in fp32, its 16-bit twin in the
 //           _fp16 variants, RGBA16F for RGB32F (the fetch converts, so the shader code is the same)
+//   NTEXEL  read-only normal plane: a texel buffer of FORMAT (RGB32F) in fp32, an isamplerBuffer of
+//           octahedral R16G16_SINT codes in the _fp16 variants (read with FETCH_NORMAL)
 //   UTEXEL  read-only usamplerBuffer of format FORMAT
 //   HTEXEL3 an RGB history plane: a texel buffer of FORMAT in fp32, a readonly std430 hfloat array
 //           in the _fp16 variants (RGB16F texel buffers are rarely supported)
@@ -39,6 +41,11 @@
 #define FOVRT_GLSL_DECL_TEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_HTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_UTEXEL(slot, format, variable, block) layout(binding = slot) uniform usamplerBuffer variable;
+#ifdef FOVRT_FP16
+#define FOVRT_GLSL_DECL_NTEXEL(slot, format, variable, block) layout(binding = slot) uniform isamplerBuffer variable;
+#else
+#define FOVRT_GLSL_DECL_NTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
+#endif
 #ifdef FOVRT_FP16
 #define FOVRT_GLSL_DECL_HTEXEL3(slot, format, variable, block) \
     layout(std430, binding = slot) readonly buffer block { hfloat variable[]; };

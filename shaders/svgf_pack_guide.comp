@@ -21,5 +21,5 @@ void main() {
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
     bool background = FETCH1(object_id, i) == FOVRT_NO_OBJECT;
-    guide_out[i] = vec4(FETCH3(normal, i), background ? -1.0 : FETCH1(depth, i));
+    guide_out[i] = vec4(FETCH_NORMAL(normal, i), background ? -1.0 : FETCH1(depth, i));
 }

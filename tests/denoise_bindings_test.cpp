@@ -70,14 +70,22 @@ TEST_CASE("texel-format tables follow the binding kinds") {
     const Precision p32 = Precision::Fp32, p16 = Precision::Fp16;
     const auto fp32 = StageTexelFormats(S::FilterMoments, false, p32);
     const auto fp16 = StageTexelFormats(S::FilterMoments, false, p16);
-    CHECK(fp32[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // TEXEL
-    CHECK(fp16[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // not a history plane
+    CHECK(fp32[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R32G32B32A32_SFLOAT);       // HTEXEL
+    CHECK(fp16[SVGF_MOMENTS_B_ILLUM_IN] == VK_FORMAT_R16G16B16A16_SFLOAT);       // stored at the precision
+    CHECK(fp16[SVGF_MOMENTS_B_GUIDE] == VK_FORMAT_R32G32B32A32_SFLOAT);          // TEXEL: 32-bit either way
     CHECK(fp32[SVGF_MOMENTS_B_MOMENTS] == VK_FORMAT_R32G32_SFLOAT);              // HTEXEL
     CHECK(fp16[SVGF_MOMENTS_B_MOMENTS] == VK_FORMAT_R16G16_SFLOAT);
     CHECK(fp16[SVGF_MOMENTS_B_LENGTH] == VK_FORMAT_R16_SFLOAT);
     CHECK(fp32[SVGF_MOMENTS_B_ILLUM_OUT] == VK_FORMAT_UNDEFINED);                // WRITE: storage
     CHECK(fp32[SVGF_MOMENTS_B_LIST] == VK_FORMAT_UNDEFINED);                     // LIST: storage
     CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);  // UTEXEL
+    // NTEXEL: a normal is RGB32F in fp32 and an octahedral R16G16_SINT code in fp16.
+    CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_NORMAL] == VK_FORMAT_R32G32B32_SFLOAT);
+    CHECK(StageTexelFormats(S::PackGuide, false, p16)[SVGF_GUIDE_B_NORMAL] == VK_FORMAT_R16G16_SINT);
+    CHECK(StageTexelFormats(S::SvgfReproject, false, p16)[SVGF_REPROJECT_B_PREV_NORMAL] == VK_FORMAT_R16G16_SINT);
+    // A colour input (HTEXEL of RGB32F) is RGBA16F in fp16: RGB16F texel buffers are rarely supported.
+    CHECK(StageTexelFormats(S::SvgfReproject, false, p16)[SVGF_REPROJECT_B_COLOR_IN] == VK_FORMAT_R16G16B16A16_SFLOAT);
+    CHECK(StageTexelFormats(S::SvgfReproject, false, p32)[SVGF_REPROJECT_B_COLOR_IN] == VK_FORMAT_R32G32B32_SFLOAT);
     // HTEXEL3: an RGB history is a texel buffer in fp32 and storage in fp16.
     CHECK(StageTexelFormats(S::TwoHistoryBlend, false, p32)[TH_BLEND_B_S] == VK_FORMAT_R32G32B32_SFLOAT);
     CHECK(StageTexelFormats(S::TwoHistoryBlend, false, p16)[TH_BLEND_B_S] == VK_FORMAT_UNDEFINED);

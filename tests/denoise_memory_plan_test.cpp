@@ -3,6 +3,7 @@
 // budget checked against the peak, and how fp16 storage holds the colour inputs.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -58,22 +59,22 @@ TEST_CASE("staging is the transfer ring: the frame's transfers when they fit, el
 // fp32 and with fp16 storage.
 TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
     const std::map<std::string, std::pair<double, double>> expected = {  // fp32, fp16
-        {"svgf", {263.68, 175.68}},
-        {"svgf-weighted", {281.68, 185.68}},
-        {"asvgf", {277.01, 193.01}},
-        {"two-history", {403.68, 243.68}},
-        {"two-history-asvgf", {417.01, 261.01}},
-        {"asvgf-antilag", {277.01, 193.01}},
-        {"two-history-asvgf-antilag", {417.01, 261.01}},
-        {"two-history-stable", {427.68, 259.68}},
-        {"two-history-stable-firefly", {427.68, 259.68}},
-        {"two-history-stable-antilag", {427.68, 259.68}},
-        {"two-history-asvgf-stable-antilag", {441.01, 277.01}},
-        {"two-history-clamp", {403.68, 243.68}},
-        {"two-history-stable-clamp", {427.68, 259.68}},
-        {"two-history-hysteresis", {419.68, 255.68}},
-        {"two-history-stable-hysteresis", {435.68, 263.68}},
-        {"two-history-asvgf-stable-hysteresis", {449.01, 281.01}},
+        {"svgf", {263.68, 159.68}},
+        {"svgf-weighted", {281.68, 169.68}},
+        {"asvgf", {277.01, 177.01}},
+        {"two-history", {403.68, 227.68}},
+        {"two-history-asvgf", {417.01, 245.01}},
+        {"asvgf-antilag", {277.01, 177.01}},
+        {"two-history-asvgf-antilag", {417.01, 245.01}},
+        {"two-history-stable", {427.68, 243.68}},
+        {"two-history-stable-firefly", {427.68, 243.68}},
+        {"two-history-stable-antilag", {427.68, 243.68}},
+        {"two-history-asvgf-stable-antilag", {441.01, 261.01}},
+        {"two-history-clamp", {403.68, 227.68}},
+        {"two-history-stable-clamp", {427.68, 243.68}},
+        {"two-history-hysteresis", {419.68, 239.68}},
+        {"two-history-stable-hysteresis", {435.68, 247.68}},
+        {"two-history-asvgf-stable-hysteresis", {449.01, 265.01}},
         {"rae", {395.86, 199.83}},
         {"rae-spp", {399.89, 201.84}},
     };
@@ -115,7 +116,7 @@ TEST_CASE("fp16 storage: the colour inputs are RGBA16F, rounded as the reference
         CHECK(ConvertedOnUpload(kind, Precision::Fp16));
         CHECK_FALSE(ConvertedOnUpload(kind, Precision::Fp32));
     }
-    for (PlaneKind kind : {PlaneKind::Normal, PlaneKind::DepthGradient, PlaneKind::PrevPixel, PlaneKind::Guide})
+    for (PlaneKind kind : {PlaneKind::Depth, PlaneKind::DepthGradient, PlaneKind::PrevPixel, PlaneKind::Guide})
         CHECK_FALSE(ConvertedOnUpload(kind, Precision::Fp16));
     CHECK(QuantizeInput(1.0f) == 1.0f);
     CHECK(QuantizeInput(-2.5f) == -2.5f);
@@ -129,7 +130,7 @@ TEST_CASE("fp16 storage: the colour inputs are RGBA16F, rounded as the reference
     CHECK(std::isnan(QuantizeInput(NAN)));
     const std::vector<vec3> rgb = {vec3(1.0f, 0.1f, 1e6f), vec3(NAN, INFINITY, -0.5f)};
     std::vector<uint16_t> rgba;
-    StoreInputRgb(rgb.data(), rgb.size(), rgba);
+    ConvertForUpload(PlaneKind::Direct, {rgb.data(), rgb.size() * sizeof(vec3)}, rgba);
     REQUIRE(rgba.size() == 8);
     for (size_t i = 0; i < rgb.size(); ++i) {
         CHECK(rgba[4 * i + 3] == 0);
@@ -139,4 +140,45 @@ TEST_CASE("fp16 storage: the colour inputs are RGBA16F, rounded as the reference
             CHECK((stored == rounded || (std::isnan(stored) && std::isnan(rounded))));
         }
     }
+}
+
+// fp16 storage keeps the geometry's normals octahedral: two int16 per pixel, 4 bytes instead of
+// 12. The axes and the background's zero normal survive exactly; any unit normal within 1e-4 rad
+// (the 16-bit grid's spacing on the octahedron is 2/32767).
+TEST_CASE("fp16 storage: normals are octahedral codes, decoded as the shaders decode them") {
+    CHECK(PlaneElementBytes(PlaneKind::Normal, Precision::Fp32) == 12);
+    CHECK(PlaneElementBytes(PlaneKind::Normal, Precision::Fp16) == 4);
+    CHECK(ConvertedOnUpload(PlaneKind::Normal, Precision::Fp16));
+    CHECK_FALSE(ConvertedOnUpload(PlaneKind::Normal, Precision::Fp32));
+    for (const vec3& axis : {vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1)})
+        CHECK(QuantizeNormal(axis) == axis);
+    CHECK(OctahedralCode(vec3(0.0f)) == ivec2(-32768, -32768));
+    CHECK(QuantizeNormal(vec3(0.0f)) == vec3(0.0f));
+    CHECK(QuantizeNormal(vec3(NAN, 0.0f, 1.0f)) == vec3(0.0f));
+    CHECK(OctahedralCode(vec3(0, 0, -1)) == ivec2(32767, 32767));  // the lower pole at a corner
+    uint32_t state = 12345u;
+    auto uniform = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24) * 2.0f - 1.0f;
+    };
+    double worst = 0.0;
+    for (int k = 0; k < 20000; ++k) {
+        const vec3 n = glm::normalize(vec3(uniform(), uniform(), uniform()) + vec3(1e-6f));
+        const vec3 q = QuantizeNormal(n);
+        // The angle from the chord, in double: acos of a float dot near 1 would measure float rounding.
+        worst = std::max(worst, 2.0 * std::asin(glm::length(glm::dvec3(n) - glm::dvec3(q)) / 2.0));
+        REQUIRE(std::abs(glm::length(q) - 1.0f) < 1e-6f);
+    }
+    INFO("largest angle " << worst << " rad");
+    CHECK(worst < 1e-4);
+    const std::vector<vec3> normals = {vec3(0, 0, 1), vec3(0.0f), vec3(0, 0, -1)};
+    std::vector<uint16_t> codes;
+    ConvertForUpload(PlaneKind::Normal, {normals.data(), normals.size() * sizeof(vec3)}, codes);
+    REQUIRE(codes.size() == 6);
+    CHECK(int16_t(codes[0]) == 0);
+    CHECK(int16_t(codes[1]) == 0);
+    CHECK(int16_t(codes[2]) == -32768);
+    CHECK(int16_t(codes[3]) == -32768);
+    CHECK(int16_t(codes[4]) == 32767);
+    CHECK(int16_t(codes[5]) == 32767);
 }

@@ -100,7 +100,7 @@ void SvgfFamilyReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& ou
         else
             timings_.push_back({pass.referenceTimer, ms});
     }
-    prevGeometry_.CopyFrom(in);
+    prevGeometry_.CopyFrom(stored);  // the normals as stored
     hasPrev_ = true;
     hasFrame_ = true;
     parity_ ^= 1;
@@ -254,6 +254,7 @@ const FrameInputs& SvgfFamilyReferenceDenoiser::StoredInputs(const FrameInputs& 
                              &storedInputs_.emission})
         for (size_t i = 0; i < rgb->size(); ++i)
             for (int c = 0; c < 3; ++c) (*rgb)[i][c] = QuantizeInput((*rgb)[i][c]);
+    for (size_t i = 0; i < storedInputs_.normal.size(); ++i) storedInputs_.normal[i] = QuantizeNormal(storedInputs_.normal[i]);
     return storedInputs_;
 }
 

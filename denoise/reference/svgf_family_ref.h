@@ -78,8 +78,8 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     const Plane<vec4>& Illum(const PlaneId& id) const;
     // Rounds an illumination plane a stage wrote as the Vulkan host stores it (fp16 in fp16 mode).
     void StoreIllum(const PlaneId& id);
-    // The frame's colour inputs as the Vulkan host uploads them: `in` itself in fp32, a copy
-    // rounded by QuantizeInput in fp16 (planes.h).
+    // The frame's inputs as the Vulkan host uploads them: `in` itself in fp32, a copy whose colours
+    // and normals are rounded by QuantizeInput and QuantizeNormal in fp16 (planes.h).
     const FrameInputs& StoredInputs(const FrameInputs& in);
     Plane<vec3>& ColorHistory(const PlaneRef& ref);
     const Plane<vec2>& Moments(Channel channel) const;  // this frame's

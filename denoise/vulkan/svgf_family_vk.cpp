@@ -140,8 +140,8 @@ void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const Command& comma
                 rec.Copy(buffer(op.from), buffer(op.to), buffers_.Bytes(ResolveSide(op.from, parity_)));
             } else if constexpr (std::is_same_v<T, UploadCommand>) {
                 const HostBytes source = FrameSource(op.to.id.kind, frame.inputs);
-                if (ConvertedOnUpload(op.to.id.kind, params_.precision)) {  // RGBA16F: the ring copies it at once
-                    StoreInputRgb(static_cast<const vec3*>(source.data), source.bytes / sizeof(vec3), halfInput_);
+                if (ConvertedOnUpload(op.to.id.kind, params_.precision)) {  // the ring copies it at once
+                    ConvertForUpload(op.to.id.kind, source, halfInput_);
                     frame.transfers.Upload(halfInput_.data(), halfInput_.size() * sizeof(uint16_t), buffer(op.to));
                 } else {
                     frame.transfers.Upload(source.data, source.bytes, buffer(op.to));

@@ -89,7 +89,7 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()
     std::vector<PassTiming> timings_;
-    std::vector<uint16_t> halfInput_;  // a colour input converted for upload (fp16 storage)
+    std::vector<uint16_t> halfInput_;  // an input converted for upload (fp16 storage: ConvertForUpload)
     DenoiseStats stats_;
 };
 

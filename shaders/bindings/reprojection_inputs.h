@@ -7,10 +7,10 @@
     B(P, COLOR_IN, 0, HTEXEL, RGB32F, color_in)        \
     B(P, COLOR_IN2, 1, HTEXEL, RGB32F, color_in2)      \
     B(P, DEPTH, 2, TEXEL, R32F, depth)                 \
-    B(P, NORMAL, 3, TEXEL, RGB32F, normal)             \
+    B(P, NORMAL, 3, NTEXEL, RGB32F, normal)            \
     B(P, OBJECT, 4, UTEXEL, R32UI, object_id)          \
     B(P, PREV_DEPTH, 5, TEXEL, R32F, prev_depth)       \
-    B(P, PREV_NORMAL, 6, TEXEL, RGB32F, prev_normal)   \
+    B(P, PREV_NORMAL, 6, NTEXEL, RGB32F, prev_normal)  \
     B(P, PREV_OBJECT, 7, UTEXEL, R32UI, prev_object)   \
     B(P, DEPTH_GRAD, 8, TEXEL, RG32F, depth_grad)      \
     B(P, PREV_PIXEL, 9, TEXEL, RG32F, prev_pixel)      \

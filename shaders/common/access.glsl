@@ -8,6 +8,7 @@
 // Out-of-range texel fetches return 0 instead of reading out of bounds (callers still test).
 #ifndef FOVRT_ACCESS_GLSL
 #define FOVRT_ACCESS_GLSL
+#include "octahedral_normal.glsl"
 
 #define PLANE(binding_, name) layout(binding = binding_) uniform samplerBuffer name
 #define UPLANE(binding_, name) layout(binding = binding_) uniform usamplerBuffer name
@@ -16,6 +17,12 @@
 #define FETCH2(name, i) texelFetch(name, (i)).xy
 #define FETCH3(name, i) texelFetch(name, (i)).xyz
 #define FETCH4(name, i) texelFetch(name, (i))
+// A normal plane (an NTEXEL binding, shaders/bindings.h): RGB32F, or octahedral in the _fp16 variants.
+#ifdef FOVRT_FP16
+#define FETCH_NORMAL(name, i) octahedral_normal(texelFetch(name, (i)).xy)
+#else
+#define FETCH_NORMAL(name, i) texelFetch(name, (i)).xyz
+#endif
 
 // Index of pixel q clamped into a size.x × size.y image. The gather filters (svgf_atrous,
 // two_history_gradient) do not skip taps outside the image or on background with `continue`: on

@@ -7,7 +7,7 @@
 #ifndef FOVRT_PACKING_GLSL
 #define FOVRT_PACKING_GLSL
 
-#include "shared_constants.h"  // FOVRT_HALF_SATURATION
+#include "../shared_constants.h"  // FOVRT_HALF_SATURATION
 
 #ifdef FOVRT_FP16
 #extension GL_EXT_shader_16bit_storage : require

@@ -99,7 +99,7 @@ void PrintDenoisersPage() {
                 "foveal relMSE and foveal flicker as ratios to svgf, FovVideoVDP JOD as the difference to svgf\n"
                 "([experiments.md](experiments.md#the-full-protocol-with-the-perceptual-metric-and-two-history-stable),\n"
                 "[two_history_stable.md](../denoise/two_history_stable.md)); empty: not measured at full size.\n"
-                "Bytes per pixel: one eye's buffers at 1280×720 (`fovrt memory`), fp32 / fp16 histories.\n"
+                "Bytes per pixel: one eye's buffers at 1280×720 (`fovrt memory`), fp32 / fp16 storage.\n"
                 "Pixels without a path sample (an spp map of 0 there): every SVGF-family variant adds nothing\n"
                 "to such a pixel's histories and lets a disoccluded one be filled by its neighbours (svgf,\n"
                 "asvgf and asvgf-antilag read the sample counts for it only where the foveation goes below\n"
