@@ -538,16 +538,24 @@ TEST_CASE("a frame streamed through a small staging ring equals the frame submit
 // Every composition of the gradient / two-history pass family (denoise/variants.h: 54 with the
 // two-history family, and svgf+asvgf with and without anti-lag), on Vulkan against the C++
 // reference: both follow the row's flags, so a combination that no alias names runs on both alike.
+// Each in fp32 and in fp16 storage (16-bit histories, illumination and inputs, octahedral normals).
 TEST_CASE("every composition of the two-history pass family matches the reference on Vulkan", "[vulkan][two_history]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     size_t run = 0;
+    const bool half = TestContext()->supports16BitStorage();
     for (const std::string& name : DenoiserCompositions()) {
         const DenoiserVariant& variant = FindDenoiserVariant(name);
         if (variant.family != DenoiserFamily::TwoHistory) continue;
         INFO(name);
-        RunPair(variant, ParamsForDenoiser(name, DenoiserParams{}), 3);
+        DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});
+        RunPair(variant, params, 3);
+        if (half) {
+            params.precision = Precision::Fp16;
+            RunPair(variant, params, 3);
+        }
         ++run;
     }
     CHECK(run == 2 + 3 * 2 * 3 * 3);
     CHECK(TestContext()->validationErrors() == 0);
+    if (!half) FOVRT_SKIP("no 16-bit storage: the compositions ran in fp32 only");
 }
