@@ -97,9 +97,10 @@ bool IsFixedSize(PlaneKind kind) { return Row(kind).size == SizeRule::Fixed; }
 size_t ScalarBytes(PlaneKind kind, Precision precision) {
     return Row(kind).size == SizeRule::Stored ? StoredScalarBytes(precision) : 4;
 }
-uint32_t ClearValue(PlaneKind kind) {
+uint32_t ClearValue(PlaneKind kind, Precision precision) {
     constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f
     if (kind == PlaneKind::ObjectId) return kNoObject;
+    if (kind == PlaneKind::Normal && ConvertedOnUpload(kind, precision)) return 0x80008000u;  // (−32768, −32768)
     if (kind == PlaneKind::AsvgfAlpha || kind == PlaneKind::AsvgfLambda) return kFloatOne;
     return 0u;
 }

@@ -138,8 +138,9 @@ bool IsStaging(PlaneKind kind);  // host-visible: the transfers go through it
 bool IsFixedSize(PlaneKind kind);
 // The value a reset fills a plane with (as 32-bit words): background object ids, so that nothing
 // reprojects; A-SVGF's α = λ = 1.0f, so that the first frame is taken whole (its gradient passes
-// need a previous frame and do not run); 0 everywhere else.
-uint32_t ClearValue(PlaneKind kind);
+// need a previous frame and do not run); in fp16 the normals' "no normal" octahedral code, so that
+// a reset holds zero normals at both precisions; 0 everywhere else.
+uint32_t ClearValue(PlaneKind kind, Precision precision);
 
 // "input.direct", "direct.color", "direct.color.A".
 std::string PlaneName(const PlaneId& id);

@@ -156,6 +156,10 @@ TEST_CASE("fp16 storage: normals are octahedral codes, decoded as the shaders de
     CHECK(QuantizeNormal(vec3(0.0f)) == vec3(0.0f));
     CHECK(QuantizeNormal(vec3(NAN, 0.0f, 1.0f)) == vec3(0.0f));
     CHECK(OctahedralCode(vec3(0, 0, -1)) == ivec2(32767, 32767));  // the lower pole at a corner
+    // A reset fills the normal planes with the "no normal" code in fp16, as with 0.0f in fp32.
+    const uint32_t cleared = ClearValue(PlaneKind::Normal, Precision::Fp16);
+    CHECK(ivec2(int16_t(cleared & 0xFFFFu), int16_t(cleared >> 16)) == OctahedralCode(vec3(0.0f)));
+    CHECK(ClearValue(PlaneKind::Normal, Precision::Fp32) == 0u);
     uint32_t state = 12345u;
     auto uniform = [&] {
         state = state * 1664525u + 1013904223u;

@@ -75,8 +75,8 @@ void SvgfFamilyReferenceDenoiser::Allocate(int width, int height) {
         side.Resize(variant_.hystereticChoice ? width : 0, variant_.hystereticChoice ? height : 0, 0.0f);
     prevGeometry_.Allocate(width, height);  // background: nothing reprojects
     if (variant_.asvgfGradient) {  // what a reset leaves in α and λ: the gradient needs a previous frame
-        alpha_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfAlpha)));
-        lambda_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfLambda)));
+        alpha_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfAlpha, params_.precision)));
+        lambda_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfLambda, params_.precision)));
     }
     hasPrev_ = false;
     hasFrame_ = false;

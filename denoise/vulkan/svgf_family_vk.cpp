@@ -154,7 +154,7 @@ void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const Command& comma
                     default: Fail("{}: the host has no place for a download of {}", Name(), PlaneName(op.from.id));
                 }
             } else if constexpr (std::is_same_v<T, ClearCommand>) {
-                buffers_.RecordClear(rec);
+                buffers_.RecordClear(rec, params_.precision);
             } else {
                 static_assert(std::is_same_v<T, BarrierCommand>);
                 rec.Barrier();

@@ -36,9 +36,9 @@ Buffer& DenoiserBuffers::operator[](const BufferKey& key) { return allocations_[
 size_t DenoiserBuffers::Bytes(const BufferKey& key) const { return Find(key).bytes; }
 
 // A pool slot is filled once per plane it holds: its planes' values are all dropped alike.
-void DenoiserBuffers::RecordClear(CommandRecorder& rec) {
+void DenoiserBuffers::RecordClear(CommandRecorder& rec, Precision precision) {
     for (const auto& [key, placement] : planes_)
-        if (!IsStaging(key.id.kind)) rec.Fill(allocations_[placement.allocation], ClearValue(key.id.kind));
+        if (!IsStaging(key.id.kind)) rec.Fill(allocations_[placement.allocation], ClearValue(key.id.kind, precision));
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, Buffer& src, size_t bytes) {

@@ -34,7 +34,7 @@ public:
 
     // Drops every history: each device buffer to its plane's ClearValue (background object ids,
     // so nothing reprojects; 0 elsewhere).
-    void RecordClear(CommandRecorder& rec);
+    void RecordClear(CommandRecorder& rec, Precision precision);  // ClearValue at that precision
 
     // Synchronous read-back of one buffer, by key or by its printed name (tests), after a frame:
     // fails for a transient plane whose slot a later plane of the frame reused.
