@@ -28,6 +28,9 @@ struct BufferPlan {
     bool history = false;   // persists across frames (vs. per-frame scratch)
     bool transient = false; // a slot of the transient pool: planes that live only within a frame,
                             // at times that do not overlap (else a plane's own buffer)
+    bool shared = false;    // one buffer of this name per device, which every denoiser's frame
+                            // uses in turn (the transient pool's slots, the staging ring:
+                            // vk/shared_buffers.h); its size is the largest user's
 };
 
 struct DenoiseStats {

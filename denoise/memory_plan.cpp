@@ -46,6 +46,23 @@ size_t TransientBytes(const std::vector<BufferPlan>& plan) {
     return total;
 }
 
+void AddDenoiserOnDevice(std::vector<BufferPlan>& device, const std::string& prefix,
+                         const std::vector<BufferPlan>& denoiser) {
+    for (BufferPlan b : denoiser) {
+        if (!b.shared) {
+            b.name = prefix + b.name;
+            device.push_back(std::move(b));
+            continue;
+        }
+        b.name = "shared." + b.name;
+        auto same = std::find_if(device.begin(), device.end(), [&](const BufferPlan& d) { return d.name == b.name; });
+        if (same == device.end())
+            device.push_back(std::move(b));
+        else
+            same->bytes = std::max(same->bytes, b.bytes);
+    }
+}
+
 void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes, const std::string& what) {
     if (budgetBytes == 0) return;
     size_t total = TotalBytes(plan);

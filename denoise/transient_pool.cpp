@@ -107,7 +107,8 @@ void PlaceInTransientPool(DenoiserPlan& plan) {
             continue;
         }
         p.allocation = plan.buffers.size();
-        plan.buffers.push_back({BufferName(p.key), p.bytes, IsHistory(p.key.id.kind), false});
+        // The staging ring holds only what one frame streams: frames of other denoisers may share it.
+        plan.buffers.push_back({BufferName(p.key), p.bytes, IsHistory(p.key.id.kind), false, IsStaging(p.key.id.kind)});
     }
     // Interval placement in order of first write (larger planes first within an epoch): a slot is
     // free when every plane in it died before this one is first written.
@@ -137,7 +138,7 @@ void PlaceInTransientPool(DenoiserPlan& plan) {
         p.allocation = plan.buffers.size() + best;
     }
     for (size_t s = 0; s < slots.size(); ++s)
-        plan.buffers.push_back({fmt::format("transient.{}", s), slots[s].bytes, false, true});
+        plan.buffers.push_back({fmt::format("transient.{}", s), slots[s].bytes, false, true, true});
 }
 
 bool HeldAfterFrame(const DenoiserPlan& plan, const BufferKey& key) {

@@ -95,6 +95,56 @@ TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold") {
     }
 }
 
+// `fovrt memory --width 2064 --height 2208 --eyes 2 --denoiser NAME [--precision fp16]`: both eyes
+// on one device, which take turns with one transient pool and staging ring (AddDenoiserOnDevice),
+// in bytes per pixel of the two eyes. #40's goals in fp16: two-history at most 170 B/pixel
+// (1.5 GiB), svgf at most 1 GiB. The RAE keeps buffers of its own.
+TEST_CASE("both eyes' bytes per pixel at headset size (2064x2208) on one device hold") {
+    const std::map<std::string, std::pair<double, double>> expected = {  // fp32, fp16
+        {"svgf", {199.84, 115.84}},
+        {"svgf-weighted", {216.84, 124.84}},
+        {"asvgf", {213.17, 133.17}},
+        {"two-history", {309.84, 169.84}},
+        {"two-history-asvgf", {323.17, 187.17}},
+        {"asvgf-antilag", {213.17, 133.17}},
+        {"two-history-asvgf-antilag", {323.17, 187.17}},
+        {"two-history-stable", {329.84, 181.84}},
+        {"two-history-stable-firefly", {329.84, 181.84}},
+        {"two-history-stable-antilag", {329.84, 181.84}},
+        {"two-history-asvgf-stable-antilag", {343.17, 199.17}},
+        {"two-history-clamp", {309.84, 169.84}},
+        {"two-history-stable-clamp", {329.84, 181.84}},
+        {"two-history-hysteresis", {321.84, 177.84}},
+        {"two-history-stable-hysteresis", {337.84, 185.84}},
+        {"two-history-asvgf-stable-hysteresis", {351.17, 203.17}},
+        {"rae", {395.86, 199.83}},
+        {"rae-spp", {399.89, 201.84}},
+    };
+    const int w = 2064, h = 2208;
+    const double pixels = 2.0 * double(w) * double(h);
+    std::map<std::string, size_t> fp16Bytes;
+    for (const std::string& name : DenoiserNames()) {
+        INFO(name);
+        REQUIRE(expected.count(name) == 1);
+        for (Precision precision : {Precision::Fp32, Precision::Fp16}) {
+            DenoiserParams params;
+            params.precision = precision;
+            const std::vector<BufferPlan> eye = BuildDenoiserPlan(name, params, w, h).buffers;
+            std::vector<BufferPlan> device;
+            for (const char* prefix : {"eye0.", "eye1."}) AddDenoiserOnDevice(device, prefix, eye);
+            const double perPixel = double(TotalBytes(device)) / pixels;
+            const bool fp16 = precision == Precision::Fp16;
+            if (fp16) fp16Bytes[name] = TotalBytes(device);
+            std::printf("%-40s %s %8.2f B/pixel, both eyes\n", name.c_str(), fp16 ? "fp16" : "fp32", perPixel);
+            CHECK(perPixel == Approx(fp16 ? expected.at(name).second : expected.at(name).first).margin(0.01));
+        }
+    }
+    const double GiB = 1024.0 * 1024.0 * 1024.0;
+    CHECK(double(fp16Bytes.at("two-history")) / pixels <= 170.0);
+    CHECK(double(fp16Bytes.at("two-history")) <= 1.5 * GiB);
+    CHECK(double(fp16Bytes.at("svgf")) <= 1.0 * GiB);
+}
+
 TEST_CASE("the budget is checked against the peak: a transient slot counts once, not per plane it holds") {
     const DenoiserPlan plan = BuildDenoiserPlan("two-history", DenoiserParams{}, 64, 64);
     size_t planes = 0;

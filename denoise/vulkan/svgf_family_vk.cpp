@@ -76,6 +76,7 @@ void SvgfFamilyVulkanDenoiser::PrepareDispatches() {
     else
         for (auto& [key, pipeline] : pipelines_) pipeline.ResetSets();
 
+    preparedGeneration_ = buffers_.SharedGeneration();
     prepared_.assign(plan_.passes.size(), {});
     for (size_t p = 0; p < plan_.passes.size(); ++p) {
         const PlannedPass& pass = plan_.passes[p];
@@ -167,6 +168,9 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     const int w = in.width(), h = in.height();
     if (w <= 0 || h <= 0) Fail("{}: empty FrameInputs", Name());
     if (w != width_ || h != height_) Allocate(w, h);
+    // Another denoiser on the device grew a shared buffer since: the sets name the old one.
+    if (buffers_.SharedGeneration() != preparedGeneration_) PrepareDispatches();
+    buffers_.BeginFrame();
     if (in.cameraCut) needsClear_ = true;
     const size_t samples = variant_.needsGradientSamples ? in.gradientSamples.size() : 0;
     if (samples > GradientSampleCapacity(w, h))

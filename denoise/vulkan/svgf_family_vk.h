@@ -86,6 +86,7 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
     DenoiserBuffers buffers_;
     std::map<PipelineKey, ComputePipeline> pipelines_;      // one per distinct key of the plan
     std::vector<std::vector<PreparedDispatch>> prepared_;  // [pass][command]
+    uint64_t preparedGeneration_ = 0;  // SharedGeneration() when prepared_ was made
     TimestampPool timestamps_;
     CommandSlot commands_;  // reused by every Denoise()
     std::vector<PassTiming> timings_;

@@ -18,11 +18,23 @@ void DenoiserBuffers::Allocate(VulkanContext& context, const DenoiserPlan& plan)
         staging[p.allocation] = staging[p.allocation] || IsStaging(p.key.id.kind);
         planes_[p.key] = {p.allocation, p.bytes, HeldAfterFrame(plan, p.key)};
     }
+    shared_ = context.SharedDeviceBuffers();
+    user_ = shared_->NewUser();
     for (size_t i = 0; i < plan.buffers.size(); ++i) {
         const BufferPlan& b = plan.buffers[i];
-        allocations_.push_back(
-            context.allocator().CreateBuffer(b.name, b.bytes, staging[i] ? MemoryUsage::Staging : MemoryUsage::Device));
+        const MemoryUsage usage = staging[i] ? MemoryUsage::Staging : MemoryUsage::Device;
+        sharedNames_.push_back(b.shared ? b.name : std::string());
+        if (b.shared) {
+            shared_->Reserve(b.name, b.bytes, usage);
+            allocations_.emplace_back();
+        } else {
+            allocations_.push_back(context.allocator().CreateBuffer(b.name, b.bytes, usage));
+        }
     }
+}
+
+Buffer& DenoiserBuffers::Allocation(size_t allocation) {
+    return Shared(allocation) ? (*shared_)[sharedNames_[allocation]] : allocations_[allocation];
 }
 
 const DenoiserBuffers::Placement& DenoiserBuffers::Find(const BufferKey& key) const {
@@ -31,14 +43,15 @@ const DenoiserBuffers::Placement& DenoiserBuffers::Find(const BufferKey& key) co
     return it->second;
 }
 
-Buffer& DenoiserBuffers::operator[](const BufferKey& key) { return allocations_[Find(key).allocation]; }
+Buffer& DenoiserBuffers::operator[](const BufferKey& key) { return Allocation(Find(key).allocation); }
 
 size_t DenoiserBuffers::Bytes(const BufferKey& key) const { return Find(key).bytes; }
 
-// A pool slot is filled once per plane it holds: its planes' values are all dropped alike.
+// Only the own buffers: what the shared ones hold (transient planes, staging) is written whole
+// within a frame before it is read, so no earlier value survives to be dropped.
 void DenoiserBuffers::RecordClear(CommandRecorder& rec, Precision precision) {
     for (const auto& [key, placement] : planes_)
-        if (!IsStaging(key.id.kind)) rec.Fill(allocations_[placement.allocation], ClearValue(key.id.kind, precision));
+        if (!Shared(placement.allocation)) rec.Fill(allocations_[placement.allocation], ClearValue(key.id.kind, precision));
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, Buffer& src, size_t bytes) {
@@ -56,7 +69,10 @@ std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const BufferK
     const Placement& p = Find(key);
     if (!p.heldAfterFrame)
         Fail("{}: '{}' is gone after the frame (a later plane reused its transient slot)", owner_, BufferName(key));
-    return Read(context, allocations_[p.allocation], p.bytes);
+    if (Shared(p.allocation) && !shared_->HeldBy(user_))
+        Fail("{}: '{}' is gone (another denoiser on the device has run a frame with the shared transient pool since)",
+             owner_, BufferName(key));
+    return Read(context, Allocation(p.allocation), p.bytes);
 }
 
 std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const std::string& name) {
@@ -67,7 +83,8 @@ std::vector<uint8_t> DenoiserBuffers::Read(VulkanContext& context, const std::st
 
 bool DenoiserBuffers::Readable(const std::string& name) const {
     for (const auto& [key, placement] : planes_)
-        if (BufferName(key) == name) return placement.heldAfterFrame;
+        if (BufferName(key) == name)
+            return placement.heldAfterFrame && (!Shared(placement.allocation) || shared_->HeldBy(user_));
     return false;
 }
 

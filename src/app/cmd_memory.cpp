@@ -1,6 +1,7 @@
-// `fovrt memory`: every buffer a denoiser allocates at W×H (per eye, then × eyes), with bytes and
-// bytes/pixel, the planes each slot of the transient pool holds, permanent against transient
-// bytes and the peak (what the budget is checked against), and what two-history adds over svgf (the thesis: 88 B/pixel in fp32;
+// `fovrt memory`: every buffer a denoiser allocates at W×H (per eye, then for all eyes on one
+// device, which share the transient pool and the staging ring), with bytes and bytes/pixel, the
+// planes each slot of the transient pool holds, permanent against transient bytes and the peak
+// (what the budget is checked against), and what two-history adds over svgf (the thesis: 88 B/pixel in fp32;
 // fovrt's default, direct and indirect separate, matches it).
 #include <cstdio>
 #include <memory>
@@ -49,10 +50,16 @@ void PrintMemory(const MemoryOptions& o) {
                 o.filterCombined ? "combined" : "direct + indirect separate",
                 o.zeroSamples ? ", spp map may hold zeros" : "");
     std::printf("%s", FormatMemoryPlan(denoiser, o.width, o.height).c_str());
-    const size_t total = TotalBytes(plan), transient = TransientBytes(plan);
-    std::printf("all %d eye(s): peak %zu bytes (%.1f MiB): permanent %.1f MiB, transient %.1f MiB\n", o.eyes,
-                total * size_t(o.eyes), double(total) * o.eyes / 1048576.0,
-                double(total - transient) * o.eyes / 1048576.0, double(transient) * o.eyes / 1048576.0);
+    // The eyes' denoisers take turns with one transient pool and staging ring (vk/shared_buffers.h).
+    std::vector<BufferPlan> all;
+    for (int eye = 0; eye < o.eyes; ++eye) AddDenoiserOnDevice(all, fmt::format("eye{}.", eye), plan);
+    size_t shared = 0;
+    for (const BufferPlan& b : all) shared += b.shared ? b.bytes : 0;
+    const size_t total = TotalBytes(all);
+    std::printf("all %d eye(s) on one device: peak %zu bytes (%.1f MiB, %.2f B/pixel): own %.1f MiB, "
+                "shared by the eyes (transient pool, staging) %.1f MiB\n",
+                o.eyes, total, double(total) / 1048576.0, double(total) / (pixels * o.eyes),
+                double(total - shared) / 1048576.0, double(shared) / 1048576.0);
     // Extra of two-history over svgf: the thesis counts only the added history planes.
     try {
         auto svgf = PlanDenoiserMemory("svgf", o.width, o.height, params);
@@ -75,12 +82,6 @@ void PrintMemory(const MemoryOptions& o) {
     } catch (const Error& e) {
         std::printf("two-history over svgf: not available (%s)\n", e.what());
     }
-    std::vector<BufferPlan> all;
-    for (int eye = 0; eye < o.eyes; ++eye)
-        for (BufferPlan b : plan) {
-            b.name = fmt::format("eye{}.{}", eye, b.name);
-            all.push_back(b);
-        }
     if (o.scoredFrames > 0) {
         // The metric keeps each eye's luminance frames of the reference and of every variant
         // until the sequence is scored (pipeline/denoiser_set.h: PlanVdpMemory).

@@ -1,5 +1,6 @@
 #include "live/live_loop.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <optional>
@@ -271,12 +272,24 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
     LiveFrame* frame = &frameRef;
     const bool switched = controls.denoiser != runningDenoiser_;
     if (switched) ApplyDenoiser(controls.denoiser);
+    // A debug view reads the denoiser's planes, some of them in the transient pool that the other
+    // eye's frame reuses (vk/shared_buffers.h): it is built before that frame runs.
+    std::array<bool, 2> built{};
+    double debugViewMs = 0.0;
     for (int eye = 0; eye < 2; ++eye) {
         EyeFrame& e = frame->stereo.eyes[size_t(eye)];
+        Denoiser& denoiser = *denoisers_[size_t(eye)];
         const auto denoiseStart = LiveClock::now();
-        denoisers_[size_t(eye)]->Denoise(e.inputs, frame->denoised[size_t(eye)]);
+        denoiser.Denoise(e.inputs, frame->denoised[size_t(eye)]);
         frame->timings.denoiseMs += MsBetween(denoiseStart, LiveClock::now());
-        AddTimings(denoisers_[size_t(eye)]->LastTimings(), frame->timings.passes);
+        AddTimings(denoiser.LastTimings(), frame->timings.passes);
+        const std::vector<std::string> views = denoiser.DebugViews();
+        if (std::find(views.begin(), views.end(), controls.view) == views.end()) continue;
+        const auto viewStart = LiveClock::now();
+        ViewSources sources{&e.inputs, &e.sppMap, &frame->denoised[size_t(eye)], nullptr, &denoiser, nullptr,
+                            e.trueGazePixel};
+        built[size_t(eye)] = BuildView(controls.view, sources, frame->shown[size_t(eye)]);
+        debugViewMs += MsBetween(viewStart, LiveClock::now());
     }
 
     const auto viewStart = LiveClock::now();
@@ -301,6 +314,7 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
         // The metric's temporal channels see one sequence: a new view, denoiser, cut or a gap
         // in the references starts it again.
         if (!vdpView || switched || e.inputs.cameraCut || !references[size_t(eye)]) vdp.reset();
+        if (built[size_t(eye)]) continue;
         if (vdpView && references[size_t(eye)] && !vdp)
             vdp = std::make_unique<VdpViewStream>(config_, e.camera, pipeline_.FramesPerSecond());
         ViewSources sources{&e.inputs, &e.sppMap, &frame->denoised[size_t(eye)],
@@ -314,7 +328,7 @@ void LiveLoop::Finish(LiveFrame& frameRef, const LiveControls& controls) {
                     : "view '" + controls.view + "' not available: showing denoised";
         }
     }
-    frame->timings.viewMs = MsBetween(viewStart, LiveClock::now());
+    frame->timings.viewMs = debugViewMs + MsBetween(viewStart, LiveClock::now());
     frame->denoiser = runningDenoiser_;
     frame->finishedAt = LiveClock::now();
     frame->timings.frameMs = MsBetween(frame->startedAt, frame->finishedAt);

@@ -62,15 +62,12 @@ std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
     const size_t pixels = size_t(config.camera.width) * size_t(config.camera.height);
     const DenoiseConfig denoise = RunDenoiseConfig(config);
     std::vector<BufferPlan> plan;
+    // Every variant of both eyes on one device: the shared transient pool and staging ring once.
     for (const std::string& name : denoise.denoisers) {
-        for (int eye = 0; eye < 2; ++eye) {
-            for (BufferPlan buffer : PlanDenoiserMemory(name, config.camera.width,
-                                                        config.camera.height,
-                                                        ParamsForDenoiser(name, denoise.params))) {
-                buffer.name = name + ".eye" + std::to_string(eye) + "." + buffer.name;
-                plan.push_back(std::move(buffer));
-            }
-        }
+        const std::vector<BufferPlan> denoiser = PlanDenoiserMemory(
+            name, config.camera.width, config.camera.height, ParamsForDenoiser(name, denoise.params));
+        for (int eye = 0; eye < 2; ++eye)
+            AddDenoiserOnDevice(plan, name + ".eye" + std::to_string(eye) + ".", denoiser);
     }
     // The frame pipeline's own planes, per eye: FrameInputs, the spp map, and the renderer's
     // visibility buffer (two with A-SVGF gradient samples: their forward projection reads the

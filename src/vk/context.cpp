@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "vk/device_choice.h"
 #include "vk/leak_check_pin.h"
+#include "vk/shared_buffers.h"
 #include "vk/vk_check.h"
 
 namespace fovrt {
@@ -33,6 +34,8 @@ struct VulkanContext::State {
     std::atomic<uint32_t> warnings{0};
     mutable std::mutex queueMutex;
     VulkanAllocator allocator;
+    std::mutex sharedMutex;
+    std::weak_ptr<SharedBuffers> shared;  // held by its users, so it dies with the last of them
 
     ~State() {
         if (device != VK_NULL_HANDLE) vkDeviceWaitIdle(device);
@@ -352,5 +355,15 @@ uint32_t VulkanContext::validationErrors() const { return s_->errors; }
 uint32_t VulkanContext::validationWarnings() const { return s_->warnings; }
 VulkanAllocator& VulkanContext::allocator() { return s_->allocator; }
 const VulkanAllocator& VulkanContext::allocator() const { return s_->allocator; }
+
+std::shared_ptr<SharedBuffers> VulkanContext::SharedDeviceBuffers() {
+    std::lock_guard<std::mutex> lock(s_->sharedMutex);
+    std::shared_ptr<SharedBuffers> shared = s_->shared.lock();
+    if (!shared) {
+        shared = std::make_shared<SharedBuffers>(s_->allocator);
+        s_->shared = shared;
+    }
+    return shared;
+}
 
 }  // namespace fovrt

@@ -19,6 +19,8 @@
 
 namespace fovrt {
 
+class SharedBuffers;
+
 enum class Validation { Auto, On, Off };  // Auto: on in Debug builds or when FOVRT_VK_VALIDATION=1
 
 struct VulkanContextOptions {
@@ -98,6 +100,9 @@ public:
 
     VulkanAllocator& allocator();
     const VulkanAllocator& allocator() const;
+    // The buffers this device's users take turns with (vk/shared_buffers.h): one set while any
+    // holder of the pointer lives, created on the first call after none did.
+    std::shared_ptr<SharedBuffers> SharedDeviceBuffers();
 
     struct State;
 
