@@ -71,6 +71,11 @@ private:
 // Every buffer the named denoiser allocates at W×H for one eye.
 std::vector<BufferPlan> PlanDenoiserMemory(const std::string& name, int width, int height,
                                            const DenoiserParams& params);
-
+// Adds one denoiser's allocations to those of a device that runs several (both eyes, every
+// variant): its own buffers as `prefix` + name, and each shared one (BufferPlan::shared: the
+// transient pool's slots, the staging ring) once per device as "shared." + name, as large as its
+// largest user's, since their frames take turns with them (vk/shared_buffers.h).
+void AddDenoiserOnDevice(std::vector<BufferPlan>& device, const std::string& prefix,
+                         const std::vector<BufferPlan>& denoiser);
 
 }  // namespace fovrt

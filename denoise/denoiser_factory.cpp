@@ -38,15 +38,42 @@ DenoiserParams ParamsForDenoiser(const std::string& name, DenoiserParams params)
     return ParamsForVariant(FindDenoiserVariant(name), params);
 }
 
+PrecisionTarget PrecisionTargetOf(const VulkanContext* context) {
+    if (!context) return {};
+    return {true, context->isCpuDevice(), context->supports16BitStorage()};
+}
+
+PrecisionTarget PlannedPrecisionTarget(const std::string& device) {
+    const std::vector<VulkanDeviceInfo> devices = VulkanContext::ListDevices();
+    const DeviceDecision decision = ResolveVulkanDevice(device, devices);
+    if (!decision.vulkan) return {};
+    for (const VulkanDeviceInfo& d : devices)
+        if (d.index == decision.index) return {true, d.type == "cpu", d.storage16};
+    return {};
+}
+
+Precision ResolvePrecision(Precision requested, const DenoiserVariant& variant, const PrecisionTarget& target) {
+    if (requested != Precision::Auto) return requested;
+    const bool gpu16 = target.vulkan && !target.cpuDevice && target.storage16;
+    return gpu16 && variant.family != DenoiserFamily::Rae ? Precision::Fp16 : Precision::Fp32;
+}
+
+DenoiserParams ParamsForDenoiser(const std::string& name, DenoiserParams params, const PrecisionTarget& target) {
+    const DenoiserVariant& variant = FindDenoiserVariant(name);
+    params.precision = ResolvePrecision(params.precision, variant, target);
+    return ParamsForVariant(variant, params);
+}
+
 std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::string& device,
                                          const DenoiserParams& params, VulkanContext* context) {
     const DenoiserVariant& v = FindDenoiserVariant(name);
-    const DenoiserParams p = ParamsForVariant(v, params);
     // A demodulation suffix wraps the variant's host in the shared re-demodulation step.
     if (std::optional<Demodulation> want = DenoiserDemodulation(name))
         return WithDemodulation(CreateDenoiser(std::string(v.name), device, params, context), *want, name);
     // The family picks the host; the row's flags pick the passes of its plan.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
+    DenoiserParams p = ParamsForVariant(v, params);
+    p.precision = ResolvePrecision(params.precision, v, PrecisionTargetOf(ctx.get()));
     if (v.family == DenoiserFamily::Rae) {
         std::unique_ptr<Denoiser> rae;
         if (ctx) rae = std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);

@@ -27,13 +27,6 @@ size_t TotalBytes(const std::vector<BufferPlan>& plan);
 size_t HistoryBytes(const std::vector<BufferPlan>& plan);
 size_t TransientBytes(const std::vector<BufferPlan>& plan);  // the transient pool's slots
 
-// Adds one denoiser's allocations to those of a device that runs several (both eyes, every
-// variant): its own buffers as `prefix` + name, and each shared one (BufferPlan::shared: the
-// transient pool's slots, the staging ring) once per device as "shared." + name, as large as its
-// largest user's, since their frames take turns with them (vk/shared_buffers.h).
-void AddDenoiserOnDevice(std::vector<BufferPlan>& device, const std::string& prefix,
-                         const std::vector<BufferPlan>& denoiser);
-
 // Throws fovrt::Error when the plan's peak (TotalBytes) exceeds `budgetBytes`, naming the total and the largest
 // buffers. budgetBytes == 0 means no budget.
 void EnforceMemoryBudget(const std::vector<BufferPlan>& plan, size_t budgetBytes,

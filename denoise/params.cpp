@@ -101,9 +101,11 @@ constexpr std::array<SettingRow<RaeParams>, 2> kRaeRows{{
      &RaeParams::weightsSpp},
 }};
 
-constexpr std::array<PrecisionRow, 2> kPrecisionRows{{
+constexpr std::array<PrecisionRow, 3> kPrecisionRows{{
     {Precision::Fp32, "fp32", "32-bit float histories"},
     {Precision::Fp16, "fp16", "16-bit histories, filtered illumination and inputs (octahedral normals)"},
+    {Precision::Auto, "auto", "fp16 for the SVGF family on a GPU with 16-bit storage; fp32 on a CPU device, "
+                              "for the C++ reference and for the RAE"},
 }};
 
 constexpr std::array<const char*, kPrecisionRows.size()> kPrecisionNames = [] {

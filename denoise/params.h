@@ -14,7 +14,9 @@
 
 namespace fovrt {
 
-enum class Precision { Fp32, Fp16 };  // storage of the histories, the illumination ping-pong, the inputs
+// Storage of the histories, the illumination ping-pong, the inputs. Auto is a setting, never a
+// denoiser's: CreateDenoiser resolves it against the device (ResolvePrecision, denoiser_factory.h).
+enum class Precision { Fp32, Fp16, Auto };
 
 struct SvgfParams {
     float alphaColor = 0.2f;      // paper 0.2

@@ -264,6 +264,8 @@ int BindingCount(const PipelineKey& key) {
 DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& params, int width, int height) {
     const DenoiserVariant& v = FindDenoiserVariant(name);
     if (width <= 0 || height <= 0) Fail("denoiser plan: invalid size {}x{}", width, height);
+    // auto is resolved against a device first (ResolvePrecision): a plan has one storage.
+    if (params.precision == Precision::Auto) Fail("denoiser plan of {}: denoise.precision auto is not resolved", name);
     const DenoiserParams p = ParamsForVariant(v, params);
     if (v.family == DenoiserFamily::Rae) return PlanRae(width, height, p);
     return PlanSvgfFamilyDenoiser(v, p, width, height);

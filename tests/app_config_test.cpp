@@ -60,7 +60,7 @@ TEST_CASE("Defaults: the default job needs no config file", "[config]") {
     CHECK(c.gaze.phaseDeg == vec2(90, 0));
     CHECK(c.denoise.denoisers == std::vector<std::string>{"svgf"});
     CHECK(c.denoise.device == "auto");
-    CHECK(c.denoise.params.precision == Precision::Fp32);
+    CHECK(c.denoise.params.precision == Precision::Auto);  // fp16 on a GPU, fp32 on lavapipe (ResolvePrecision)
     CHECK(c.denoise.params.svgf.alphaColor == 0.2f);
     CHECK(c.memoryBudget == 0);
     CHECK(ConfigToJson(DefaultConfig()) == ConfigToJson(c));

@@ -26,6 +26,9 @@ if "$fovrt" run "${small[@]}" --set output.dir=run1 --set denoise.device=cpu >/d
   n=$(ls run1/inputs/*.exr 2>/dev/null | wc -l)
   [[ $n -eq 4 ]] && ok "run wrote 4 FrameInputs EXRs" || bad "run wrote $n EXRs, expected 4"
   grep -q '"complete": true' run1/manifest.json && ok "run manifest complete" || bad "manifest"
+  # denoise.precision = auto (the default) is fp32 for the C++ reference; the manifest says so.
+  grep -q '"denoise_storage": "fp32"' run1/manifest.json && ok "run manifest: auto storage resolved" ||
+    bad "manifest lacks denoise_storage fp32"
   ls run1/inputs/*.tmp-* >/dev/null 2>&1 && bad "temp files left behind" || ok "no temp files"
 else
   bad "run failed: $(cat err.txt)"
@@ -231,7 +234,7 @@ expect_error "the metric's frames count against the budget" "vdp.*luminance" mem
   bad "info: $(cat info.txt err.txt)"
 # config --keys: one line per key from the settings tables (key, default, allowed, meaning).
 "$fovrt" config --keys >keys.txt 2>err.txt && grep -q "^denoise.svgf.alpha_color  *0.2  *(0, 1] " keys.txt &&
-  grep -q "^denoise.precision  *fp32  *fp32|fp16 " keys.txt &&
+  grep -q "^denoise.precision  *auto  *fp32|fp16|auto " keys.txt &&
   grep -q "^foveation.radius_deg  *0.0  *\[0, 180) " keys.txt &&
   grep -q "^foveation.model  *disc  *disc|linear|acuity|uniform|perceptual " keys.txt &&
   grep -q "^gaze.tracker_rate_hz  *0.0  *\[0, 10000\] " keys.txt && ok "config --keys" || bad "config --keys: $(cat keys.txt err.txt)"

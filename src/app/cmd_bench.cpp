@@ -356,6 +356,8 @@ void RegisterBenchCommand(CLI::App& app) {
             options.height = o->height;
             for (const std::string& name : o->denoiserNames) FindDenoiserVariant(name, "bench --denoiser");
             options.params.precision = ParsePrecision(o->precision, "bench --precision");
+            if (options.params.precision == Precision::Auto)
+                Fail("bench --precision: fp32 or fp16 (a benchmark names the storage it times)");
             if (o->stagingRingMiB == 0) options.params.transferRingBytes = SIZE_MAX;
             if (o->stagingRingMiB > 0) options.params.transferRingBytes = size_t(o->stagingRingMiB) << 20;
             options.denoisers = o->denoiserNames;

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "core/error.h"
 #include "denoise/denoiser.h"
+#include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
 #include "denoise/pass_plan.h"
 #include "pipeline/denoiser_set.h"
@@ -28,7 +29,8 @@ struct MemoryOptions {
     int height = 720;
     int eyes = 2;
     std::string denoiser = "two-history";
-    std::string precision = "fp32";
+    std::string precision = "auto";
+    std::string device = "auto";  // what precision auto resolves for (denoise.device's forms)
     bool filterCombined = false;
     bool zeroSamples = false;  // the spp map may hold zeros (DenoiserParams::sampleCountsMayBeZero)
     std::string budget;  // bytes for all eyes, "2GiB" style accepted; empty = none
@@ -37,16 +39,21 @@ struct MemoryOptions {
 
 void PrintMemory(const MemoryOptions& o) {
     DenoiserParams params;
-    params.precision = ParsePrecision(o.precision, "--precision");
-    FindDenoiserVariant(o.denoiser, "--denoiser");
+    const Precision requested = ParsePrecision(o.precision, "--precision");
+    const DenoiserVariant& variant = FindDenoiserVariant(o.denoiser, "--denoiser");
+    const PrecisionTarget target = requested == Precision::Auto ? PlannedPrecisionTarget(o.device) : PrecisionTarget{};
+    params.precision = ResolvePrecision(requested, variant, target);
     params.svgf.filterCombined = o.filterCombined;
     params.sampleCountsMayBeZero = o.zeroSamples;
     const uint64_t budget = o.budget.empty() ? 0 : ParseByteSize(o.budget, "--memory-budget");
     const DenoiserPlan denoiser = BuildDenoiserPlan(o.denoiser, params, o.width, o.height);
     const std::vector<BufferPlan>& plan = denoiser.buffers;
     const double pixels = double(o.width) * double(o.height);
+    const std::string storage = requested == Precision::Auto
+                                    ? fmt::format("{} (auto, for device {})", PrecisionName(params.precision), o.device)
+                                    : o.precision;
     std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination%s\n", o.denoiser.c_str(),
-                o.width, o.height, o.precision.c_str(),
+                o.width, o.height, storage.c_str(),
                 o.filterCombined ? "combined" : "direct + indirect separate",
                 o.zeroSamples ? ", spp map may hold zeros" : "");
     std::printf("%s", FormatMemoryPlan(denoiser, o.width, o.height).c_str());
@@ -113,7 +120,9 @@ void RegisterMemoryCommand(CLI::App& app) {
     }
     cmd->add_option("--eyes", o->eyes, "Eyes")->check(CLI::Range(1, 2));
     cmd->add_option("--denoiser", o->denoiser, "Denoiser name");
-    cmd->add_option("--precision", o->precision, "History storage: fp32 or fp16");
+    cmd->add_option("--precision", o->precision,
+                    "Storage: fp32, fp16 or auto (as denoise.precision: fp16 on a GPU with 16-bit storage)");
+    cmd->add_option("--device", o->device, "With --precision auto: the device it resolves for (as denoise.device)");
     cmd->add_flag("--filter-combined", o->filterCombined, "Plan for direct+indirect filtered together");
     cmd->add_flag("--zero-samples", o->zeroSamples,
                   "Plan for an spp map that may hold zeros (a foveation below 1 spp): svgf, asvgf and "

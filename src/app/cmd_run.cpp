@@ -310,6 +310,8 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
         if (replay) manifest["replay"] = replay->ToJson();
         if (recorder) manifest["recorded_to"] = recorder->Path().string();
         manifest["denoise_device"] = denoisers.DeviceDescription();
+        // What denoise.precision (auto by default) resolved to on that device.
+        manifest["denoise_storage"] = denoisers.StorageDescription();
         // Derived from the foveation, not a config key (RunDenoiseConfig).
         manifest["denoise_sample_counts_may_be_zero"] = RunDenoiseConfig(config).params.sampleCountsMayBeZero;
         manifest["counters"] = {{"samples", files.totalSamples},

@@ -100,9 +100,8 @@ ReportTable MemoryTable(const RunConfig& config) {
     ReportTable table{fmt::format("Denoiser memory per eye at {}×{}", w, h),
                       {"variant", "history bytes/pixel", "total bytes/pixel", "total MiB"},
                       {}};
-    const DenoiseConfig denoise = RunDenoiseConfig(config);
-    for (const std::string& name : denoise.denoisers) {
-        auto plan = PlanDenoiserMemory(name, w, h, ParamsForDenoiser(name, denoise.params));
+    for (const std::string& name : config.denoise.denoisers) {
+        auto plan = PlanDenoiserMemory(name, w, h, RunDenoiserParams(config, name));
         table.rows.push_back({name, fmt::format("{:.1f}", double(HistoryBytes(plan)) / pixels),
                               fmt::format("{:.1f}", double(TotalBytes(plan)) / pixels),
                               fmt::format("{:.2f}", double(TotalBytes(plan)) / (1024.0 * 1024.0))});
@@ -321,7 +320,8 @@ ExperimentPart ComputeRuns(const ExperimentSpec& spec, const std::vector<RunUnit
 
         const RunConfig pipelineConfig = spec.replay ? ReplayPipelineConfig(config) : config;
         FrameLoop loop(config, true, &pipelineConfig);  // the scene and its BVH, once
-        part.deviceDescription = loop.Denoisers().DeviceDescription();
+        // With the storage denoise.precision (auto by default) resolved to on that device.
+        part.deviceDescription = loop.Denoisers().DeviceDescription() + ", storage " + loop.Denoisers().StorageDescription();
         std::optional<Replay> replay = spec.replay;
         if (replay) {
             CheckReplayScene(*replay, loop.Pipeline());

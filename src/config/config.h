@@ -58,7 +58,12 @@ using GazeConfig = GazeParams;
 struct DenoiseConfig {
     std::vector<std::string> denoisers = {"svgf"};
     std::string device = "auto";  // auto | vulkan | cpu | <Vulkan device index> (vk/device_choice.h)
-    DenoiserParams params;        // includes precision (fp32 | fp16)
+    // Includes precision: the setting's default is auto (fp16 storage on a GPU, ResolvePrecision).
+    DenoiserParams params = [] {
+        DenoiserParams p;
+        p.precision = Precision::Auto;
+        return p;
+    }();
 };
 
 struct OutputConfig {

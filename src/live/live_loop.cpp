@@ -147,7 +147,7 @@ void LiveLoop::OnFrameDone(std::function<void(const LiveFrame&)> callback) {
 }
 
 void LiveLoop::ApplyDenoiser(const std::string& name) {
-    DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params);
+    DenoiserParams params = ParamsForDenoiser(name, config_.denoise.params, PrecisionTargetOf(context_));
     // The foveation changes at run time (ApplyFoveation), and with it whether the spp map holds
     // zeros: every denoiser is built to keep a pixel without a path sample.
     params.sampleCountsMayBeZero = true;
@@ -156,12 +156,9 @@ void LiveLoop::ApplyDenoiser(const std::string& name) {
         std::fprintf(stderr, "fovrt: denoiser %s -> %s (histories reset)\n",
                      runningDenoiser_.c_str(), name.c_str());
     runningDenoiser_ = name;
-    std::vector<BufferPlan> memory;
-    for (int eye = 0; eye < 2; ++eye)
-        for (BufferPlan b : PlanDenoiserMemory(name, config_.camera.width, config_.camera.height, params)) {
-            b.name = (eye == 0 ? "left." : "right.") + b.name;
-            memory.push_back(std::move(b));
-        }
+    std::vector<BufferPlan> memory;  // the eyes share the transient pool (vk/shared_buffers.h)
+    const std::vector<BufferPlan> eye = PlanDenoiserMemory(name, config_.camera.width, config_.camera.height, params);
+    for (const char* prefix : {"left.", "right."}) AddDenoiserOnDevice(memory, prefix, eye);
     std::lock_guard<std::mutex> lock(mutex_);
     viewNames_ = ViewNamesFor(*denoisers_[0]);
     memory_ = std::move(memory);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 #include "denoise/denoiser_factory.h"
 #include "denoise/memory_plan.h"
@@ -19,6 +21,14 @@ DenoiseConfig RunDenoiseConfig(const RunConfig& config) {
     return denoise;
 }
 
+DenoiserParams RunDenoiserParams(const RunConfig& config, const std::string& name) {
+    const DenoiseConfig denoise = RunDenoiseConfig(config);
+    const PrecisionTarget target = denoise.params.precision == Precision::Auto
+                                       ? PlannedPrecisionTarget(config.denoise.device)
+                                       : PrecisionTarget{};
+    return ParamsForDenoiser(name, denoise.params, target);
+}
+
 DenoiserSet::DenoiserSet(const DenoiseConfig& config) {
     if (!config.denoisers.empty()) {
         const DeviceDecision decision = ResolveVulkanDevice(config.device);
@@ -31,6 +41,8 @@ DenoiserSet::DenoiserSet(const DenoiseConfig& config) {
     for (const std::string& name : config.denoisers) {
         Variant variant;
         variant.name = name;
+        variant.precision = ResolvePrecision(config.params.precision, FindDenoiserVariant(name),
+                                             PrecisionTargetOf(context_ ? &*context_ : nullptr));
         for (auto& eye : variant.eyes)
             eye = CreateDenoiser(name, device, config.params, context_ ? &*context_ : nullptr);
         variants_.push_back(std::move(variant));
@@ -45,6 +57,17 @@ void DenoiserSet::Reset() {
 std::string DenoiserSet::DeviceDescription() const {
     if (context_) return "vulkan (" + context_->deviceName() + ")";
     return "cpu (C++ reference)";
+}
+
+std::string DenoiserSet::StorageDescription() const {
+    if (variants_.empty()) return "";
+    const Precision first = variants_.front().precision;
+    std::string others;
+    for (const Variant& v : variants_)
+        if (v.precision != first) others += (others.empty() ? "" : ", ") + v.name;
+    if (others.empty()) return PrecisionName(first);
+    const Precision other = first == Precision::Fp16 ? Precision::Fp32 : Precision::Fp16;
+    return fmt::format("{} ({}: {})", PrecisionName(first), others, PrecisionName(other));
 }
 
 namespace {
@@ -64,8 +87,8 @@ std::vector<BufferPlan> PlanRunMemory(const RunConfig& config) {
     std::vector<BufferPlan> plan;
     // Every variant of both eyes on one device: the shared transient pool and staging ring once.
     for (const std::string& name : denoise.denoisers) {
-        const std::vector<BufferPlan> denoiser = PlanDenoiserMemory(
-            name, config.camera.width, config.camera.height, ParamsForDenoiser(name, denoise.params));
+        const std::vector<BufferPlan> denoiser =
+            PlanDenoiserMemory(name, config.camera.width, config.camera.height, RunDenoiserParams(config, name));
         for (int eye = 0; eye < 2; ++eye)
             AddDenoiserOnDevice(plan, name + ".eye" + std::to_string(eye) + ".", denoiser);
     }

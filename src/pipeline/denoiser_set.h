@@ -20,6 +20,10 @@ namespace fovrt {
 // Every command that renders, or plans a run's memory, builds its denoisers from it.
 DenoiseConfig RunDenoiseConfig(const RunConfig& config);
 
+// The parameters variant `name` of a run gets: RunDenoiseConfig's, with denoise.precision = auto
+// resolved for the device denoise.device names (ResolvePrecision), as CreateDenoiser resolves it.
+DenoiserParams RunDenoiserParams(const RunConfig& config, const std::string& name);
+
 class DenoiserSet {
 public:
     explicit DenoiserSet(const DenoiseConfig& config);
@@ -32,11 +36,14 @@ public:
     void Reset();
     // "vulkan (<device name>)" or "cpu (C++ reference)".
     std::string DeviceDescription() const;
+    // The variants' storage: "fp16", or "fp16 (rae: fp32)" where they differ.
+    std::string StorageDescription() const;
     const VulkanContext* Context() const { return context_ ? &*context_ : nullptr; }
 
 private:
     struct Variant {
         std::string name;
+        Precision precision = Precision::Fp32;
         std::array<std::unique_ptr<Denoiser>, 2> eyes;
     };
     std::optional<VulkanContext> context_;

@@ -167,7 +167,12 @@ std::vector<VulkanDeviceInfo> VulkanContext::ListDevices() {
         for (uint32_t i = 0; i < count; ++i) {
             VkPhysicalDeviceProperties props;
             vkGetPhysicalDeviceProperties(devices[i], &props);
-            out.push_back({i, props.deviceName, TypeName(props.deviceType), ComputeQueueFamily(devices[i]).has_value()});
+            auto storage16 = VkInit<VkPhysicalDevice16BitStorageFeatures>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_16BIT_STORAGE_FEATURES);
+            auto features2 = VkInit<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+            features2.pNext = &storage16;
+            vkGetPhysicalDeviceFeatures2(devices[i], &features2);
+            out.push_back({i, props.deviceName, TypeName(props.deviceType), ComputeQueueFamily(devices[i]).has_value(),
+                           storage16.storageBuffer16BitAccess == VK_TRUE});
         }
     }
     vkDestroyInstance(instance, nullptr);

@@ -58,6 +58,7 @@ struct VulkanDeviceInfo {
     std::string name;
     std::string type;  // "discrete", "integrated", "cpu", "virtual", "other"
     bool compute = false;  // has a compute queue (the denoisers need one)
+    bool storage16 = false;  // storageBuffer16BitAccess (fp16 storage: denoise.precision)
 };
 
 class VulkanContext {
