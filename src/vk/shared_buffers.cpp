@@ -12,7 +12,12 @@ void SharedBuffers::Reserve(const std::string& name, size_t bytes, MemoryUsage u
         it->second = Buffer();  // free the smaller one first: the peak stays the larger alone
         ++generation_;
     }
-    buffers_[name] = allocator_.CreateBuffer(name, bytes, usage);
+    try {
+        buffers_[name] = allocator_.CreateBuffer(name, bytes, usage);
+    } catch (...) {
+        buffers_.erase(name);  // no user finds an empty buffer under the name
+        throw;
+    }
 }
 
 Buffer& SharedBuffers::operator[](const std::string& name) {

@@ -9,6 +9,7 @@
 // lives, and the device frees the lot with its last user (VulkanContext::SharedDeviceBuffers).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -40,9 +41,10 @@ private:
     VulkanAllocator& allocator_;
     std::mutex mutex_;  // Reserve from any thread; frames themselves never overlap
     std::map<std::string, Buffer> buffers_;  // node-based: references survive other inserts
-    uint64_t generation_ = 0;
-    uint64_t users_ = 0;
-    uint64_t holder_ = 0;
+    // Atomic: a user may ask from another thread than the one that last reserved (the live loop).
+    std::atomic<uint64_t> generation_{0};
+    std::atomic<uint64_t> users_{0};
+    std::atomic<uint64_t> holder_{0};
 };
 
 }  // namespace fovrt
