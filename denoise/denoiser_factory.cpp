@@ -1,6 +1,8 @@
 #include "denoise/denoiser_factory.h"
 
 #include <cstdio>
+#include <map>
+#include <mutex>
 
 #include <fmt/format.h>
 
@@ -44,12 +46,19 @@ PrecisionTarget PrecisionTargetOf(const VulkanContext* context) {
 }
 
 PrecisionTarget PlannedPrecisionTarget(const std::string& device) {
+    // Listing the devices creates an instance (a fifth of a second on lavapipe); every variant's
+    // plan asks, and the devices do not change while the process runs.
+    static std::mutex mutex;
+    static std::map<std::string, PrecisionTarget> known;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = known.find(device); it != known.end()) return it->second;
     const std::vector<VulkanDeviceInfo> devices = VulkanContext::ListDevices();
     const DeviceDecision decision = ResolveVulkanDevice(device, devices);
-    if (!decision.vulkan) return {};
+    PrecisionTarget target;
     for (const VulkanDeviceInfo& d : devices)
-        if (d.index == decision.index) return {true, d.type == "cpu", d.storage16};
-    return {};
+        if (decision.vulkan && d.index == decision.index) target = {true, d.type == "cpu", d.storage16};
+    known[device] = target;
+    return target;
 }
 
 Precision ResolvePrecision(Precision requested, const DenoiserVariant& variant, const PrecisionTarget& target) {
