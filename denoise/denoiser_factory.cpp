@@ -81,8 +81,7 @@ std::unique_ptr<Denoiser> CreateDenoiser(const std::string& name, const std::str
         return WithDemodulation(CreateDenoiser(std::string(v.name), device, params, context), *want, name);
     // The family picks the host; the row's flags pick the passes of its plan.
     std::shared_ptr<VulkanContext> ctx = device == "cpu" && !context ? nullptr : ResolveContext(device, context);
-    DenoiserParams p = ParamsForVariant(v, params);
-    p.precision = ResolvePrecision(params.precision, v, PrecisionTargetOf(ctx.get()));
+    const DenoiserParams p = ParamsForDenoiser(std::string(v.name), params, PrecisionTargetOf(ctx.get()));
     if (v.family == DenoiserFamily::Rae) {
         std::unique_ptr<Denoiser> rae;
         if (ctx) rae = std::make_unique<RaeVulkanDenoiser>(name, std::move(ctx), p);

@@ -58,8 +58,12 @@ void PrintMemory(const MemoryOptions& o) {
                 o.zeroSamples ? ", spp map may hold zeros" : "");
     std::printf("%s", FormatMemoryPlan(denoiser, o.width, o.height).c_str());
     // The eyes' denoisers take turns with one transient pool and staging ring (vk/shared_buffers.h).
-    std::vector<BufferPlan> all;
-    for (int eye = 0; eye < o.eyes; ++eye) AddDenoiserOnDevice(all, fmt::format("eye{}.", eye), plan);
+    auto onDevice = [&](const std::vector<BufferPlan>& eye) {
+        std::vector<BufferPlan> device;
+        for (int e = 0; e < o.eyes; ++e) AddDenoiserOnDevice(device, fmt::format("eye{}.", e), eye);
+        return device;
+    };
+    std::vector<BufferPlan> all = onDevice(plan);
     size_t shared = 0;
     for (const BufferPlan& b : all) shared += b.shared ? b.bytes : 0;
     const size_t total = TotalBytes(all);
@@ -73,9 +77,10 @@ void PrintMemory(const MemoryOptions& o) {
         auto two = PlanDenoiserMemory("two-history", o.width, o.height, params);
         double extraHist = (double(HistoryBytes(two)) - double(HistoryBytes(svgf))) / pixels;
         double extraAll = (double(TotalBytes(two)) - double(TotalBytes(svgf))) / pixels;
-        std::printf("two-history over svgf: +%.1f B/pixel of history (+%.1f B/pixel at the peak), "
-                    "%.1f MiB for %d eye(s)\n",
-                    extraHist, extraAll, extraAll * pixels * o.eyes / 1048576.0, o.eyes);
+        const double extraDevice = double(TotalBytes(onDevice(two))) - double(TotalBytes(onDevice(svgf)));
+        std::printf("two-history over svgf: +%.1f B/pixel of history (+%.1f B/pixel at one eye's peak), "
+                    "%.1f MiB for %d eye(s) on one device\n",
+                    extraHist, extraAll, extraDevice / 1048576.0, o.eyes);
         std::printf(
             "  (thesis: +88 B/pixel in fp32, +44 in fp16 = per A/B side float3 weighted\n"
             "   illumination, float2 total weights, float3 gradient, float3 power sums, for one\n"
