@@ -57,7 +57,9 @@ constexpr std::array<ParamRow<AsvgfParams>, 4> kAsvgfRows{{
 // (the blend then follows q alone).
 // choice_rate 1 with choice_band 0 is two-history's p; a small rate spreads a flip of p over
 // ~1/rate frames, and a band holds p against its frame-to-frame jitter.
-constexpr std::array<ParamRow<TwoHistoryParams>, 6> kTwoHistoryRows{{
+// window: the weighted history kept in a gaze-following window (Tu 2024's future work: its extra
+// memory); outside it the blend takes the unweighted history (SVGF's path).
+constexpr std::array<ParamRow<TwoHistoryParams>, 7> kTwoHistoryRows{{
     {{"denoise.two_history.gradient_beta", Closed(0, 1), "β_g of the gradient EMA"},
      &TwoHistoryParams::gradientBeta},
     {{"denoise.two_history.q_scale", Closed(0, 1e6), "S in q = clamp(S·|lum g| / std(lum I_u), 0, 1)"},
@@ -74,6 +76,9 @@ constexpr std::array<ParamRow<TwoHistoryParams>, 6> kTwoHistoryRows{{
     {{"denoise.two_history.choice_band", Closed(0, 1),
       "h: the hysteresis variants hold their choice while p stays within +- h of it"},
      &TwoHistoryParams::choiceBand},
+    {{"denoise.two_history.window", OpenMin(0, 1),
+      "fraction of the image's width and height, centred on the gaze, where the weighted history is kept (1: all)"},
+     &TwoHistoryParams::window},
 }};
 
 // Ranges: α_s = 1 passes the filtered frame through (no stabilisation); small α_s averages over

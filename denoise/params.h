@@ -45,6 +45,9 @@ struct TwoHistoryParams {
     float clampSigma = 0.5f;       // k of the clamp variants' box: I_w's 3×3 mean ± kσ
     float choiceRate = 0.25f;      // hysteresis variants: rate at which the held choice follows p
     float choiceBand = 0.3f;       // hysteresis variants: changes of p within ± band are held
+    // The weighted history's window (denoise/history_window.h): the fraction of the image's width
+    // and height where I_w, W_w and S_k are kept, centred on the gaze; 1 keeps them everywhere.
+    float window = 1.0f;
 };
 
 // two-history-stable's stabilisation pass (denoise/two_history_stable.md): the stabilised

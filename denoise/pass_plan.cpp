@@ -156,7 +156,7 @@ class UseCounter {
 DenoiserPlan PlanSvgfFamilyDenoiser(const DenoiserVariant& v, const DenoiserParams& p, int width, int height) {
     DenoiserPlan plan;
     plan.passes = PlanSvgfFamily(v, p, width, height);
-    const PlaneExtent extent{width, height, p.precision};
+    const PlaneExtent extent{width, height, p.precision, WeightedWindowSize(width, height, WeightedWindowFraction(v, p))};
     DeriveMemory(plan, extent, p.transferRingBytes, ReadAfterFrame(v, p, plan));
     for (PlannedPass& pass : plan.passes) {
         if (pass.when == When::NoPrevious) continue;
@@ -269,6 +269,15 @@ DenoiserPlan BuildDenoiserPlan(std::string_view name, const DenoiserParams& para
     const DenoiserParams p = ParamsForVariant(v, params);
     if (v.family == DenoiserFamily::Rae) return PlanRae(width, height, p);
     return PlanSvgfFamilyDenoiser(v, p, width, height);
+}
+
+float WeightedWindowFraction(const DenoiserVariant& variant, const DenoiserParams& params) {
+    return variant.twoHistory ? params.twoHistory.window : 1.0f;
+}
+
+HistoryWindow FrameWeightedWindow(const DenoiserVariant& variant, const DenoiserParams& params,
+                                  const FrameInputs& frame) {
+    return WeightedWindowAt(frame.width(), frame.height(), WeightedWindowFraction(variant, params), frame.gazePixel);
 }
 
 std::optional<PlaneRef> DebugViewPlane(const DenoiserVariant& v, const DenoiserParams& params, DebugViewId view) {

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "denoise/denoiser.h"
+#include "denoise/history_window.h"
 #include "denoise/params.h"
 #include "denoise/planes.h"
 #include "denoise/stage_shaders.h"
@@ -110,12 +111,16 @@ std::string ShaderVariantName(const PipelineKey& key);
 // Binding count of the variant's layout.
 int BindingCount(const PipelineKey& key);
 
-// Push-constant values the host sets per frame (the rest are fixed by the plan).
-enum class FrameValue : uint8_t { HasPrevious, GradientSampleCount };
+// Push-constant values the host sets per frame (the rest are fixed by the plan): whether there is
+// a previous frame, the gradient samples uploaded, and the corner of the weighted history's
+// window (denoise/history_window.h) this frame and the previous one.
+enum class FrameValue : uint8_t {
+    HasPrevious, GradientSampleCount, WindowOriginX, WindowOriginY, PrevWindowOriginX, PrevWindowOriginY
+};
 
 // A push-constant block (shaders/push_constants.h) filled when the plan is built.
 struct PushBlock {
-    std::array<uint32_t, 8> words{};
+    std::array<uint32_t, 16> words{};
     uint32_t bytes = 0;
     std::vector<std::pair<uint32_t, FrameValue>> perFrame;  // (word, value) set per frame
 
@@ -131,6 +136,13 @@ struct PushBlock {
 // Marks push field `field` of struct `Block` as set per frame to `value`.
 #define FOVRT_PUSH_PER_FRAME(push, Block, field, value) \
     (push).perFrame.push_back({uint32_t(offsetof(Block, field) / 4), value})
+// Marks ivec2 push field `field` as the window origin of this frame (or the previous one).
+#define FOVRT_PUSH_WINDOW_ORIGIN(push, Block, field)                              \
+    (FOVRT_PUSH_PER_FRAME(push, Block, field, FrameValue::WindowOriginX),         \
+     (push).perFrame.push_back({uint32_t(offsetof(Block, field) / 4 + 1), FrameValue::WindowOriginY}))
+#define FOVRT_PUSH_PREV_WINDOW_ORIGIN(push, Block, field)                         \
+    (FOVRT_PUSH_PER_FRAME(push, Block, field, FrameValue::PrevWindowOriginX),     \
+     (push).perFrame.push_back({uint32_t(offsetof(Block, field) / 4 + 1), FrameValue::PrevWindowOriginY}))
 
 enum class Grid : uint8_t {
     Pixels,           // one invocation per pixel
@@ -271,6 +283,13 @@ struct DenoiserPlan {
 // one eye. fovrt::Error for an unknown name or size.
 DenoiserPlan BuildDenoiserPlan(std::string_view variant, const DenoiserParams& params, int width,
                                int height);
+
+// The fraction of the image the variant's weighted history keeps (denoise.two_history.window for
+// the variants with one, else 1), and its window this frame: what the host's and the reference's
+// frames index the WINDOW_STORED planes by (denoise/history_window.h).
+float WeightedWindowFraction(const DenoiserVariant& variant, const DenoiserParams& params);
+HistoryWindow FrameWeightedWindow(const DenoiserVariant& variant, const DenoiserParams& params,
+                                  const FrameInputs& frame);
 
 // The plane a debug view reads in a variant's plan (HistoryLength, HistorySamples, Alpha,
 // Lambda, Q); nullopt for views computed from several planes (P) or not offered.

@@ -72,13 +72,15 @@ struct Family {
     bool zeroSamples;
     bool readsSampleCounts;  // the sample counts are uploaded: needsSampleCount or zeroSamples
     ivec2 size, grid;
+    ivec2 window;  // the WINDOW_STORED planes' pixels (the weighted history's window)
 
     Family(const DenoiserVariant& variant, const DenoiserParams& p, int w, int h)
         : v(variant), params(p), svgf(p.svgf), width(w), height(h), channels(FilteredChannels(p.svgf)),
           pair(channels.size() == 2), twoHistoryFamily(variant.family == DenoiserFamily::TwoHistory),
           feedback(FeedbackIteration(p.svgf, variant.twoHistory)),
           zeroSamples(p.sampleCountsMayBeZero && !variant.needsSampleCount),
-          readsSampleCounts(variant.needsSampleCount || zeroSamples), size(w, h), grid(StratumGridSize(w, h)) {}
+          readsSampleCounts(variant.needsSampleCount || zeroSamples), size(w, h), grid(StratumGridSize(w, h)),
+          window(WeightedWindowSize(w, h, WeightedWindowFraction(variant, p))) {}
 
     Channel First() const { return channels.front(); }
     Channel Last() const { return channels.back(); }

@@ -18,7 +18,7 @@ namespace {
 enum class Scope : uint8_t { Shared, PerChannel };
 enum class Lifetime : uint8_t { Scratch, History, Staging };
 enum class SizeRule : uint8_t {
-    PixelsOf, InputRgb, InputNormal, Pixels, Stored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
+    PixelsOf, InputRgb, InputNormal, Pixels, Stored, WindowStored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
 };
 enum class Source : uint8_t { None, EveryFrame, WhenRead };
 
@@ -38,6 +38,7 @@ struct PlaneRow {
 #define INPUT_NORMAL(member) SizeRule::InputNormal, FOVRT_FRAME_ELEMENT(member)
 #define PIXELS(bytes) SizeRule::Pixels, bytes
 #define STORED(scalars) SizeRule::Stored, scalars
+#define WINDOW_STORED(scalars) SizeRule::WindowStored, scalars
 #define STRATA(bytes) SizeRule::Strata, bytes
 #define FIXED(bytes) SizeRule::Fixed, bytes
 #define SAMPLE_COUNTS SizeRule::SampleCounts, 0
@@ -56,6 +57,7 @@ const PlaneRow kRows[] = {FOVRT_DENOISER_PLANES(FOVRT_PLANE_ROW)};
 #undef INPUT_NORMAL
 #undef PIXELS
 #undef STORED
+#undef WINDOW_STORED
 #undef STRATA
 #undef FIXED
 #undef SAMPLE_COUNTS
@@ -94,8 +96,10 @@ bool IsPerChannel(PlaneKind kind) { return Row(kind).scope == Scope::PerChannel;
 bool IsHistory(PlaneKind kind) { return Row(kind).lifetime == Lifetime::History; }
 bool IsStaging(PlaneKind kind) { return Row(kind).lifetime == Lifetime::Staging; }
 bool IsFixedSize(PlaneKind kind) { return Row(kind).size == SizeRule::Fixed; }
+bool IsWindowed(PlaneKind kind) { return Row(kind).size == SizeRule::WindowStored; }
 size_t ScalarBytes(PlaneKind kind, Precision precision) {
-    return Row(kind).size == SizeRule::Stored ? StoredScalarBytes(precision) : 4;
+    const SizeRule rule = Row(kind).size;
+    return rule == SizeRule::Stored || rule == SizeRule::WindowStored ? StoredScalarBytes(precision) : 4;
 }
 uint32_t ClearValue(PlaneKind kind, Precision precision) {
     constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f
@@ -132,7 +136,8 @@ size_t PlaneElementBytes(PlaneKind kind, Precision precision) {
     switch (row.size) {
         case SizeRule::PixelsOf:
         case SizeRule::Pixels: return row.amount;
-        case SizeRule::Stored: return row.amount * StoredScalarBytes(precision);
+        case SizeRule::Stored:
+        case SizeRule::WindowStored: return row.amount * StoredScalarBytes(precision);
         case SizeRule::InputRgb: return precision == Precision::Fp16 ? 4 * sizeof(uint16_t) : row.amount;
         case SizeRule::InputNormal: return precision == Precision::Fp16 ? 2 * sizeof(int16_t) : row.amount;
         default: return 0;
@@ -150,6 +155,9 @@ size_t PlaneBytes(PlaneKind kind, const PlaneExtent& e) {
         case SizeRule::InputNormal:
         case SizeRule::Pixels:
         case SizeRule::Stored: return PlaneElementBytes(kind, e.precision) * pixels;
+        case SizeRule::WindowStored:
+            return PlaneElementBytes(kind, e.precision) *
+                   (e.window.x > 0 ? size_t(e.window.x) * size_t(e.window.y) : pixels);
         case SizeRule::Strata: return row.amount * strata;
         case SizeRule::Fixed: return row.amount;
         case SizeRule::SampleCounts: return ((sizeof(uint16_t) * pixels + 3) / 4) * 4;

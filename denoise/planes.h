@@ -29,6 +29,8 @@ namespace fovrt {
 //   PIXELS(b)         b bytes per pixel
 //   STORED(k)         k scalars per pixel stored at the denoiser's precision (4 bytes each, 2 in
 //                     fp16): the histories and the (illumination, variance) ping-pong
+//   WINDOW_STORED(k)  k stored scalars per pixel of the weighted history's window
+//                     (denoise/history_window.h; the whole image unless denoise.two_history.window < 1)
 //   STRATA(b)         b bytes per stratum
 //   FIXED(b)          b bytes whatever the size (counters, dispatch arguments)
 //   SAMPLE_COUNTS     uint16 per pixel, padded to whole 32-bit words (the shaders read pairs)
@@ -59,7 +61,7 @@ namespace fovrt {
     X(Moments, "moments", PerChannel, History, STORED(2), NONE)                                     \
     X(Length, "length", PerChannel, History, STORED(1), NONE)                                       \
     X(Weight, "weight", PerChannel, History, STORED(1), NONE)                                       \
-    X(WColor, "wcolor", PerChannel, History, STORED(3), NONE)                                       \
+    X(WColor, "wcolor", PerChannel, History, WINDOW_STORED(3), NONE)                                \
     /* per channel: (illumination, variance) ping-pong of the unweighted / weighted history */      \
     X(Illum0, "illum0", PerChannel, Scratch, STORED(4), NONE)                                       \
     X(Illum1, "illum1", PerChannel, Scratch, STORED(4), NONE)                                       \
@@ -71,8 +73,8 @@ namespace fovrt {
     X(SpatialList, "spatialList", PerChannel, Scratch, PIXELS(4), NONE)                             \
     X(SpatialArgs, "spatialArgs", PerChannel, Scratch, FIXED(16), NONE)                             \
     /* two-history: W_w, (S_-1, S_0, S_1), the luminance gradient g, and q */                       \
-    X(WWeight, "wweight", Shared, History, STORED(1), NONE)                                         \
-    X(PowerSums, "powerSums", Shared, History, STORED(3), NONE)                                     \
+    X(WWeight, "wweight", Shared, History, WINDOW_STORED(1), NONE)                                  \
+    X(PowerSums, "powerSums", Shared, History, WINDOW_STORED(3), NONE)                              \
     X(Gradient, "gradient", Shared, History, STORED(1), NONE)                                       \
     X(Q, "q", Shared, Scratch, PIXELS(4), NONE)                                                     \
     /* two-history-stable: the stabilised luminance of each channel's filtered illumination */      \
@@ -150,7 +152,10 @@ std::string BufferName(const BufferKey& key);
 struct PlaneExtent {
     int width = 0, height = 0;
     Precision precision = Precision::Fp32;
+    ivec2 window{0};  // the WINDOW_STORED planes' pixels; 0: width × height
 };
+// Whether `kind` holds the weighted history's window (WINDOW_STORED) rather than every pixel.
+bool IsWindowed(PlaneKind kind);
 inline size_t StoredScalarBytes(Precision p) { return p == Precision::Fp16 ? 2 : 4; }
 // Bytes of one scalar of a plane: StoredScalarBytes for the STORED planes, 4 for the others
 // (how a host reading a plane back converts it).

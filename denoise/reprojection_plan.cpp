@@ -136,8 +136,11 @@ void Reproject(Writer& w, const Family& f) {
                 (f.zeroSamples ? TH_REPROJECT_FLAG_ZERO_SAMPLES : 0u);
         push = PushBlock::Of(TwoHistoryReprojectPush{f.size, f.svgf.alphaColor, f.svgf.alphaMoments,
                                                      f.params.twoHistory.gradientBeta, 0u,
-                                                     f.params.asvgf.antilagPower, f.params.twoHistory.fireflySigma});
+                                                     f.params.asvgf.antilagPower, f.params.twoHistory.fireflySigma,
+                                                     f.window, ivec2(0), ivec2(0)});
         FOVRT_PUSH_PER_FRAME(push, TwoHistoryReprojectPush, has_prev, FrameValue::HasPrevious);
+        FOVRT_PUSH_WINDOW_ORIGIN(push, TwoHistoryReprojectPush, win_origin);
+        FOVRT_PUSH_PREV_WINDOW_ORIGIN(push, TwoHistoryReprojectPush, prev_win_origin);
         b = TwoHistoryReprojectBindings(f);
     } else {
         flags = (f.svgf.weightBySampleCount ? SVGF_REPROJECT_FLAG_WEIGHTED : 0u) |

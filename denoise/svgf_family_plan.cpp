@@ -134,8 +134,9 @@ void Choice(Writer& w, const Family& f) {
     using K = PlaneKind;
     w.Pass("two_history_choice", "two_history_choice", ChoiceStage{});
     const TwoHistoryParams& t = f.params.twoHistory;
-    PushBlock push = PushBlock::Of(TwoHistoryChoicePush{f.size, t.choiceRate, t.choiceBand, 0u});
+    PushBlock push = PushBlock::Of(TwoHistoryChoicePush{f.size, f.window, ivec2(0), t.choiceRate, t.choiceBand, 0u});
     FOVRT_PUSH_PER_FRAME(push, TwoHistoryChoicePush, has_prev, FrameValue::HasPrevious);
+    FOVRT_PUSH_WINDOW_ORIGIN(push, TwoHistoryChoicePush, win_origin);
     Bindings b;
     ReadReprojectionGeometry(b, TH_CHOICE_B_DEPTH);
     b.Read(TH_CHOICE_B_WU, This(K::Length, f.First()))
@@ -166,9 +167,10 @@ void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted)
             .ReadIf(!held, TH_BLEND_B_S, This(K::PowerSums))
             .Read(TH_BLEND_B_Q, Shared(stage.q.kind))
             .ReadIf(held, TH_BLEND_B_CHOICE, This(K::Choice));
-        const TwoHistoryBlendPush push{f.size, f.params.twoHistory.clampSigma, f.v.clampHistory ? 1u : 0u,
-                                       held ? 1u : 0u};
-        w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryBlend), std::move(b), PushBlock::Of(push)));
+        PushBlock push = PushBlock::Of(TwoHistoryBlendPush{f.size, f.window, ivec2(0), f.params.twoHistory.clampSigma,
+                                                           f.v.clampHistory ? 1u : 0u, held ? 1u : 0u});
+        FOVRT_PUSH_WINDOW_ORIGIN(push, TwoHistoryBlendPush, win_origin);
+        w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryBlend), std::move(b), std::move(push)));
     }
     w.Barrier();
 }
@@ -201,9 +203,19 @@ void Atrous(Writer& w, const Family& f, int i) {
     const std::string name = fmt::format("atrous{}", i);
     // The two-history family's reference reports its à-trous iterations and blend as one timer.
     w.Pass(name, f.twoHistoryFamily ? "atrous_blend" : name, stage);
-    const SvgfAtrousPush push{f.size, 1 << i, f.svgf.sigmaDepth, f.svgf.sigmaNormal, f.svgf.sigmaLuminance};
     for (size_t first = 0; first < planes.size(); first += 2) {
         const bool pairDispatch = first + 1 < planes.size();
+        // Each side's fed-back history: the image, or the weighted history's window (its corner
+        // set per frame).
+        SvgfAtrousPush fields{f.size, 1 << i, f.svgf.sigmaDepth, f.svgf.sigmaNormal, f.svgf.sigmaLuminance,
+                              f.size, ivec2(0), f.size, ivec2(0)};
+        const bool windowed0 = IsWindowed(planes[first].history);
+        const bool windowed1 = pairDispatch && IsWindowed(planes[first + 1].history);
+        if (windowed0) fields.hist_size0 = f.window;
+        if (windowed1) fields.hist_size1 = f.window;
+        PushBlock push = PushBlock::Of(fields);
+        if (windowed0) FOVRT_PUSH_WINDOW_ORIGIN(push, SvgfAtrousPush, hist_origin0);
+        if (windowed1) FOVRT_PUSH_WINDOW_ORIGIN(push, SvgfAtrousPush, hist_origin1);
         Bindings b;
         b.Read(SVGF_ATROUS_B_GUIDE, Shared(K::Guide)).Read(SVGF_ATROUS_B_DEPTH_GRAD, Shared(K::DepthGradient));
         for (size_t k = 0; k < (pairDispatch ? 2u : 1u); ++k) {
@@ -216,7 +228,7 @@ void Atrous(Writer& w, const Family& f, int i) {
             else b.Unused(historySlot, This(p.history, ch));
         }
         w.Dispatch(Over(Grid::AtrousBlocks, AtrousPipeline(f.params, pairDispatch, i == 0, feedback), std::move(b),
-                        PushBlock::Of(push), 1 << i));
+                        std::move(push), 1 << i));
     }
     w.Barrier();
     if (both) Blend(w, f, K::Illum0, K::WIllum0);

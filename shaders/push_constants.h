@@ -17,21 +17,29 @@
 // svgf_filter_moments
 #define FOVRT_PUSH_SVGF_FILTER_MOMENTS(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, threshold)
-// svgf_atrous: step = 2^iteration.
-#define FOVRT_PUSH_SVGF_ATROUS(F) \
-    F(ivec2, size) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance)
+// svgf_atrous: step = 2^iteration; hist_size0/1, hist_origin0/1: the window each side's fed-back
+// colour history holds (common/history_window.glsl; the image for all but two-history's I_w).
+#define FOVRT_PUSH_SVGF_ATROUS(F)                                                                      \
+    F(ivec2, size) F(int, step) F(float, sigma_depth) F(float, sigma_normal) F(float, sigma_luminance) \
+    F(ivec2, hist_size0) F(ivec2, hist_origin0) F(ivec2, hist_size1) F(ivec2, hist_origin1)
 // two_history_reproject (mode bits: specialization constant FOVRT_SPEC_REPROJECT_FLAGS);
 // antilag_power: the ANTILAG flag's history reduction (1 − a)^power; firefly_sigma: the FIREFLY
-// flag's k in μ + kσ.
+// flag's k in μ + kσ; win_size, win_origin, prev_win_origin: the weighted history's window this
+// frame and the previous one (common/history_window.glsl).
 #define FOVRT_PUSH_TWO_HISTORY_REPROJECT(F)                                                          \
     F(ivec2, size) F(float, alpha) F(float, alpha_moments) F(float, gradient_beta) F(uint, has_prev) \
-    F(float, antilag_power) F(float, firefly_sigma)
+    F(float, antilag_power) F(float, firefly_sigma) F(ivec2, win_size) F(ivec2, win_origin)          \
+    F(ivec2, prev_win_origin)
 // two_history_blend: clamp_history 1 for the clamp variants (the box of k = clamp_sigma in place of p);
-// held_choice 1 for the hysteresis variants (two_history_choice's held choice in place of p).
-#define FOVRT_PUSH_TWO_HISTORY_BLEND(F) \
-    F(ivec2, size) F(float, clamp_sigma) F(uint, clamp_history) F(uint, held_choice)
-// two_history_choice: rate, band = choice_rate, choice_band (TwoHistoryParams).
-#define FOVRT_PUSH_TWO_HISTORY_CHOICE(F) F(ivec2, size) F(float, rate) F(float, band) F(uint, has_prev)
+// held_choice 1 for the hysteresis variants (two_history_choice's held choice in place of p);
+// win_size, win_origin: the weighted history's window (outside it the blend keeps I_u).
+#define FOVRT_PUSH_TWO_HISTORY_BLEND(F)                                                            \
+    F(ivec2, size) F(ivec2, win_size) F(ivec2, win_origin) F(float, clamp_sigma) F(uint, clamp_history) \
+    F(uint, held_choice)
+// two_history_choice: rate, band = choice_rate, choice_band (TwoHistoryParams); the window as the
+// blend's (outside it p = 1).
+#define FOVRT_PUSH_TWO_HISTORY_CHOICE(F) \
+    F(ivec2, size) F(ivec2, win_size) F(ivec2, win_origin) F(float, rate) F(float, band) F(uint, has_prev)
 // two_history_gradient
 #define FOVRT_PUSH_TWO_HISTORY_GRADIENT(F) \
     F(ivec2, size) F(float, sigma_depth) F(float, sigma_normal) F(float, q_scale) F(uint, two_channels)
@@ -112,11 +120,11 @@ FOVRT_DECLARE_PUSH(RaeConvPush, FOVRT_PUSH_RAE_CONV);
 FOVRT_DECLARE_PUSH(RaePoolPush, FOVRT_PUSH_RAE_POOL);
 #undef FOVRT_DECLARE_PUSH
 #undef FOVRT_PUSH_FIELD_QUALIFIED
-// 4-byte scalars after an 8-byte-aligned ivec2 prefix: no padding on either side.
+// Every ivec2 at an 8-byte-aligned offset, 4-byte scalars between: no padding on either side.
 static_assert(sizeof(SvgfReprojectPush) == 20 && sizeof(ImageSizePush) == 8 && sizeof(SvgfClassifyPush) == 12 &&
-              sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 24 &&
-              sizeof(TwoHistoryReprojectPush) == 32 && sizeof(TwoHistoryBlendPush) == 20 &&
-              sizeof(TwoHistoryChoicePush) == 20 &&
+              sizeof(SvgfFilterMomentsPush) == 20 && sizeof(SvgfAtrousPush) == 56 &&
+              sizeof(TwoHistoryReprojectPush) == 56 && sizeof(TwoHistoryBlendPush) == 36 &&
+              sizeof(TwoHistoryChoicePush) == 36 &&
               sizeof(TwoHistoryGradientPush) == 24 &&
               sizeof(TwoHistoryStabilizePush) == 28 &&
               sizeof(AsvgfSamplesPush) == 20 && sizeof(AsvgfAtrousPush) == 32 && sizeof(AsvgfSigmaPush) == 12 &&

@@ -5,7 +5,8 @@
 // Purpose: 5×5 kernel h⊗h at step 2^i with w = w_z·w_n·w_l; w_l uses the 3×3 Gaussian-prefiltered
 //   variance of the centre; colour = Σ h w c / Σ h w, variance = Σ h² w² Var / (Σ h w)².
 //   On the feedback iteration (specialization constant FOVRT_SPEC_ATROUS_WRITE_HISTORY) the filtered
-//   colour is also written as the colour history. A pixel that holds nothing (HOLDS_NOTHING: no
+//   colour is also written as the colour history, at its window's index (pc.hist_size0/1 at
+//   pc.hist_origin0/1: the image, or two-history's weighted history window). A pixel that holds nothing (HOLDS_NOTHING: no
 //   sample, no history) has weight 0 as a tap, its own included, and as a centre no w_l: its
 //   neighbours fill it; with none that holds anything it stays as it is.
 // Channels: FOVRT_CHANNELS (1: "svgf_atrous", 2: "svgf_atrous_pair") illumination planes filtered
@@ -25,6 +26,7 @@
 #include "common/access.glsl"
 #include "common/luminance.glsl"
 #include "common/edge_stopping.glsl"
+#include "common/history_window.glsl"
 
 #ifndef FOVRT_CHANNELS
 #define FOVRT_CHANNELS 1
@@ -190,10 +192,12 @@ void main() {
                             ? vec4(sum_c[k][c] / sum_w[k][c], sum_v[k][c] / (sum_w[k][c] * sum_w[k][c]))
                             : center[k][c];
         illum_out0[i] = TO_ILLUM(result[0]);
-        if (kWriteHistory) STORE3(hist_color0, i, to_history(result[0].rgb), hfloat);
+        int h0 = window_index(pix[k], pc.hist_origin0, pc.hist_size0);
+        if (kWriteHistory && h0 >= 0) STORE3(hist_color0, h0, to_history(result[0].rgb), hfloat);
 #if NCH == 2
         illum_out1[i] = TO_ILLUM(result[1]);
-        if (kWriteHistory) STORE3(hist_color1, i, to_history(result[1].rgb), hfloat);
+        int h1 = window_index(pix[k], pc.hist_origin1, pc.hist_size1);
+        if (kWriteHistory && h1 >= 0) STORE3(hist_color1, h1, to_history(result[1].rgb), hfloat);
 #endif
     }
 }

@@ -6,7 +6,8 @@
 // The clamp variants (pc.clamp_history) replace p by the box of I_w's 3×3 mean ± kσ
 // (two_history_clamp_blend); I_w is read-only, so the neighbours' reads race with no write.
 // The hysteresis variants (pc.held_choice) read p from two_history_choice's held choice.
-// Reads:  filtered (I_u, Var) and (I_w, Var), W_u, W_w, power sums, q, the held choice.
+// Outside the weighted history's window (pc.win_size at pc.win_origin) t = 1: I_u is kept as it is.
+// Reads:  filtered (I_u, Var) and (I_w, Var), W_u, W_w, power sums (in the window), q, the held choice.
 // Writes: the blend, in place over (I_u, Var) (the input of the remaining iterations).
 #include "shared_constants.h"
 #include "push_constants.h"
@@ -14,6 +15,7 @@
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/two_history.glsl"
+#include "common/history_window.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
@@ -46,6 +48,8 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
+    int wi = window_index(p, pc.win_origin, pc.win_size);
+    if (wi < 0) return;  // no weighted history here: the unweighted one, as it is
     if (pc.clamp_history != 0u) {
         vec3 mean, sigma;
         neighbourhood_mean_sigma(p, mean, sigma);
@@ -54,7 +58,7 @@ void main() {
         return;
     }
     float pb = pc.held_choice != 0u ? FETCH1(choice, i)
-                                    : two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, i), LOAD_S(i));
+                                    : two_history_optimal_blend(FETCH1(wu, i), FETCH1(ww, wi), LOAD_S(wi));
     float qi = FETCH1(q, i);
     float t = pb + qi - pb * qi;
     illum_u[i] = TO_ILLUM(mix(FETCH4(illum_w, i), vec4(illum_u[i]), t));

@@ -6,6 +6,7 @@
 //   reprojected with the bilinear taps of common/own_history_reprojection.glsl; held =
 //   hysteretic_choice(prev, p, rate, band). Where the taps fail, on the first frame, or where the
 //   accumulation restarted (W_u ≤ 1) the held choice restarts at p.
+// Outside the weighted history's window (pc.win_size at pc.win_origin) p = 1, as the blend keeps I_u there.
 // Reads:  geometry of both frames, depth gradient, previous pixel, W_u, W_w, power sums, the
 //         previous held choice.
 // Writes: this frame's held choice (two_history_blend reads it in place of p).
@@ -15,6 +16,7 @@
 #include "common/packing.glsl"
 #include "common/access.glsl"
 #include "common/two_history.glsl"
+#include "common/history_window.glsl"
 
 layout(local_size_x = FOVRT_WORKGROUP_X, local_size_y = FOVRT_WORKGROUP_Y) in;
 
@@ -34,7 +36,8 @@ void main() {
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
     float wu = FETCH1(wu, i);
-    float pb = two_history_optimal_blend(wu, FETCH1(ww, i), LOAD_S(i));
+    int wi = window_index(p, pc.win_origin, pc.win_size);
+    float pb = wi < 0 ? 1.0 : two_history_optimal_blend(wu, FETCH1(ww, wi), LOAD_S(wi));
     float held = pb;
     if (pc.has_prev != 0u && wu > 1.0) {
         ReprojTaps taps = own_history_taps(i, pc.size);

@@ -19,6 +19,11 @@
 //   COLOR_IN2 / PREV_IU_OTHER / the *2 bindings). The taps (consistency tests on the previous
 //   geometry) and the per-pixel state (W_u, W_w, S, g) are gathered and computed once per pixel;
 //   W_u is the same for both channels (as in the reference) and written into each channel's length.
+// Window: the weighted history (I_w, W_w, S_k) lives in a window that follows the gaze
+//   (pc.win_size at pc.win_origin; at pc.prev_win_origin last frame; common/history_window.glsl).
+//   Outside it (I_w, Var) = (I_u, Var) and nothing weighted is stored; a pixel inside whose taps
+//   are not all in the previous window restarts its weighted history (W_w = S_k = 0, I_w from the
+//   reprojected I_u). A window of the whole image changes nothing.
 // Passes: as svgf_reproject — this shader on every pixel with the bilinear taps, listing the pixels
 //   whose taps all failed; "…_box" on the listed pixels with the 3×3 fallback taps (indirect).
 // Modes: TH_REPROJECT_FLAG_* as the specialization constant FOVRT_SPEC_REPROJECT_FLAGS.
@@ -35,6 +40,7 @@
 #include "common/luminance.glsl"
 #include "common/reprojection.glsl"
 #include "common/two_history.glsl"
+#include "common/history_window.glsl"
 
 #ifndef FOVRT_CHANNELS
 #define FOVRT_CHANNELS 1
@@ -97,6 +103,27 @@ vec3 sanitize(vec3 c) {
 #define GATHER2(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, FETCH2, vec2(0.0), out_)
 #define GATHER3(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, HIST3_LOAD, vec3(0.0), out_)
 
+// The previous window's index of tap t (the image's index j of a valid tap); −1 outside it.
+int prev_window_tap(ReprojTaps taps, int t) {
+    int j = reproj_tap_index(taps, t, pc.size);
+    return window_index(ivec2(j % pc.size.x, j / pc.size.x), pc.prev_win_origin, pc.win_size);
+}
+// Whether every valid tap lies in the previous window (its weighted history can be gathered).
+bool taps_in_prev_window(ReprojTaps taps) {
+    [[unroll]] for (int t = 0; t < REPROJ_SLOTS; ++t)
+        if (reproj_tap_weight(taps, t) > 0.0 && prev_window_tap(taps, t) < 0) return false;
+    return true;
+}
+// Bilinear gather of a windowed history plane (every valid tap in the previous window).
+#define GATHER_WINDOW(arr, taps, load, zero, out_)                                   \
+    do {                                                                           \
+        out_ = zero;                                                               \
+        [[unroll]] for (int t_ = 0; t_ < REPROJ_SLOTS; ++t_) {                     \
+            float w_ = reproj_tap_weight(taps, t_);                                \
+            if (w_ > 0.0) out_ += w_ * load(arr, prev_window_tap(taps, t_));         \
+        }                                                                          \
+    } while (false)
+
 // Channel k's unsanitised input at pixel j (direct + indirect when combined).
 vec3 channel_input(int k, int j) {
 #if NCH == 2
@@ -131,7 +158,8 @@ float neighbour_max_luminance(int k, int i) {
         if (success) {                                                                         \
             GATHER3(prev_iu##k, taps, iu_prev[k]);                                             \
             GATHER2(prev_m##k, taps, m_prev_);                                                 \
-            if (kTwo) GATHER3(prev_iw##k, taps, iw_prev_);                                     \
+            if (w_held) GATHER_WINDOW(prev_iw##k, taps, HIST3_LOAD, vec3(0.0), iw_prev_);      \
+            else iw_prev_ = iu_prev[k]; /* a restarted weighted history starts from I_u */     \
             if (kFirefly && wu_prev >= FOVRT_FIREFLY_MIN_HISTORY)                              \
                 x[k] = suppress_firefly(x[k], luminance(x[k]), m_prev_, pc.firefly_sigma,      \
                                         neighbour_max_luminance(k, i));                        \
@@ -144,13 +172,16 @@ float neighbour_max_luminance(int k, int i) {
         float variance_ = max(0.0, m_.y - m_.x * m_.x);                                        \
         STORE2(cur_m##k, i, to_history(m_), hfloat);                                           \
         if (k == 0) cur_wu##k[i] = hfloat(to_history(wu)); /* one W_u for both channels */   \
-        illum_u##k[i] = TO_ILLUM(held ? vec4(iu_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)); \
+        vec4 u4_ = held ? vec4(iu_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE);           \
+        illum_u##k[i] = TO_ILLUM(u4_);                                                         \
         if (kWriteColor) STORE3(cur_iu##k, i, to_history(iu_), hfloat);                        \
-        if (kTwo) {                                                                            \
+        if (kTwo && wi >= 0) {                                                                 \
             vec3 iw_ = !sampled ? (held ? iw_prev_ : vec3(0.0))                                \
                                 : iw_prev_ + (x[k] - iw_prev_) * (n / ww);                     \
             illum_w##k[i] = TO_ILLUM(held ? vec4(iw_, variance_) : vec4(vec3(0.0), FOVRT_EMPTY_VARIANCE)); \
-            if (kWriteColor) STORE3(cur_iw##k, i, to_history(iw_), hfloat);                    \
+            if (kWriteColor) STORE3(cur_iw##k, wi, to_history(iw_), hfloat);                   \
+        } else if (kTwo) { /* outside the window: the unweighted history's */                  \
+            illum_w##k[i] = TO_ILLUM(u4_);                                                     \
         }                                                                                      \
     } while (false)
 
@@ -172,13 +203,16 @@ bool reproject_pixel(int i) {
     float n = REPROJ_SAMPLE_COUNT(sample_count, i, kTwo, kZeroSamples);
 
     // Per-pixel state, once for all channels (W_u from channel 0's length: both channels hold the same).
+    // wi: this pixel in the window (−1 outside); w_held: its weighted history can be gathered.
+    int wi = kTwo ? window_index(ivec2(i % pc.size.x, i / pc.size.x), pc.win_origin, pc.win_size) : -1;
+    bool w_held = success && wi >= 0 && taps_in_prev_window(taps);
     float wu_prev = 0.0, ww_prev = 0.0;
     vec3 s_prev = vec3(0.0);
     if (success) {
         GATHER1(prev_wu0, taps, wu_prev);
-        if (kTwo) {
-            GATHER1(prev_ww, taps, ww_prev);
-            GATHER3(prev_s, taps, s_prev);
+        if (w_held) {
+            GATHER_WINDOW(prev_ww, taps, FETCH1, 0.0, ww_prev);
+            GATHER_WINDOW(prev_s, taps, HIST3_LOAD, vec3(0.0), s_prev);
         }
     }
     float alpha = kAlphaMap ? alpha_map[i] : pc.alpha;
@@ -207,8 +241,10 @@ bool reproject_pixel(int i) {
     ACCUMULATE_CHANNEL(1);
 #endif
     if (kTwo) {
-        cur_ww[i] = hfloat(to_history(ww));
-        STORE3(cur_s, i, to_history(s), hfloat);
+        if (wi >= 0) {
+            cur_ww[wi] = hfloat(to_history(ww));
+            STORE3(cur_s, wi, to_history(s), hfloat);
+        }
         if (kGradient) {
             vec3 x_sum = x[0], iu_prev_sum = iu_prev[0];
 #if NCH == 2

@@ -226,6 +226,15 @@ if "$fovrt" memory --width 64 --height 64 --eyes 1 --denoiser svgf --scored-fram
 else
   bad "memory --scored-frames failed: $(cat err.txt)"
 fi
+expect_error "memory --window out of range" "denoise.two_history.window: 0 is out of range (0, 1]" memory --width 64 --height 64 --window 0
+# --window keeps two-history's weighted history (40 B/pixel in fp16) in a quarter of the image.
+if "$fovrt" memory --width 64 --height 64 --eyes 1 --denoiser two-history --precision fp16 --window 0.5 >mem.txt 2>err.txt; then
+  grep -q "weighted history in a window of 0.5 per side" mem.txt && grep -q "^wweight.A  *2048 " mem.txt &&
+    grep -q "^history total  *335872  *82.00" mem.txt &&
+    ok "memory --window sizes the weighted planes by the window" || bad "memory --window: $(head -3 mem.txt; grep total mem.txt)"
+else
+  bad "memory --window failed: $(cat err.txt)"
+fi
 expect_error "the metric's frames count against the budget" "vdp.*luminance" memory --width 64 --height 64 --denoiser svgf \
   --scored-frames 1000 --memory-budget 4MiB
 # info lists every denoiser variant of the table with its summary.

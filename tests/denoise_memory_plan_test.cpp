@@ -111,6 +111,49 @@ TEST_CASE("every variant's bytes per pixel at headset size (2064x2208) hold, per
     CHECK(double(bothFp16Bytes.at("svgf")) <= 1.0 * GiB);
 }
 
+// The weighted history's window (denoise/history_window.h): its size and place in closed form, and
+// the bytes it saves, which are the weighted planes' 40 B/pixel in fp16 (W_w, S_k and I_w per
+// channel, A and B) outside the window.
+TEST_CASE("the weighted history's window: its size, its place, and the history bytes it keeps") {
+    CHECK(WeightedWindowSize(64, 64, 0.5f) == ivec2(32, 32));
+    CHECK(WeightedWindowSize(67, 45, 0.5f) == ivec2(34, 23));  // ⌈33.5⌉, ⌈22.5⌉
+    CHECK(WeightedWindowSize(2064, 2208, 1.0f) == ivec2(2064, 2208));
+    CHECK(WeightedWindowSize(2064, 2208, 0.5f) == ivec2(1032, 1104));
+    CHECK(WeightedWindowSize(10, 10, 1e-6f) == ivec2(1, 1));
+    CHECK(WeightedWindowAt(64, 64, 0.5f, std::nullopt).origin == ivec2(16, 16));  // no gaze: the centre
+    CHECK(WeightedWindowAt(64, 64, 0.5f, vec2(20.5f, 30.0f)).origin == ivec2(5, 14));  // ⌊c − 16 + ½⌋
+    CHECK(WeightedWindowAt(64, 64, 0.5f, vec2(-40.0f, 2.0f)).origin == ivec2(0, 0));  // kept inside
+    CHECK(WeightedWindowAt(64, 64, 0.5f, vec2(63.9f, 100.0f)).origin == ivec2(32, 32));
+    const HistoryWindow w = WeightedWindowAt(64, 64, 0.5f, vec2(20.5f, 30.0f));
+    CHECK(w.Index(5, 14) == 0);
+    CHECK(w.Index(36, 45) == 31 * 32 + 31);
+    CHECK(w.Index(4, 14) == -1);
+    CHECK(w.Index(37, 20) == -1);
+
+    const int width = 2064, height = 2208;
+    const double pixels = double(width) * double(height);
+    auto historyBytes = [&](float window) {
+        DenoiserParams params;
+        params.precision = Precision::Fp16;
+        params.twoHistory.window = window;
+        size_t bytes = 0;
+        for (const BufferPlan& b : BuildDenoiserPlan("two-history", params, width, height).buffers)
+            bytes += b.history ? b.bytes : 0;
+        return double(bytes) / pixels;
+    };
+    CHECK(historyBytes(1.0f) == Approx(112.0));
+    for (float window : {0.75f, 0.5f, 0.25f}) {
+        const ivec2 size = WeightedWindowSize(width, height, window);
+        INFO("window " << window);
+        CHECK(historyBytes(window) == Approx(72.0 + 40.0 * double(size.x) * double(size.y) / pixels));
+    }
+    // svgf keeps no weighted history: the setting leaves its plan alone.
+    DenoiserParams params;
+    params.twoHistory.window = 0.25f;
+    CHECK(TotalBytes(BuildDenoiserPlan("svgf", params, width, height).buffers) ==
+          TotalBytes(BuildDenoiserPlan("svgf", DenoiserParams{}, width, height).buffers));
+}
+
 TEST_CASE("the budget is checked against the peak: a transient slot counts once, not per plane it holds") {
     const DenoiserPlan plan = BuildDenoiserPlan("two-history", DenoiserParams{}, 64, 64);
     size_t planes = 0;

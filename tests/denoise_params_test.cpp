@@ -64,7 +64,7 @@ std::vector<double> OutsideValues(const ParamRange& range, Kind kind) {
 
 TEST_CASE("parameter tables: every row has a unique denoise key, a doc and a non-empty range", "[params]") {
     const std::vector<ParamInfo> rows = AllRows();
-    CHECK(rows.size() == 23);  // 10 svgf + 4 asvgf (2 of them anti-lag) + 6 two-history + 3 two-history-stable
+    CHECK(rows.size() == 24);  // 10 svgf + 4 asvgf (2 of them anti-lag) + 6 two-history + 3 two-history-stable
     std::set<std::string> keys;
     for (const ParamInfo& info : rows) {
         INFO(info.key);
@@ -126,7 +126,7 @@ TEST_CASE("ValidateDenoiserParams: every numeric key out of range fails naming i
         if (!info.range.minOpen) CHECK_NOTHROW(ValidateDenoiserParamRanges(With(info.key, info.range.min)));
         if (!info.range.maxOpen) CHECK_NOTHROW(ValidateDenoiserParamRanges(With(info.key, info.range.max)));
     }
-    CHECK(numeric == 21);  // 8 svgf + 4 asvgf + 6 two-history + 3 two-history-stable (the 2 svgf booleans have no range)
+    CHECK(numeric == 22);  // 8 svgf + 4 asvgf + 6 two-history + 3 two-history-stable (the 2 svgf booleans have no range)
 }
 
 TEST_CASE("feedback_iteration <= atrous_iterations: the rule names both keys", "[params]") {

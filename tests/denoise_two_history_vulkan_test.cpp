@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <glm/gtc/packing.hpp>
 #include <memory>
 #include <random>
@@ -76,15 +77,21 @@ Mismatch Compare(const std::vector<float>& vk, const Plane<T>& ref, double tol) 
 // below a tenth of a + c) that rounding moves p beyond the tolerance, and the device's and the
 // reference's roundings differ by an ulp here and there. There I_w ≈ I_u (the sample counts of the
 // history nearly equal), so the output, compared at every pixel, does not depend on p.
-bool IllConditionedBlend(const TwoHistoryState& st, size_t i) {
-    const double wu = st.wu[i], ww = st.ww[i];
+// `window` is where W_w and S_k are kept (p = 1 outside it, on both sides).
+bool IllConditionedBlend(const TwoHistoryState& st, const HistoryWindow& window, size_t i) {
+    const int j = window.Index(int(i % size_t(st.wu.width())), int(i / size_t(st.wu.width())));
+    if (j < 0) return false;
+    const double wu = st.wu[i], ww = st.ww[size_t(j)];
     if (!(wu > 0.0 && ww > 0.0)) return false;
-    const double a = st.powerSums[i].z / (ww * ww), b = st.powerSums[i].y / (ww * wu), c = st.powerSums[i].x / (wu * wu);
+    const vec3 s = st.powerSums[size_t(j)];
+    const double a = s.z / (ww * ww), b = s.y / (ww * wu), c = s.x / (wu * wu);
     return std::abs(a - 2.0 * b + c) < 0.1 * (a + c);
 }
 
+// `gaze(frame)`, when given, is where the eye looks in each frame (the weighted history's window).
 void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int frames, int width = 64,
-             int height = 64, bool boxFallback = false, bool zeroSamples = false) {
+             int height = 64, bool boxFallback = false, bool zeroSamples = false,
+             const std::function<vec2(int)>& gaze = {}) {
     auto ctx = TestContext();
     SvgfFamilyVulkanDenoiser vk(variant, ctx, params);
     SvgfFamilyReferenceDenoiser ref(variant, params);
@@ -99,6 +106,7 @@ void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int f
     for (int frame = 0; frame < frames; ++frame) {
         FrameInputs f = RandomTwoHistoryFrame(width, height, uint32_t(frame), boxFallback);
         if (zeroSamples) f = test::WithZeroSamples(std::move(f), uint32_t(frame));
+        if (gaze) f.gazePixel = gaze(frame);
         vk.Denoise(f, outVk);
         ref.Denoise(f, outRef);
         const std::string side = vk.LastWrittenSide();
@@ -116,7 +124,7 @@ void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int f
         if (two && !(half && variant.hystereticChoice) && vk.ReadDebugView("p", pVk) && ref.ReadDebugView("p", pRef)) {
             size_t pBad = 0, pSkipped = 0;
             for (size_t i = 0; i < pRef.size(); ++i) {
-                if (half && IllConditionedBlend(st, i)) {
+                if (half && IllConditionedBlend(st, FrameWeightedWindow(variant, params, f), i)) {
                     ++pSkipped;
                     continue;
                 }
@@ -463,6 +471,88 @@ TEST_CASE("vulkan two-history family matches the reference with zero-sample pixe
             }
         }
     }
+}
+
+// The weighted history kept in a window that follows the gaze (denoise.two_history.window): the
+// window (32×32 of 64×64) jumps with the gaze every frame, so pixels leave it (the unweighted
+// history alone), enter it (a weighted history restarted from I_u) and stay (gathered from the
+// previous window's planes); W_w, S_k and I_w are compared in window-sized planes, p over the image.
+TEST_CASE("the weighted history in a gaze-following window matches the reference on Vulkan", "[vulkan][two_history]") {
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    const auto gaze = [](int frame) { return vec2(8.0f + 11.0f * float(frame), 44.0f - 6.0f * float(frame)); };
+    DenoiserParams whole;
+    DenoiserParams windowed;
+    windowed.twoHistory.window = 0.5f;
+    {
+        const size_t changed = ChangedPixels("two-history", windowed, "two-history", whole, 5);
+        INFO(changed << " of 4096 output pixels differ from the whole-image window beyond the tolerance");
+        CHECK(changed > 400);
+    }
+    SECTION("two-history, fp32 separate channels") { RunPair(FindDenoiserVariant("two-history"), windowed, 6, 64, 64, false, false, gaze); }
+    SECTION("two-history, fp32 combined, odd size 67x45, feedback 0") {
+        DenoiserParams p = windowed;
+        p.svgf.filterCombined = true;
+        p.svgf.feedbackIteration = 0;
+        RunPair(FindDenoiserVariant("two-history"), p, 6, 67, 45, false, false, gaze);
+    }
+    SECTION("hysteresis, clamp, stable-antilag and zero-sample pixels") {
+        for (const char* name : {"two-history-hysteresis", "two-history-clamp", "two-history-asvgf-stable-antilag"}) {
+            INFO(name);
+            RunPair(FindDenoiserVariant(name), ParamsForDenoiser(name, windowed), 5, 64, 64, false, false, gaze);
+        }
+        RunPair(FindDenoiserVariant("two-history"), windowed, 5, 64, 64, false, true, gaze);
+    }
+    SECTION("fp16 histories") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        DenoiserParams p = windowed;
+        p.precision = Precision::Fp16;
+        RunPair(FindDenoiserVariant("two-history"), p, 5, 64, 64, false, false, gaze);
+    }
+}
+
+// Outside the weighted history's window two-history takes the unweighted history, which is SVGF's
+// whatever the sample counts: with one à-trous iteration (none after the blend to carry the
+// window's pixels out) its output there equals svgf's, on the reference and on Vulkan, and inside
+// it does not.
+TEST_CASE("outside the weighted history's window two-history is svgf", "[vulkan][two_history]") {
+    DenoiserParams params;
+    params.svgf.atrousIterations = 1;
+    params.twoHistory.window = 0.4f;
+    const vec2 gaze(10.0f, 12.0f);  // the window in the top-left corner
+    const HistoryWindow window = WeightedWindowAt(64, 64, 0.4f, gaze);
+    REQUIRE(window.origin == ivec2(0));
+    REQUIRE(window.size == ivec2(26));
+    auto compare = [&](Denoiser& twoHistory, Denoiser& svgf) {
+        Plane<vec3> a, b;
+        double outside = 0.0;
+        size_t insideChanged = 0;
+        for (uint32_t frame = 0; frame < 6; ++frame) {
+            FrameInputs f = RandomTwoHistoryFrame(64, 64, frame);
+            f.gazePixel = gaze;
+            twoHistory.Denoise(f, a);
+            svgf.Denoise(f, b);
+            for (int y = 0; y < 64; ++y)
+                for (int x = 0; x < 64; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const double rel = RelativeError(a(x, y)[c], b(x, y)[c]);
+                        if (window.Index(x, y) < 0) outside = std::max(outside, rel);
+                        else if (frame == 5 && c == 0) insideChanged += rel > kTolerance;
+                    }
+        }
+        INFO(twoHistory.Backend() << ": outside the window max relative difference " << outside << "; inside "
+                                  << insideChanged << " of " << window.Pixels() << " pixels differ");
+        CHECK(outside < 1e-4);
+        CHECK(insideChanged > window.Pixels() / 10);
+    };
+    {
+        SvgfFamilyReferenceDenoiser th(FindDenoiserVariant("two-history"), params), svgf(FindDenoiserVariant("svgf"), params);
+        compare(th, svgf);
+    }
+    if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
+    auto ctx = TestContext();
+    SvgfFamilyVulkanDenoiser th(FindDenoiserVariant("two-history"), ctx, params), svgf(FindDenoiserVariant("svgf"), ctx, params);
+    compare(th, svgf);
+    CHECK(ctx->validationErrors() == 0);
 }
 
 TEST_CASE("vulkan two-history with constant n equals vulkan svgf", "[vulkan][two_history]") {

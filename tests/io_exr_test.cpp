@@ -64,6 +64,7 @@ FrameInputs RandomInputs(int w, int h, VisibilityBuffer& vis) {
     fi.direct[3] = vec3(1e-40f, -0.0f, std::numeric_limits<float>::max());  // denormal, -0, max
     fi.gradientSamples.push_back(GradientSample{ivec2(1, 2), ivec2(4, 7), ivec2(3, 8), 0.25f, 1e-7f});
     fi.gradientSamples.push_back(GradientSample{ivec2(20, 0), ivec2(61, 2), ivec2(60, 1), 3.5f, 100.0f});
+    fi.gazePixel = vec2(17.25f, -3.5f);
     return fi;
 }
 
@@ -110,6 +111,12 @@ TEST_CASE("FrameInputs round-trip through EXR bit-exactly", "[io]") {
     CHECK(back.gradientSamples[1].pixel == ivec2(61, 2));
     CHECK(back.gradientSamples[1].prevPixel == ivec2(60, 1));
     CHECK(back.gradientSamples[0].oldLuminance == 1e-7f);
+    REQUIRE(back.gazePixel.has_value());
+    CHECK(*back.gazePixel == vec2(17.25f, -3.5f));
+    // A frame without a gaze (a dump from before it was recorded) reads back without one.
+    fi.gazePixel.reset();
+    WriteFrameInputsExr(dir / "nogaze.exr", fi, spp, PlaneLayers(vis));
+    CHECK(!ReadFrameInputsExr(dir / "nogaze.exr").gazePixel.has_value());
 
     // Every plane name is a layer in the file, with the documented channel names.
     ExrImage image = ReadExr(path);

@@ -83,7 +83,8 @@ AtrousProbe::AtrousProbe(VulkanContext& context, const AtrousProbeImage& image, 
 AtrousProbeRun AtrousProbe::Run(bool unitWeights, int runs) {
     const size_t n = size_t(width_) * size_t(height_);
     const SvgfParams p;
-    const SvgfAtrousPush push{ivec2(width_, height_), step_, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance};
+    const ivec2 size(width_, height_);
+    const SvgfAtrousPush push{size, step_, p.sigmaDepth, p.sigmaNormal, p.sigmaLuminance, size, ivec2(0), size, ivec2(0)};
     AtrousProbeRun result;
     result.ms = 1e30;
     size_t out1Offset = 0;

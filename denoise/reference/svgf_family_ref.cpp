@@ -61,7 +61,8 @@ void SvgfFamilyReferenceDenoiser::Allocate(int width, int height) {
     for (int side = 0; side < 2; ++side) {
         if (twoHistoryLayout_) {
             state_[size_t(side)].Allocate(width, height, int(channels_.size()), variant_.twoHistory,
-                                          variant_.emaGradient);
+                                          variant_.emaGradient,
+                                          WeightedWindowSize(width, height, WeightedWindowFraction(variant_, params_)));
         } else {
             svgf_[size_t(side)].assign(channels_.size(), SvgfHistory{});
             for (SvgfHistory& h : svgf_[size_t(side)]) h.Allocate(width, height, params_.svgf.weightBySampleCount);
@@ -89,6 +90,8 @@ void SvgfFamilyReferenceDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& ou
     timings_.clear();
     using Clock = std::chrono::steady_clock;
     const FrameConditions frame{hasPrev_, !in.gradientSamples.empty()};
+    prevWindow_ = hasPrev_ ? window_ : FrameWeightedWindow(variant_, params_, in);
+    window_ = FrameWeightedWindow(variant_, params_, in);
     const FrameInputs& stored = StoredInputs(in);
     for (const PlannedPass& pass : plan_.passes) {
         if (!Holds(pass.when, frame) || std::holds_alternative<std::monostate>(pass.stage)) continue;
@@ -145,6 +148,8 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     ro.suppressFireflies = variant_.suppressFireflies;
     ro.fireflySigma = params_.twoHistory.fireflySigma;
     ro.precision = params_.precision;
+    ro.window = window_;
+    ro.prevWindow = prevWindow_;
     const std::array<const Plane<vec3>*, 2> colors = {&in.direct, &in.indirect};
     TwoHistoryReprojectRef(colors, int(channels_.size()), combined ? &in.indirect : nullptr, in, prevGeometry_.View(),
                            hasPrev_, state_[prev], state_[cur], variant_.asvgfGradient ? &alpha_ : nullptr,
@@ -164,8 +169,10 @@ void SvgfFamilyReferenceDenoiser::Run(const FilterMomentsStage& s, const FrameIn
 
 void SvgfFamilyReferenceDenoiser::Run(const AtrousStage& s, const FrameInputs& in, Plane<vec3>&) {
     for (const StagePlane& p : s.planes) {
+        const bool windowed = p.history && IsWindowed(p.history->id.kind);
         SvgfAtrousRef(Illum(p.in), GeometryOf(in), in.depthGradient, s.iteration, Illum(p.out),
-                      p.history ? &ColorHistory(*p.history) : nullptr, params_.svgf, params_.precision);
+                      p.history ? &ColorHistory(*p.history) : nullptr, params_.svgf, params_.precision,
+                      windowed ? window_ : HistoryWindow{});
         StoreIllum(p.out);
     }
 }
@@ -176,7 +183,8 @@ void SvgfFamilyReferenceDenoiser::Run(const BlendStage& s, const FrameInputs&, P
     for (const StagePlane& p : s.planes) {  // in place on I_u
         TwoHistoryBlendRef(Illum(p.out), Illum(p.in), st.wu, st.ww, st.powerSums, q, blendScratch_,
                            {variant_.clampHistory, params_.twoHistory.clampSigma},
-                           variant_.hystereticChoice ? &choice_[SideIndex(HistorySide::This, parity_)] : nullptr);
+                           variant_.hystereticChoice ? &choice_[SideIndex(HistorySide::This, parity_)] : nullptr,
+                           window_);
         std::swap(Illum(p.out), blendScratch_);
         StoreIllum(p.out);
     }
@@ -211,7 +219,7 @@ void SvgfFamilyReferenceDenoiser::Run(const ChoiceStage&, const FrameInputs& in,
     const size_t cur = SideIndex(HistorySide::This, parity_), prev = SideIndex(HistorySide::Previous, parity_);
     const TwoHistoryState& st = state_[cur];
     TwoHistoryChoiceRef(in, prevGeometry_.View(), hasPrev_, choice_[prev], st.wu, st.ww, st.powerSums,
-                        params_.twoHistory, params_.precision, choice_[cur]);
+                        params_.twoHistory, params_.precision, choice_[cur], window_);
 }
 
 void SvgfFamilyReferenceDenoiser::Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&) {
@@ -326,10 +334,11 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
     if (view == DebugViewId::P && !ref) {  // not stored: the blend evaluates it from the state, as here
         if (!twoHistoryLayout_ || !variant_.twoHistory) return false;
         const TwoHistoryState& st = CurrentState();
-        Plane<float> p(st.wu.width(), st.wu.height());
-        for (size_t i = 0; i < p.size(); ++i)
-            p[i] = TwoHistoryOptimalBlend(StoredTwoHistoryWeights(st.wu[i], st.ww[i], st.powerSums[i]));
-        out = std::move(p);
+        // Outside the window the blend keeps I_u: p = 1.
+        out = WindowOverImage(width_, height_, window_, 1.0f, [&](size_t j) {
+            const int x = window_.origin.x + int(j) % window_.size.x, y = window_.origin.y + int(j) / window_.size.x;
+            return TwoHistoryOptimalBlend(StoredTwoHistoryWeights(st.wu(x, y), st.ww[j], st.powerSums[j]));
+        });
         return true;
     }
     if (ref && DebugViewComponents(view) > 1) {  // a colour history or the moments, in the state
@@ -341,13 +350,17 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
                               : ref->id.kind == PlaneKind::WColor ? &st.iw[c][0].x
                                                                   : &st.moments[c][0].x;
         const size_t components = size_t(DebugViewComponents(view));
-        Plane<float> reduced(st.wu.width(), st.wu.height());
-        for (size_t i = 0; i < reduced.size(); ++i) reduced[i] = ReduceDebugPixel(view, values + components * i);
-        out = std::move(reduced);
+        const HistoryWindow held = IsWindowed(ref->id.kind) ? window_ : HistoryWindow{ivec2(0), ivec2(width_, height_)};
+        out = WindowOverImage(width_, height_, held, 0.0f,
+                              [&](size_t j) { return ReduceDebugPixel(view, values + components * j); });
         return true;
     }
     const Plane<float>* plane = ref ? ScalarPlane(*ref, lastParity) : nullptr;
     if (!plane || plane->empty()) return false;
+    if (IsWindowed(ref->id.kind)) {  // W_w: 0 outside its window
+        out = WindowOverImage(width_, height_, window_, 0.0f, [&](size_t j) { return (*plane)[j]; });
+        return true;
+    }
     out = *plane;
     return true;
 }

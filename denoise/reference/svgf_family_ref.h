@@ -96,6 +96,7 @@ class SvgfFamilyReferenceDenoiser final : public Denoiser {
     bool hasPrev_ = false;   // the histories hold a previous frame
     bool hasFrame_ = false;  // a Denoise() since construction or Reset() (debug views)
     int parity_ = 0;         // this frame's histories go to side A (0) or B (1)
+    HistoryWindow window_, prevWindow_;  // the weighted history's window, this frame and the last
     SvgfGeometryPlanes prevGeometry_;
     std::array<std::vector<SvgfHistory>, 2> svgf_;  // [side][channel]: svgf_reproject's layout
     std::array<TwoHistoryState, 2> state_;          // [side]: two_history_reproject's layout

@@ -258,8 +258,10 @@ void SvgfFilterMomentsRef(const Plane<vec4>& illumIn, const SvgfGeometry& geomet
 
 void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
                    const Plane<vec2>& depthGradient, int iteration, Plane<vec4>& illumOut,
-                   Plane<vec3>* historyColor, const SvgfParams& params, Precision precision) {
+                   Plane<vec3>* historyColor, const SvgfParams& params, Precision precision,
+                   const HistoryWindow& historyWindow) {
     const int w = illumIn.width(), h = illumIn.height();
+    const HistoryWindow held = historyWindow.size.x > 0 ? historyWindow : HistoryWindow{ivec2(0), ivec2(w, h)};
     const int step = 1 << iteration;
     illumOut.Resize(w, h);
     auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
@@ -311,7 +313,8 @@ void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
                 if (sumW > 0.0f) result = vec4(sumC / sumW, sumV / (sumW * sumW));
             }
             illumOut[i] = result;
-            if (historyColor) (*historyColor)[i] = QuantizeHistory(vec3(result), precision);
+            if (const int hi = held.Index(x, y); historyColor && hi >= 0)
+                (*historyColor)[size_t(hi)] = QuantizeHistory(vec3(result), precision);
         }
     });
 }

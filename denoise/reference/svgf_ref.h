@@ -11,6 +11,7 @@
 #include "core/image.h"
 #include "core/math.h"
 #include "denoise/denoiser.h"
+#include "denoise/history_window.h"
 #include "denoise/params.h"
 
 namespace fovrt {
@@ -114,10 +115,11 @@ void SvgfFilterMomentsRef(const Plane<vec4>& illumIn, const SvgfGeometry& geomet
 
 // Stage svgf_atrous, one iteration with step 2^iteration. When historyColor is non-null the
 // filtered colour is also written there (the feedback iteration), quantised to `precision`.
+// historyColor, when given, holds `historyWindow` (denoise/history_window.h; size 0: the image).
 void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
                    const Plane<vec2>& depthGradient, int iteration, Plane<vec4>& illumOut,
                    Plane<vec3>* historyColor, const SvgfParams& params,
-                   Precision precision = Precision::Fp32);
+                   Precision precision = Precision::Fp32, const HistoryWindow& historyWindow = {});
 
 // Stage svgf_modulate: out = albedo·(illum0 + illum1) + emission; illum1 null when combined.
 void SvgfModulateRef(const Plane<vec4>& illum0, const Plane<vec4>* illum1, const Plane<vec3>& albedo,

@@ -9,12 +9,16 @@ namespace fovrt {
 void TwoHistoryChoiceRef(const FrameInputs& frame, const SvgfGeometry& prevGeometry, bool hasPrev,
                          const Plane<float>& prevChoice, const Plane<float>& wu, const Plane<float>& ww,
                          const Plane<vec3>& powerSums, const TwoHistoryParams& params, Precision precision,
-                         Plane<float>& curChoice) {
+                         Plane<float>& curChoice, const HistoryWindow& window) {
     const int w = frame.width(), h = frame.height();
+    const HistoryWindow win = window.size.x > 0 ? window : HistoryWindow{ivec2(0), ivec2(w, h)};
     curChoice.Resize(w, h, 0.0f);
     tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {
-            const float p = TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu(x, y), ww(x, y), powerSums(x, y)));
+            const int wi = win.Index(x, y);
+            const float p = wi < 0 ? 1.0f
+                                   : TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu(x, y), ww[size_t(wi)],
+                                                                                    powerSums[size_t(wi)]));
             float held = p;
             if (hasPrev && wu(x, y) > 1.0f) {
                 // Bilinear taps only: where they all fail the choice restarts (no 3×3 fallback).

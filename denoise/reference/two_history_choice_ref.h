@@ -15,9 +15,10 @@ namespace fovrt {
 // Stage two_history_choice: p from this frame's (W_u, W_w, S_k); `prevChoice` (the previous
 // frame's held choice, ignored without hasPrev) reprojected with the bilinear taps; → `curChoice`.
 // The held choice restarts at p where the taps fail or the accumulation restarted (W_u ≤ 1).
+// ww and powerSums hold `window` (size 0: the image); outside it p = 1.
 void TwoHistoryChoiceRef(const FrameInputs& frame, const SvgfGeometry& prevGeometry, bool hasPrev,
                          const Plane<float>& prevChoice, const Plane<float>& wu, const Plane<float>& ww,
                          const Plane<vec3>& powerSums, const TwoHistoryParams& params, Precision precision,
-                         Plane<float>& curChoice);
+                         Plane<float>& curChoice, const HistoryWindow& window = {});
 
 }  // namespace fovrt

@@ -13,17 +13,17 @@
 namespace fovrt {
 
 void TwoHistoryState::Allocate(int width, int height, int channels, bool twoHistory,
-                               bool withGradient) {
+                               bool withGradient, ivec2 window) {
+    const ivec2 held = twoHistory ? (window.x > 0 ? window : ivec2(width, height)) : ivec2(0);
     for (int c = 0; c < 2; ++c) {
         const bool used = c < channels;
         iu[size_t(c)].Resize(used ? width : 0, used ? height : 0, vec3(0.0f));
-        iw[size_t(c)].Resize(used && twoHistory ? width : 0, used && twoHistory ? height : 0,
-                             vec3(0.0f));
+        iw[size_t(c)].Resize(used ? held.x : 0, used ? held.y : 0, vec3(0.0f));
         moments[size_t(c)].Resize(used ? width : 0, used ? height : 0, vec2(0.0f));
     }
     wu.Resize(width, height, 0.0f);
-    ww.Resize(twoHistory ? width : 0, twoHistory ? height : 0, 0.0f);
-    powerSums.Resize(twoHistory ? width : 0, twoHistory ? height : 0, vec3(0.0f));
+    ww.Resize(held.x, held.y, 0.0f);
+    powerSums.Resize(held.x, held.y, vec3(0.0f));
     gradient.Resize(withGradient ? width : 0, withGradient ? height : 0, 0.0f);
 }
 
@@ -38,6 +38,26 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
     const Precision prec = options.precision;
     const bool two = options.twoHistory;
     const bool withGradient = two && options.gradient;
+    const HistoryWindow whole{ivec2(0), ivec2(w, h)};
+    const HistoryWindow& win = options.window.size.x > 0 ? options.window : whole;
+    const HistoryWindow& prevWin = options.prevWindow.size.x > 0 ? options.prevWindow : whole;
+    FOVRT_CHECK(!two || (win.size == prevWin.size && cur.ww.width() == win.size.x && cur.ww.height() == win.size.y));
+    // A windowed plane's value over the taps, each at its place in the previous window.
+    auto gatherWindow = [&](const auto& plane, const ReprojectionTaps& taps) {
+        std::decay_t<decltype(plane[0])> sum{};
+        for (int t = 0; t < taps.count; ++t) {
+            const int j = taps.index[size_t(t)];
+            sum += taps.weight[size_t(t)] * plane[size_t(prevWin.Index(j % w, j / w))];
+        }
+        return sum;
+    };
+    auto tapsInPrevWindow = [&](const ReprojectionTaps& taps) {
+        for (int t = 0; t < taps.count; ++t) {
+            const int j = taps.index[size_t(t)];
+            if (taps.weight[size_t(t)] > 0.0f && prevWin.Index(j % w, j / w) < 0) return false;
+        }
+        return true;
+    };
     for (int c = 0; c < channels; ++c) {
         illumU[size_t(c)].Resize(w, h);
         if (two) illumW[size_t(c)].Resize(w, h);
@@ -69,12 +89,16 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
             // only with zeroSamples, to keep a pixel without a path sample (else n = 1).
             const float n = ReprojectionSampleCount(frame, i, two, options.zeroSamples);
 
+            // wi: this pixel in the window (−1 outside); weightedHeld: its weighted history can be
+            // gathered (else it restarts: W_w = S_k = 0, I_w from the reprojected I_u).
+            const int wi = two ? win.Index(x, y) : -1;
+            const bool weightedHeld = success && wi >= 0 && tapsInPrevWindow(taps);
             TwoHistoryWeights wPrev;
             if (success) {
                 wPrev.wu = GatherTaps(prev.wu, taps);
-                if (two) {
-                    wPrev.ww = GatherTaps(prev.ww, taps);
-                    const vec3 s = GatherTaps(prev.powerSums, taps);
+                if (weightedHeld) {
+                    wPrev.ww = gatherWindow(prev.ww, taps);
+                    const vec3 s = gatherWindow(prev.powerSums, taps);
                     wPrev.sMinus1 = s.x, wPrev.s0 = s.y, wPrev.s1 = s.z;
                 }
             }
@@ -112,19 +136,21 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
                 cur.moments[ch][i] = QuantizeHistory(m, prec);
                 illumU[ch][i] = held ? vec4(iu, var) : NothingHeld();
                 if (options.writeColorHistory) cur.iu[ch][i] = QuantizeHistory(iu, prec);
-                if (two) {
-                    const vec3 iwPrev = success ? GatherTaps(prev.iw[ch], taps) : xc;
+                if (two && wi >= 0) {
+                    const vec3 iwPrev = weightedHeld ? gatherWindow(prev.iw[ch], taps) : success ? iuPrev : xc;
                     const vec3 iw = !sampled ? (held ? iwPrev : vec3(0.0f)) : AccumulateWeighted(iwPrev, xc, n, wNew.ww);
                     illumW[ch][i] = held ? vec4(iw, var) : NothingHeld();
-                    if (options.writeColorHistory) cur.iw[ch][i] = QuantizeHistory(iw, prec);
+                    if (options.writeColorHistory) cur.iw[ch][size_t(wi)] = QuantizeHistory(iw, prec);
+                } else if (two) {  // outside the window: the unweighted history's
+                    illumW[ch][i] = illumU[ch][i];
                 }
                 xSum += xc;
                 iuPrevSum += iuPrev;
             }
             cur.wu[i] = QuantizeHistory(wNew.wu, prec);
-            if (two) {
-                cur.ww[i] = QuantizeHistory(wNew.ww, prec);
-                cur.powerSums[i] = QuantizeHistory(vec3(wNew.sMinus1, wNew.s0, wNew.s1), prec);
+            if (two && wi >= 0) {
+                cur.ww[size_t(wi)] = QuantizeHistory(wNew.ww, prec);
+                cur.powerSums[size_t(wi)] = QuantizeHistory(vec3(wNew.sMinus1, wNew.s0, wNew.s1), prec);
             }
             if (withGradient) {
                 const float gPrev = success ? GatherTaps(prev.gradient, taps) : 0.0f;
@@ -205,12 +231,19 @@ void NeighbourhoodMeanSigma(const Plane<vec4>& plane, int x, int y, vec3& mean, 
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
                         const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out,
-                        const TwoHistoryClampOptions& clamp, const Plane<float>* heldChoice) {
+                        const TwoHistoryClampOptions& clamp, const Plane<float>* heldChoice,
+                        const HistoryWindow& window) {
     const int width = illumU.width();
+    const HistoryWindow win = window.size.x > 0 ? window : HistoryWindow{ivec2(0), ivec2(width, illumU.height())};
     out.Resize(illumU.width(), illumU.height());
     tbb::parallel_for(0, illumU.height(), [&](int y) {
         for (int x = 0; x < width; ++x) {
             const size_t i = size_t(y) * size_t(width) + size_t(x);
+            const int wi = win.Index(x, y);
+            if (wi < 0) {  // no weighted history here: the unweighted one, as it is
+                out[i] = illumU[i];
+                continue;
+            }
             if (clamp.enabled) {
                 vec3 mean, sigma;
                 NeighbourhoodMeanSigma(illumW, x, y, mean, sigma);
@@ -218,7 +251,7 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                 continue;
             }
             const float p = heldChoice ? (*heldChoice)[i]
-                                       : TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums[i]));
+                                       : TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[size_t(wi)], powerSums[size_t(wi)]));
             const float t = TwoHistoryFinalBlend(p, q[i]);
             out[i] = glm::mix(illumW[i], illumU[i], t);
         }

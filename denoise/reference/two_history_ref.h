@@ -41,6 +41,7 @@
 #include "core/frame_inputs.h"
 #include "core/image.h"
 #include "denoise/denoiser.h"
+#include "denoise/history_window.h"
 #include "denoise/params.h"
 #include "denoise/reference/svgf_ref.h"
 
@@ -56,7 +57,8 @@ struct TwoHistoryState {
     Plane<float> ww;                     // W_w (two-history only)
     Plane<vec3> powerSums;               // (S_{-1}, S_0, S_1) (two-history only)
     Plane<float> gradient;  // EMA luminance gradient g of the summed illumination (two-history)
-    void Allocate(int width, int height, int channels, bool twoHistory, bool gradient);
+    // iw, ww and powerSums hold the weighted history's window of `window` pixels (0: the image).
+    void Allocate(int width, int height, int channels, bool twoHistory, bool gradient, ivec2 window = ivec2(0));
 };
 
 struct TwoHistoryReprojectOptions {
@@ -78,6 +80,10 @@ struct TwoHistoryReprojectOptions {
     bool suppressFireflies = false;
     float fireflySigma = TwoHistoryParams{}.fireflySigma;
     Precision precision = Precision::Fp32;
+    // The weighted history's window this frame and the previous one (size 0: the image). Outside
+    // `window` illumW = illumU and nothing weighted is stored; a pixel inside whose taps are not
+    // all in `prevWindow` restarts its weighted history from the reprojected I_u.
+    HistoryWindow window, prevWindow;
 };
 
 // Stage two_history_reproject. colors[c] (c < channels) is channel c's demodulated illumination;
@@ -116,11 +122,13 @@ struct TwoHistoryClampOptions {
 // out = lerp(illumW, illumU, t) for colour and variance (lerp of variances bounds the variance of
 // the lerp of correlated estimates from above). With `clamp` enabled, the clamp variants' blend
 // replaces p: TwoHistoryClampBlend with the mean and σ of illumW's in-image 3×3 neighbourhood.
-// With `heldChoice` (the hysteresis variants: TwoHistoryChoiceRef's output) it is p.
+// With `heldChoice` (the hysteresis variants: TwoHistoryChoiceRef's output) it is p. ww and
+// powerSums hold `window` (size 0: the image); outside it out = illumU.
 void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const Plane<float>& wu, const Plane<float>& ww,
                         const Plane<vec3>& powerSums, const Plane<float>& q, Plane<vec4>& out,
-                        const TwoHistoryClampOptions& clamp = {}, const Plane<float>* heldChoice = nullptr);
+                        const TwoHistoryClampOptions& clamp = {}, const Plane<float>* heldChoice = nullptr,
+                        const HistoryWindow& window = {});
 
 // Mean and standard deviation per component of `plane`'s colour over (x, y)'s in-image 3×3
 // neighbourhood (the clamp variants' box).

@@ -103,9 +103,19 @@ void SvgfFamilyVulkanDenoiser::PrepareDispatches() {
 
 void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const DispatchCommand& d, const PreparedDispatch& prepared,
                                       Frame& frame) {
-    std::array<uint32_t, 8> push = d.push.words;
-    for (const auto& [word, value] : d.push.perFrame)
-        push[word] = value == FrameValue::HasPrevious ? (frame.conditions.hasPrevious ? 1u : 0u) : frame.gradientSamples;
+    std::array<uint32_t, 16> push = d.push.words;
+    auto valueOf = [&](FrameValue value) -> uint32_t {
+        switch (value) {
+            case FrameValue::HasPrevious: return frame.conditions.hasPrevious ? 1u : 0u;
+            case FrameValue::GradientSampleCount: return frame.gradientSamples;
+            case FrameValue::WindowOriginX: return uint32_t(frame.window.origin.x);
+            case FrameValue::WindowOriginY: return uint32_t(frame.window.origin.y);
+            case FrameValue::PrevWindowOriginX: return uint32_t(frame.prevWindow.origin.x);
+            case FrameValue::PrevWindowOriginY: return uint32_t(frame.prevWindow.origin.y);
+        }
+        return 0u;
+    };
+    for (const auto& [word, value] : d.push.perFrame) push[word] = valueOf(value);
     const ComputePipeline& pipeline = *prepared.pipeline;
     const VkDescriptorSet set = prepared.sets[size_t(parity_)];
     uvec2 groups(0);
@@ -180,7 +190,9 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     std::array<uint32_t, 2> counters{};
     CommandRecorder rec(*context_, commands_, &timestamps_);
     TransferRing transfers(rec, buffers_[{{PlaneKind::Staging, Channel::None}, BufferSide::None}]);
-    Frame frame{in, {!needsClear_, samples > 0}, uint32_t(samples), transfers, output, counters};
+    const HistoryWindow window = FrameWeightedWindow(variant_, params_, in);
+    Frame frame{in, {!needsClear_, samples > 0}, uint32_t(samples), transfers, output, counters, window,
+                needsClear_ ? window : window_};
 
     for (size_t p = 0; p < plan_.passes.size(); ++p) {
         const PlannedPass& pass = plan_.passes[p];
@@ -196,6 +208,7 @@ void SvgfFamilyVulkanDenoiser::Denoise(const FrameInputs& in, Plane<vec3>& outpu
     stats_.negativeSamples += counters[1];
     timings_ = PassTimings(timestamps_);
     parity_ ^= 1;
+    window_ = window;
     hasFrame_ = true;
 }
 
@@ -215,27 +228,31 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
         const std::vector<float> wu = floats(PlaneKind::Length, FilteredChannels(params_.svgf).front());
         const std::vector<float> ww = floats(PlaneKind::WWeight, Channel::None);
         const std::vector<float> s = floats(PlaneKind::PowerSums, Channel::None);
-        Plane<float> p(width_, height_);
-        FOVRT_CHECK(wu.size() == p.size() && ww.size() == p.size() && s.size() == 3 * p.size());
-        for (size_t i = 0; i < p.size(); ++i) {
-            const vec3 powerSums(s[3 * i], s[3 * i + 1], s[3 * i + 2]);
-            p[i] = TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[i], powerSums));
-        }
-        out = std::move(p);
+        FOVRT_CHECK(wu.size() == size_t(width_) * size_t(height_) && ww.size() == window_.Pixels() &&
+                    s.size() == 3 * window_.Pixels());
+        // Outside the window the blend keeps I_u: p = 1.
+        out = WindowOverImage(width_, height_, window_, 1.0f, [&](size_t j) {
+            const size_t i = size_t(window_.origin.y + int(j) / window_.size.x) * size_t(width_) +
+                             size_t(window_.origin.x + int(j) % window_.size.x);
+            const vec3 powerSums(s[3 * j], s[3 * j + 1], s[3 * j + 2]);
+            return TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[j], powerSums));
+        });
         return true;
     }
     if (!ref) return false;
     const BufferKey key = ResolveSide(*ref, lastParity);
     const int components = DebugViewComponents(view);
-    if (components == 1) {
+    if (components == 1 && !IsWindowed(ref->id.kind)) {
         buffers_.ReadPlane(*context_, key, width_, height_, scalarBytes(ref->id.kind), out);
         return true;
     }
+    // A colour history or the moments (reduced per pixel), or a windowed plane (0 outside its window).
     const std::vector<float> values = buffers_.ReadFloats(*context_, key, scalarBytes(ref->id.kind));
-    Plane<float> plane(width_, height_);
-    FOVRT_CHECK(values.size() == size_t(components) * plane.size());
-    for (size_t i = 0; i < plane.size(); ++i) plane[i] = ReduceDebugPixel(view, &values[size_t(components) * i]);
-    out = std::move(plane);
+    const HistoryWindow held = IsWindowed(ref->id.kind) ? window_ : HistoryWindow{ivec2(0), ivec2(width_, height_)};
+    FOVRT_CHECK(values.size() == size_t(components) * held.Pixels());
+    out = WindowOverImage(width_, height_, held, 0.0f, [&](size_t j) {
+        return components == 1 ? values[j] : ReduceDebugPixel(view, &values[size_t(components) * j]);
+    });
     return true;
 }
 

@@ -60,6 +60,7 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
         TransferRing& transfers;            // the frame's uploads and downloads
         Plane<vec3>& output;                // where the output plane's download lands
         std::array<uint32_t, 2>& counters;  // … and the sanitising counters'
+        HistoryWindow window, prevWindow;   // the weighted history's, this frame and the previous
     };
     // A planned dispatch, ready to record: its pipeline and its set per history parity.
     struct PreparedDispatch {
@@ -81,6 +82,7 @@ class SvgfFamilyVulkanDenoiser final : public Denoiser {
     DenoiserPlan plan_;      // at the current size
     int width_ = 0, height_ = 0;
     int parity_ = 0;          // history side written this frame: 0 → A, 1 → B
+    HistoryWindow window_;    // the weighted history's window of the last frame
     bool needsClear_ = true;  // histories must be cleared before the next frame
     bool hasFrame_ = false;   // a Denoise() since construction, Reset() or a resize (debug views)
     DenoiserBuffers buffers_;

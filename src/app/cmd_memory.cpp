@@ -33,6 +33,7 @@ struct MemoryOptions {
     std::string device = "auto";  // what precision auto resolves for (denoise.device's forms)
     bool filterCombined = false;
     bool zeroSamples = false;  // the spp map may hold zeros (DenoiserParams::sampleCountsMayBeZero)
+    float window = TwoHistoryParams{}.window;  // denoise.two_history.window
     std::string budget;  // bytes for all eyes, "2GiB" style accepted; empty = none
     int scoredFrames = 0;  // > 0: also FovVideoVDP's frames of a scored run of this many frames
 };
@@ -45,6 +46,8 @@ void PrintMemory(const MemoryOptions& o) {
     params.precision = ResolvePrecision(requested, variant, target);
     params.svgf.filterCombined = o.filterCombined;
     params.sampleCountsMayBeZero = o.zeroSamples;
+    params.twoHistory.window = o.window;
+    ValidateDenoiserParamRanges(params);  // names the key of an out-of-range --window
     const uint64_t budget = o.budget.empty() ? 0 : ParseByteSize(o.budget, "--memory-budget");
     const DenoiserPlan denoiser = BuildDenoiserPlan(o.denoiser, params, o.width, o.height);
     const std::vector<BufferPlan>& plan = denoiser.buffers;
@@ -52,10 +55,12 @@ void PrintMemory(const MemoryOptions& o) {
     const std::string storage = requested == Precision::Auto
                                     ? fmt::format("{} (auto, for device {})", PrecisionName(params.precision), o.device)
                                     : o.precision;
-    std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination%s\n", o.denoiser.c_str(),
+    const std::string window =
+        variant.twoHistory && o.window < 1.0f ? fmt::format(", weighted history in a window of {:g} per side", o.window) : "";
+    std::printf("denoiser %s, %dx%d per eye, %s histories, %s illumination%s%s\n", o.denoiser.c_str(),
                 o.width, o.height, storage.c_str(),
                 o.filterCombined ? "combined" : "direct + indirect separate",
-                o.zeroSamples ? ", spp map may hold zeros" : "");
+                o.zeroSamples ? ", spp map may hold zeros" : "", window.c_str());
     std::printf("%s", FormatMemoryPlan(denoiser, o.width, o.height).c_str());
     // The eyes' denoisers take turns with one transient pool and staging ring (vk/shared_buffers.h).
     auto onDevice = [&](const std::vector<BufferPlan>& eye) {
@@ -132,6 +137,9 @@ void RegisterMemoryCommand(CLI::App& app) {
     cmd->add_flag("--zero-samples", o->zeroSamples,
                   "Plan for an spp map that may hold zeros (a foveation below 1 spp): svgf, asvgf and "
                   "asvgf-antilag then upload the sample counts");
+    cmd->add_option("--window", o->window,
+                    "Fraction of each side of the image, centred on the gaze, where two-history keeps its "
+                    "weighted history (as denoise.two_history.window; 1: all of it)");
     cmd->add_option("--memory-budget", o->budget, "Fail when all eyes' peak (permanent buffers + transient pool) exceeds BYTES (e.g. 1GiB)");
     cmd->add_option("--scored-frames", o->scoredFrames,
                     "Also list FovVideoVDP's frames when N frames are scored (run --score, experiment)")

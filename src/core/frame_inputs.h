@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -92,6 +93,9 @@ struct FrameInputs {
     Demodulation demodulation = Demodulation::Albedo;  // what direct / indirect are divided by
     EyeCamera camera;            // this frame
     EyeCamera prevCamera;        // previous frame (equal to camera on frame 0 / cuts)
+    // Where the eye looks on this image (continuous pixel; the spp map's centre); unset where no
+    // gaze is known (the denoisers that follow it take the image's centre).
+    std::optional<vec2> gazePixel;
 
     FOVRT_FRAME_INPUT_PLANES(FOVRT_PLANE_MEMBER)
 

@@ -1,5 +1,6 @@
 #include "io/exr.h"
 
+#include <cmath>
 #include <cstring>
 #include <exception>
 #include <limits>
@@ -315,6 +316,7 @@ void WriteFrameInputsExr(const std::filesystem::path& path, const FrameInputs& i
     attributes.ints["fovrt.eye"] = inputs.eye;
     attributes.ints["fovrt.frameIndex"] = int(inputs.frameIndex);  // bit pattern round-trips
     attributes.ints["fovrt.cameraCut"] = inputs.cameraCut ? 1 : 0;
+    if (inputs.gazePixel) attributes.floats["fovrt.gazePixel"] = {inputs.gazePixel->x, inputs.gazePixel->y};
     attributes.strings["fovrt.demodulation"] = DemodulationName(inputs.demodulation);
     attributes.doubles["fovrt.timeSeconds"] = inputs.timeSeconds;
     attributes.floats["fovrt.camera"] = CameraToFloats(inputs.camera);
@@ -352,6 +354,12 @@ FrameInputs ReadFrameInputsExr(const std::filesystem::path& path, Plane<uint16_t
     inputs.eye = intAttr("fovrt.eye");
     inputs.frameIndex = uint32_t(intAttr("fovrt.frameIndex"));
     inputs.cameraCut = intAttr("fovrt.cameraCut") != 0;
+    // Dumps from before the gaze was recorded have none: the denoisers take the image's centre.
+    if (auto g = image.attributes.floats.find("fovrt.gazePixel"); g != image.attributes.floats.end()) {
+        if (g->second.size() != 2 || !std::isfinite(g->second[0]) || !std::isfinite(g->second[1]))
+            Fail("EXR '{}': attribute 'fovrt.gazePixel' is not two finite floats", path.string());
+        inputs.gazePixel = vec2(g->second[0], g->second[1]);
+    }
     // Dumps from before brdf demodulation have no attribute: they are albedo-demodulated.
     if (auto d = image.attributes.strings.find("fovrt.demodulation"); d != image.attributes.strings.end())
         if (!ParseDemodulation(d->second, inputs.demodulation))

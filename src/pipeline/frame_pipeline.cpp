@@ -165,6 +165,7 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         renderer_->RenderEye(eye, camera, prevCamera, eyeFrame.sppMap, eyeFrame.inputs);
         eyeFrame.inputs.cameraCut = cut;
         eyeFrame.inputs.frameIndex = frame;
+        eyeFrame.inputs.gazePixel = eyeFrame.gazePixel;
         eyeFrame.inputs.timeSeconds = out.timeSeconds;
         eyeFrame.renderMs = MsSince(start);
         previousCameras_[size_t(eye)] = camera;
