@@ -543,6 +543,18 @@ TEST_CASE("outside the weighted history's window two-history is svgf", "[vulkan]
                                   << insideChanged << " of " << window.Pixels() << " pixels differ");
         CHECK(outside < 1e-4);
         CHECK(insideChanged > window.Pixels() / 10);
+        // The views over the image: W_w is 0 and p is 1 outside the window; inside, W_w counts samples.
+        Plane<float> samples, p;
+        REQUIRE(twoHistory.ReadDebugView("historySamples", samples));
+        REQUIRE(twoHistory.ReadDebugView("p", p));
+        size_t outsideWrong = 0, insideHeld = 0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                if (window.Index(x, y) < 0) outsideWrong += samples(x, y) != 0.0f || p(x, y) != 1.0f;
+                else insideHeld += samples(x, y) > 0.0f;
+            }
+        CHECK(outsideWrong == 0);
+        CHECK(insideHeld > window.Pixels() / 2);
     };
     {
         SvgfFamilyReferenceDenoiser th(FindDenoiserVariant("two-history"), params), svgf(FindDenoiserVariant("svgf"), params);
