@@ -1,5 +1,6 @@
 #include "denoise/reference/svgf_family_ref.h"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <utility>
@@ -58,24 +59,35 @@ void SvgfFamilyReferenceDenoiser::Allocate(int width, int height) {
     twoHistoryLayout_ = false;
     for (const PlannedPass& pass : plan_.passes)
         if (const auto* r = std::get_if<ReprojectStage>(&pass.stage)) twoHistoryLayout_ = r->twoHistory;
+    // The state is what the plan names, as the Vulkan host's buffers are: a plane kind the plan's
+    // commands never name is not allocated (the window's planes at the plan's window size).
+    auto planned = [&](PlaneKind kind) {
+        return std::any_of(plan_.planes.begin(), plan_.planes.end(),
+                           [&](const PlanePlacement& p) { return p.key.id.kind == kind; });
+    };
+    const bool weightedHistory = planned(PlaneKind::WColor), stabilised = planned(PlaneKind::StableLum),
+               heldChoice = planned(PlaneKind::Choice);
+    const ivec2 window = WeightedWindowSize(width, height, WeightedWindowFraction(variant_, params_));
+    for (const PlanePlacement& p : plan_.planes)
+        if (IsWindowed(p.key.id.kind))
+            FOVRT_CHECK(p.bytes == PlaneBytes(p.key.id.kind, {width, height, params_.precision, window}));
     for (int side = 0; side < 2; ++side) {
         if (twoHistoryLayout_) {
-            state_[size_t(side)].Allocate(width, height, int(channels_.size()), variant_.twoHistory,
-                                          variant_.emaGradient,
-                                          WeightedWindowSize(width, height, WeightedWindowFraction(variant_, params_)));
+            state_[size_t(side)].Allocate(width, height, int(channels_.size()), weightedHistory,
+                                          planned(PlaneKind::Gradient), window);
         } else {
             svgf_[size_t(side)].assign(channels_.size(), SvgfHistory{});
-            for (SvgfHistory& h : svgf_[size_t(side)]) h.Allocate(width, height, params_.svgf.weightBySampleCount);
+            for (SvgfHistory& h : svgf_[size_t(side)]) h.Allocate(width, height, planned(PlaneKind::Weight));
         }
     }
     for (auto& side : stable_)
         for (size_t c = 0; c < side.size(); ++c)
-            side[c].Resize(variant_.stabilize && c < channels_.size() ? width : 0,
-                           variant_.stabilize && c < channels_.size() ? height : 0, 0.0f);
-    for (Plane<float>& side : choice_)
-        side.Resize(variant_.hystereticChoice ? width : 0, variant_.hystereticChoice ? height : 0, 0.0f);
+            side[c].Resize(stabilised && c < channels_.size() ? width : 0, stabilised && c < channels_.size() ? height : 0,
+                           0.0f);
+    for (Plane<float>& side : choice_) side.Resize(heldChoice ? width : 0, heldChoice ? height : 0, 0.0f);
     prevGeometry_.Allocate(width, height);  // background: nothing reprojects
-    if (variant_.asvgfGradient) {  // what a reset leaves in α and λ: the gradient needs a previous frame
+    alpha_ = lambda_ = Plane<float>();
+    if (planned(PlaneKind::AsvgfAlpha)) {  // what a reset leaves in α and λ: the gradient needs a previous frame
         alpha_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfAlpha, params_.precision)));
         lambda_.Resize(width, height, std::bit_cast<float>(ClearValue(PlaneKind::AsvgfLambda, params_.precision)));
     }
