@@ -13,7 +13,7 @@ constexpr ParamRange kAnyBool{};
 constexpr ParamRange kIterations = Closed(0, FOVRT_MAX_ATROUS_ITERATIONS);
 
 using S = SvgfParams;
-constexpr std::array<ParamRow<SvgfParams>, 10> kSvgfRows{{
+constexpr std::array<ParamRow<SvgfParams>, 9> kSvgfRows{{
     {{"denoise.svgf.alpha_color", OpenMin(0, 1), "temporal EMA weight of new colour (paper 0.2)"},
      &S::alphaColor},
     {{"denoise.svgf.alpha_moments", OpenMin(0, 1), "temporal EMA weight of new moments (paper 0.2)"},
@@ -32,8 +32,7 @@ constexpr std::array<ParamRow<SvgfParams>, 10> kSvgfRows{{
      &S::varianceHistoryThreshold},
     {{"denoise.svgf.filter_combined", kAnyBool, "filter direct+indirect together instead of separately"},
      &S::filterCombined},
-    {{"denoise.svgf.weight_by_sample_count", kAnyBool, "svgf-weighted: temporal weights × sample count"},
-     &S::weightBySampleCount},
+    // weightBySampleCount is no setting: the variant's `weighted` mechanism sets it (ParamsForVariant).
 }};
 
 constexpr std::array<ParamRow<AsvgfParams>, 4> kAsvgfRows{{
@@ -126,6 +125,14 @@ static_assert(RowsWellFormed(kSvgfRows) && RowsWellFormed(kAsvgfRows) && RowsWel
 }  // namespace
 
 std::span<const ParamRow<SvgfParams>> SvgfParamTable() { return kSvgfRows; }
+
+std::vector<std::string> DenoiserSettingKeys() {
+    std::vector<std::string> keys;
+    const DenoiserParams defaults;
+    ForEachDenoiserParam(defaults, [&](const ParamInfo& info, const auto&) { keys.emplace_back(info.key); });
+    for (const auto& row : kRaeRows) keys.emplace_back(row.info.key);
+    return keys;
+}
 std::span<const ParamRow<AsvgfParams>> AsvgfParamTable() { return kAsvgfRows; }
 std::span<const ParamRow<TwoHistoryParams>> TwoHistoryParamTable() { return kTwoHistoryRows; }
 std::span<const ParamRow<TwoHistoryStableParams>> TwoHistoryStableParamTable() { return kTwoHistoryStableRows; }

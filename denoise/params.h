@@ -28,7 +28,7 @@ struct SvgfParams {
     float sigmaLuminance = 4.0f;  // σl
     int varianceHistoryThreshold = 4;
     bool filterCombined = false;
-    bool weightBySampleCount = false;
+    bool weightBySampleCount = false;  // no setting: svgf-weighted's `weighted` mechanism (ParamsForVariant)
 };
 
 struct AsvgfParams {
@@ -134,6 +134,10 @@ void ForEachDenoiserParam(Params& params, Visit&& visit) {
     walk(params.twoHistory, TwoHistoryParamTable());
     walk(params.twoHistoryStable, TwoHistoryStableParamTable());
 }
+
+// Every key of the denoise tables a denoiser reads (the numeric ones of ForEachDenoiserParam, then
+// the RAE's weights), in table order; denoise.precision and denoise.device are not among them.
+std::vector<std::string> DenoiserSettingKeys();
 
 // The rule between keys: feedback_iteration <= atrous_iterations. For readers that report with
 // their own context (the config reader adds file:line).

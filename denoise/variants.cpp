@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <deque>
 #include <mutex>
+#include <span>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/nearest_name.h"
+#include "denoise/params.h"
 #include "denoise/planes.h"
 
 namespace fovrt {
@@ -18,15 +21,22 @@ namespace {
 // are implied: two-history keeps the second, sample-count-weighted history and, unless A-SVGF's
 // gradient replaces it, the EMA luminance gradient as its change detector q.
 enum class MethodFamily : uint8_t { Svgf, TwoHistory, Rae };
+using Settings = std::span<const std::string_view>;
 struct FamilyToken {
     MethodFamily family;
     std::string_view token;
     std::string_view summary;
+    Settings settings;  // the config keys its passes read (the precision and device: every denoiser's)
 };
+constexpr std::string_view kSvgfSettings[] = {
+    "denoise.svgf.alpha_color",     "denoise.svgf.alpha_moments",   "denoise.svgf.atrous_iterations",
+    "denoise.svgf.feedback_iteration", "denoise.svgf.sigma_depth",  "denoise.svgf.sigma_normal",
+    "denoise.svgf.sigma_luminance", "denoise.svgf.variance_history_threshold", "denoise.svgf.filter_combined"};
+constexpr std::string_view kRaeSettings[] = {"denoise.rae.weights"};
 constexpr FamilyToken kFamilies[] = {
-    {MethodFamily::Svgf, "svgf", "SVGF (Schied 2017)"},
-    {MethodFamily::TwoHistory, "two-history", "two-history SVGF (Tu 2024)"},
-    {MethodFamily::Rae, "rae", "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights"},
+    {MethodFamily::Svgf, "svgf", "SVGF (Schied 2017)", kSvgfSettings},
+    {MethodFamily::TwoHistory, "two-history", "two-history SVGF (Tu 2024)", kSvgfSettings},
+    {MethodFamily::Rae, "rae", "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights", kRaeSettings},
 };
 constexpr unsigned Bit(MethodFamily f) { return 1u << unsigned(f); }
 constexpr unsigned kSvgfFamilies = Bit(MethodFamily::Svgf) | Bit(MethodFamily::TwoHistory);
@@ -34,7 +44,11 @@ constexpr unsigned kSvgfFamilies = Bit(MethodFamily::Svgf) | Bit(MethodFamily::T
 // One row per mechanism flag of DenoiserVariant, in the order a frame runs them: the token a name
 // writes it with (empty: implied by the family, or derived), what `fovrt info` calls it, and its
 // rules: the families it joins, the token it requires, the token it excludes, each with the reason
-// a refusal gives.
+// a refusal gives; then the settings it reads and those of the rows before it that it makes
+// unread (A-SVGF's per-pixel alpha replaces SVGF's; anti-lag returns to SVGF's as its base); and
+// the token with which it changes nothing, and why (its settings are then unread too).
+// denoise_settings_test runs every composition with each setting changed and holds the list to
+// what changes the output, and an inert mechanism's compositions to the output without it.
 struct Mechanism {
     bool DenoiserVariant::*flag;
     std::string_view token;
@@ -43,28 +57,54 @@ struct Mechanism {
     std::string_view requiresToken = {};
     std::string_view excludesToken = {};
     std::string_view why = {};  // the reason behind `requiresToken` / `excludesToken`
+    Settings reads = {};
+    Settings replaces = {};
+    std::string_view inertWith = {};
+    std::string_view inertWhy = {};
 };
+constexpr std::string_view kSvgfAlpha[] = {"denoise.svgf.alpha_color", "denoise.svgf.alpha_moments"};
+constexpr std::string_view kAsvgfAlpha[] = {"denoise.asvgf.alpha"};
+constexpr std::string_view kAsvgfSettings[] = {"denoise.asvgf.alpha", "denoise.asvgf.gradient_iterations"};
+constexpr std::string_view kAntilagSettings[] = {"denoise.asvgf.antilag_gain", "denoise.asvgf.antilag_power",
+                                                 "denoise.svgf.alpha_color", "denoise.svgf.alpha_moments"};
+constexpr std::string_view kFireflySettings[] = {"denoise.two_history.firefly_sigma"};
+constexpr std::string_view kTwoHistorySettings[] = {"denoise.two_history.window"};
+constexpr std::string_view kEmaGradientSettings[] = {"denoise.two_history.gradient_beta", "denoise.two_history.q_scale"};
+constexpr std::string_view kHysteresisSettings[] = {"denoise.two_history.choice_rate", "denoise.two_history.choice_band"};
+constexpr std::string_view kClampSettings[] = {"denoise.two_history.clamp_sigma"};
+constexpr std::string_view kStabilizeSettings[] = {"denoise.two_history_stable.alpha",
+                                                   "denoise.two_history_stable.sigma_scale"};
+constexpr std::string_view kStabilizeAntilagSettings[] = {"denoise.two_history_stable.antilag_q"};
+constexpr std::string_view kSppSettings[] = {"denoise.rae.weights_spp"};
+constexpr std::string_view kRaeWeights[] = {"denoise.rae.weights"};
 const Mechanism kMechanisms[] = {
     {&DenoiserVariant::weightBySampleCount, "weighted", "temporal weights x sample count (svgf-weighted)",
      Bit(MethodFamily::Svgf), {}, "asvgf",
      "the sample-count weights are SVGF's reprojection's, A-SVGF runs the gradient family's"},
     {&DenoiserVariant::asvgfGradient, "asvgf", "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)",
-     kSvgfFamilies},
+     kSvgfFamilies, {}, {}, {}, kAsvgfSettings, kSvgfAlpha},
     {&DenoiserVariant::antilag, "antilag", "anti-lag: lambda shortens the history (Q2RTX)", kSvgfFamilies, "asvgf",
-     {}, "the anti-lag factor is A-SVGF's lambda"},
+     {}, "the anti-lag factor is A-SVGF's lambda", kAntilagSettings, kAsvgfAlpha},
     {&DenoiserVariant::suppressFireflies, "firefly", "firefly suppression before accumulation",
-     Bit(MethodFamily::TwoHistory)},
+     Bit(MethodFamily::TwoHistory), {}, {}, {}, kFireflySettings},
     {&DenoiserVariant::twoHistory, {},
-     "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)"},
-    {&DenoiserVariant::emaGradient, {}, "EMA luminance gradient -> q (Tu 2024)"},
+     "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)", 0, {}, {}, {},
+     kTwoHistorySettings},
+    {&DenoiserVariant::emaGradient, {}, "EMA luminance gradient -> q (Tu 2024)", 0, {}, {}, {}, kEmaGradientSettings},
     {&DenoiserVariant::hystereticChoice, "hysteresis", "held history choice (band and rate)",
-     Bit(MethodFamily::TwoHistory), {}, "clamp", "both replace the choice p between the two histories"},
+     Bit(MethodFamily::TwoHistory), {}, "clamp", "both replace the choice p between the two histories",
+     kHysteresisSettings},
     {&DenoiserVariant::clampHistory, "clamp", "history clamp to the weighted history's neighbourhood",
-     Bit(MethodFamily::TwoHistory)},
-    {&DenoiserVariant::stabilize, "stabilize", "luminance stabilisation pass", Bit(MethodFamily::TwoHistory)},
+     Bit(MethodFamily::TwoHistory), {}, {}, {}, kClampSettings},
+    {&DenoiserVariant::stabilize, "stabilize", "luminance stabilisation pass", Bit(MethodFamily::TwoHistory), {}, {},
+     {}, kStabilizeSettings},
     {&DenoiserVariant::stabilizeAntilag, "stabilize-antilag", "stabilisation weight driven by the change detector",
-     Bit(MethodFamily::TwoHistory), "stabilize", {}, "it drives the stabilisation's weight"},
-    {&DenoiserVariant::raeSampleCount, "spp", "sample count as an extra network input", Bit(MethodFamily::Rae)},
+     Bit(MethodFamily::TwoHistory), "stabilize", {}, "it drives the stabilisation's weight",
+     kStabilizeAntilagSettings, {}, "asvgf",
+     "with A-SVGF's gradient as q the weight max(alpha_s, 1/W_u) is already at least lambda = q, above the change "
+     "weight (q - q0)/(1 - q0): the accumulation's alpha is at least lambda while denoise.asvgf.antilag_gain >= 1"},
+    {&DenoiserVariant::raeSampleCount, "spp", "sample count as an extra network input", Bit(MethodFamily::Rae), {},
+     {}, {}, kSppSettings, kRaeWeights},
 };
 
 // Today's names: aliases of compositions, each with the summary it had as a row of its own.
@@ -284,6 +324,7 @@ std::vector<std::string> MechanismRules() {
         std::string line = fmt::format("`{}`: {}; joins {}", m.token, m.description, fmt::join(families, ", "));
         if (!m.requiresToken.empty()) line += fmt::format("; requires `{}` ({})", m.requiresToken, m.why);
         if (!m.excludesToken.empty()) line += fmt::format("; excludes `{}` ({})", m.excludesToken, m.why);
+        if (!m.inertWith.empty()) line += fmt::format("; changes nothing with `{}` ({})", m.inertWith, m.inertWhy);
         lines.push_back(std::move(line));
     }
     return lines;
@@ -413,6 +454,29 @@ std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant) {
     for (const Mechanism& m : kMechanisms)
         if (variant.*m.flag) names.emplace_back(m.description);
     return names;
+}
+
+std::vector<std::string> VariantSettings(const DenoiserVariant& variant) {
+    const FamilyToken& family = kFamilies[size_t(variant.family == DenoiserFamily::Rae ? MethodFamily::Rae
+                                                 : variant.twoHistory                  ? MethodFamily::TwoHistory
+                                                                                       : MethodFamily::Svgf)];
+    std::vector<std::string_view> keys(family.settings.begin(), family.settings.end());
+    auto on = [&](std::string_view token) {
+        return std::any_of(std::begin(kMechanisms), std::end(kMechanisms),
+                           [&](const Mechanism& m) { return m.token == token && variant.*m.flag; });
+    };
+    for (const Mechanism& m : kMechanisms) {
+        if (!(variant.*m.flag) || (!m.inertWith.empty() && on(m.inertWith))) continue;
+        for (std::string_view gone : m.replaces) std::erase(keys, gone);
+        for (std::string_view key : m.reads)
+            if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    }
+    // In the order of the settings tables (`fovrt config --keys`).
+    std::vector<std::string> ordered;
+    for (const std::string& key : DenoiserSettingKeys())
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) ordered.push_back(key);
+    FOVRT_CHECK(ordered.size() == keys.size());  // every key a row declares is a setting
+    return ordered;
 }
 
 std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant) {

@@ -124,6 +124,12 @@ RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string
 // "A-SVGF gradient", …; none for plain SVGF): what `fovrt info --denoiser` prints. Read from the
 // row's flags through the mechanism table (kMechanisms in variants.cpp).
 std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant);
+// The settings (config keys) the row's passes read, in the order of the settings tables: its
+// family's and its mechanisms' (kMechanisms in variants.cpp), less those a mechanism makes unread
+// and those of a mechanism that changes nothing in this composition (stabilize-antilag with asvgf:
+// MechanismRules says why).
+// denoise.precision and denoise.device are every denoiser's and not listed.
+std::vector<std::string> VariantSettings(const DenoiserVariant& variant);
 // What the renderer must produce for the row, in words (empty: the noisy inputs alone).
 std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant);
 

@@ -64,7 +64,7 @@ std::vector<double> OutsideValues(const ParamRange& range, Kind kind) {
 
 TEST_CASE("parameter tables: every row has a unique denoise key, a doc and a non-empty range", "[params]") {
     const std::vector<ParamInfo> rows = AllRows();
-    CHECK(rows.size() == 24);  // 10 svgf + 4 asvgf (2 of them anti-lag) + 6 two-history + 3 two-history-stable
+    CHECK(rows.size() == 23);  // 10 svgf + 4 asvgf (2 of them anti-lag) + 6 two-history + 3 two-history-stable
     std::set<std::string> keys;
     for (const ParamInfo& info : rows) {
         INFO(info.key);

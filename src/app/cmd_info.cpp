@@ -35,6 +35,14 @@ std::string Joined(const std::vector<std::string>& items, const char* none) {
     return items.empty() ? std::string(none) : fmt::format("{}", fmt::join(items, "; "));
 }
 
+// Config keys as `fovrt config --keys` names them, comma-separated (quoted in backticks for the docs).
+std::string KeyList(const std::vector<std::string>& keys, bool quoted) {
+    if (keys.empty()) return "none";
+    std::vector<std::string> items;
+    for (const std::string& k : keys) items.push_back(quoted ? "`" + k + "`" : k);
+    return fmt::format("{}", fmt::join(items, ", "));
+}
+
 const char* WhenText(When when) {
     switch (when) {
         case When::Always: return "";
@@ -62,6 +70,7 @@ void PrintDenoiser(const InfoOptions& o) {
         std::printf("demodulation %s (re-demodulated before filtering)\n",
                     *d == Demodulation::Brdf ? "BRDF pre-integration F_beta" : "albedo");
     std::printf("renderer    %s\n", Joined(VariantRendererNeeds(v), "the noisy inputs alone").c_str());
+    std::printf("settings    %s (and denoise.precision, denoise.device)\n", KeyList(VariantSettings(v), false).c_str());
     std::printf("passes      (recording order; default parameters)\n");
     for (const PlannedPass& pass : plan.passes)
         if (!pass.name.empty()) std::printf("  %s%s\n", pass.name.c_str(), WhenText(pass.when));
@@ -137,6 +146,7 @@ void PrintDenoisersPage() {
         std::printf("- composition: `%s`\n", CanonicalDenoiserName(v.name).c_str());
         std::printf("- mechanisms: %s\n", Joined(VariantMechanisms(v), "the family's passes alone").c_str());
         std::printf("- needs from the renderer: %s\n", Joined(VariantRendererNeeds(v), "the noisy inputs alone").c_str());
+        std::printf("- settings it reads: %s\n", KeyList(VariantSettings(v), true).c_str());
         if (!note.measured.empty())
             std::printf("- measured at commit %.*s\n", int(note.measuredAt.size()), note.measuredAt.data());
     }
