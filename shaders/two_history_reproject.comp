@@ -103,10 +103,9 @@ vec3 sanitize(vec3 c) {
 #define GATHER2(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, FETCH2, vec2(0.0), out_)
 #define GATHER3(arr, taps, out_) REPROJ_GATHER(arr, taps, pc.size, HIST3_LOAD, vec3(0.0), out_)
 
-// The previous window's index of tap t (the image's index j of a valid tap); −1 outside it.
+// The previous window's index of tap t; −1 outside it.
 int prev_window_tap(ReprojTaps taps, int t) {
-    int j = reproj_tap_index(taps, t, pc.size);
-    return window_index(ivec2(j % pc.size.x, j / pc.size.x), pc.prev_win_origin, pc.win_size);
+    return window_index(reproj_tap_pixel(taps, t), pc.prev_win_origin, pc.win_size);
 }
 // Whether every valid tap lies in the previous window (its weighted history can be gathered).
 bool taps_in_prev_window(ReprojTaps taps) {

@@ -111,12 +111,17 @@ float reproj_tap_weight(ReprojTaps taps, int t) {
 #endif
 }
 
-int reproj_tap_index(ReprojTaps taps, int t, ivec2 size) {
+// The previous-frame pixel of tap slot t.
+ivec2 reproj_tap_pixel(ReprojTaps taps, int t) {
 #if FOVRT_REPROJECT_BOX
-    ivec2 q = taps.base + ivec2(t % 3 - 1, t / 3 - 1);
+    return taps.base + ivec2(t % 3 - 1, t / 3 - 1);
 #else
-    ivec2 q = taps.base + ivec2(t & 1, t >> 1);
+    return taps.base + ivec2(t & 1, t >> 1);
 #endif
+}
+
+int reproj_tap_index(ReprojTaps taps, int t, ivec2 size) {
+    ivec2 q = reproj_tap_pixel(taps, t);
     return q.y * size.x + q.x;
 }
 
