@@ -11,7 +11,6 @@
 namespace fovrt {
 
 const std::vector<DebugView>& DebugViewTable() {
-    using V = DenoiserVariant;
     constexpr float kUnbounded = std::numeric_limits<float>::infinity();
     static const std::vector<DebugView> rows = {
         {.id = DebugViewId::HistoryLength,
@@ -19,86 +18,81 @@ const std::vector<DebugView>& DebugViewTable() {
          .meaning = "frames in the temporal history: SVGF's history length (at most 64), the "
                     "two-history family's W_u (saturates at 1/alpha); 1 where it was dropped",
          .lo = 1.0f,
-         .hi = kUnbounded,
-         .offeredBy = [](const V& v) { return v.family != DenoiserFamily::Rae; }},  // the RAE keeps no history length
+         .hi = kUnbounded},
         {.id = DebugViewId::HistorySamples,
          .name = "historySamples",
          .meaning = "samples in the weighted history, sum of beta^(t-i) n_i: svgf-weighted's W, "
                     "two-history's W_w",
          .lo = 1.0f,
-         .hi = kUnbounded,
-         .offeredBy = [](const V& v) { return v.weightBySampleCount || v.twoHistory; }},
+         .hi = kUnbounded},
         {.id = DebugViewId::Alpha,
          .name = "alpha",
          .meaning = "A-SVGF's temporal alpha_i = (1 - lambda) alpha + lambda of colour and "
-                    "moments (1 on a frame without a previous one)",
-         .offeredBy = [](const V& v) { return v.asvgfGradient && !v.antilag; }},
+                    "moments (1 on a frame without a previous one)"},
         {.id = DebugViewId::Antilag,
          .name = "antilag",
          .meaning = "anti-lag factor a = clamp(gain lambda, 0, 1): the history length shrinks by "
-                    "(1 - a)^power and alpha = lerp(warm-up alpha, 1, a) (1 on a frame without a previous one)",
-         .offeredBy = [](const V& v) { return v.antilag; }},
+                    "(1 - a)^power and alpha = lerp(warm-up alpha, 1, a) (1 on a frame without a previous one)"},
         {.id = DebugViewId::Lambda,
          .name = "lambda",
          .meaning = "A-SVGF's lambda = min(1, |delta|/Delta) of the reconstructed temporal "
-                    "gradient, max over 3x3 strata",
-         .offeredBy = [](const V& v) { return v.asvgfGradient; }},
+                    "gradient, max over 3x3 strata"},
         {.id = DebugViewId::P,
          .name = "p",
          .meaning = "two-history's variance-optimal blend factor: I_opt = lerp(I_w, I_u, p) (the hysteresis "
-                    "variants: the held choice the blend uses)",
-         .offeredBy = [](const V& v) { return v.twoHistory && !v.clampHistory; }},  // the clamp replaces p
+                    "variants: the held choice the blend uses)"},
         {.id = DebugViewId::Q,
          .name = "q",
          .meaning = "two-history's gradient-guided blend factor: I_b = lerp(I_opt, I_u, q) "
-                    "(two-history-asvgf: A-SVGF's lambda)",
-         .offeredBy = [](const V& v) { return v.twoHistory; }},
+                    "(two-history-asvgf: A-SVGF's lambda)"},
         {.id = DebugViewId::T,
          .name = "t",
          .meaning = "two-history's history choice t = p + q - pq: I_b = lerp(I_w, I_u, t), 1 takes "
-                    "the unweighted history",
-         .offeredBy = [](const V& v) { return v.twoHistory && !v.clampHistory; }},
+                    "the unweighted history"},
         {.id = DebugViewId::HistoryU,
          .name = "historyU",
          .meaning = "luminance of the unweighted colour history I_u (after the a-trous feedback; "
                     "the first channel: direct, or combined)",
          .lo = 0.0f,
-         .hi = kUnbounded,
-         .offeredBy = [](const V& v) { return v.twoHistory; }},
+         .hi = kUnbounded},
         {.id = DebugViewId::HistoryW,
          .name = "historyW",
          .meaning = "luminance of the sample-count-weighted colour history I_w (the first channel)",
          .lo = 0.0f,
-         .hi = kUnbounded,
-         .offeredBy = [](const V& v) { return v.twoHistory; }},
+         .hi = kUnbounded},
         {.id = DebugViewId::Variance,
          .name = "variance",
          .meaning = "variance m2 - m1^2 of the unweighted luminance moments, the edge-stopping "
                     "guide of both histories (the first channel)",
          .lo = 0.0f,
-         .hi = kUnbounded,
-         .offeredBy = [](const V& v) { return v.twoHistory; }},
+         .hi = kUnbounded},
         {.id = DebugViewId::StableLum,
          .name = "stableLum",
          .meaning = "two-history-stable's stabilised luminance L_s of the filtered illumination "
                     "(the first channel)",
          .lo = 0.0f,
-         .hi = kUnbounded,
-         .offeredBy = [](const V& v) { return v.stabilize; }},
+         .hi = kUnbounded},
     };
     return rows;
 }
 
+namespace {
+bool Offers(const DenoiserVariant& variant, DebugViewId id) {
+    const std::vector<DebugViewId> views = VariantDebugViews(variant);
+    return std::find(views.begin(), views.end(), id) != views.end();
+}
+}  // namespace
+
 std::vector<std::string> DebugViewNames(const DenoiserVariant& variant) {
     std::vector<std::string> names;
     for (const DebugView& view : DebugViewTable())
-        if (view.offeredBy(variant)) names.emplace_back(view.name);
+        if (Offers(variant, view.id)) names.emplace_back(view.name);
     return names;
 }
 
 const DebugView* FindDebugView(const DenoiserVariant& variant, std::string_view name) {
     for (const DebugView& view : DebugViewTable())
-        if (view.name == name) return view.offeredBy(variant) ? &view : nullptr;
+        if (view.name == name) return Offers(variant, view.id) ? &view : nullptr;
     return nullptr;
 }
 

@@ -2,10 +2,10 @@
 // pixel (A-SVGF's α and λ̂, two-history's p and q, the temporal history length …), for the live
 // preview panel and for debugging.
 //
-// The one table of views: each row names a view, says what it means and its valid range, and
-// which variants offer it, decided by the flags of their row in DenoiserVariants()
-// (denoise/variants.cpp) — so a new variant offers the views of the passes it runs with no other
-// edit, and both backends of a variant offer the same names. Denoiser::DebugViews() and
+// The one table of views: each row names a view and says what it means and its valid range. Which
+// variants offer it, the family and mechanism units say (VariantDebugViews, denoise/variants.cpp)
+// — so a new composition offers the views of the passes it runs with no other edit, and both
+// backends of a variant offer the same names. Denoiser::DebugViews() and
 // Denoiser::ReadDebugView() (denoise/denoiser.h) read this table; the hosts only say where each
 // view's plane lives (a switch over DebugViewId, so a new row fails to compile until every host
 // handles it). Reading a view is a synchronous read-back on Vulkan: nothing is recorded or copied
@@ -46,7 +46,6 @@ struct DebugView {
     std::string_view name;       // what ReadDebugView() takes, e.g. "alpha"
     std::string_view meaning;    // one line for a legend or tooltip
     float lo = 0.0f, hi = 1.0f;  // valid range of every pixel; hi = +inf when unbounded
-    bool (*offeredBy)(const DenoiserVariant&) = nullptr;
 };
 
 // Every view, in the order DebugViews() lists them.

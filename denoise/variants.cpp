@@ -10,6 +10,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/nearest_name.h"
+#include "denoise/debug_views.h"
 #include "denoise/params.h"
 #include "denoise/planes.h"
 
@@ -22,33 +23,51 @@ namespace {
 // gradient replaces it, the EMA luminance gradient as its change detector q.
 enum class MethodFamily : uint8_t { Svgf, TwoHistory, Rae };
 using Settings = std::span<const std::string_view>;
+using Planes = std::span<const PlaneKind>;
+using Views = std::span<const DebugViewId>;
+// A family: its token, its summary, and what its own passes bring before any mechanism: the
+// settings they read (the precision and device: every denoiser's), the planes of the plane table
+// they name (none for the RAE, whose tensors are its own) and the debug views they offer.
 struct FamilyToken {
     MethodFamily family;
     std::string_view token;
     std::string_view summary;
-    Settings settings;  // the config keys its passes read (the precision and device: every denoiser's)
+    Settings settings;
+    Planes planes = {};
+    Views views = {};
 };
 constexpr std::string_view kSvgfSettings[] = {
     "denoise.svgf.alpha_color",     "denoise.svgf.alpha_moments",   "denoise.svgf.atrous_iterations",
     "denoise.svgf.feedback_iteration", "denoise.svgf.sigma_depth",  "denoise.svgf.sigma_normal",
     "denoise.svgf.sigma_luminance", "denoise.svgf.variance_history_threshold", "denoise.svgf.filter_combined"};
 constexpr std::string_view kRaeSettings[] = {"denoise.rae.weights"};
+// Upload, guide, reprojection, variance estimate, à-trous, modulation, download.
+constexpr PlaneKind kSvgfPlanes[] = {
+    PlaneKind::Direct,      PlaneKind::Indirect,    PlaneKind::Modulation, PlaneKind::Emission,
+    PlaneKind::DepthGradient, PlaneKind::PrevPixel, PlaneKind::Normal,     PlaneKind::Depth,
+    PlaneKind::ObjectId,    PlaneKind::Guide,       PlaneKind::Color,      PlaneKind::Moments,
+    PlaneKind::Length,      PlaneKind::Illum0,      PlaneKind::Illum1,     PlaneKind::SpatialList,
+    PlaneKind::SpatialArgs, PlaneKind::Output,      PlaneKind::Stats,      PlaneKind::Staging};
+constexpr DebugViewId kSvgfViews[] = {DebugViewId::HistoryLength};
 constexpr FamilyToken kFamilies[] = {
-    {MethodFamily::Svgf, "svgf", "SVGF (Schied 2017)", kSvgfSettings},
-    {MethodFamily::TwoHistory, "two-history", "two-history SVGF (Tu 2024)", kSvgfSettings},
+    {MethodFamily::Svgf, "svgf", "SVGF (Schied 2017)", kSvgfSettings, kSvgfPlanes, kSvgfViews},
+    {MethodFamily::TwoHistory, "two-history", "two-history SVGF (Tu 2024)", kSvgfSettings, kSvgfPlanes, kSvgfViews},
     {MethodFamily::Rae, "rae", "recurrent denoising autoencoder (Chaitanya 2017), denoise.rae.weights", kRaeSettings},
 };
 constexpr unsigned Bit(MethodFamily f) { return 1u << unsigned(f); }
 constexpr unsigned kSvgfFamilies = Bit(MethodFamily::Svgf) | Bit(MethodFamily::TwoHistory);
 
-// One row per mechanism flag of DenoiserVariant, in the order a frame runs them: the token a name
-// writes it with (empty: implied by the family, or derived), what `fovrt info` calls it, and its
-// rules: the families it joins, the token it requires, the token it excludes, each with the reason
-// a refusal gives; then the settings it reads and those of the rows before it that it makes
-// unread (A-SVGF's per-pixel alpha replaces SVGF's; anti-lag returns to SVGF's as its base); and
-// the token with which it changes nothing, and why (its settings are then unread too).
-// denoise_settings_test runs every composition with each setting changed and holds the list to
-// what changes the output, and an inert mechanism's compositions to the output without it.
+// One row per mechanism flag of DenoiserVariant, in the order a frame runs them: the unit a
+// mechanism is. The token a name writes it with (empty: implied by the family, or derived), what
+// `fovrt info` calls it, and its rules: the families it joins, the token it requires, the token it
+// excludes, each with the reason a refusal gives. Then what it brings: the settings it reads and
+// those of the rows before it that it makes unread (A-SVGF's per-pixel alpha replaces SVGF's;
+// anti-lag returns to SVGF's as its base); the planes its passes add to the family's (the plane
+// table, denoise/planes.h); the debug views it offers and those of the rows before it it takes
+// away (the clamp has no p); and the token with which it changes nothing, and why (its settings
+// are then unread too). denoise_settings_test holds the settings to what changes the output of
+// every composition, denoise_pass_plan_test the planes to what its plan names, and the debug-view
+// tests the views to what both backends read.
 struct Mechanism {
     bool DenoiserVariant::*flag;
     std::string_view token;
@@ -59,6 +78,9 @@ struct Mechanism {
     std::string_view why = {};  // the reason behind `requiresToken` / `excludesToken`
     Settings reads = {};
     Settings replaces = {};
+    Planes planes = {};
+    Views views = {};
+    Views hidesViews = {};
     std::string_view inertWith = {};
     std::string_view inertWhy = {};
 };
@@ -77,34 +99,61 @@ constexpr std::string_view kStabilizeSettings[] = {"denoise.two_history_stable.a
 constexpr std::string_view kStabilizeAntilagSettings[] = {"denoise.two_history_stable.antilag_q"};
 constexpr std::string_view kSppSettings[] = {"denoise.rae.weights_spp"};
 constexpr std::string_view kRaeWeights[] = {"denoise.rae.weights"};
+using K = PlaneKind;
+using D = DebugViewId;
+constexpr PlaneKind kWeightedPlanes[] = {K::SampleCount, K::Weight};
+constexpr PlaneKind kAsvgfPlanes[] = {K::AsvgfSamples, K::AsvgfClaim, K::AsvgfGrad0, K::AsvgfGrad1,
+                                      K::AsvgfGuideGeometry, K::AsvgfGuideLuminance, K::AsvgfSigma,
+                                      K::AsvgfAlpha, K::AsvgfLambda};
+constexpr PlaneKind kTwoHistoryPlanes[] = {K::SampleCount, K::WColor, K::WIllum0, K::WIllum1, K::WWeight, K::PowerSums};
+constexpr PlaneKind kEmaGradientPlanes[] = {K::Gradient, K::Q};
+constexpr PlaneKind kChoicePlanes[] = {K::Choice};
+constexpr PlaneKind kStabilizePlanes[] = {K::StableLum};
+constexpr DebugViewId kWeightedViews[] = {D::HistorySamples};
+constexpr DebugViewId kAsvgfViews[] = {D::Alpha, D::Lambda};
+constexpr DebugViewId kAntilagViews[] = {D::Antilag};
+constexpr DebugViewId kAlphaView[] = {D::Alpha};
+constexpr DebugViewId kTwoHistoryViews[] = {D::HistorySamples, D::P, D::Q, D::T, D::HistoryU, D::HistoryW, D::Variance};
+constexpr DebugViewId kChoiceViews[] = {D::P, D::T};
+constexpr DebugViewId kStabilizeViews[] = {D::StableLum};
 const Mechanism kMechanisms[] = {
-    {&DenoiserVariant::weightBySampleCount, "weighted", "temporal weights x sample count (svgf-weighted)",
-     Bit(MethodFamily::Svgf), {}, "asvgf",
-     "the sample-count weights are SVGF's reprojection's, A-SVGF runs the gradient family's"},
-    {&DenoiserVariant::asvgfGradient, "asvgf", "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)",
-     kSvgfFamilies, {}, {}, {}, kAsvgfSettings, kSvgfAlpha},
-    {&DenoiserVariant::antilag, "antilag", "anti-lag: lambda shortens the history (Q2RTX)", kSvgfFamilies, "asvgf",
-     {}, "the anti-lag factor is A-SVGF's lambda", kAntilagSettings, kAsvgfAlpha},
-    {&DenoiserVariant::suppressFireflies, "firefly", "firefly suppression before accumulation",
-     Bit(MethodFamily::TwoHistory), {}, {}, {}, kFireflySettings},
-    {&DenoiserVariant::twoHistory, {},
-     "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)", 0, {}, {}, {},
-     kTwoHistorySettings},
-    {&DenoiserVariant::emaGradient, {}, "EMA luminance gradient -> q (Tu 2024)", 0, {}, {}, {}, kEmaGradientSettings},
-    {&DenoiserVariant::hystereticChoice, "hysteresis", "held history choice (band and rate)",
-     Bit(MethodFamily::TwoHistory), {}, "clamp", "both replace the choice p between the two histories",
-     kHysteresisSettings},
-    {&DenoiserVariant::clampHistory, "clamp", "history clamp to the weighted history's neighbourhood",
-     Bit(MethodFamily::TwoHistory), {}, {}, {}, kClampSettings},
-    {&DenoiserVariant::stabilize, "stabilize", "luminance stabilisation pass", Bit(MethodFamily::TwoHistory), {}, {},
-     {}, kStabilizeSettings},
-    {&DenoiserVariant::stabilizeAntilag, "stabilize-antilag", "stabilisation weight driven by the change detector",
-     Bit(MethodFamily::TwoHistory), "stabilize", {}, "it drives the stabilisation's weight",
-     kStabilizeAntilagSettings, {}, "asvgf",
-     "with A-SVGF's gradient as q the weight max(alpha_s, 1/W_u) is already at least lambda = q, above the change "
-     "weight (q - q0)/(1 - q0): the accumulation's alpha is at least lambda while denoise.asvgf.antilag_gain >= 1"},
-    {&DenoiserVariant::raeSampleCount, "spp", "sample count as an extra network input", Bit(MethodFamily::Rae), {},
-     {}, {}, kSppSettings, kRaeWeights},
+    {.flag = &DenoiserVariant::weightBySampleCount, .token = "weighted",
+     .description = "temporal weights x sample count (svgf-weighted)", .families = Bit(MethodFamily::Svgf),
+     .excludesToken = "asvgf", .why = "the sample-count weights are SVGF's reprojection's, A-SVGF runs the gradient family's",
+     .planes = kWeightedPlanes, .views = kWeightedViews},
+    {.flag = &DenoiserVariant::asvgfGradient, .token = "asvgf",
+     .description = "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)", .families = kSvgfFamilies,
+     .reads = kAsvgfSettings, .replaces = kSvgfAlpha, .planes = kAsvgfPlanes, .views = kAsvgfViews},
+    {.flag = &DenoiserVariant::antilag, .token = "antilag", .description = "anti-lag: lambda shortens the history (Q2RTX)",
+     .families = kSvgfFamilies, .requiresToken = "asvgf", .why = "the anti-lag factor is A-SVGF's lambda",
+     .reads = kAntilagSettings, .replaces = kAsvgfAlpha, .views = kAntilagViews, .hidesViews = kAlphaView},
+    {.flag = &DenoiserVariant::suppressFireflies, .token = "firefly",
+     .description = "firefly suppression before accumulation", .families = Bit(MethodFamily::TwoHistory),
+     .reads = kFireflySettings},
+    {.flag = &DenoiserVariant::twoHistory, .token = {},
+     .description = "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)",
+     .reads = kTwoHistorySettings, .planes = kTwoHistoryPlanes, .views = kTwoHistoryViews},
+    {.flag = &DenoiserVariant::emaGradient, .token = {}, .description = "EMA luminance gradient -> q (Tu 2024)",
+     .reads = kEmaGradientSettings, .planes = kEmaGradientPlanes},
+    {.flag = &DenoiserVariant::hystereticChoice, .token = "hysteresis",
+     .description = "held history choice (band and rate)", .families = Bit(MethodFamily::TwoHistory),
+     .excludesToken = "clamp", .why = "both replace the choice p between the two histories",
+     .reads = kHysteresisSettings, .planes = kChoicePlanes},
+    {.flag = &DenoiserVariant::clampHistory, .token = "clamp",
+     .description = "history clamp to the weighted history's neighbourhood", .families = Bit(MethodFamily::TwoHistory),
+     .reads = kClampSettings, .hidesViews = kChoiceViews},
+    {.flag = &DenoiserVariant::stabilize, .token = "stabilize", .description = "luminance stabilisation pass",
+     .families = Bit(MethodFamily::TwoHistory), .reads = kStabilizeSettings, .planes = kStabilizePlanes,
+     .views = kStabilizeViews},
+    {.flag = &DenoiserVariant::stabilizeAntilag, .token = "stabilize-antilag",
+     .description = "stabilisation weight driven by the change detector", .families = Bit(MethodFamily::TwoHistory),
+     .requiresToken = "stabilize", .why = "it drives the stabilisation's weight", .reads = kStabilizeAntilagSettings,
+     .inertWith = "asvgf",
+     .inertWhy = "with A-SVGF's gradient as q the weight max(alpha_s, 1/W_u) is already at least lambda = q, above "
+                 "the change weight (q - q0)/(1 - q0): the accumulation's alpha is at least lambda while "
+                 "denoise.asvgf.antilag_gain >= 1"},
+    {.flag = &DenoiserVariant::raeSampleCount, .token = "spp", .description = "sample count as an extra network input",
+     .families = Bit(MethodFamily::Rae), .reads = kSppSettings, .replaces = kRaeWeights},
 };
 
 // Today's names: aliases of compositions, each with the summary it had as a row of its own.
@@ -456,10 +505,40 @@ std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant) {
     return names;
 }
 
+namespace {
+// The family token a row was composed from (a row's pass family is TwoHistory for svgf+asvgf too).
+const FamilyToken& FamilyOf(const DenoiserVariant& variant) {
+    return kFamilies[size_t(variant.family == DenoiserFamily::Rae ? MethodFamily::Rae
+                            : variant.twoHistory                  ? MethodFamily::TwoHistory
+                                                                  : MethodFamily::Svgf)];
+}
+}  // namespace
+
+std::vector<PlaneKind> VariantPlanes(const DenoiserVariant& variant) {
+    const FamilyToken& family = FamilyOf(variant);
+    std::vector<PlaneKind> kinds(family.planes.begin(), family.planes.end());
+    for (const Mechanism& m : kMechanisms)
+        if (variant.*m.flag)
+            for (PlaneKind kind : m.planes)
+                if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
+    std::sort(kinds.begin(), kinds.end());
+    return kinds;
+}
+
+std::vector<DebugViewId> VariantDebugViews(const DenoiserVariant& variant) {
+    const FamilyToken& family = FamilyOf(variant);
+    std::vector<DebugViewId> views(family.views.begin(), family.views.end());
+    for (const Mechanism& m : kMechanisms) {
+        if (!(variant.*m.flag)) continue;
+        for (DebugViewId gone : m.hidesViews) std::erase(views, gone);
+        for (DebugViewId view : m.views)
+            if (std::find(views.begin(), views.end(), view) == views.end()) views.push_back(view);
+    }
+    return views;
+}
+
 std::vector<std::string> VariantSettings(const DenoiserVariant& variant) {
-    const FamilyToken& family = kFamilies[size_t(variant.family == DenoiserFamily::Rae ? MethodFamily::Rae
-                                                 : variant.twoHistory                  ? MethodFamily::TwoHistory
-                                                                                       : MethodFamily::Svgf)];
+    const FamilyToken& family = FamilyOf(variant);
     std::vector<std::string_view> keys(family.settings.begin(), family.settings.end());
     auto on = [&](std::string_view token) {
         return std::any_of(std::begin(kMechanisms), std::end(kMechanisms),

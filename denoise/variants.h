@@ -16,6 +16,7 @@
 // the tracer wrote (render.demodulation, default albedo). The demodulation is no part of the row.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +26,9 @@
 #include "denoise/params.h"
 
 namespace fovrt {
+
+enum class PlaneKind : uint8_t;  // denoise/planes.h
+enum class DebugViewId;         // denoise/debug_views.h
 
 // The pass family a variant runs.
 // Svgf: reproject → moments → à-trous → modulate (Schied et al. 2017, §4).
@@ -130,6 +134,12 @@ std::vector<std::string> VariantMechanisms(const DenoiserVariant& variant);
 // MechanismRules says why).
 // denoise.precision and denoise.device are every denoiser's and not listed.
 std::vector<std::string> VariantSettings(const DenoiserVariant& variant);
+// The kinds of plane (denoise/planes.h) the row's passes name: its family's and its mechanisms'
+// (denoise_pass_plan_test holds them to every composition's plan); empty for the RAE.
+std::vector<PlaneKind> VariantPlanes(const DenoiserVariant& variant);
+// The debug views (denoise/debug_views.h) the row offers: its family's and its mechanisms', less
+// those a mechanism takes away (the clamp replaces p). DebugViewNames lists them in table order.
+std::vector<DebugViewId> VariantDebugViews(const DenoiserVariant& variant);
 // What the renderer must produce for the row, in words (empty: the noisy inputs alone).
 std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant);
 

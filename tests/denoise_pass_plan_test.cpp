@@ -173,3 +173,29 @@ TEST_CASE("every dispatch of every plan binds each slot of its layout once, as i
         });
     }
 }
+
+// The planes a composition's plan names are the ones its family and mechanism units declare
+// (VariantPlanes): a unit cannot bring a plane it does not list, nor list one its passes leave out.
+TEST_CASE("every composition's plan names exactly the planes its units declare") {
+    size_t checked = 0;
+    for (const std::string& name : DenoiserCompositions()) {
+        const DenoiserVariant& v = FindDenoiserVariant(name);
+        if (v.family == DenoiserFamily::Rae) continue;
+        std::set<PlaneKind> named;
+        for (const PlanePlacement& p : BuildDenoiserPlan(name, ParamsForVariant(v, DenoiserParams{}), 64, 64).planes)
+            named.insert(p.key.id.kind);
+        const std::vector<PlaneKind> declared = VariantPlanes(v);
+        std::vector<std::string> missing, extra;
+        for (PlaneKind kind : declared)
+            if (!named.count(kind)) extra.push_back(PlaneName({kind, IsPerChannel(kind) ? Channel::Direct : Channel::None}));
+        for (PlaneKind kind : named)
+            if (std::find(declared.begin(), declared.end(), kind) == declared.end())
+                missing.push_back(PlaneName({kind, IsPerChannel(kind) ? Channel::Direct : Channel::None}));
+        INFO(name << ": declared but not in the plan: " << Catch::Detail::stringify(extra)
+                  << "; in the plan but not declared: " << Catch::Detail::stringify(missing));
+        CHECK(missing.empty());
+        CHECK(extra.empty());
+        ++checked;
+    }
+    CHECK(checked > 50);
+}
