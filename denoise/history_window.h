@@ -14,10 +14,16 @@ namespace fovrt {
 
 struct HistoryWindow {
     ivec2 origin{0};
-    ivec2 size{0};
+    ivec2 size{0};  // 0: unset (the stages that take a window read it as the whole image)
     // Index of image pixel (x, y) in the window's planes; −1 outside.
     int Index(int x, int y) const;
+    // The image pixel of the window's index j.
+    ivec2 ImagePixel(size_t j) const { return origin + ivec2(int(j % size_t(size.x)), int(j / size_t(size.x))); }
     size_t Pixels() const { return size_t(size.x) * size_t(size.y); }
+    // The whole width × height image as a window (indexed as the image is).
+    static HistoryWindow Whole(int width, int height) { return {ivec2(0), ivec2(width, height)}; }
+    // This window, or the whole image where it is unset.
+    HistoryWindow OrWhole(int width, int height) const { return size.x > 0 ? *this : Whole(width, height); }
 };
 
 // An image-sized plane from a window's values: valueAt(window index) inside, `outside` elsewhere

@@ -348,8 +348,8 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
         const TwoHistoryState& st = CurrentState();
         // Outside the window the blend keeps I_u: p = 1.
         out = WindowOverImage(width_, height_, window_, 1.0f, [&](size_t j) {
-            const int x = window_.origin.x + int(j) % window_.size.x, y = window_.origin.y + int(j) / window_.size.x;
-            return TwoHistoryOptimalBlend(StoredTwoHistoryWeights(st.wu(x, y), st.ww[j], st.powerSums[j]));
+            const ivec2 p = window_.ImagePixel(j);
+            return TwoHistoryOptimalBlend(StoredTwoHistoryWeights(st.wu(p.x, p.y), st.ww[j], st.powerSums[j]));
         });
         return true;
     }
@@ -362,7 +362,7 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
                               : ref->id.kind == PlaneKind::WColor ? &st.iw[c][0].x
                                                                   : &st.moments[c][0].x;
         const size_t components = size_t(DebugViewComponents(view));
-        const HistoryWindow held = IsWindowed(ref->id.kind) ? window_ : HistoryWindow{ivec2(0), ivec2(width_, height_)};
+        const HistoryWindow held = IsWindowed(ref->id.kind) ? window_ : HistoryWindow::Whole(width_, height_);
         out = WindowOverImage(width_, height_, held, 0.0f,
                               [&](size_t j) { return ReduceDebugPixel(view, values + components * j); });
         return true;

@@ -261,7 +261,7 @@ void SvgfAtrousRef(const Plane<vec4>& illumIn, const SvgfGeometry& geometry,
                    Plane<vec3>* historyColor, const SvgfParams& params, Precision precision,
                    const HistoryWindow& historyWindow) {
     const int w = illumIn.width(), h = illumIn.height();
-    const HistoryWindow held = historyWindow.size.x > 0 ? historyWindow : HistoryWindow{ivec2(0), ivec2(w, h)};
+    const HistoryWindow held = historyWindow.OrWhole(w, h);
     const int step = 1 << iteration;
     illumOut.Resize(w, h);
     auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };

@@ -11,7 +11,7 @@ void TwoHistoryChoiceRef(const FrameInputs& frame, const SvgfGeometry& prevGeome
                          const Plane<vec3>& powerSums, const TwoHistoryParams& params, Precision precision,
                          Plane<float>& curChoice, const HistoryWindow& window) {
     const int w = frame.width(), h = frame.height();
-    const HistoryWindow win = window.size.x > 0 ? window : HistoryWindow{ivec2(0), ivec2(w, h)};
+    const HistoryWindow win = window.OrWhole(w, h);
     curChoice.Resize(w, h, 0.0f);
     tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {

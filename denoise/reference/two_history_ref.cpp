@@ -38,9 +38,7 @@ void TwoHistoryReprojectRef(const std::array<const Plane<vec3>*, 2>& colors, int
     const Precision prec = options.precision;
     const bool two = options.twoHistory;
     const bool withGradient = two && options.gradient;
-    const HistoryWindow whole{ivec2(0), ivec2(w, h)};
-    const HistoryWindow& win = options.window.size.x > 0 ? options.window : whole;
-    const HistoryWindow& prevWin = options.prevWindow.size.x > 0 ? options.prevWindow : whole;
+    const HistoryWindow win = options.window.OrWhole(w, h), prevWin = options.prevWindow.OrWhole(w, h);
     FOVRT_CHECK(!two || (win.size == prevWin.size && cur.ww.width() == win.size.x && cur.ww.height() == win.size.y));
     // A windowed plane's value over the taps, each at its place in the previous window.
     auto gatherWindow = [&](const auto& plane, const ReprojectionTaps& taps) {
@@ -234,7 +232,7 @@ void TwoHistoryBlendRef(const Plane<vec4>& illumU, const Plane<vec4>& illumW,
                         const TwoHistoryClampOptions& clamp, const Plane<float>* heldChoice,
                         const HistoryWindow& window) {
     const int width = illumU.width();
-    const HistoryWindow win = window.size.x > 0 ? window : HistoryWindow{ivec2(0), ivec2(width, illumU.height())};
+    const HistoryWindow win = window.OrWhole(width, illumU.height());
     out.Resize(illumU.width(), illumU.height());
     tbb::parallel_for(0, illumU.height(), [&](int y) {
         for (int x = 0; x < width; ++x) {

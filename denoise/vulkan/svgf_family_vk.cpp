@@ -232,8 +232,8 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
                     s.size() == 3 * window_.Pixels());
         // Outside the window the blend keeps I_u: p = 1.
         out = WindowOverImage(width_, height_, window_, 1.0f, [&](size_t j) {
-            const size_t i = size_t(window_.origin.y + int(j) / window_.size.x) * size_t(width_) +
-                             size_t(window_.origin.x + int(j) % window_.size.x);
+            const ivec2 p = window_.ImagePixel(j);
+            const size_t i = size_t(p.y) * size_t(width_) + size_t(p.x);
             const vec3 powerSums(s[3 * j], s[3 * j + 1], s[3 * j + 2]);
             return TwoHistoryOptimalBlend(StoredTwoHistoryWeights(wu[i], ww[j], powerSums));
         });
@@ -248,7 +248,7 @@ bool SvgfFamilyVulkanDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>& ou
     }
     // A colour history or the moments (reduced per pixel), or a windowed plane (0 outside its window).
     const std::vector<float> values = buffers_.ReadFloats(*context_, key, scalarBytes(ref->id.kind));
-    const HistoryWindow held = IsWindowed(ref->id.kind) ? window_ : HistoryWindow{ivec2(0), ivec2(width_, height_)};
+    const HistoryWindow held = IsWindowed(ref->id.kind) ? window_ : HistoryWindow::Whole(width_, height_);
     FOVRT_CHECK(values.size() == size_t(components) * held.Pixels());
     out = WindowOverImage(width_, height_, held, 0.0f, [&](size_t j) {
         return components == 1 ? values[j] : ReduceDebugPixel(view, &values[size_t(components) * j]);
