@@ -4,7 +4,9 @@
 # must lower the loss, and the exported .raew must reproduce PyTorch's outputs in the C++
 # reference (tests/tools/rae_check, 1e-4 relative) for both input sets (with and without the
 # sample-count channel). Fine-tuning from the export (--init) with the committed weights' options
-# runs on a dataset with a second noise realisation, every sequence a camera stop that takes it.
+# runs on a dataset with a second noise realisation, every sequence a camera stop that takes it,
+# together with a dataset of a procedural room (training/procedural_scenes.py: the same seed writes
+# the same files; `fovrt dataset` takes the scene by path and refuses two scenes of one name).
 # Exit 77 (skipped) without Debian's python3-torch.
 # Usage: rae_training_check.sh FOVRT RAE_CHECK SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -19,6 +21,39 @@ rm -rf "$work" && mkdir -p "$work"
 "$fovrt" dataset --out "$work/data" --scenes cornell --eval "" --no-uniform --noise-realisations 2 \
   --set camera.width=64 --set camera.height=64 --set run.frames=8 --set reference.spp=16 \
   --set reference.cache_dir="\"$work/cache\"" --set foveation.radius_px=100 >/dev/null
+# The block-energy term (train.energy_loss) in closed form: 0 for the target itself and for any
+# rearrangement of pixels inside a block (where the paper's per-pixel L1 is not 0); doubling the
+# linear light of every pixel costs each block m^γ (2^γ − 1).
+"$py" - "$src/training" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[1])
+import torch, train, rae_net
+g = rae_net.GAMMA
+t = torch.rand(1, 2, 3, 16, 16) + 0.1
+assert train.energy_loss(t, t).item() < 1e-6
+flipped = t.flip(-1).view(1, 2, 3, 16, 2, 8).flip(-2).reshape(1, 2, 3, 16, 16)  # mirror inside 8-wide blocks
+assert train.energy_loss(flipped, t).item() < 1e-5 and (flipped - t).abs().mean().item() > 0.05
+m = torch.nn.functional.avg_pool2d((t ** (1 / g)).flatten(0, 1), 8) + 1e-6
+expected = (m ** g * (2 ** g - 1)).mean().item()
+got = train.energy_loss(t * 2 ** g, t, fw=torch.ones(7)).item()  # equal frame weights: a plain mean
+assert abs(got - expected) < 1e-4 * expected, (got, expected)
+print(f"energy_loss: closed forms hold ({got:.6f} = {expected:.6f})")
+PY
+# Procedural rooms: deterministic per seed, loadable, a dataset of their own.
+"$py" "$src/training/procedural_scenes.py" --out "$work/proc-a" --seeds 1-2 >/dev/null
+"$py" "$src/training/procedural_scenes.py" --out "$work/proc-b" --seeds 1-2 >/dev/null
+diff -r "$work/proc-a" "$work/proc-b" >/dev/null || { echo "FAIL: procedural scenes differ for one seed"; exit 1; }
+room="$work/proc-a/proc-0001/scene.toml"
+"$fovrt" dataset --out "$work/proc" --scenes "$room" --eval "" --no-uniform --noise-realisations 2 \
+  --set camera.width=64 --set camera.height=64 --set run.frames=8 --set reference.spp=4 \
+  --set reference.cache_dir="\"$work/cache\"" >/dev/null
+grep -q '"name": "proc-0001_disc_left"' "$work/proc/manifest.json" || { echo "FAIL: no procedural sequence"; exit 1; }
+if "$fovrt" dataset --out "$work/twice" --scenes "$room,$room" --eval "" --no-uniform --set camera.width=64 \
+    --set camera.height=64 --set run.frames=8 --set reference.spp=4 --set reference.cache_dir="\"$work/cache\"" \
+    2>"$work/twice.err"; then
+  echo "FAIL: two scenes of one name accepted"; exit 1
+fi
+grep -q "named 'proc-0001' like an earlier scene" "$work/twice.err" || { cat "$work/twice.err"; exit 1; }
 for spp in "" "--sample-count"; do
   out="$work/run$spp"
   "$py" "$src/training/train.py" --data "$work/data" --out "$out" --widths 4,6,8 $spp \
@@ -33,10 +68,11 @@ for spp in "" "--sample-count"; do
   grep -q "resumed at step 40" "$out.log" || { echo "FAIL: no resume"; exit 1; }
   "$py" "$src/training/check_export.py" "$out/rae.raew" "$work/data" "$out/check" --frames 3 --crop 64
   "$check" "$out/rae.raew" "$out/check/input.npy" "$out/check/output.npy"
-  "$py" "$src/training/train.py" --data "$work/data" --out "$out-ft" --widths 4,6,8 $spp --init "$out/rae.raew" \
+  "$py" "$src/training/train.py" --data "$work/data" "$work/proc" --out "$out-ft" --widths 4,6,8 $spp --init "$out/rae.raew" \
     --frame-weight-floor 1 --temporal-weight 1 --stops 1,2,4 --schedule-offset 50 \
     --steps 2 --batch 2 --crop 32 --ramp 5 --log-every 2 --threads 2 >"$out-ft.log"
-  grep -q "2 noise realisation(s) each" "$out-ft.log" || { echo "FAIL: no extra noise realisation"; exit 1; }
+  grep -q "4 train / 0 eval sequences, 2 noise realisation(s) each" "$out-ft.log" ||
+    { echo "FAIL: the two datasets were not read together"; exit 1; }
   [ -s "$out-ft/rae.raew" ] || { echo "FAIL: fine-tuning wrote no weights"; exit 1; }
 done
 echo "rae training check: ok"

@@ -81,22 +81,52 @@ def rae_loss(out, tgt, w_temporal=0.1, w_temporal_linear=0.0, fw=FRAME_WEIGHTS):
     return 0.8 * l1 + 0.1 * hf + w_temporal * tm + w_temporal_linear * tl, l1, hf, tm, tl
 
 
-class Dataset:
-    """Every sequence of a `fovrt dataset` folder in memory (see its manifest.json)."""
+def energy_loss(out, tgt, block=8, fw=FRAME_WEIGHTS):
+    """A deviation from the paper: L1 in γ space between block means taken in linear light.
 
-    def __init__(self, folder, split="train"):
-        with open(os.path.join(folder, "manifest.json")) as f:
-            self.manifest = json.load(f)
+    out, tgt [B, T, 3, H, W] in γ space. Each is taken back to linear (x^(1/γ)), averaged over
+    block × block pixels, and raised to γ again, so the term has the scale of the paper's L1 but
+    compares energy: a network that keeps a region's texture while losing half its light pays it
+    here, where the per-pixel L1 in γ space, which pulls towards the median, barely does."""
+    B, T = out.shape[:2]
+    w = fw[:T] / fw[:T].sum()
+    inv = 1.0 / rae_net.GAMMA
+    lin_out = torch.clamp(out, min=0.0) ** inv
+    lin_tgt = torch.clamp(tgt, min=0.0) ** inv
+    m_out = F.avg_pool2d(lin_out.flatten(0, 1), block)
+    m_tgt = F.avg_pool2d(lin_tgt.flatten(0, 1), block)
+    # (m + 1e-6)^γ: the gradient of x^γ is unbounded at 0 (black blocks).
+    d = ((m_out + 1e-6) ** rae_net.GAMMA - (m_tgt + 1e-6) ** rae_net.GAMMA).abs()
+    return (d.view(B, T, -1).mean(dim=(0, 2)) * w).sum()
+
+
+class Dataset:
+    """Every sequence of one or more `fovrt dataset` folders, memory-mapped (see their manifest.json).
+    Folders of one training run must agree on the channels and the γ."""
+
+    def __init__(self, folders, split="train"):
+        if isinstance(folders, str):
+            folders = [folders]
         # inputs[i][r]: noise realisation r of sequence i (r = 0: "input"; r >= 1: "inputs_extra",
         # the same frames, camera and targets traced with other seeds: `fovrt dataset --noise-realisations`)
         self.inputs, self.targets, self.names = [], [], []
-        for s in self.manifest["sequences"]:
-            if s["split"] != split:
-                continue
-            files = [s["input"]] + list(s.get("inputs_extra", []))
-            self.inputs.append([np.load(os.path.join(folder, f), mmap_mode="r") for f in files])
-            self.targets.append(np.load(os.path.join(folder, s["target"]), mmap_mode="r"))
-            self.names.append(s["name"])
+        self.manifest = None
+        for folder in folders:
+            with open(os.path.join(folder, "manifest.json")) as f:
+                manifest = json.load(f)
+            if self.manifest is None:
+                self.manifest = manifest
+            for key in ("channels", "gamma"):
+                if manifest[key] != self.manifest[key]:
+                    sys.exit(f"{folder}/manifest.json: {key} {manifest[key]} differs from {folders[0]}'s "
+                             f"{self.manifest[key]}")
+            for s in manifest["sequences"]:
+                if s["split"] != split:
+                    continue
+                files = [s["input"]] + list(s.get("inputs_extra", []))
+                self.inputs.append([np.load(os.path.join(folder, f), mmap_mode="r") for f in files])
+                self.targets.append(np.load(os.path.join(folder, s["target"]), mmap_mode="r"))
+                self.names.append(s["name"])
 
     def realisations(self):
         """Noise realisations every sequence has (1 = a dataset without extra noise)."""
@@ -182,7 +212,7 @@ def parse_widths(text):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", required=True)
+    ap.add_argument("--data", required=True, nargs="+", help="one or more `fovrt dataset` folders")
     ap.add_argument("--out", required=True)
     ap.add_argument("--widths", default="quarter", help="paper | quarter | comma list")
     ap.add_argument("--sample-count", action="store_true", help="8th input: log2(spp)/4")
@@ -201,6 +231,8 @@ def main(argv=None):
                     help="weight of the temporal L1 term (paper 0.1; spatial 0.8 and HFEN 0.1 stay)")
     ap.add_argument("--temporal-linear", type=float, default=0.0,
                     help="weight of the temporal L1 in linear space (0 = the paper's loss)")
+    ap.add_argument("--energy-weight", type=float, default=0.0,
+                    help="weight of the block-energy term (energy_loss; 0 = the paper's loss)")
     ap.add_argument("--frame-weight-floor", type=float, default=0.0,
                     help="per-frame loss weights max(exp(-(6-t)²/8), floor); 0 = the paper's")
     ap.add_argument("--stops", default="0.25,2,4",
@@ -222,7 +254,7 @@ def main(argv=None):
     train = Dataset(args.data, "train")
     val = Dataset(args.data, "eval")
     if len(train) == 0:
-        sys.exit(f"no training sequences in {args.data}")
+        sys.exit(f"no training sequences in {' '.join(args.data)}")
     net = rae_net.RaeNet(parse_widths(args.widths), sample_count=args.sample_count)
     if args.init:
         init, _ = rae_net.load_weights(args.init)
@@ -246,7 +278,7 @@ def main(argv=None):
     else:
         with open(log_path, "w", newline="") as f:
             csv.writer(f).writerow(["step", "seconds", "lr", "loss", "l1", "hfen", "temporal", "val_loss",
-                                    "temporal_linear"])
+                                    "temporal_linear", "energy", "val_energy"])
     print(f"widths {net.widths} inputs {channels}: {rae_net.count_parameters(net)} parameters, "
           f"{rae_net.flops_per_pixel(net):.0f} FLOP/px; {len(train)} train / {len(val)} eval sequences, "
           f"{train.realisations()} noise realisation(s) each; temporal weight {args.temporal_weight}"
@@ -267,7 +299,7 @@ def main(argv=None):
         if args.keep_exports:
             rae_net.save_weights(net, os.path.join(args.out, f"rae-step{step}.raew"))
 
-    acc = np.zeros(5)
+    acc = np.zeros(6)
     n_acc = 0
     while step < args.steps:
         t0 = time.time()
@@ -283,24 +315,32 @@ def main(argv=None):
         out = net(x)
         loss, l1, hf, tm, tl = rae_loss(out, y, args.temporal_weight, args.temporal_linear,
                                         frame_weights(args.frame_weight_floor))
+        if args.energy_weight:
+            en = energy_loss(out, y, fw=frame_weights(args.frame_weight_floor))
+            loss = loss + args.energy_weight * en
+        else:
+            en = torch.zeros(())
         opt.zero_grad()
         loss.backward()
         opt.step()
         step += 1
         elapsed += time.time() - t0
-        acc += [loss.item(), l1.item(), hf.item(), tm.item(), tl.item()]
+        acc += [loss.item(), l1.item(), hf.item(), tm.item(), tl.item(), en.item()]
         n_acc += 1
         if step % args.log_every == 0 or step == args.steps:
-            vloss = float("nan")
+            vloss, venergy = float("nan"), float("nan")
             if vbatch is not None:
                 with torch.no_grad():
-                    vloss = rae_loss(net(vbatch[0]), vbatch[1])[0].item()  # paper weights: comparable
+                    vout = net(vbatch[0])
+                    vloss = rae_loss(vout, vbatch[1])[0].item()  # paper weights: comparable
+                    venergy = energy_loss(vout, vbatch[1]).item()
             m = acc / n_acc
             with open(log_path, "a", newline="") as f:
                 csv.writer(f).writerow([step, f"{elapsed:.1f}", f"{lr:.3e}"] + [f"{v:.5f}" for v in m[:4]] +
-                                       [f"{vloss:.5f}", f"{m[4]:.5f}"])
+                                       [f"{vloss:.5f}", f"{m[4]:.5f}", f"{m[5]:.5f}", f"{venergy:.5f}"])
             print(f"step {step} {elapsed:.0f}s lr {lr:.2e} loss {m[0]:.4f} (l1 {m[1]:.4f} hfen {m[2]:.4f} "
-                  f"temporal {m[3]:.4f} linear {m[4]:.4f}) val {vloss:.4f}", flush=True)
+                  f"temporal {m[3]:.4f} linear {m[4]:.4f} energy {m[5]:.4f}) val {vloss:.4f} energy {venergy:.4f}",
+                  flush=True)
             acc[:] = 0
             n_acc = 0
         if step % args.ckpt_every == 0:

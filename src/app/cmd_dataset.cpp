@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
     Progress progress("dataset", (int(scenes.size() * modes.size()) +
                                   int(scenes.size() - heldScenes) * extraPerTrainScene) * base.run.frames);
     const auto start = std::chrono::steady_clock::now();
+    std::set<std::string> sceneNames;
     for (const auto& [scene, held] : scenes)
         for (size_t m = 0; m < modes.size(); ++m) {
             RunConfig config = base;
@@ -95,6 +97,13 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
             }
             FramePipeline pipeline(config);
             pipeline.CheckGazeCovers(uint32_t(config.run.firstFrame), config.run.frames);
+            // Files are named by the scene's own name (a scene given as a path has one too), so two
+            // scenes of one name would overwrite each other's sequences.
+            const std::string sceneName = pipeline.GetScene().name;
+            if (m == 0 && !sceneNames.insert(sceneName).second)
+                Fail("scene '{}' is named '{}' like an earlier scene of the list; its sequences would overwrite "
+                     "that one's",
+                     scene, sceneName);
             ReferenceCache cache(config.reference.cacheDir);
             const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
             const int w = config.camera.width, h = config.camera.height, T = config.run.frames;
@@ -143,7 +152,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
                 }
             }
             for (int eye = 0; eye < 2; ++eye) {
-                const std::string name = fmt::format("{}_{}_{}", scene, modes[m], eye == 0 ? "left" : "right");
+                const std::string name = fmt::format("{}_{}_{}", sceneName, modes[m], eye == 0 ? "left" : "right");
                 WriteNpy(dir / (name + "_input.npy"), inputs[eye]);
                 WriteNpy(dir / (name + "_target.npy"), targets[eye]);
                 nlohmann::json extraFiles = nlohmann::json::array();
@@ -153,7 +162,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
                     extraFiles.push_back(file);
                 }
                 manifest["sequences"].push_back({{"name", name},
-                                                  {"scene", scene},
+                                                  {"scene", sceneName},
                                                   {"mode", modes[m]},
                                                   {"eye", eye},
                                                   {"split", held ? "eval" : "train"},
