@@ -63,7 +63,7 @@ const std::vector<VariantNote>& VariantNotes() {
          "75cda1d"},
         {"rae", "Chaitanya et al. 2017 (recurrent denoising autoencoder)", S::Experimental,
          "comparing learned against hand-built reconstruction; the committed quarter-width weights are "
-         "undertrained (training/README.md), so it is no fair rival yet"},
+         "undertrained and pull the light's hue towards grey (training/README.md), so it is no fair rival yet"},
         {"rae-spp", "fovrt: Chaitanya et al. 2017 with the sample count as an 8th input", S::Experimental,
          "as rae, with the foveated sample count as an input; undertrained likewise"},
     };
