@@ -179,6 +179,12 @@ def gamma_inputs(x, gamma=GAMMA):
     return torch.cat([c, x[..., 3:, :, :]], -3)
 
 
+def linear_output(y, gamma=GAMMA):
+    """Network output (illumination^gamma) -> linear illumination, as fovrt's remodulation
+    (RaeRemodulate: max(y, 0)^(1/gamma)) takes it."""
+    return torch.clamp(y, min=0.0) ** (1.0 / gamma)
+
+
 def save_weights(net, path, gamma=GAMMA):
     convs = net.conv_layers()
     with open(path, "wb") as f:

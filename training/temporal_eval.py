@@ -39,7 +39,7 @@ def run(net, x, reset, gamma_space=False):
             y, hidden = net.forward_frame(x[t:t + 1], hidden)
             outs.append(y[0])
     y = torch.stack(outs)
-    return y if gamma_space else torch.clamp(y, min=0.0) ** (1.0 / rae_net.GAMMA)
+    return y if gamma_space else rae_net.linear_output(y)
 
 
 def series(out, tgt):

@@ -71,8 +71,8 @@ def rae_loss(out, tgt, w_temporal=0.1, w_temporal_linear=0.0, fw=FRAME_WEIGHTS):
     tw = w[1:] / w[1:].sum()
     tm = ((d_out - d_tgt).abs().mean(dim=(0, 2, 3, 4)) * tw).sum()
     if w_temporal_linear:
-        lin_out = torch.clamp(out, min=0.0) ** (1.0 / rae_net.GAMMA)
-        lin_tgt = tgt ** (1.0 / rae_net.GAMMA)
+        lin_out = rae_net.linear_output(out)
+        lin_tgt = rae_net.linear_output(tgt)
         dl_out = lin_out[:, 1:] - lin_out[:, :-1]
         dl_tgt = lin_tgt[:, 1:] - lin_tgt[:, :-1]
         tl = ((dl_out - dl_tgt).abs().mean(dim=(0, 2, 3, 4)) * tw).sum()
@@ -90,11 +90,8 @@ def energy_loss(out, tgt, block=8, fw=FRAME_WEIGHTS):
     here, where the per-pixel L1 in γ space, which pulls towards the median, barely does."""
     B, T = out.shape[:2]
     w = fw[:T] / fw[:T].sum()
-    inv = 1.0 / rae_net.GAMMA
-    lin_out = torch.clamp(out, min=0.0) ** inv
-    lin_tgt = torch.clamp(tgt, min=0.0) ** inv
-    m_out = F.avg_pool2d(lin_out.flatten(0, 1), block)
-    m_tgt = F.avg_pool2d(lin_tgt.flatten(0, 1), block)
+    m_out = F.avg_pool2d(rae_net.linear_output(out).flatten(0, 1), block)
+    m_tgt = F.avg_pool2d(rae_net.linear_output(tgt).flatten(0, 1), block)
     # (m + 1e-6)^γ: the gradient of x^γ is unbounded at 0 (black blocks).
     d = ((m_out + 1e-6) ** rae_net.GAMMA - (m_tgt + 1e-6) ** rae_net.GAMMA).abs()
     return (d.view(B, T, -1).mean(dim=(0, 2)) * w).sum()
