@@ -53,7 +53,9 @@ if "$fovrt" dataset --out "$work/twice" --scenes "$room,$room" --eval "" --no-un
     2>"$work/twice.err"; then
   echo "FAIL: two scenes of one name accepted"; exit 1
 fi
-grep -q "named 'proc-0001' like an earlier scene" "$work/twice.err" || { cat "$work/twice.err"; exit 1; }
+grep -q "named 'proc-0001' like scene" "$work/twice.err" || { cat "$work/twice.err"; exit 1; }
+# ... before anything is rendered or written: the folder is not even made.
+[ ! -e "$work/twice" ] || { echo "FAIL: the refused dataset left $work/twice behind"; exit 1; }
 for spp in "" "--sample-count"; do
   out="$work/run$spp"
   "$py" "$src/training/train.py" --data "$work/data" --out "$out" --widths 4,6,8 $spp \

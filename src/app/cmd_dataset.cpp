@@ -17,7 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <set>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -57,8 +57,6 @@ void Append(NpyArray& array, const Tensor& t) {
 void WriteDataset(RunConfig base, const DatasetOptions& o) {
     // Before anything large is allocated (the same model as `fovrt run`; every listed variant counted).
     EnforceRunBudget(base, "dataset");
-    const std::filesystem::path dir(o.out);
-    std::filesystem::create_directories(dir);
     nlohmann::json manifest;
     manifest["channels"] = {"illum_r", "illum_g", "illum_b", "normal_view_x", "normal_view_y",
                             "depth_d_over_d_plus_1", "roughness", "log2_spp_over_4"};
@@ -79,13 +77,24 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
         if (!s.empty()) scenes.push_back({s, true});  // --eval "": no held-out scene
     std::vector<std::string> modes = {base.foveation.model};
     if (o.uniform && base.foveation.model != "uniform") modes.push_back("uniform");
+    // Files are named by the scene's own name (a scene given as a path has one too), so two scenes
+    // of one name would overwrite each other's sequences: refused before anything is written.
+    std::map<std::string, std::string> sceneOfName;
+    for (const auto& [scene, held] : scenes) {
+        const std::string name = LoadScene(ResolveSceneName(scene)).name;
+        if (const auto [first, fresh] = sceneOfName.emplace(name, scene); !fresh)
+            Fail("scene '{}' is named '{}' like scene '{}' earlier in the list; its sequences would overwrite that "
+                 "one's",
+                 scene, name, first->second);
+    }
+    const std::filesystem::path dir(o.out);
+    std::filesystem::create_directories(dir);
     size_t heldScenes = 0;
     for (const auto& s : scenes) heldScenes += s.second ? 1 : 0;
     const int extraPerTrainScene = int(modes.size()) * (o.noiseRealisations - 1);
     Progress progress("dataset", (int(scenes.size() * modes.size()) +
                                   int(scenes.size() - heldScenes) * extraPerTrainScene) * base.run.frames);
     const auto start = std::chrono::steady_clock::now();
-    std::set<std::string> sceneNames;
     for (const auto& [scene, held] : scenes)
         for (size_t m = 0; m < modes.size(); ++m) {
             RunConfig config = base;
@@ -97,13 +106,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
             }
             FramePipeline pipeline(config);
             pipeline.CheckGazeCovers(uint32_t(config.run.firstFrame), config.run.frames);
-            // Files are named by the scene's own name (a scene given as a path has one too), so two
-            // scenes of one name would overwrite each other's sequences.
             const std::string sceneName = pipeline.GetScene().name;
-            if (m == 0 && !sceneNames.insert(sceneName).second)
-                Fail("scene '{}' is named '{}' like an earlier scene of the list; its sequences would overwrite "
-                     "that one's",
-                     scene, sceneName);
             ReferenceCache cache(config.reference.cacheDir);
             const uint64_t fingerprint = SceneFingerprint(pipeline.GetScene());
             const int w = config.camera.width, h = config.camera.height, T = config.run.frames;
