@@ -18,7 +18,7 @@ constexpr ParamRange kSppMasked = Closed(kMinSpp, kMaxSpp);
 // radius_deg bounds an eccentricity, the angle between two rays, which lies in [0°, 180°]:
 // a radius of 180° or more would make every direction foveal (the uniform model's job), and
 // every radius below it is a disc, so [0, 180).
-constexpr std::array<SettingRow<FoveationParams>, 17> kFoveationRows{{
+constexpr std::array<SettingRow<FoveationParams>, 18> kFoveationRows{{
     {{.key = "foveation.model",
       .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
       .names = FoveationModelNames},
@@ -63,6 +63,10 @@ constexpr std::array<SettingRow<FoveationParams>, 17> kFoveationRows{{
     {{.key = "foveation.adapt_luminance", .range = Closed(0.01, 10000),
       .doc = "perceptual: the luminance the eye is adapted to, cd/m² (the CSF's background)"},
      &F::adaptLuminance},
+    {{.key = "foveation.content_masking",
+      .doc = "perceptual: fewer samples where the previous frame's texture masks noise (the metric's contrast "
+             "masking of the primary-hit albedo's local contrast at the noise frequency)"},
+     &F::contentMasking},
     {{.key = "foveation.uniform_spp", .range = kSppMasked,
       .doc = "uniform: spp everywhere (below 1: traced on that fraction of frames)", .slider = kSppMasked},
      &F::uniformSpp},
@@ -82,6 +86,9 @@ static_assert(RowsWellFormed(kFoveationRows), "a [foveation] row is malformed (s
 std::span<const SettingRow<FoveationParams>> FoveationParamTable() { return kFoveationRows; }
 
 std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& p) {
+    if (p.contentMasking && p.model != "perceptual")
+        return ParamProblem{"foveation.content_masking",
+                            fmt::format("true is read by the perceptual model only (foveation.model = \"{}\")", p.model)};
     if (!(p.peripheralDeg > p.fovealDeg))
         return ParamProblem{"foveation.peripheral_deg",
                             fmt::format("{} must be > foveation.foveal_deg = {}", p.peripheralDeg, p.fovealDeg)};

@@ -38,8 +38,9 @@ public:
     static constexpr int kNodes = 97;
     static constexpr float kMaxDeg = 180.0f;
 
-    RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance) {
-        const double foveal = sensitivity(rhoCpd, luminance, 0.0);
+    RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance)
+        : foveal_(sensitivity(rhoCpd, luminance, 0.0)) {
+        const double foveal = foveal_;
         float least = 1.0f;
         for (int i = 0; i < kNodes; ++i) {
             const double root = std::sqrt(double(kMaxDeg)) * i / (kNodes - 1);
@@ -54,9 +55,25 @@ public:
         const float f = u - float(i);
         return table_[size_t(i)] + f * (table_[size_t(i) + 1] - table_[size_t(i)]);
     }
+    double Foveal() const { return foveal_; }  // S(0), absolute
 
 private:
+    double foveal_;
     std::array<float, kNodes> table_{};
+};
+
+// The content term of the perceptual model: the content's local band contrast C per pixel and
+// the metric's masking constants with S(0) folded in, so that the masking signal at eccentricity
+// e is kS0 · S(e)/S(0) · C.
+struct ContentMasking {
+    Plane<float> contrast;
+    float kS0 = 0.0f;
+    float q = 1.0f;
+    // 1 / √(1 + (k·S·C)^q): the factor by which masking lowers the optimal density.
+    float Factor(int x, int y, float relativeSensitivity) const {
+        const float signal = kS0 * relativeSensitivity * contrast(x, y);
+        return 1.0f / std::sqrt(1.0f + std::pow(signal, q));
+    }
 };
 
 // Per-call gaze data shared by all pixels of one map.
@@ -65,6 +82,7 @@ struct GazeContext {
     bool inFront;    // gaze points into the image half-space (always, for real gaze)
     vec2 gazePixel;  // continuous pixel of the gaze ray (valid when inFront)
     const RelativeSensitivity* sensitivity = nullptr;  // the perceptual model's, else none
+    const ContentMasking* masking = nullptr;           // its content term, else none (flat content)
 };
 
 // A model's continuous spp at one pixel; `e` is the pixel's eccentricity (EccentricityDegrees).
@@ -101,8 +119,10 @@ float UniformDensity(const FoveationParams& p, const EyeCamera&, const vec2&, fl
     return p.uniformSpp;
 }
 
-float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2&, float e, const GazeContext& g) {
-    return std::max(p.sppMin, float(p.sppMax) * g.sensitivity->At(e));
+float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2& pixel, float e, const GazeContext& g) {
+    const float relative = g.sensitivity->At(e);
+    const float masked = g.masking ? g.masking->Factor(int(pixel.x), int(pixel.y), relative) : 1.0f;
+    return std::max(p.sppMin, float(p.sppMax) * relative * masked);
 }
 
 // The models by name: the one list of foveation.model's values. `leastKey`, `least`: the key and
@@ -137,14 +157,15 @@ uint16_t MaskedSpp(float density, int x, int y, uint32_t frameIndex) {
 // and clamps at 1 and above, and masks below 1.
 class DensityModel final : public SppModel {
 public:
-    DensityModel(const ModelRow& row, const FoveationParams& p, ContrastSensitivity sensitivity)
-        : row_(row), p_(p), sensitivity_(std::move(sensitivity)) {}
+    DensityModel(const ModelRow& row, const FoveationParams& p, ContrastSensitivity sensitivity,
+                 const ContrastMasking& masking)
+        : row_(row), p_(p), sensitivity_(std::move(sensitivity)), masking_(masking) {}
     std::string Name() const override { return row_.name; }
 
-    void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
-                  Plane<uint16_t>& spp) const override {
+    void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
+                  const Plane<float>* content) const override {
         Plane<float> density;
-        GenerateDensity(camera, gazeEye, frameIndex, density);
+        GenerateDensity(camera, gazeEye, frameIndex, density, content);
         spp.Resize(density.width(), density.height());
         for (int y = 0; y < spp.height(); ++y)
             for (int x = 0; x < spp.width(); ++x) {
@@ -153,8 +174,8 @@ public:
                                      : uint16_t(std::clamp(std::lround(d), 1L, long(kMaxSpp)));
             }
     }
-    void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t,
-                         Plane<float>& density) const override {
+    void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t, Plane<float>& density,
+                         const Plane<float>* content) const override {
         const int w = camera.width(), h = camera.height();
         density.Resize(w, h);
         GazeContext g;
@@ -165,6 +186,17 @@ public:
         if (row_.readsSensitivity) {
             const double rho = double(p_.noiseFrequency) * 0.5 * double(camera.PixelsPerDegree());
             g.sensitivity = &relative.emplace(sensitivity_, rho, double(p_.adaptLuminance));
+        }
+        std::optional<ContentMasking> masking;
+        if (p_.contentMasking && content) {
+            if (content->width() != w || content->height() != h)
+                Fail("foveation.content_masking: the content is {}x{}, the eye's image {}x{}", content->width(),
+                     content->height(), w, h);
+            // The band at the noise's frequency: noise_frequency of Nyquist, in cycles per pixel.
+            masking.emplace(ContentMasking{LocalBandContrast(*content, 0.5 * double(p_.noiseFrequency)),
+                                           float(masking_.k * masking_.sensitivityGain * relative->Foveal()),
+                                           float(masking_.q)});
+            g.masking = &*masking;
         }
         // View rays are separable in tangent space: (tx[x], ty[y], -1), normalised per pixel.
         std::vector<float> tx(static_cast<size_t>(w)), ty(static_cast<size_t>(h));
@@ -192,6 +224,7 @@ private:
     ModelRow row_;
     FoveationParams p_;
     ContrastSensitivity sensitivity_;
+    ContrastMasking masking_;
 };
 
 // Fixed ray budget: scale the inner model's continuous map by s so that
@@ -209,9 +242,9 @@ public:
         : inner_(std::move(inner)), budget_(budget), floor_(floor) {}
     std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
 
-    void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
-                         Plane<float>& density) const override {
-        inner_->GenerateDensity(camera, gazeEye, frameIndex, density);
+    void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<float>& density,
+                         const Plane<float>* content) const override {
+        inner_->GenerateDensity(camera, gazeEye, frameIndex, density, content);
         const double n = double(density.size()), floor = double(floor_);
         const double target = std::clamp(double(budget_), n * floor, n * kMaxSpp);
         float dMin = float(kMaxSpp);
@@ -249,10 +282,10 @@ public:
             density[i] = float(std::clamp(s * double(density[i]), floor, double(kMaxSpp)));
     }
 
-    void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
-                  Plane<uint16_t>& spp) const override {
+    void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
+                  const Plane<float>* content) const override {
         Plane<float> density;
-        GenerateDensity(camera, gazeEye, frameIndex, density);
+        GenerateDensity(camera, gazeEye, frameIndex, density, content);
         spp.Resize(density.width(), density.height());
         double carry = double(HashPcg(frameIndex ^ 0x5bd1e995u)) / 4294967296.0 - 0.5;
         for (int y = 0; y < spp.height(); ++y) {
@@ -294,7 +327,8 @@ std::optional<std::string> ZeroSppKey(const FoveationParams& p) {
     return std::nullopt;
 }
 
-std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const ContrastSensitivity& sensitivity) {
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const ContrastSensitivity& sensitivity,
+                                         const ContrastMasking& masking) {
     ValidateFoveationParams(p);
     std::unique_ptr<SppModel> model;
     for (const ModelRow& row : kModels) {
@@ -302,7 +336,10 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
         if (row.readsSensitivity && !sensitivity)
             Fail("foveation.model = \"{}\" reads the eye's contrast sensitivity, and none was given "
                  "(the frame pipeline gives the metric's)", row.name);
-        model = std::make_unique<DensityModel>(row, p, sensitivity);
+        if (p.contentMasking && !(masking.k > 0.0))
+            Fail("foveation.content_masking reads the eye's contrast masking, and none was given "
+                 "(the frame pipeline gives the metric's)");
+        model = std::make_unique<DensityModel>(row, p, sensitivity, masking);
     }
     if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor);
     return model;

@@ -26,14 +26,17 @@ public:
     // density is below 1 gets 1 on the frames its sample mask selects and 0 on the others
     // (foveation/sample_mask.h); at 1 and above it is never 0.
     // `gazeEye` is the gaze direction in this eye's space (unit, -Z forward).
-    virtual void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
-                          Plane<uint16_t>& spp) const = 0;
+    // `content`: this eye's content luminance, any scale, at the camera's resolution (the frame
+    // pipeline gives the previous frame's primary-hit albedo); null: none, every pixel flat. Only
+    // the perceptual model with foveation.content_masking reads it.
+    virtual void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
+                          const Plane<float>* content = nullptr) const = 0;
     // The model's continuous spp before rounding (values in [kMinSpp, kMaxSpp]); the ray-budget wrapper
     // scales it. Default: Generate() converted to float.
     virtual void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
-                                 Plane<float>& density) const {
+                                 Plane<float>& density, const Plane<float>* content = nullptr) const {
         Plane<uint16_t> spp;
-        Generate(camera, gazeEye, frameIndex, spp);
+        Generate(camera, gazeEye, frameIndex, spp, content);
         density.Resize(spp.width(), spp.height());
         for (size_t i = 0; i < spp.size(); ++i) density[i] = float(spp[i]);
     }
@@ -48,6 +51,22 @@ float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3
 // reads. foveation/ may not include metrics/ (the same floor), so the frame pipeline passes the
 // metric's own (src/pipeline/eye_sensitivity.h).
 using ContrastSensitivity = std::function<double(double rhoCpd, double luminance, double eccentricityDeg)>;
+
+// The eye's contrast masking, as the metric models it: noise of contrast c on content of local
+// band contrast C is seen as (S·c)^p / (1 + (k·S·C)^q), S = sensitivityGain × the
+// ContrastSensitivity above. The perceptual model's content term reads it; the frame pipeline
+// passes the metric's constants (src/pipeline/eye_sensitivity.h). k = 0: no masking.
+struct ContrastMasking {
+    double sensitivityGain = 1.0;
+    double k = 0.0;
+    double q = 1.0;
+};
+
+// The local contrast of `luminance` in the pyramid band at `cyclesPerPixel` (a Laplacian band of
+// à-trous binomial blurs, Weber contrast against the next coarser blur, its square averaged over
+// the band's next scale, then the root): what masks noise of that frequency. Same size as the
+// input; a pixel whose coarser blur is not positive has 0 (content_contrast.cpp).
+Plane<float> LocalBandContrast(const Plane<float>& luminance, double cyclesPerPixel);
 
 // Parameters of every model, as loaded from the [foveation] config table (defaults = thesis).
 struct FoveationParams {
@@ -80,6 +99,9 @@ struct FoveationParams {
     // Σ S²/n (docs/foveation.md).
     float noiseFrequency = 0.5f;
     float adaptLuminance = 50.0f;
+    // perceptual: scale each pixel's S by the masking its content gives noise, n ∝ S / √(1 + (k·S·C)^q)
+    // with C the content's LocalBandContrast at the noise frequency (docs/foveation.md).
+    bool contentMasking = false;
 
     // uniform: the same spp everywhere.
     float uniformSpp = 1.0f;
@@ -114,8 +136,9 @@ inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSp
 
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
 // out-of-range parameters throw fovrt::Error naming the foveation.* key; so does the perceptual
-// model without a `sensitivity`.
-std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {});
+// model without a `sensitivity`, and content_masking without a `masking` (k = 0).
+std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {},
+                                         const ContrastMasking& masking = {});
 // Wraps a model so each map's total equals `rayBudget` (within a few samples, and in expectation
 // over frames where pixels fall below 1; see models.cpp), no pixel's density below `sppFloor`.
 std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget,

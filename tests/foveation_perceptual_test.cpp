@@ -124,3 +124,120 @@ TEST_CASE("Perceptual without a contrast sensitivity names the key", "[foveation
     bad.noiseFrequency = 0.0f;
     CHECK_THROWS_WITH(CreateSppModel(bad, Hyperbolic), Catch::Contains("foveation.noise_frequency"));
 }
+
+// ---- The content term: fewer samples where the content's texture masks noise ----
+
+namespace {
+
+// Luminance L0 (1 + m cos(2π x / period)): a vertical grating of Weber contrast m.
+Plane<float> Grating(int w, int h, double period, double m, float l0 = 1.0f) {
+    Plane<float> l(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) l(x, y) = l0 * float(1.0 + m * std::cos(2.0 * M_PI * x / period));
+    return l;
+}
+
+// Made-up masking constants: k·gain·S(0) = 100 with Hyperbolic's S(0) = 1, q = 2.
+constexpr ContrastMasking kMasking{1000.0, 0.1, 2.0};
+
+}  // namespace
+
+TEST_CASE("LocalBandContrast: zero on flat content, scale-free, a grating's band energy in closed form",
+          "[foveation]") {
+    const Plane<float> flatContrast = LocalBandContrast(Plane<float>(48, 32, 3.0f), 0.25);
+    for (float c : flatContrast.vector()) REQUIRE(c == 0.0f);
+
+    // The band at 1/4 cycle per pixel is level 1: fine = B1 L, coarse = B2 fine, the binomial
+    // [1 4 6 4 1]/16 with taps s apart passing cos⁴(π f s) of frequency f. A grating of period 6
+    // and contrast m has band contrast m·cos⁴(π/6)·(1 − cos⁴(π/3)) cos(…) to first order in m; its
+    // square, averaged over a period, is half that amplitude squared.
+    const double m = 0.1, gain = std::pow(std::cos(M_PI / 6), 4) * (1.0 - std::pow(std::cos(M_PI / 3), 4));
+    const Plane<float> c = LocalBandContrast(Grating(96, 24, 6.0, m), 0.25);
+    double energy = 0.0;
+    int n = 0;
+    for (int x = 24; x < 72; ++x, ++n) energy += double(c(x, 12)) * c(x, 12);  // 8 periods, away from edges
+    CHECK(energy / n == Approx(m * m * gain * gain / 2.0).epsilon(0.01));
+    // Weber contrast: the content's scale does not matter.
+    const Plane<float> brighter = LocalBandContrast(Grating(96, 24, 6.0, m, 7.0f), 0.25);
+    for (size_t i = 0; i < c.size(); ++i) REQUIRE(brighter[i] == Approx(c[i]).epsilon(1e-5));
+}
+
+TEST_CASE("Perceptual content term: n scaled by 1/sqrt(1 + (k S C)^q), flat content unchanged", "[foveation]") {
+    const int w = 96, h = 64;
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p = Perceptual();
+    Plane<float> plain;
+    CreateSppModel(p, Hyperbolic)->GenerateDensity(cam, vec3(0, 0, -1), 0, plain);
+    p.contentMasking = true;
+    auto model = CreateSppModel(p, Hyperbolic, kMasking);
+
+    // Flat content (and no content, as after a cut) masks nothing: the map without the term.
+    Plane<float> density;
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, nullptr);
+    for (size_t i = 0; i < density.size(); ++i) REQUIRE(density[i] == plain[i]);
+    const Plane<float> flat(w, h, 0.4f);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &flat);
+    for (size_t i = 0; i < density.size(); ++i) REQUIRE(density[i] == plain[i]);
+
+    // A grating on the right half: there the density is the flat map's times the masking factor,
+    // with S(e)/S(0) read from the flat map (16 S/S(0) wherever above spp_min).
+    Plane<float> content = Grating(w, h, 6.0, 0.2);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w / 2; ++x) content(x, y) = 1.0f;
+    const Plane<float> contrast = LocalBandContrast(content, 0.25);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &content);
+    int masked = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double relative = plain(x, y) / 16.0;
+            if (plain(x, y) <= kMinSpp) continue;
+            const double factor = 1.0 / std::sqrt(1.0 + std::pow(100.0 * relative * contrast(x, y), 2.0));
+            REQUIRE(density(x, y) == Approx(std::max(16.0 * relative * factor, double(kMinSpp))).epsilon(1e-4));
+            if (x >= w / 2 + 8) {
+                REQUIRE(density(x, y) < 0.95f * plain(x, y));  // the texture hides noise: fewer samples
+                ++masked;
+            }
+        }
+    CHECK(masked > 500);
+}
+
+TEST_CASE("Perceptual content term under a ray budget: the budget met, the rays moved off the texture",
+          "[foveation]") {
+    const int w = 96, h = 64;
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p = Perceptual();
+    p.contentMasking = true;
+    p.sppFloor = kMinSpp;
+    p.rayBudget = int64_t(w) * h;  // 1 spp
+    auto model = CreateSppModel(p, Hyperbolic, kMasking);
+    Plane<float> content = Grating(w, h, 6.0, 0.2);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w / 2; ++x) content(x, y) = 1.0f;
+    Plane<float> flat, textured;
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, flat, nullptr);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, textured, &content);
+    double sumFlat = 0.0, sumTextured = 0.0, left = 0.0, right = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            sumFlat += flat(x, y), sumTextured += textured(x, y);
+            (x < w / 2 ? left : right) += textured(x, y);
+        }
+    CHECK(sumFlat == Approx(double(p.rayBudget)).margin(0.1));
+    CHECK(sumTextured == Approx(double(p.rayBudget)).margin(0.1));
+    CHECK(right < 0.8 * left);  // mirror-symmetric eccentricities: only the content differs
+}
+
+TEST_CASE("Perceptual content term: refusals name the key", "[foveation]") {
+    FoveationParams p = Perceptual();
+    p.contentMasking = true;
+    CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic), Catch::Contains("foveation.content_masking"));
+    FoveationParams linear = p;
+    linear.model = "linear";
+    CHECK_THROWS_WITH(CreateSppModel(linear), Catch::Contains("foveation.content_masking") &&
+                                                  Catch::Contains("perceptual model only"));
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), 1.0f), 32, 32);
+    const Plane<float> wrong(16, 32, 1.0f);
+    Plane<float> density;
+    CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic, kMasking)->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &wrong),
+                      Catch::Contains("foveation.content_masking") && Catch::Contains("16x32"));
+}

@@ -1,11 +1,14 @@
 // The perceptual spp model with the metric's own contrast sensitivity (FovVideoVDP's CSF with its
 // cortical magnification): the map falls monotonically with eccentricity on a headset-like eye,
-// follows the CSF's ratio S(e) / S(0), and under a ray budget meets it.
+// follows the CSF's ratio S(e) / S(0), and under a ray budget meets it; its content term reads the
+// metric's masking and, in the frame pipeline, the previous frame's albedo.
 #include <cmath>
 
+#include "config/config.h"
 #include "metrics/vdp_csf.h"
 #include "metrics/vdp_params.h"
 #include "pipeline/eye_sensitivity.h"
+#include "pipeline/frame_pipeline.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -55,4 +58,55 @@ TEST_CASE("Perceptual with the metric's CSF: falls monotonically with eccentrici
         for (size_t i = 0; i < spp.size(); ++i) total += spp[i];
     }
     CHECK(std::abs(double(total) - 16.0 * double(p.rayBudget)) <= 0.01 * 16.0 * double(p.rayBudget));
+}
+
+TEST_CASE("The content term reads the metric's masking constants", "[foveation]") {
+    const ContrastMasking m = MetricContrastMasking();
+    const VdpParams params;
+    CHECK(m.sensitivityGain == Approx(std::pow(10.0, params.sensitivityCorrection / 20.0)));
+    CHECK(m.k == Approx(std::pow(10.0, params.maskC)));
+    CHECK(m.q == params.maskQSustained);
+}
+
+TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo moves rays off the texture",
+          "[foveation]") {
+    // The room's checker floor under the perceptual map at a budget of 1 spp: frame 0 has no
+    // previous frame (flat, the map without the term); frame 1 reads frame 0's albedo.
+    RunConfig config = DefaultConfig();
+    config.scene.name = "room";
+    config.camera.width = 96;
+    config.camera.height = 54;
+    config.denoise.device = "cpu";
+    config.foveation.model = "perceptual";
+    config.foveation.sppMin = kMinSpp;
+    config.foveation.sppFloor = kMinSpp;
+    config.foveation.rayBudget = 96 * 54;
+    FramePipeline plain(config);
+    config.foveation.contentMasking = true;
+    FramePipeline masked(config);
+    StereoFrame a, b;
+    plain.Render(plain.RequestAt(0), a);
+    masked.Render(masked.RequestAt(0), b);
+    for (int eye = 0; eye < 2; ++eye) CHECK(a.eyes[size_t(eye)].sppMap.vector() == b.eyes[size_t(eye)].sppMap.vector());
+
+    Plane<float> albedo(96, 54);
+    for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = Luminance(b.eyes[0].inputs.albedo[i]);
+    const Plane<float> contrast = LocalBandContrast(albedo, 0.25);
+    plain.Render(plain.RequestAt(1), a);
+    masked.Render(masked.RequestAt(1), b);
+    // Over 1 frame the map's total is the budget's within the dither; the textured pixels (band
+    // contrast above 5 %) get fewer rays than without the term, the rest more.
+    uint64_t texturedPlain = 0, texturedMasked = 0, otherPlain = 0, otherMasked = 0;
+    int textured = 0;
+    for (size_t i = 0; i < contrast.size(); ++i) {
+        const bool busy = contrast[i] > 0.05f;
+        textured += busy;
+        (busy ? texturedPlain : otherPlain) += a.eyes[0].sppMap[i];
+        (busy ? texturedMasked : otherMasked) += b.eyes[0].sppMap[i];
+    }
+    INFO("textured pixels " << textured << ": " << texturedPlain << " -> " << texturedMasked << " rays; others "
+                            << otherPlain << " -> " << otherMasked);
+    REQUIRE(textured > 200);
+    CHECK(texturedMasked < 0.8 * double(texturedPlain));
+    CHECK(otherMasked > otherPlain);
 }

@@ -10,5 +10,8 @@
 namespace fovrt {
 
 ContrastSensitivity MetricContrastSensitivity();
+// The metric's contrast masking (its sensitivity correction, mask_c and sustained mask_q), which
+// the perceptual model's content term reads (foveation.content_masking).
+ContrastMasking MetricContrastMasking();
 
 }  // namespace fovrt

@@ -27,6 +27,14 @@ void MakeUniform(Plane<uint16_t>& sppMap) {
     for (size_t p = 0; p < sppMap.size(); ++p) sppMap[p] = spp;
 }
 
+// The content the perceptual model's masking term reads: the primary hit's albedo (noise-free,
+// traced for every pixel, sampled or not), as luminance. Under smooth light the image's local
+// contrast is its texture's.
+void AlbedoLuminance(const FrameInputs& in, Plane<float>& out) {
+    out.ResizeForOverwrite(in.width(), in.height());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = Luminance(in.albedo[i]);
+}
+
 
 }  // namespace
 
@@ -63,7 +71,7 @@ FramePipeline::FramePipeline(const RunConfig& config)
 }
 
 void FramePipeline::MakeGazeAndFoveation() {
-    sppModel_ = CreateSppModel(config_.foveation, MetricContrastSensitivity());
+    sppModel_ = CreateSppModel(config_.foveation, MetricContrastSensitivity(), MetricContrastMasking());
     tracked_.reset();
     gaze_ = CreateGazeSource(config_.gaze, ResolveFov(config_, scene_));
     tracked_ = std::make_unique<TrackedGaze>(*gaze_, config_.gaze.tracker);
@@ -105,7 +113,7 @@ void FramePipeline::CheckGazeCovers(uint32_t firstFrame, int frames) const {
 }
 
 void FramePipeline::SetFoveation(const FoveationParams& params) {
-    sppModel_ = CreateSppModel(params, MetricContrastSensitivity());
+    sppModel_ = CreateSppModel(params, MetricContrastSensitivity(), MetricContrastMasking());
     config_.foveation = params;
 }
 
@@ -155,7 +163,12 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.gazePixel = GazePixel(camera, out.gaze.direction);
         eyeFrame.trueGazeEye = GazeInEye(camera, out.trueGaze.direction);
         eyeFrame.trueGazePixel = GazePixel(camera, out.trueGaze.direction);
-        sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap);
+        // After a cut the previous frame's content does not belong to this view: flat.
+        const Plane<float>& content = previousContent_[size_t(eye)];
+        sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap,
+                            !cut && content.width() == camera.width() && content.height() == camera.height()
+                                ? &content
+                                : nullptr);
         eyeFrame.uniformForBlink = !out.gaze.valid && config_.gaze.blink == "uniform";
         if (eyeFrame.uniformForBlink) MakeUniform(eyeFrame.sppMap);
         eyeFrame.sppMs = MsSince(start);
@@ -169,6 +182,7 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.inputs.timeSeconds = out.timeSeconds;
         eyeFrame.renderMs = MsSince(start);
         previousCameras_[size_t(eye)] = camera;
+        if (config_.foveation.contentMasking) AlbedoLuminance(eyeFrame.inputs, previousContent_[size_t(eye)]);
     }
     hasPrevious_ = true;
     previousFrame_ = frame;

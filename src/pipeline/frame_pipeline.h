@@ -103,6 +103,9 @@ private:
     bool hasPrevious_ = false;
     uint32_t previousFrame_ = 0;
     std::array<EyeCamera, 2> previousCameras_;
+    // The previous frame's primary-hit albedo luminance per eye: the content the perceptual model's
+    // content term reads (foveation.content_masking); empty when off.
+    std::array<Plane<float>, 2> previousContent_;
 };
 
 // The file stem of a frame's per-eye outputs: "f00012_left" (run, preview, replays).

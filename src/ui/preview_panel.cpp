@@ -53,6 +53,7 @@ bool SliderOf(const char* label, const char* key, float& value, const char* form
 bool FoveationControls(FoveationParams& f) {
     std::vector<std::string> models(FoveationModelNames().begin(), FoveationModelNames().end());
     bool changed = Combo("model", models, f.model);
+    if (f.model != "perceptual") f.contentMasking = false;  // read by the perceptual model only
     if (f.model == "disc") {
         changed |= SliderOf("spp inside", "foveation.spp_inside", f.sppInside);
         changed |= SliderOf("spp outside", "foveation.spp_outside", f.sppOutside, "%.3g");
@@ -67,6 +68,7 @@ bool FoveationControls(FoveationParams& f) {
             changed |= SliderOf("MAR slope", "foveation.mar_slope", f.marSlope, "%.4f");
         } else {
             changed |= SliderOf("noise x Nyquist", "foveation.noise_frequency", f.noiseFrequency, "%.2f");
+            changed |= ImGui::Checkbox("texture masks noise", &f.contentMasking);
         }
     } else {
         changed |= SliderOf("spp", "foveation.uniform_spp", f.uniformSpp, "%.3g");
