@@ -6,7 +6,8 @@
 # sample-count channel). Fine-tuning from the export (--init) with the committed weights' options
 # runs on a dataset with a second noise realisation, every sequence a camera stop that takes it,
 # together with a dataset of a procedural room (training/procedural_scenes.py: the same seed writes
-# the same files; `fovrt dataset` takes the scene by path and refuses two scenes of one name).
+# the same files; `fovrt dataset` takes the scene by path, refuses two scenes of one name before it
+# writes anything, and with --gaze-per-scene gives each scene its own Lissajous path).
 # Exit 77 (skipped) without Debian's python3-torch.
 # Usage: rae_training_check.sh FOVRT RAE_CHECK SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -56,6 +57,32 @@ fi
 grep -q "named 'proc-0001' like scene" "$work/twice.err" || { cat "$work/twice.err"; exit 1; }
 # ... before anything is rendered or written: the folder is not even made.
 [ ! -e "$work/twice" ] || { echo "FAIL: the refused dataset left $work/twice behind"; exit 1; }
+# --gaze-per-scene: each scene its own Lissajous path, drawn from its name: the same for both
+# eyes and on a second run, different between scenes, within the documented ranges of the config's.
+for run in 1 2; do
+  "$fovrt" dataset --out "$work/gaze$run" --scenes "$room,box" --eval "" --no-uniform --gaze-per-scene \
+    --set camera.width=32 --set camera.height=32 --set run.frames=2 --set reference.spp=2 \
+    --set reference.cache_dir="\"$work/cache\"" >/dev/null
+done
+"$py" - "$work/gaze1/manifest.json" "$work/gaze2/manifest.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p))["sequences"] for p in sys.argv[1:3])
+gaze = {s["name"]: s["gaze"] for s in a}
+assert gaze == {s["name"]: s["gaze"] for s in b}, "the per-scene gaze differs between runs"
+room, box = gaze["proc-0001_disc_left"], gaze["box_disc_left"]
+assert room == gaze["proc-0001_disc_right"] and box == gaze["box_disc_right"], "the eyes' gaze differs"
+assert room != box, "two scenes drew one path"
+for g in (room, box):  # the config's default path: amplitude (640, 360), frequency (0.4, 0.5) Hz
+    for i, (amp, freq) in enumerate(zip((640, 360), (0.4, 0.5))):
+        assert 0.5 * amp <= g["amplitude"][i] < amp and 0.6 * freq <= g["frequency_hz"][i] < 1.4 * freq, g
+        assert 0 <= g["phase_deg"][i] < 360, g
+print("gaze per scene:", room, box)
+PY
+if "$fovrt" dataset --out "$work/static" --scenes box --eval "" --gaze-per-scene --set 'gaze.source="static"' \
+    2>"$work/static.err"; then
+  echo "FAIL: --gaze-per-scene accepted a static gaze"; exit 1
+fi
+grep -q 'gaze.source = "static"' "$work/static.err" || { cat "$work/static.err"; exit 1; }
 for spp in "" "--sample-count"; do
   out="$work/run$spp"
   "$py" "$src/training/train.py" --data "$work/data" --out "$out" --widths 4,6,8 $spp \

@@ -30,6 +30,7 @@
 #include "config/config_cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/rng.h"
 #include "denoise/reference/rae_features.h"
 #include "io/npy.h"
 #include "pipeline/denoiser_set.h"
@@ -45,7 +46,24 @@ struct DatasetOptions {
     std::vector<std::string> eval = {"veach-ajar", "suzanne"};
     bool uniform = true;  // also a uniform 1-spp sequence per scene and eye
     int noiseRealisations = 1;  // noisy inputs per training frame (1 + extra seeds)
+    bool gazePerScene = false;  // each scene its own Lissajous path (GazeForScene)
 };
+
+// --gaze-per-scene: the config's Lissajous path varied per scene, drawn from the scene's name (the
+// same scene always gets the same path): phases uniform in [0°, 360°), frequencies scaled by
+// [0.6, 1.4) and amplitudes by [0.5, 1), so that where the dense samples go over a room differs
+// from room to room, as it does between viewers.
+GazeParams GazeForScene(GazeParams gaze, const std::string& sceneName) {
+    uint32_t h = 2166136261u;  // FNV-1a of the name
+    for (const char c : sceneName) h = (h ^ uint8_t(c)) * 16777619u;
+    auto uniform = [&](uint32_t i) { return float(double(HashCombine(h, i)) / 4294967296.0); };
+    for (int a = 0; a < 2; ++a) {
+        gaze.phaseDeg[a] = 360.0f * uniform(uint32_t(a));
+        gaze.frequencyHz[a] *= 0.6f + 0.8f * uniform(uint32_t(2 + a));
+        gaze.amplitude[a] *= 0.5f + 0.5f * uniform(uint32_t(4 + a));
+    }
+    return gaze;
+}
 
 // Seed of noise realisation r (>= 1) of spp mode m: apart from every mode's base seed.
 uint32_t RealisationSeed(uint32_t base, size_t mode, int r) { return base + uint32_t(mode) * 7919u + uint32_t(r) * 104729u; }
@@ -57,6 +75,8 @@ void Append(NpyArray& array, const Tensor& t) {
 void WriteDataset(RunConfig base, const DatasetOptions& o) {
     // Before anything large is allocated (the same model as `fovrt run`; every listed variant counted).
     EnforceRunBudget(base, "dataset");
+    if (o.gazePerScene && base.gaze.source != "lissajous")
+        Fail("--gaze-per-scene varies a Lissajous path, and gaze.source = \"{}\"", base.gaze.source);
     nlohmann::json manifest;
     manifest["channels"] = {"illum_r", "illum_g", "illum_b", "normal_view_x", "normal_view_y",
                             "depth_d_over_d_plus_1", "roughness", "log2_spp_over_4"};
@@ -80,8 +100,9 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
     // Files are named by the scene's own name (a scene given as a path has one too), so two scenes
     // of one name would overwrite each other's sequences: refused before anything is written.
     std::map<std::string, std::string> sceneOfName;
+    std::map<std::string, std::string> nameOfScene;
     for (const auto& [scene, held] : scenes) {
-        const std::string name = LoadScene(ResolveSceneName(scene)).name;
+        const std::string name = nameOfScene[scene] = LoadScene(ResolveSceneName(scene)).name;
         if (const auto [first, fresh] = sceneOfName.emplace(name, scene); !fresh)
             Fail("scene '{}' is named '{}' like scene '{}' earlier in the list; its sequences would overwrite that "
                  "one's",
@@ -99,6 +120,7 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
         for (size_t m = 0; m < modes.size(); ++m) {
             RunConfig config = base;
             config.scene.name = scene;
+            if (o.gazePerScene) config.gaze = GazeForScene(base.gaze, nameOfScene[scene]);
             config.run.seed = base.run.seed + uint32_t(m) * 7919u;  // different noise per mode
             if (modes[m] == "uniform") {
                 config.foveation.model = "uniform";
@@ -164,17 +186,24 @@ void WriteDataset(RunConfig base, const DatasetOptions& o) {
                     WriteNpy(dir / file, extraInputs[size_t(r - 1)][size_t(eye)]);
                     extraFiles.push_back(file);
                 }
-                manifest["sequences"].push_back({{"name", name},
-                                                  {"scene", sceneName},
-                                                  {"mode", modes[m]},
-                                                  {"eye", eye},
-                                                  {"split", held ? "eval" : "train"},
-                                                  {"frames", T},
-                                                  {"seed", config.run.seed},
-                                                  {"input", name + "_input.npy"},
-                                                  {"target", name + "_target.npy"},
-                                                  {"inputs_extra", extraFiles},
-                                                  {"seeds_extra", extraSeeds}});
+                nlohmann::json sequence = {{"name", name},
+                                           {"scene", sceneName},
+                                           {"mode", modes[m]},
+                                           {"eye", eye},
+                                           {"split", held ? "eval" : "train"},
+                                           {"frames", T},
+                                           {"seed", config.run.seed},
+                                           {"input", name + "_input.npy"},
+                                           {"target", name + "_target.npy"},
+                                           {"inputs_extra", extraFiles},
+                                           {"seeds_extra", extraSeeds}};
+                if (o.gazePerScene) {
+                    const GazeParams& g = config.gaze;
+                    sequence["gaze"] = {{"amplitude", {g.amplitude.x, g.amplitude.y}},
+                                        {"frequency_hz", {g.frequencyHz.x, g.frequencyHz.y}},
+                                        {"phase_deg", {g.phaseDeg.x, g.phaseDeg.y}}};
+                }
+                manifest["sequences"].push_back(sequence);
             }
         }
     progress.Finish();
@@ -199,6 +228,9 @@ void RegisterDatasetCommand(CLI::App& app) {
     cmd->add_option("--noise-realisations", dataset->noiseRealisations,
                     "noisy inputs per training frame (other seeds, same camera and target): camera stops")
         ->check(CLI::Range(1, 16));
+    cmd->add_flag("--gaze-per-scene", dataset->gazePerScene,
+                  "each scene its own Lissajous path, drawn from its name (phases, frequencies x 0.6-1.4, "
+                  "amplitudes x 0.5-1 of the config's); manifest key \"gaze\"");
     cmd->callback([options, dataset] { WriteDataset(ResolveConfig(*options), *dataset); });
 }
 
