@@ -62,6 +62,18 @@ private:
     std::array<float, kNodes> table_{};
 };
 
+// The perceptual model's exponents: minimising the visible noise Σ S^a M^-b n^(-a/2) (a = pβ, b = β:
+// the excitation's and the pooling's exponents, p = 2 and β = 1 for the noise energy) under
+// Σ n = B gives n ∝ S^(2a/(a+2)) · M^(-2b/(a+2)) (docs/foveation.md).
+struct PoolingExponents {
+    float sensitivity = 1.0f;  // 2a/(a+2)
+    float masking = 0.5f;      // 2b/(a+2)
+    static PoolingExponents Of(double p, double beta) {
+        const double a = p * beta;
+        return {float(2.0 * a / (a + 2.0)), float(2.0 * beta / (a + 2.0))};
+    }
+};
+
 // The content term of the perceptual model: the content's local band contrast C per pixel and
 // the metric's masking constants with S(0) folded in, so that the masking signal at eccentricity
 // e is kS0 · S(e)/S(0) · C.
@@ -69,10 +81,11 @@ struct ContentMasking {
     Plane<float> contrast;
     float kS0 = 0.0f;
     float q = 1.0f;
-    // 1 / √(1 + (k·S·C)^q): the factor by which masking lowers the optimal density.
+    float exponent = 0.5f;  // PoolingExponents::masking
+    // (1 + (k·S·C)^q)^-exponent: the factor by which masking lowers the optimal density.
     float Factor(int x, int y, float relativeSensitivity) const {
         const float signal = kS0 * relativeSensitivity * contrast(x, y);
-        return 1.0f / std::sqrt(1.0f + std::pow(signal, q));
+        return std::pow(1.0f + std::pow(signal, q), -exponent);
     }
 };
 
@@ -83,6 +96,7 @@ struct GazeContext {
     vec2 gazePixel;  // continuous pixel of the gaze ray (valid when inFront)
     const RelativeSensitivity* sensitivity = nullptr;  // the perceptual model's, else none
     const ContentMasking* masking = nullptr;           // its content term, else none (flat content)
+    float sensitivityExponent = 1.0f;                  // its PoolingExponents::sensitivity
 };
 
 // A model's continuous spp at one pixel; `e` is the pixel's eccentricity (EccentricityDegrees).
@@ -122,7 +136,8 @@ float UniformDensity(const FoveationParams& p, const EyeCamera&, const vec2&, fl
 float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2& pixel, float e, const GazeContext& g) {
     const float relative = g.sensitivity->At(e);
     const float masked = g.masking ? g.masking->Factor(int(pixel.x), int(pixel.y), relative) : 1.0f;
-    return std::max(p.sppMin, float(p.sppMax) * relative * masked);
+    const float weight = g.sensitivityExponent == 1.0f ? relative : std::pow(relative, g.sensitivityExponent);
+    return std::max(p.sppMin, float(p.sppMax) * weight * masked);
 }
 
 // The models by name: the one list of foveation.model's values. `leastKey`, `least`: the key and
@@ -187,6 +202,9 @@ public:
             const double rho = double(p_.noiseFrequency) * 0.5 * double(camera.PixelsPerDegree());
             g.sensitivity = &relative.emplace(sensitivity_, rho, double(p_.adaptLuminance));
         }
+        const PoolingExponents exponents =
+            p_.pooling == "metric" ? PoolingExponents::Of(masking_.p, masking_.beta) : PoolingExponents{};
+        g.sensitivityExponent = exponents.sensitivity;
         std::optional<ContentMasking> masking;
         if (p_.contentMasking && content) {
             if (content->width() != w || content->height() != h)
@@ -195,7 +213,7 @@ public:
             // The band at the noise's frequency: noise_frequency of Nyquist, in cycles per pixel.
             masking.emplace(ContentMasking{LocalBandContrast(*content, 0.5 * double(p_.noiseFrequency)),
                                            float(masking_.k * masking_.sensitivityGain * relative->Foveal()),
-                                           float(masking_.q)});
+                                           float(masking_.q), exponents.masking});
             g.masking = &*masking;
         }
         // View rays are separable in tangent space: (tx[x], ty[y], -1), normalised per pixel.
@@ -318,6 +336,11 @@ std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, 
 
 NameList FoveationModelNames() { return kModelNames; }
 
+NameList PerceptualPoolingNames() {
+    static constexpr std::array<const char*, 2> kNames = {"energy", "metric"};
+    return kNames;
+}
+
 std::optional<std::string> ZeroSppKey(const FoveationParams& p) {
     // Under a ray budget every pixel is scaled into [spp_floor, kMaxSpp], whatever the model's least.
     if (p.rayBudget > 0)
@@ -336,9 +359,10 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
         if (row.readsSensitivity && !sensitivity)
             Fail("foveation.model = \"{}\" reads the eye's contrast sensitivity, and none was given "
                  "(the frame pipeline gives the metric's)", row.name);
-        if (p.contentMasking && !(masking.k > 0.0))
-            Fail("foveation.content_masking reads the eye's contrast masking, and none was given "
-                 "(the frame pipeline gives the metric's)");
+        if ((p.contentMasking || p.pooling == "metric") && !(masking.k > 0.0))
+            Fail("{} reads the eye's contrast masking and pooling, and none was given (the frame pipeline gives "
+                 "the metric's)",
+                 p.contentMasking ? "foveation.content_masking" : "foveation.pooling = \"metric\"");
         model = std::make_unique<DensityModel>(row, p, sensitivity, masking);
     }
     if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor);

@@ -52,14 +52,17 @@ float EccentricityDegrees(const EyeCamera& camera, const vec2& pixel, const vec3
 // metric's own (src/pipeline/eye_sensitivity.h).
 using ContrastSensitivity = std::function<double(double rhoCpd, double luminance, double eccentricityDeg)>;
 
-// The eye's contrast masking, as the metric models it: noise of contrast c on content of local
-// band contrast C is seen as (S·c)^p / (1 + (k·S·C)^q), S = sensitivityGain × the
-// ContrastSensitivity above. The perceptual model's content term reads it; the frame pipeline
-// passes the metric's constants (src/pipeline/eye_sensitivity.h). k = 0: no masking.
+// The eye's contrast masking and pooling, as the metric models them: noise of contrast c on
+// content of local band contrast C is seen as D = (S·c)^p / (1 + (k·S·C)^q), S = sensitivityGain ×
+// the ContrastSensitivity above, and D is pooled over pixels as Σ D^β. The perceptual model's
+// content term reads the masking, its pooling = "metric" the exponents; the frame pipeline passes
+// the metric's constants (src/pipeline/eye_sensitivity.h). k = 0: none given.
 struct ContrastMasking {
     double sensitivityGain = 1.0;
     double k = 0.0;
     double q = 1.0;
+    double p = 2.0;     // the excitation's exponent
+    double beta = 1.0;  // the spatial pooling's exponent
 };
 
 // The local contrast of `luminance` in the pyramid band at `cyclesPerPixel` (a Laplacian band of
@@ -102,6 +105,9 @@ struct FoveationParams {
     // perceptual: scale each pixel's S by the masking its content gives noise, n ∝ S / √(1 + (k·S·C)^q)
     // with C the content's LocalBandContrast at the noise frequency (docs/foveation.md).
     bool contentMasking = false;
+    // perceptual: the visible noise the map minimises: "energy" Σ S²/n (n ∝ S), or "metric", the
+    // metric's own Σ (S·c)^(pβ) with c ∝ n^(-1/2) (n ∝ S^(2pβ/(pβ+2)), 1.29 with its p and β).
+    std::string pooling = "energy";
 
     // uniform: the same spp everywhere.
     float uniformSpp = 1.0f;
@@ -118,6 +124,8 @@ struct FoveationParams {
 
 // The model names (disc, linear, acuity, uniform, perceptual): the rows of the factory in models.cpp.
 NameList FoveationModelNames();
+// The perceptual model's poolings (energy, metric).
+NameList PerceptualPoolingNames();
 // [foveation]: key, member, range, meaning of every FoveationParams member (foveation_params.cpp).
 std::span<const SettingRow<FoveationParams>> FoveationParamTable();
 // The rule between keys (peripheral_deg > foveal_deg), for readers that add their own context.
@@ -136,7 +144,7 @@ inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSp
 
 // Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
 // out-of-range parameters throw fovrt::Error naming the foveation.* key; so does the perceptual
-// model without a `sensitivity`, and content_masking without a `masking` (k = 0).
+// model without a `sensitivity`, and content_masking or pooling = "metric" without a `masking` (k = 0).
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {},
                                          const ContrastMasking& masking = {});
 // Wraps a model so each map's total equals `rayBudget` (within a few samples, and in expectation

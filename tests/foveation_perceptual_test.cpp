@@ -241,3 +241,55 @@ TEST_CASE("Perceptual content term: refusals name the key", "[foveation]") {
     CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic, kMasking)->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &wrong),
                       Catch::Contains("foveation.content_masking") && Catch::Contains("16x32"));
 }
+
+TEST_CASE("Perceptual pooling = metric: n proportional to S^(2pb/(pb+2)), the masking to the power 2b/(pb+2)",
+          "[foveation]") {
+    // Made-up exponents p = 3, β = 2: a = pβ = 6, so n ∝ S^1.5 and the masking factor M^-0.5.
+    const ContrastMasking metric{1000.0, 0.1, 2.0, 3.0, 2.0};
+    const int w = 96, h = 64;
+    const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p = Perceptual();
+    p.pooling = "metric";
+    Plane<float> density;
+    CreateSppModel(p, Hyperbolic, metric)->GenerateDensity(cam, vec3(0, 0, -1), 0, density);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double s = Hyperbolic(0, 0, StraightAheadEccentricity(cam, x, y));
+            REQUIRE(density(x, y) == Approx(std::max(16.0 * std::pow(s, 1.5), double(kMinSpp))).epsilon(1e-2));
+        }
+    // The metric's own p = 2.4 and β = 1.52 give 1.29: steeper than the energy's n ∝ S.
+    const double a = 2.4 * 1.52;
+    CHECK(2.0 * a / (a + 2.0) == Approx(1.2907).epsilon(1e-3));
+
+    // With content, the factor is M^(-2β/(a+2)) = M^(-1/2) here too; p = 2, β = 2 gives M^(-2/3).
+    p.contentMasking = true;
+    const ContrastMasking steep{1000.0, 0.1, 2.0, 2.0, 2.0};
+    Plane<float> content = Grating(w, h, 6.0, 0.2);
+    const Plane<float> contrast = LocalBandContrast(content, 0.25);
+    Plane<float> flat, masked;
+    auto model = CreateSppModel(p, Hyperbolic, steep);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, flat, nullptr);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, masked, &content);
+    int checked = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            // a = 4: n ∝ S^(4/3), so S(e)/S(0) = (flat / 16)^(3/4) wherever above spp_min.
+            if (flat(x, y) <= kMinSpp) continue;
+            const double relative = std::pow(flat(x, y) / 16.0, 0.75);
+            const double m = 1.0 + std::pow(100.0 * relative * contrast(x, y), 2.0);
+            REQUIRE(masked(x, y) == Approx(std::max(flat(x, y) * std::pow(m, -2.0 / 3.0), double(kMinSpp))).epsilon(1e-3));
+            ++checked;
+        }
+    CHECK(checked > 1000);
+}
+
+TEST_CASE("Perceptual pooling = metric: refusals name the key", "[foveation]") {
+    FoveationParams p = Perceptual();
+    p.pooling = "metric";
+    CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic), Catch::Contains("foveation.pooling"));
+    p.model = "acuity";
+    CHECK_THROWS_WITH(CreateSppModel(p), Catch::Contains("foveation.pooling") && Catch::Contains("perceptual model only"));
+    p.model = "perceptual";
+    p.pooling = "l2";
+    CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic, kMasking), Catch::Contains("foveation.pooling"));
+}

@@ -60,12 +60,14 @@ TEST_CASE("Perceptual with the metric's CSF: falls monotonically with eccentrici
     CHECK(std::abs(double(total) - 16.0 * double(p.rayBudget)) <= 0.01 * 16.0 * double(p.rayBudget));
 }
 
-TEST_CASE("The content term reads the metric's masking constants", "[foveation]") {
+TEST_CASE("The content term and the metric's pooling read the metric's constants", "[foveation]") {
     const ContrastMasking m = MetricContrastMasking();
     const VdpParams params;
     CHECK(m.sensitivityGain == Approx(std::pow(10.0, params.sensitivityCorrection / 20.0)));
     CHECK(m.k == Approx(std::pow(10.0, params.maskC)));
     CHECK(m.q == params.maskQSustained);
+    CHECK(m.p == params.maskP);
+    CHECK(m.beta == params.beta);
 }
 
 TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo moves rays off the texture",

@@ -19,7 +19,7 @@ ContrastMasking MetricContrastMasking() {
     // The sustained channel's: the denoisers leave slow noise (as the sensitivity above).
     const VdpParams params;
     return {std::pow(10.0, params.sensitivityCorrection / 20.0), std::pow(10.0, params.maskC),
-            params.maskQSustained};
+            params.maskQSustained, params.maskP, params.beta};
 }
 
 }  // namespace fovrt

@@ -10,8 +10,9 @@
 namespace fovrt {
 
 ContrastSensitivity MetricContrastSensitivity();
-// The metric's contrast masking (its sensitivity correction, mask_c and sustained mask_q), which
-// the perceptual model's content term reads (foveation.content_masking).
+// The metric's contrast masking (its sensitivity correction, mask_c and sustained mask_q) and
+// pooling (mask_p, beta), which the perceptual model's content term (foveation.content_masking) and
+// its pooling = "metric" read.
 ContrastMasking MetricContrastMasking();
 
 }  // namespace fovrt

@@ -53,7 +53,10 @@ bool SliderOf(const char* label, const char* key, float& value, const char* form
 bool FoveationControls(FoveationParams& f) {
     std::vector<std::string> models(FoveationModelNames().begin(), FoveationModelNames().end());
     bool changed = Combo("model", models, f.model);
-    if (f.model != "perceptual") f.contentMasking = false;  // read by the perceptual model only
+    if (f.model != "perceptual") {  // read by the perceptual model only
+        f.contentMasking = false;
+        f.pooling = "energy";
+    }
     if (f.model == "disc") {
         changed |= SliderOf("spp inside", "foveation.spp_inside", f.sppInside);
         changed |= SliderOf("spp outside", "foveation.spp_outside", f.sppOutside, "%.3g");
@@ -69,6 +72,8 @@ bool FoveationControls(FoveationParams& f) {
         } else {
             changed |= SliderOf("noise x Nyquist", "foveation.noise_frequency", f.noiseFrequency, "%.2f");
             changed |= ImGui::Checkbox("texture masks noise", &f.contentMasking);
+            const std::vector<std::string> poolings(PerceptualPoolingNames().begin(), PerceptualPoolingNames().end());
+            changed |= Combo("pooling", poolings, f.pooling);
         }
     } else {
         changed |= SliderOf("spp", "foveation.uniform_spp", f.uniformSpp, "%.3g");
