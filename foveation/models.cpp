@@ -40,11 +40,10 @@ public:
 
     RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance)
         : foveal_(sensitivity(rhoCpd, luminance, 0.0)) {
-        const double foveal = foveal_;
         float least = 1.0f;
         for (int i = 0; i < kNodes; ++i) {
             const double root = std::sqrt(double(kMaxDeg)) * i / (kNodes - 1);
-            const double relative = foveal > 0.0 ? sensitivity(rhoCpd, luminance, root * root) / foveal : 0.0;
+            const double relative = foveal_ > 0.0 ? sensitivity(rhoCpd, luminance, root * root) / foveal_ : 0.0;
             least = std::min(least, float(std::max(relative, 0.0)));
             table_[size_t(i)] = least;
         }
