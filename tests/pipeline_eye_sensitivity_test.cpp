@@ -111,4 +111,16 @@ TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo mo
     REQUIRE(textured > 200);
     CHECK(texturedMasked < 0.8 * double(texturedPlain));
     CHECK(otherMasked > otherPlain);
+
+    // Switched off for frame 2 and on again (the live panel): the albedo held from before is not
+    // read, so frame 3 is the flat map, the map without the term.
+    FoveationParams off = config.foveation;
+    off.contentMasking = false;
+    masked.SetFoveation(off);
+    masked.Render(masked.RequestAt(2), b);
+    masked.SetFoveation(config.foveation);
+    masked.Render(masked.RequestAt(3), b);
+    plain.Render(plain.RequestAt(2), a);
+    plain.Render(plain.RequestAt(3), a);
+    CHECK(a.eyes[0].sppMap.vector() == b.eyes[0].sppMap.vector());
 }

@@ -115,6 +115,8 @@ void FramePipeline::CheckGazeCovers(uint32_t firstFrame, int frames) const {
 void FramePipeline::SetFoveation(const FoveationParams& params) {
     sppModel_ = CreateSppModel(params, MetricContrastSensitivity(), MetricContrastMasking());
     config_.foveation = params;
+    // Kept only while the content term is on: after it was off, what is held is from an older frame.
+    for (Plane<float>& content : previousContent_) content = Plane<float>();
 }
 
 StereoRig FramePipeline::RigAtTime(double timeSeconds) const {
