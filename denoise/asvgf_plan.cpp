@@ -7,7 +7,7 @@ namespace fovrt::plan {
 // (first sample wins), gather (δ, Δ) and the stratum guide, σ_l·std of the guide, à-trous
 // iterations; then the per-pixel α (the anti-lag variants: their factor a) and λ. Without a previous frame neither runs: the reset left
 // α = λ = 1 (ClearValue).
-void AsvgfGradient(Writer& w, const Family& f) {
+void AsvgfGradient(Writer& w, const Family& f, FrameCursor&) {
     const int iterations = f.params.asvgf.gradientIterations;
     AsvgfGradientStage stage{{PlaneKind::AsvgfGrad0}, {}};
     for (int i = 0; i < iterations; ++i)
@@ -67,7 +67,7 @@ void AsvgfGradient(Writer& w, const Family& f) {
         w.Barrier();
     }
 
-    w.Pass("asvgf_alpha", "asvgf_gradient", AsvgfAlphaStage{reconstructed}, When::HasPrevious);
+    w.Pass("asvgf_alpha", "asvgf_gradient", AsvgfAlphaStage{reconstructed, f.v.antilag}, When::HasPrevious);
     Bindings al;
     al.Read(ASVGF_ALPHA_B_GRAD, Shared(reconstructed.kind))
         .Write(ASVGF_ALPHA_B_ALPHA, Shared(PlaneKind::AsvgfAlpha))

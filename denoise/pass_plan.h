@@ -201,9 +201,13 @@ struct StagePlane {
 };
 // svgf_reproject (SvgfReprojectRef per channel) or two_history_reproject
 // (TwoHistoryReprojectRef): `outputs` the illumination planes written (Illum0, WIllum0).
+// A stage carries the modes its mechanisms set, as the shader receives them, so that the
+// reference runs from the plan alone and never reads the variant's row.
 struct ReprojectStage {
-    bool twoHistory = false;
-    bool zeroSamples = false;  // the ZERO_SAMPLES flag: an unweighted history keeps n = 0 pixels
+    bool twoHistory = false;  // two_history_reproject's layout
+    // The shader's mode bits (FOVRT_SPEC_REPROJECT_FLAGS): TH_REPROJECT_FLAG_* with twoHistory,
+    // else SVGF_REPROJECT_FLAG_* (shaders/shared_constants.h).
+    uint32_t flags = 0;
     std::vector<StagePlane> outputs;
 };
 struct FilterMomentsStage {  // SvgfFilterMomentsRef per plane
@@ -216,6 +220,8 @@ struct AtrousStage {  // SvgfAtrousRef per plane
 struct BlendStage {  // TwoHistoryBlendRef per plane: `out` blended in place with `in` (I_w)
     std::vector<StagePlane> planes;
     PlaneId q;
+    bool clamp = false;           // the clamp mechanism's box in place of p
+    std::optional<PlaneRef> choice;  // the hysteresis mechanism's held choice in place of p
 };
 struct ChoiceStage {};  // TwoHistoryChoiceRef: the hysteresis variants' held choice from the state
 struct EmaGradientStage {  // TwoHistoryGradientRef: the filtered gradient and these → q
@@ -223,6 +229,7 @@ struct EmaGradientStage {  // TwoHistoryGradientRef: the filtered gradient and t
 };
 struct StabilizeStage {  // TwoHistoryStabilizeRef per plane: `in` → `out`, its L_s history in `history`
     std::vector<StagePlane> planes;
+    std::optional<PlaneId> q;  // stabilize-antilag: the change detector that drives the weight
 };
 struct ModulateStage {  // SvgfModulateRef
     std::vector<PlaneId> illumination;
@@ -233,6 +240,7 @@ struct AsvgfGradientStage {  // AsvgfScatterGradientsRef → `scattered`, AsvgfG
 };
 struct AsvgfAlphaStage {  // AsvgfAlphaRef: α and λ from the reconstructed gradient
     PlaneId reconstructed;
+    bool antilag = false;  // the anti-lag mechanism: λ also shortens the history
 };
 using ReferenceStage =
     std::variant<std::monostate, ReprojectStage, FilterMomentsStage, AtrousStage, BlendStage,

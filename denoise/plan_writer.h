@@ -1,6 +1,7 @@
 // The toolkit of the SVGF-family plan builders (svgf_family_plan.cpp, reprojection_plan.cpp,
-// asvgf_plan.cpp): plane references, a dispatch's bindings, the variant's resolved flags, and the
-// writer that appends passes and commands. Only those files include it.
+// asvgf_plan.cpp, mechanism_passes.cpp): plane references, a dispatch's bindings, the variant's
+// resolved flags, the writer that appends passes and commands, and what a mechanism's fragment
+// moves on. Only those files and the plan's tests include it.
 #pragma once
 
 #include <string>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "denoise/gradient_strata.h"
+#include "denoise/mechanism_passes.h"
 #include "denoise/pass_plan.h"
 #include "denoise/schedule.h"
 #include "denoise/svgf_family_plan.h"
@@ -134,7 +136,14 @@ inline DispatchCommand OverList(PipelineKey pipeline, Bindings b, PushBlock push
 }
 
 // The passes built in their own files.
-void AsvgfGradient(Writer& w, const Family& f);  // asvgf_plan.cpp
-void Reproject(Writer& w, const Family& f);      // reprojection_plan.cpp
+void Reproject(Writer& w, const Family& f);  // reprojection_plan.cpp
+
+// What a mechanism's fragment (denoise/mechanism_passes.h) may move on in the frame: the
+// ping-pong plane that holds the filtered illumination (FrameSlot::AfterFilter; modulation reads it).
+struct FrameCursor {
+    PlaneKind filtered = PlaneKind::Illum0;
+};
+// The passes of `f`'s mechanisms at `slot`, in frame order.
+void EmitMechanismPasses(Writer& w, const Family& f, FrameSlot slot, FrameCursor& cursor);
 
 }  // namespace fovrt::plan

@@ -116,7 +116,7 @@ Bindings TwoHistoryReprojectBindings(const Family& f) {
 // anyway). Mode bits are a specialization constant of both.
 void Reproject(Writer& w, const Family& f) {
     const bool th = f.twoHistoryFamily;
-    ReprojectStage stage{th, f.zeroSamples, {}};
+    ReprojectStage stage{th, 0u, {}};
     const bool writeColor = f.feedback == 0;
     auto output = [&](PlaneKind illum, PlaneKind history, Channel ch) {
         stage.outputs.push_back({ch, {}, {illum, ch}, writeColor ? std::optional(This(history, ch)) : std::nullopt});
@@ -151,6 +151,7 @@ void Reproject(Writer& w, const Family& f) {
         FOVRT_PUSH_PER_FRAME(push, SvgfReprojectPush, has_prev, FrameValue::HasPrevious);
         b = SvgfReprojectBindings(f);
     }
+    stage.flags = flags;
     const StageShader shader = th ? StageShader::TwoHistoryReproject : StageShader::SvgfReproject;
     const PipelineKey main = f.Pipeline(shader, Specialization::Of({{FOVRT_SPEC_REPROJECT_FLAGS, int32_t(flags)}}), f.pair);
     PipelineKey box = main;

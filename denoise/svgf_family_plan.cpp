@@ -82,82 +82,17 @@ void FilterMoments(Writer& w, const Family& f) {
     w.Barrier();
 }
 
-// two-history's EMA gradient g, filtered 5×5 on the packed guide, against each channel's variance → q.
-void EmaGradient(Writer& w, const Family& f) {
-    using K = PlaneKind;
-    EmaGradientStage stage;
-    for (Channel ch : f.channels) stage.illumination.push_back({K::Illum1, ch});
-    w.Pass("two_history_gradient", "two_history_gradient", stage);
-    Bindings b;
-    b.Read(TH_GRADIENT_B_GRADIENT, This(K::Gradient))
-        .Read(TH_GRADIENT_B_ILLUM_U0, Scratch(K::Illum1, f.First()))
-        .Read(TH_GRADIENT_B_GUIDE, Shared(K::Guide))
-        .Read(TH_GRADIENT_B_DEPTH_GRAD, Shared(K::DepthGradient))
-        .Write(TH_GRADIENT_B_Q, Shared(K::Q));
-    if (f.pair) b.Read(TH_GRADIENT_B_ILLUM_U1, Scratch(K::Illum1, f.Last()));
-    else b.Unused(TH_GRADIENT_B_ILLUM_U1, Scratch(K::Illum1, f.First()));
-    const TwoHistoryGradientPush push{f.size, f.svgf.sigmaDepth, f.svgf.sigmaNormal, f.params.twoHistory.qScale,
-                                      f.pair ? 1u : 0u};
-    w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryGradient, f.EdgeStopping()), std::move(b),
-                          PushBlock::Of(push)));
-    w.Barrier();
-}
-
-// The eight planes a pass's own bilinear reprojection reads (common/reprojection.glsl): this
-// frame's and the previous frame's depth, normal and object id, the depth gradient and the
-// previous pixel, at consecutive slots from `depthSlot` in that order (the binding lists of
-// two_history_stabilize and two_history_choice; checked below).
-#define FOVRT_REPROJECTION_GEOMETRY_SLOTS(P)                                                        \
-    static_assert(P##_B_NORMAL == P##_B_DEPTH + 1 && P##_B_OBJECT == P##_B_DEPTH + 2 &&             \
-                  P##_B_PREV_DEPTH == P##_B_DEPTH + 3 && P##_B_PREV_NORMAL == P##_B_DEPTH + 4 &&    \
-                  P##_B_PREV_OBJECT == P##_B_DEPTH + 5 && P##_B_DEPTH_GRAD == P##_B_DEPTH + 6 &&    \
-                  P##_B_PREV_PIXEL == P##_B_DEPTH + 7)
-FOVRT_REPROJECTION_GEOMETRY_SLOTS(TH_STABILIZE);
-FOVRT_REPROJECTION_GEOMETRY_SLOTS(TH_CHOICE);
-#undef FOVRT_REPROJECTION_GEOMETRY_SLOTS
-
-void ReadReprojectionGeometry(Bindings& b, int depthSlot) {
-    using K = PlaneKind;
-    b.Read(depthSlot, This(K::Depth))
-        .Read(depthSlot + 1, This(K::Normal))
-        .Read(depthSlot + 2, This(K::ObjectId))
-        .Read(depthSlot + 3, Previous(K::Depth))
-        .Read(depthSlot + 4, Previous(K::Normal))
-        .Read(depthSlot + 5, Previous(K::ObjectId))
-        .Read(depthSlot + 6, Shared(K::DepthGradient))
-        .Read(depthSlot + 7, Shared(K::PrevPixel));
-}
-
-// two_history_choice (the hysteresis variants), once per frame before the blend: p from W_u, W_w
-// and S, held against the reprojected previous choice (HystereticChoice) → this frame's choice.
-void Choice(Writer& w, const Family& f) {
-    using K = PlaneKind;
-    w.Pass("two_history_choice", "two_history_choice", ChoiceStage{});
-    const TwoHistoryParams& t = f.params.twoHistory;
-    PushBlock push = PushBlock::Of(TwoHistoryChoicePush{f.size, f.window, ivec2(0), t.choiceRate, t.choiceBand, 0u});
-    FOVRT_PUSH_PER_FRAME(push, TwoHistoryChoicePush, has_prev, FrameValue::HasPrevious);
-    FOVRT_PUSH_WINDOW_ORIGIN(push, TwoHistoryChoicePush, win_origin);
-    Bindings b;
-    ReadReprojectionGeometry(b, TH_CHOICE_B_DEPTH);
-    b.Read(TH_CHOICE_B_WU, This(K::Length, f.First()))
-        .Read(TH_CHOICE_B_WW, This(K::WWeight))
-        .Read(TH_CHOICE_B_S, This(K::PowerSums))
-        .Read(TH_CHOICE_B_PREV_CHOICE, Previous(K::Choice))
-        .Write(TH_CHOICE_B_CUR_CHOICE, This(K::Choice));
-    w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryChoice), std::move(b), push));
-    w.Barrier();
-}
-
 // two_history_blend per channel, in place on I_u: lerp(I_w, I_u, lerp(q, 1, p)) with p from W_u
 // (channel 0's length), W_w and S; the clamp variants' box in place of p; the hysteresis variants
 // read their held choice (two_history_choice, run first) in place of p.
 void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted) {
     using K = PlaneKind;
-    BlendStage stage{{}, BlendQPlane(f.v)};
-    if (f.v.hystereticChoice) Choice(w, f);
+    const bool held = f.v.hystereticChoice;
+    BlendStage stage{{}, BlendQPlane(f.v), f.v.clampHistory, held ? std::optional(This(K::Choice)) : std::nullopt};
+    FrameCursor cursor;
+    EmitMechanismPasses(w, f, FrameSlot::BeforeBlend, cursor);
     for (Channel ch : f.channels) stage.planes.push_back({ch, {weighted, ch}, {unweighted, ch}, std::nullopt});
     w.Pass("two_history_blend", "atrous_blend", stage);
-    const bool held = f.v.hystereticChoice;
     for (const StagePlane& p : stage.planes) {
         Bindings b;
         b.ReadWrite(TH_BLEND_B_ILLUM_U, Scratch(unweighted, p.channel))
@@ -168,7 +103,7 @@ void Blend(Writer& w, const Family& f, PlaneKind unweighted, PlaneKind weighted)
             .Read(TH_BLEND_B_Q, Shared(stage.q.kind))
             .ReadIf(held, TH_BLEND_B_CHOICE, This(K::Choice));
         PushBlock push = PushBlock::Of(TwoHistoryBlendPush{f.size, f.window, ivec2(0), f.params.twoHistory.clampSigma,
-                                                           f.v.clampHistory ? 1u : 0u, held ? 1u : 0u});
+                                                           stage.clamp ? 1u : 0u, held ? 1u : 0u});
         FOVRT_PUSH_WINDOW_ORIGIN(push, TwoHistoryBlendPush, win_origin);
         w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryBlend), std::move(b), std::move(push)));
     }
@@ -234,40 +169,13 @@ void Atrous(Writer& w, const Family& f, int i) {
     if (both) Blend(w, f, K::Illum0, K::WIllum0);
 }
 
-// two_history_stabilize per channel (two-history-stable): the filtered plane `filtered` → the
-// other ping-pong plane (free after the last à-trous iteration), with each channel's stabilised
-// luminance history; returns the plane it wrote.
-PlaneKind Stabilize(Writer& w, const Family& f, PlaneKind filtered) {
-    using K = PlaneKind;
-    const K out = filtered == K::Illum1 ? K::Illum0 : K::Illum1;
-    StabilizeStage stage;
-    for (Channel ch : f.channels) stage.planes.push_back({ch, {filtered, ch}, {out, ch}, This(K::StableLum, ch)});
-    w.Pass("two_history_stabilize", "two_history_stabilize", stage);
-    const TwoHistoryStableParams& s = f.params.twoHistoryStable;
-    PushBlock push = PushBlock::Of(TwoHistoryStabilizePush{f.size, s.alpha, s.sigmaScale, 0u, s.antilagQ,
-                                                           f.v.stabilizeAntilag ? 1u : 0u});
-    FOVRT_PUSH_PER_FRAME(push, TwoHistoryStabilizePush, has_prev, FrameValue::HasPrevious);
-    for (const StagePlane& p : stage.planes) {
-        Bindings b;
-        ReadReprojectionGeometry(b, TH_STABILIZE_B_DEPTH);
-        b.Read(TH_STABILIZE_B_ILLUM_IN, Scratch(filtered, p.channel))
-            .Write(TH_STABILIZE_B_ILLUM_OUT, Scratch(out, p.channel))
-            .Read(TH_STABILIZE_B_WU, This(K::Length, f.First()))
-            .Read(TH_STABILIZE_B_PREV_STABLE, Previous(K::StableLum, p.channel))
-            .Write(TH_STABILIZE_B_CUR_STABLE, This(K::StableLum, p.channel));
-        b.ReadIf(f.v.stabilizeAntilag, TH_STABILIZE_B_Q, Shared(BlendQPlane(f.v).kind));
-        w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryStabilize), std::move(b), push));
-    }
-    w.Barrier();
-    return out;
-}
-
 // svgf_modulate: Modulation()·(filtered direct + indirect) + emission → output, then downloaded
 // with the sanitising counters.
 void ModulateAndDownload(Writer& w, const Family& f) {
     using K = PlaneKind;
-    K last = FilteredIlluminationPlane(f.svgf.atrousIterations) ? K::Illum1 : K::Illum0;
-    if (f.v.stabilize) last = Stabilize(w, f, last);
+    FrameCursor cursor{FilteredIlluminationPlane(f.svgf.atrousIterations) ? K::Illum1 : K::Illum0};
+    EmitMechanismPasses(w, f, FrameSlot::AfterFilter, cursor);
+    const K last = cursor.filtered;
     ModulateStage stage;
     for (Channel ch : f.channels) stage.illumination.push_back({last, ch});
     w.Pass("modulate", "modulate", stage);
@@ -315,11 +223,12 @@ std::vector<PlannedPass> PlanSvgfFamily(const DenoiserVariant& variant, const De
     std::vector<PlannedPass> passes;
     Writer w(passes);
     Upload(w, f);
-    if (variant.asvgfGradient) AsvgfGradient(w, f);
+    FrameCursor cursor;
+    EmitMechanismPasses(w, f, FrameSlot::BeforeGuide, cursor);
     PackGuide(w, f);
     Reproject(w, f);
     FilterMoments(w, f);
-    if (variant.emaGradient) EmaGradient(w, f);
+    EmitMechanismPasses(w, f, FrameSlot::AfterVariance, cursor);
     // Without à-trous the blend follows the variance estimate.
     if (variant.twoHistory && f.svgf.atrousIterations == 0) Blend(w, f, PlaneKind::Illum1, PlaneKind::WIllum1);
     for (int i = 0; i < f.svgf.atrousIterations; ++i) Atrous(w, f, i);

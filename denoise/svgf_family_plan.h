@@ -2,8 +2,9 @@
 // one function per pass kind (svgf_family_plan.cpp; the reprojection in reprojection_plan.cpp,
 // A-SVGF's gradient in asvgf_plan.cpp, their toolkit in plan_writer.h), each deciding once which
 // planes the pass reads and writes and emitting both the reference's stage and the Vulkan
-// commands from that decision. Which passes run follows from the variant row's flags
-// (denoise/variants.h).
+// commands from that decision. The family's passes set the modes the row's flags ask for; the
+// mechanisms with passes of their own join at the slots their rows declare
+// (denoise/mechanism_passes.h), never by name here.
 #pragma once
 
 #include <cstdint>

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/nearest_name.h"
 #include "denoise/debug_views.h"
+#include "denoise/mechanism_passes.h"
 #include "denoise/params.h"
 #include "denoise/planes.h"
 
@@ -64,10 +65,12 @@ constexpr unsigned kSvgfFamilies = Bit(MethodFamily::Svgf) | Bit(MethodFamily::T
 // those of the rows before it that it makes unread (A-SVGF's per-pixel alpha replaces SVGF's;
 // anti-lag returns to SVGF's as its base); the planes its passes add to the family's (the plane
 // table, denoise/planes.h); the debug views it offers and those of the rows before it it takes
-// away (the clamp has no p); and the token with which it changes nothing, and why (its settings
-// are then unread too). denoise_settings_test holds the settings to what changes the output of
-// every composition, denoise_pass_plan_test the planes to what its plan names, and the debug-view
-// tests the views to what both backends read.
+// away (the clamp has no p); the token with which it changes nothing, and why (its settings are
+// then unread too); and its plan fragment, the passes of its own it adds at a slot of the frame
+// (denoise/mechanism_passes.h; none for a mechanism that switches a mode of a family pass).
+// denoise_settings_test holds the settings to what changes the output of every composition,
+// denoise_pass_plan_test the planes to what its plan names and the fragment to where its passes
+// run, and the debug-view tests the views to what both backends read.
 struct Mechanism {
     bool DenoiserVariant::*flag;
     std::string_view token;
@@ -83,6 +86,7 @@ struct Mechanism {
     Views hidesViews = {};
     std::string_view inertWith = {};
     std::string_view inertWhy = {};
+    MechanismPasses passes = {};
 };
 constexpr std::string_view kSvgfAlpha[] = {"denoise.svgf.alpha_color", "denoise.svgf.alpha_moments"};
 constexpr std::string_view kAsvgfAlpha[] = {"denoise.asvgf.alpha"};
@@ -123,7 +127,8 @@ const Mechanism kMechanisms[] = {
      .planes = kWeightedPlanes, .views = kWeightedViews},
     {.flag = &DenoiserVariant::asvgfGradient, .token = "asvgf",
      .description = "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)", .families = kSvgfFamilies,
-     .reads = kAsvgfSettings, .replaces = kSvgfAlpha, .planes = kAsvgfPlanes, .views = kAsvgfViews},
+     .reads = kAsvgfSettings, .replaces = kSvgfAlpha, .planes = kAsvgfPlanes, .views = kAsvgfViews,
+     .passes = {FrameSlot::BeforeGuide, plan::AsvgfGradient}},
     {.flag = &DenoiserVariant::antilag, .token = "antilag", .description = "anti-lag: lambda shortens the history (Q2RTX)",
      .families = kSvgfFamilies, .requiresToken = "asvgf", .why = "the anti-lag factor is A-SVGF's lambda",
      .reads = kAntilagSettings, .replaces = kAsvgfAlpha, .views = kAntilagViews, .hidesViews = kAlphaView},
@@ -134,17 +139,17 @@ const Mechanism kMechanisms[] = {
      .description = "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)",
      .reads = kTwoHistorySettings, .planes = kTwoHistoryPlanes, .views = kTwoHistoryViews},
     {.flag = &DenoiserVariant::emaGradient, .token = {}, .description = "EMA luminance gradient -> q (Tu 2024)",
-     .reads = kEmaGradientSettings, .planes = kEmaGradientPlanes},
+     .reads = kEmaGradientSettings, .planes = kEmaGradientPlanes, .passes = {FrameSlot::AfterVariance, plan::EmaGradient}},
     {.flag = &DenoiserVariant::hystereticChoice, .token = "hysteresis",
      .description = "held history choice (band and rate)", .families = Bit(MethodFamily::TwoHistory),
      .excludesToken = "clamp", .why = "both replace the choice p between the two histories",
-     .reads = kHysteresisSettings, .planes = kChoicePlanes},
+     .reads = kHysteresisSettings, .planes = kChoicePlanes, .passes = {FrameSlot::BeforeBlend, plan::HeldChoice}},
     {.flag = &DenoiserVariant::clampHistory, .token = "clamp",
      .description = "history clamp to the weighted history's neighbourhood", .families = Bit(MethodFamily::TwoHistory),
      .reads = kClampSettings, .hidesViews = kChoiceViews},
     {.flag = &DenoiserVariant::stabilize, .token = "stabilize", .description = "luminance stabilisation pass",
      .families = Bit(MethodFamily::TwoHistory), .reads = kStabilizeSettings, .planes = kStabilizePlanes,
-     .views = kStabilizeViews},
+     .views = kStabilizeViews, .passes = {FrameSlot::AfterFilter, plan::Stabilize}},
     {.flag = &DenoiserVariant::stabilizeAntilag, .token = "stabilize-antilag",
      .description = "stabilisation weight driven by the change detector", .families = Bit(MethodFamily::TwoHistory),
      .requiresToken = "stabilize", .why = "it drives the stabilisation's weight", .reads = kStabilizeAntilagSettings,
@@ -523,6 +528,20 @@ std::vector<PlaneKind> VariantPlanes(const DenoiserVariant& variant) {
                 if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
     std::sort(kinds.begin(), kinds.end());
     return kinds;
+}
+
+std::vector<MechanismFragment> MechanismFragments() {
+    std::vector<MechanismFragment> fragments;
+    for (const Mechanism& m : kMechanisms)
+        if (m.passes.emit) fragments.push_back({m.flag, m.passes});
+    return fragments;
+}
+
+std::vector<PlanFragment> MechanismFragmentsAt(const DenoiserVariant& variant, FrameSlot slot) {
+    std::vector<PlanFragment> fragments;
+    for (const Mechanism& m : kMechanisms)
+        if (m.passes.emit && m.passes.slot == slot && variant.*m.flag) fragments.push_back(m.passes.emit);
+    return fragments;
 }
 
 std::vector<DebugViewId> VariantDebugViews(const DenoiserVariant& variant) {

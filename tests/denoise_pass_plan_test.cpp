@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "denoise/pass_plan.h"
+#include "denoise/plan_writer.h"
 #include "denoise/variants.h"
 
 using namespace fovrt;
@@ -198,4 +199,54 @@ TEST_CASE("every composition's plan names exactly the planes its units declare")
         ++checked;
     }
     CHECK(checked > 50);
+}
+
+TEST_CASE("each mechanism's own passes are in a composition's plan exactly where its flag is on, at its slot") {
+    size_t checked = 0;
+    for (const std::string& name : DenoiserCompositions()) {
+        const DenoiserVariant& v = FindDenoiserVariant(name);
+        if (v.family == DenoiserFamily::Rae) continue;
+        ForEachPlanMode([&](const DenoiserParams& mode) {
+            const DenoiserParams params = ParamsForVariant(v, mode);
+            std::vector<std::string> order;
+            for (const PlannedPass& pass : BuildDenoiserPlan(name, params, 64, 64).passes) order.push_back(pass.name);
+            auto at = [&](std::string_view pass) {
+                return size_t(std::find(order.begin(), order.end(), pass) - order.begin());
+            };
+            const plan::Family family(v, params, 64, 64);
+            for (const MechanismFragment& m : MechanismFragments()) {
+                std::vector<PlannedPass> own;
+                plan::Writer w(own);
+                plan::FrameCursor cursor;
+                m.passes.emit(w, family, cursor);
+                REQUIRE(!own.empty());
+                const size_t first = at(own.front().name);
+                INFO(name << ": " << own.front().name << " in " << Catch::Detail::stringify(order));
+                if (!(v.*m.flag)) {
+                    for (const PlannedPass& pass : own) CHECK(at(pass.name) == order.size());
+                    continue;
+                }
+                REQUIRE(first + own.size() <= order.size());
+                for (size_t k = 0; k < own.size(); ++k) CHECK(order[first + k] == own[k].name);
+                const size_t next = first + own.size();  // the pass after the fragment
+                switch (m.passes.slot) {
+                    case FrameSlot::BeforeGuide:
+                        CHECK(first > at("upload"));
+                        CHECK(order[next] == "pack_guide");
+                        break;
+                    case FrameSlot::AfterVariance:
+                        CHECK(order[first - 1] == "filter_moments");
+                        break;
+                    case FrameSlot::BeforeBlend: CHECK(order[next] == "two_history_blend"); break;
+                    case FrameSlot::AfterFilter:
+                        CHECK(order[next] == "modulate");
+                        CHECK(first > at("filter_moments"));
+                        for (size_t k = next; k < order.size(); ++k) CHECK(order[k].rfind("atrous", 0) != 0);
+                        break;
+                }
+            }
+            ++checked;
+        });
+    }
+    CHECK(checked > 50 * 12);
 }

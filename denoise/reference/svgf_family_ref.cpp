@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "denoise/reference/two_history_math.h"
 #include "denoise/svgf_family_plan.h"
+#include "shaders/shared_constants.h"
 
 namespace fovrt {
 
@@ -126,13 +127,17 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     const bool combined = p.filterCombined;
     const size_t cur = SideIndex(HistorySide::This, parity_), prev = SideIndex(HistorySide::Previous, parity_);
     FOVRT_CHECK(!s.outputs.empty() && s.twoHistory == twoHistoryLayout_);
+    // The options are the shader's mode bits, which the plan set from the variant's mechanisms.
     const bool writeColor = s.outputs.front().history.has_value();
+    auto has = [&](uint32_t flag) { return (s.flags & flag) != 0; };
     if (!s.twoHistory) {
+        FOVRT_CHECK(writeColor == has(SVGF_REPROJECT_FLAG_WRITE_COLOR) &&
+                    combined == has(SVGF_REPROJECT_FLAG_COMBINED));
         SvgfReprojectOptions opt;
         opt.alphaColor = p.alphaColor;
         opt.alphaMoments = p.alphaMoments;
-        opt.weighted = p.weightBySampleCount;
-        opt.zeroSamples = s.zeroSamples;
+        opt.weighted = has(SVGF_REPROJECT_FLAG_WEIGHTED);
+        opt.zeroSamples = has(SVGF_REPROJECT_FLAG_ZERO_SAMPLES);
         opt.writeColorHistory = writeColor;
         opt.precision = params_.precision;
         for (const StagePlane& o : s.outputs) {
@@ -147,24 +152,25 @@ void SvgfFamilyReferenceDenoiser::Run(const ReprojectStage& s, const FrameInputs
     // Both channels and histories in one call: it writes illumination planes 0 of I_u and I_w.
     for (const StagePlane& o : s.outputs)
         FOVRT_CHECK(o.out.kind == PlaneKind::Illum0 || o.out.kind == PlaneKind::WIllum0);
+    FOVRT_CHECK(writeColor == has(TH_REPROJECT_FLAG_WRITE_COLOR) && combined == has(TH_REPROJECT_FLAG_COMBINED));
     TwoHistoryReprojectOptions ro;
     ro.alpha = p.alphaColor;
     ro.alphaMoments = p.alphaMoments;
     ro.gradientBeta = params_.twoHistory.gradientBeta;
-    ro.twoHistory = variant_.twoHistory;
-    ro.zeroSamples = s.zeroSamples;
-    ro.gradient = variant_.emaGradient;
+    ro.twoHistory = has(TH_REPROJECT_FLAG_TWO_HISTORY);
+    ro.zeroSamples = has(TH_REPROJECT_FLAG_ZERO_SAMPLES);
+    ro.gradient = has(TH_REPROJECT_FLAG_GRADIENT);
     ro.writeColorHistory = writeColor;
-    ro.antilag = variant_.antilag;
+    ro.antilag = has(TH_REPROJECT_FLAG_ANTILAG);
     ro.antilagPower = params_.asvgf.antilagPower;
-    ro.suppressFireflies = variant_.suppressFireflies;
+    ro.suppressFireflies = has(TH_REPROJECT_FLAG_FIREFLY);
     ro.fireflySigma = params_.twoHistory.fireflySigma;
     ro.precision = params_.precision;
     ro.window = window_;
     ro.prevWindow = prevWindow_;
     const std::array<const Plane<vec3>*, 2> colors = {&in.direct, &in.indirect};
     TwoHistoryReprojectRef(colors, int(channels_.size()), combined ? &in.indirect : nullptr, in, prevGeometry_.View(),
-                           hasPrev_, state_[prev], state_[cur], variant_.asvgfGradient ? &alpha_ : nullptr,
+                           hasPrev_, state_[prev], state_[cur], has(TH_REPROJECT_FLAG_ALPHA_MAP) ? &alpha_ : nullptr,
                            illum_[IllumIndex(PlaneKind::Illum0)], illum_[IllumIndex(PlaneKind::WIllum0)], ro, stats_);
     for (const StagePlane& o : s.outputs) StoreIllum(o.out);
 }
@@ -194,9 +200,8 @@ void SvgfFamilyReferenceDenoiser::Run(const BlendStage& s, const FrameInputs&, P
     const Plane<float>& q = *ScalarPlane({s.q, HistorySide::None}, parity_);
     for (const StagePlane& p : s.planes) {  // in place on I_u
         TwoHistoryBlendRef(Illum(p.out), Illum(p.in), st.wu, st.ww, st.powerSums, q, blendScratch_,
-                           {variant_.clampHistory, params_.twoHistory.clampSigma},
-                           variant_.hystereticChoice ? &choice_[SideIndex(HistorySide::This, parity_)] : nullptr,
-                           window_);
+                           {s.clamp, params_.twoHistory.clampSigma},
+                           s.choice ? ScalarPlane(*s.choice, parity_) : nullptr, window_);
         std::swap(Illum(p.out), blendScratch_);
         StoreIllum(p.out);
     }
@@ -224,7 +229,7 @@ void SvgfFamilyReferenceDenoiser::Run(const AsvgfGradientStage& s, const FrameIn
 void SvgfFamilyReferenceDenoiser::Run(const AsvgfAlphaStage& s, const FrameInputs& in, Plane<vec3>&) {
     reconstructed_ = s.reconstructed;
     AsvgfAlphaRef(Gradient(s.reconstructed), in.width(), in.height(), params_.asvgf.alpha, alpha_, lambda_,
-                  variant_.antilag ? std::optional(params_.asvgf.antilagGain) : std::nullopt);
+                  s.antilag ? std::optional(params_.asvgf.antilagGain) : std::nullopt);
 }
 
 void SvgfFamilyReferenceDenoiser::Run(const ChoiceStage&, const FrameInputs& in, Plane<vec3>&) {
@@ -237,7 +242,7 @@ void SvgfFamilyReferenceDenoiser::Run(const ChoiceStage&, const FrameInputs& in,
 void SvgfFamilyReferenceDenoiser::Run(const StabilizeStage& s, const FrameInputs& in, Plane<vec3>&) {
     const size_t cur = SideIndex(HistorySide::This, parity_), prev = SideIndex(HistorySide::Previous, parity_);
     const Plane<float>& wu = *ScalarPlane({{PlaneKind::Length, channels_.front()}, HistorySide::This}, parity_);
-    const Plane<float>* q = variant_.stabilizeAntilag ? ScalarPlane({BlendQPlane(variant_), HistorySide::None}, parity_) : nullptr;
+    const Plane<float>* q = s.q ? ScalarPlane({*s.q, HistorySide::None}, parity_) : nullptr;
     for (const StagePlane& p : s.planes) {
         const size_t c = ChannelIndex(p.channel);
         TwoHistoryStabilizeRef(Illum(p.in), in, prevGeometry_.View(), hasPrev_, stable_[prev][c], wu,
@@ -306,8 +311,11 @@ const Plane<float>* SvgfFamilyReferenceDenoiser::ScalarPlane(const PlaneRef& ref
         case PlaneKind::Q: return &q_;
         case PlaneKind::AsvgfAlpha: return &alpha_;
         case PlaneKind::AsvgfLambda: return &lambda_;
-        case PlaneKind::StableLum: return variant_.stabilize ? &stable_[side][ChannelIndex(ref.id.channel)] : nullptr;
-        case PlaneKind::Choice: return variant_.hystereticChoice ? &choice_[side] : nullptr;
+        case PlaneKind::StableLum: {  // allocated where the plan names it
+            const Plane<float>& stable = stable_[side][ChannelIndex(ref.id.channel)];
+            return stable.empty() ? nullptr : &stable;
+        }
+        case PlaneKind::Choice: return choice_[side].empty() ? nullptr : &choice_[side];
         default: return nullptr;
     }
 }
@@ -344,7 +352,7 @@ bool SvgfFamilyReferenceDenoiser::ReadDebugPlane(DebugViewId view, Plane<float>&
     const int lastParity = parity_ ^ 1;
     const std::optional<PlaneRef> ref = DebugViewPlane(variant_, params_, view);
     if (view == DebugViewId::P && !ref) {  // not stored: the blend evaluates it from the state, as here
-        if (!twoHistoryLayout_ || !variant_.twoHistory) return false;
+        if (!twoHistoryLayout_ || CurrentState().ww.empty()) return false;  // no weighted history
         const TwoHistoryState& st = CurrentState();
         // Outside the window the blend keeps I_u: p = 1.
         out = WindowOverImage(width_, height_, window_, 1.0f, [&](size_t j) {
