@@ -39,7 +39,7 @@ void AsvgfGradient(Writer& w, const Family& f, FrameCursor&) {
         .Write(ASVGF_GATHER_B_GUIDE_LUMINANCE, guideLuminance)
         .Read(ASVGF_GATHER_B_DEPTH, This(PlaneKind::Depth), guidePixels)
         .Read(ASVGF_GATHER_B_NORMAL, This(PlaneKind::Normal), guidePixels)
-        .Read(ASVGF_GATHER_B_OBJECT, This(PlaneKind::ObjectId), guidePixels)
+        .ReadObjectIds(ASVGF_GATHER_B_OBJECT, This(PlaneKind::ObjectId), f.idsInDepth, guidePixels)
         .Read(ASVGF_GATHER_B_DEPTH_GRAD, Shared(PlaneKind::DepthGradient), guidePixels)
         .Read(ASVGF_GATHER_B_DIRECT, Shared(PlaneKind::Direct), guidePixels)
         .Read(ASVGF_GATHER_B_INDIRECT, Shared(PlaneKind::Indirect), guidePixels)

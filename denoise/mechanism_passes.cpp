@@ -40,14 +40,14 @@ FOVRT_REPROJECTION_GEOMETRY_SLOTS(TH_STABILIZE);
 FOVRT_REPROJECTION_GEOMETRY_SLOTS(TH_CHOICE);
 #undef FOVRT_REPROJECTION_GEOMETRY_SLOTS
 
-void ReadReprojectionGeometry(Bindings& b, int depthSlot) {
+void ReadReprojectionGeometry(Bindings& b, int depthSlot, const Family& f) {
     using K = PlaneKind;
     b.Read(depthSlot, This(K::Depth))
         .Read(depthSlot + 1, This(K::Normal))
-        .Read(depthSlot + 2, This(K::ObjectId))
+        .ReadObjectIds(depthSlot + 2, This(K::ObjectId), f.idsInDepth)
         .Read(depthSlot + 3, Previous(K::Depth))
         .Read(depthSlot + 4, Previous(K::Normal))
-        .Read(depthSlot + 5, Previous(K::ObjectId))
+        .ReadObjectIds(depthSlot + 5, Previous(K::ObjectId), f.idsInDepth)
         .Read(depthSlot + 6, Shared(K::DepthGradient))
         .Read(depthSlot + 7, Shared(K::PrevPixel));
 }
@@ -64,7 +64,7 @@ void HeldChoice(Writer& w, const Family& f, FrameCursor&) {
     FOVRT_PUSH_PER_FRAME(push, TwoHistoryChoicePush, has_prev, FrameValue::HasPrevious);
     FOVRT_PUSH_WINDOW_ORIGIN(push, TwoHistoryChoicePush, win_origin);
     Bindings b;
-    ReadReprojectionGeometry(b, TH_CHOICE_B_DEPTH);
+    ReadReprojectionGeometry(b, TH_CHOICE_B_DEPTH, f);
     b.Read(TH_CHOICE_B_WU, This(K::Length, f.First()))
         .Read(TH_CHOICE_B_WW, This(K::WWeight))
         .Read(TH_CHOICE_B_S, This(K::PowerSums))
@@ -90,7 +90,7 @@ void Stabilize(Writer& w, const Family& f, FrameCursor& cursor) {
     FOVRT_PUSH_PER_FRAME(push, TwoHistoryStabilizePush, has_prev, FrameValue::HasPrevious);
     for (const StagePlane& p : stage.planes) {
         Bindings b;
-        ReadReprojectionGeometry(b, TH_STABILIZE_B_DEPTH);
+        ReadReprojectionGeometry(b, TH_STABILIZE_B_DEPTH, f);
         b.Read(TH_STABILIZE_B_ILLUM_IN, Scratch(filtered, p.channel))
             .Write(TH_STABILIZE_B_ILLUM_OUT, Scratch(out, p.channel))
             .Read(TH_STABILIZE_B_WU, This(K::Length, f.First()))

@@ -41,6 +41,13 @@ class Bindings {
         return Add({slot, p, Access::ReadWrite, c});
     }
     Bindings& Unused(int slot, PlaneRef p) { return Add({slot, p, Access::Unused}); }
+    // The object ids of a geometry side (This or Previous ObjectId), or, where the depth plane
+    // holds them (`inDepth`: StoresObjectIdsInDepth), that depth plane bound again: the shader
+    // reads the same texel as at its depth slot, so the byte model counts it there only.
+    Bindings& ReadObjectIds(int slot, PlaneRef ids, bool inDepth, Coverage c = Coverage::EveryPixel) {
+        if (!inDepth) return Read(slot, ids, c);
+        return Add({slot, {{PlaneKind::Depth, ids.id.channel}, ids.side}, Access::Unused});
+    }
     // `p` read where `used`, else the slot holds a plane nothing reads.
     Bindings& ReadIf(bool used, int slot, PlaneRef p) { return used ? Read(slot, p) : Unused(slot, kUnreadSlot); }
     Bindings& WriteIf(bool used, int slot, PlaneRef p) {
@@ -73,6 +80,7 @@ struct Family {
     // path sample (DenoiserParams::sampleCountsMayBeZero; the ZERO_SAMPLES reprojection flags).
     bool zeroSamples;
     bool readsSampleCounts;  // the sample counts are uploaded: needsSampleCount or zeroSamples
+    bool idsInDepth;         // the depth plane holds the object ids (StoresObjectIdsInDepth)
     ivec2 size, grid;
     ivec2 window;  // the WINDOW_STORED planes' pixels (the weighted history's window)
 
@@ -81,7 +89,8 @@ struct Family {
           pair(channels.size() == 2), twoHistoryFamily(variant.family == DenoiserFamily::TwoHistory),
           feedback(FeedbackIteration(p.svgf, variant.twoHistory)),
           zeroSamples(p.sampleCountsMayBeZero && !variant.needsSampleCount),
-          readsSampleCounts(variant.needsSampleCount || zeroSamples), size(w, h), grid(StratumGridSize(w, h)),
+          readsSampleCounts(variant.needsSampleCount || zeroSamples), idsInDepth(StoresObjectIdsInDepth(p.precision)),
+          size(w, h), grid(StratumGridSize(w, h)),
           window(WeightedWindowSize(w, h, WeightedWindowFraction(variant, p))) {}
 
     Channel First() const { return channels.front(); }

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "denoise/gradient_strata.h"
+#include "shaders/common/depth_id.glsl"
 #include "shaders/common/octahedral_normal.glsl"
 #include "shaders/shared_constants.h"
 
@@ -18,7 +19,7 @@ namespace {
 enum class Scope : uint8_t { Shared, PerChannel };
 enum class Lifetime : uint8_t { Scratch, History, Staging };
 enum class SizeRule : uint8_t {
-    PixelsOf, InputRgb, InputNormal, Pixels, Stored, WindowStored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
+    PixelsOf, InputRgb, InputNormal, InputDepth, Pixels, Stored, WindowStored, Strata, Fixed, SampleCounts, GradientSamples, Transfers
 };
 enum class Source : uint8_t { None, EveryFrame, WhenRead };
 
@@ -36,6 +37,7 @@ struct PlaneRow {
 #define PIXELS_OF(member) SizeRule::PixelsOf, FOVRT_FRAME_ELEMENT(member)
 #define INPUT_RGB(member) SizeRule::InputRgb, FOVRT_FRAME_ELEMENT(member)
 #define INPUT_NORMAL(member) SizeRule::InputNormal, FOVRT_FRAME_ELEMENT(member)
+#define INPUT_DEPTH(member) SizeRule::InputDepth, FOVRT_FRAME_ELEMENT(member)
 #define PIXELS(bytes) SizeRule::Pixels, bytes
 #define STORED(scalars) SizeRule::Stored, scalars
 #define WINDOW_STORED(scalars) SizeRule::WindowStored, scalars
@@ -55,6 +57,7 @@ const PlaneRow kRows[] = {FOVRT_DENOISER_PLANES(FOVRT_PLANE_ROW)};
 #undef PIXELS_OF
 #undef INPUT_RGB
 #undef INPUT_NORMAL
+#undef INPUT_DEPTH
 #undef PIXELS
 #undef STORED
 #undef WINDOW_STORED
@@ -105,6 +108,8 @@ uint32_t ClearValue(PlaneKind kind, Precision precision) {
     constexpr uint32_t kFloatOne = 0x3F800000u;  // bit pattern of 1.0f
     if (kind == PlaneKind::ObjectId) return kNoObject;
     if (kind == PlaneKind::Normal && ConvertedOnUpload(kind, precision)) return 0x80008000u;  // (−32768, −32768)
+    // Depth 0 with the background's id: nothing reprojects onto a reset.
+    if (kind == PlaneKind::Depth && ConvertedOnUpload(kind, precision)) return DepthIdCode(0.0f, kNoObject);
     if (kind == PlaneKind::AsvgfAlpha || kind == PlaneKind::AsvgfLambda) return kFloatOne;
     return 0u;
 }
@@ -135,6 +140,7 @@ size_t PlaneElementBytes(PlaneKind kind, Precision precision) {
     const PlaneRow& row = Row(kind);
     switch (row.size) {
         case SizeRule::PixelsOf:
+        case SizeRule::InputDepth:
         case SizeRule::Pixels: return row.amount;
         case SizeRule::Stored:
         case SizeRule::WindowStored: return row.amount * StoredScalarBytes(precision);
@@ -153,6 +159,7 @@ size_t PlaneBytes(PlaneKind kind, const PlaneExtent& e) {
         case SizeRule::PixelsOf:
         case SizeRule::InputRgb:
         case SizeRule::InputNormal:
+        case SizeRule::InputDepth:
         case SizeRule::Pixels:
         case SizeRule::Stored: return PlaneElementBytes(kind, e.precision) * pixels;
         case SizeRule::WindowStored:
@@ -185,8 +192,15 @@ HostBytes FrameSource(PlaneKind kind, const FrameInputs& in) {
 
 bool ConvertedOnUpload(PlaneKind kind, Precision precision) {
     const SizeRule rule = Row(kind).size;
-    return (rule == SizeRule::InputRgb || rule == SizeRule::InputNormal) && precision == Precision::Fp16;
+    return (rule == SizeRule::InputRgb || rule == SizeRule::InputNormal || rule == SizeRule::InputDepth) &&
+           precision == Precision::Fp16;
 }
+
+bool StoresObjectIdsInDepth(Precision precision) { return ConvertedOnUpload(PlaneKind::Depth, precision); }
+
+uint32_t DepthIdCode(float depth, uint32_t objectId) { return glsl::depth_id_code(depth, objectId); }
+float DepthOfCode(uint32_t code) { return glsl::depth_id_depth(code); }
+uint32_t ObjectIdOfCode(uint32_t code) { return glsl::depth_id_object(code); }
 
 namespace {
 uint16_t InputHalf(float v) {
@@ -209,9 +223,21 @@ ivec2 OctahedralCode(const vec3& n) {
 
 vec3 QuantizeNormal(const vec3& n) { return glsl::octahedral_normal(OctahedralCode(n)); }
 
-void ConvertForUpload(PlaneKind kind, const HostBytes& source, std::vector<uint16_t>& out) {
+void ConvertForUpload(PlaneKind kind, const FrameInputs& in, std::vector<uint16_t>& out) {
     const SizeRule rule = Row(kind).size;
-    FOVRT_CHECK(rule == SizeRule::InputRgb || rule == SizeRule::InputNormal);
+    FOVRT_CHECK(rule == SizeRule::InputRgb || rule == SizeRule::InputNormal || rule == SizeRule::InputDepth);
+    if (rule == SizeRule::InputDepth) {
+        FOVRT_CHECK(kind == PlaneKind::Depth);
+        const size_t pixels = in.linearDepth.size();
+        out.resize(2 * pixels);
+        for (size_t i = 0; i < pixels; ++i) {
+            const uint32_t code = DepthIdCode(in.linearDepth[i], in.objectId[i]);
+            out[2 * i] = uint16_t(code & 0xFFFFu);
+            out[2 * i + 1] = uint16_t(code >> 16);
+        }
+        return;
+    }
+    const HostBytes source = FrameSource(kind, in);
     const auto* values = static_cast<const vec3*>(source.data);
     const size_t pixels = source.bytes / sizeof(vec3);
     if (rule == SizeRule::InputNormal) {

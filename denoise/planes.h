@@ -26,6 +26,9 @@ namespace fovrt {
 //                     host uploads it as RGBA16F, 8 bytes (ConvertForUpload)
 //   INPUT_NORMAL(m)   FrameInputs::m, unit normals: 12 bytes per pixel in fp32; in fp16 the host
 //                     uploads them octahedral, two int16, 4 bytes (ConvertForUpload)
+//   INPUT_DEPTH(m)    FrameInputs::m, linear depth, 4 bytes per pixel; in fp16 the host uploads
+//                     each with the pixel's object id in its low mantissa bits (DepthIdCode), and
+//                     the object-id plane is not stored (StoresObjectIdsInDepth)
 //   PIXELS(b)         b bytes per pixel
 //   STORED(k)         k scalars per pixel stored at the denoiser's precision (4 bytes each, 2 in
 //                     fp16): the histories and the (illumination, variance) ping-pong
@@ -52,7 +55,7 @@ namespace fovrt {
     X(SampleCount, "input.sampleCount", Shared, Scratch, SAMPLE_COUNTS, WHEN_READ(sampleCount))     \
     /* this frame's geometry, the next frame's previous one */                                      \
     X(Normal, "geometry.normal", Shared, History, INPUT_NORMAL(normal), EVERY_FRAME(normal))        \
-    X(Depth, "geometry.depth", Shared, History, PIXELS_OF(linearDepth), EVERY_FRAME(linearDepth))   \
+    X(Depth, "geometry.depth", Shared, History, INPUT_DEPTH(linearDepth), EVERY_FRAME(linearDepth)) \
     X(ObjectId, "geometry.objectId", Shared, History, PIXELS_OF(objectId), EVERY_FRAME(objectId))   \
     /* edge-stopping guide (svgf_pack_guide): normal, depth */                                      \
     X(Guide, "geometry.guide", Shared, Scratch, PIXELS(16), NONE)                                   \
@@ -178,9 +181,12 @@ HostBytes FrameSource(PlaneKind kind, const FrameInputs& in);
 // The kinds every frame uploads (EVERY_FRAME and MODULATION), in table order.
 const std::vector<PlaneKind>& PlanesUploadedEveryFrame();
 
-// Whether the host converts the plane's FrameInputs data before uploading it: the INPUT_RGB and
-// INPUT_NORMAL planes in fp16.
+// Whether the host converts the plane's FrameInputs data before uploading it: the INPUT_RGB,
+// INPUT_NORMAL and INPUT_DEPTH planes in fp16.
 bool ConvertedOnUpload(PlaneKind kind, Precision precision);
+// Whether the depth plane holds the object ids (fp16): the plans bind it where a pass reads ids
+// and neither upload nor store the ObjectId plane.
+bool StoresObjectIdsInDepth(Precision precision);
 // A colour input as fp16 storage holds it: rounded to the nearest half, finite values beyond
 // ±FOVRT_HALF_SATURATION saturated; NaN and ±inf stay what they are, so that the shaders'
 // sanitising counts them as in fp32.
@@ -189,9 +195,16 @@ float QuantizeInput(float v);
 // decode it (shaders/common/octahedral_normal.glsl); a zero or non-finite normal becomes 0.
 ivec2 OctahedralCode(const vec3& n);
 vec3 QuantizeNormal(const vec3& n);
-// The upload of a ConvertedOnUpload plane, from its FrameSource bytes, into `out` (16-bit words):
-// RGBA16F texels (alpha 0) rounded by QuantizeInput, or octahedral codes. The host uploads these;
-// the C++ reference rounds its copy of the inputs by QuantizeInput and QuantizeNormal.
-void ConvertForUpload(PlaneKind kind, const HostBytes& source, std::vector<uint16_t>& out);
+// A pixel's depth and object id as fp16 storage holds them: one 32-bit code
+// (shaders/common/depth_id.glsl), the depth truncated to 14 mantissa bits, the id modulo 511.
+uint32_t DepthIdCode(float depth, uint32_t objectId);
+// The depth and the id a code reads back as (kNoObject for the background's).
+float DepthOfCode(uint32_t code);
+uint32_t ObjectIdOfCode(uint32_t code);
+// The upload of a ConvertedOnUpload plane, from `in`, into `out` (16-bit words): RGBA16F texels
+// (alpha 0) rounded by QuantizeInput, octahedral codes, or depth + id codes (two words each, low
+// first). The host uploads these; the C++ reference rounds its copy of the inputs by
+// QuantizeInput, QuantizeNormal, DepthOfCode and ObjectIdOfCode.
+void ConvertForUpload(PlaneKind kind, const FrameInputs& in, std::vector<uint16_t>& out);
 
 }  // namespace fovrt

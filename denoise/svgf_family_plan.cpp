@@ -17,7 +17,7 @@ void Upload(Writer& w, const Family& f) {
     w.Clear(When::NoPrevious);
     w.Barrier(When::NoPrevious);
     for (PlaneKind kind : PlanesUploadedEveryFrame())
-        w.Upload(IsHistory(kind) ? This(kind) : Shared(kind));
+        if (kind != PlaneKind::ObjectId || !f.idsInDepth) w.Upload(IsHistory(kind) ? This(kind) : Shared(kind));
     w.Fill(Shared(PlaneKind::Stats), 0u);
     if (f.readsSampleCounts) w.Upload(Shared(PlaneKind::SampleCount));
     if (f.v.needsGradientSamples)
@@ -32,7 +32,7 @@ void PackGuide(Writer& w, const Family& f) {
     Bindings b;
     b.Read(SVGF_GUIDE_B_DEPTH, This(PlaneKind::Depth))
         .Read(SVGF_GUIDE_B_NORMAL, This(PlaneKind::Normal))
-        .Read(SVGF_GUIDE_B_OBJECT, This(PlaneKind::ObjectId))
+        .ReadObjectIds(SVGF_GUIDE_B_OBJECT, This(PlaneKind::ObjectId), f.idsInDepth)
         .Write(SVGF_GUIDE_B_OUT, Shared(PlaneKind::Guide));
     w.Dispatch(OverPixels(f.Pipeline(StageShader::PackGuide), std::move(b), PushBlock::Of(ImageSizePush{f.size})));
     w.Barrier();

@@ -35,8 +35,8 @@ void main() {
         grad[k] = vec2(f_new - f_old, max(f_new, f_old));
         j = g.pixel.y * pc.size.x + g.pixel.x;
     }
-    bool background = FETCH1(object_id, j) == FOVRT_NO_OBJECT;
-    guide_geometry[k] = vec4(FETCH_NORMAL(normal, j), background ? -1.0 : FETCH1(depth, j));
+    bool background = FETCH_OBJECT(object_id, j) == FOVRT_NO_OBJECT;
+    guide_geometry[k] = vec4(FETCH_NORMAL(normal, j), background ? -1.0 : FETCH_DEPTH(depth, j));
     float l = luminance(FETCH3(albedo, j) * (FETCH3(direct, j) + FETCH3(indirect, j)) + FETCH3(emission, j));
     guide_luminance[k] = vec4(l, FETCH2(depth_grad, j), 0.0);
 }

@@ -7,6 +7,11 @@
 //   NTEXEL  read-only normal plane: a texel buffer of FORMAT (RGB32F) in fp32, an isamplerBuffer of
 //           octahedral R16G16_SINT codes in the _fp16 variants (read with FETCH_NORMAL)
 //   UTEXEL  read-only usamplerBuffer of format FORMAT
+//   DTEXEL  read-only linear-depth plane: a texel buffer of FORMAT (R32F) in fp32, a usamplerBuffer
+//           of depth + object id codes (R32UI, common/depth_id.glsl) in the _fp16 variants (read
+//           with FETCH_DEPTH)
+//   OTEXEL  read-only object-id plane: a usamplerBuffer of FORMAT (R32UI); in the _fp16 variants
+//           bound to the depth plane, whose codes hold the ids (read with FETCH_OBJECT)
 //   HTEXEL3 an RGB history plane: a texel buffer of FORMAT in fp32, a readonly std430 hfloat array
 //           in the _fp16 variants (RGB16F texel buffers are rarely supported)
 //   READ    std430 readonly array of GLSL type FORMAT (uint, GradientSample, …)
@@ -41,10 +46,13 @@
 #define FOVRT_GLSL_DECL_TEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_HTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #define FOVRT_GLSL_DECL_UTEXEL(slot, format, variable, block) layout(binding = slot) uniform usamplerBuffer variable;
+#define FOVRT_GLSL_DECL_OTEXEL(slot, format, variable, block) layout(binding = slot) uniform usamplerBuffer variable;
 #ifdef FOVRT_FP16
 #define FOVRT_GLSL_DECL_NTEXEL(slot, format, variable, block) layout(binding = slot) uniform isamplerBuffer variable;
+#define FOVRT_GLSL_DECL_DTEXEL(slot, format, variable, block) layout(binding = slot) uniform usamplerBuffer variable;
 #else
 #define FOVRT_GLSL_DECL_NTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
+#define FOVRT_GLSL_DECL_DTEXEL(slot, format, variable, block) layout(binding = slot) uniform samplerBuffer variable;
 #endif
 #ifdef FOVRT_FP16
 #define FOVRT_GLSL_DECL_HTEXEL3(slot, format, variable, block) \

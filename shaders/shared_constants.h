@@ -53,6 +53,8 @@
 #define FOVRT_MAX_ATROUS_ITERATIONS 8
 // Object id of background pixels (matches fovrt::kNoObject).
 #define FOVRT_NO_OBJECT 0xFFFFFFFFu
+// Low mantissa bits of a packed depth that hold the object id in fp16 storage (common/depth_id.glsl).
+#define FOVRT_DEPTH_ID_BITS 9u
 // The variance of an (illumination, variance) plane at a pixel that holds nothing: no path sample
 // this frame (sample count 0) and no history to keep. Every real variance is >= 0; the spatial
 // passes give such a pixel weight 0, so its neighbours fill it (HOLDS_NOTHING, HoldsNothing).

@@ -20,6 +20,6 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.size))) return;
     int i = p.y * pc.size.x + p.x;
-    bool background = FETCH1(object_id, i) == FOVRT_NO_OBJECT;
-    guide_out[i] = vec4(FETCH_NORMAL(normal, i), background ? -1.0 : FETCH1(depth, i));
+    bool background = FETCH_OBJECT(object_id, i) == FOVRT_NO_OBJECT;
+    guide_out[i] = vec4(FETCH_NORMAL(normal, i), background ? -1.0 : FETCH_DEPTH(depth, i));
 }

@@ -65,9 +65,9 @@ FOVRT_DECLARE_BINDINGS(SVGF_REPROJECT_PAIR_BINDING_LIST)
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_SVGF_REPROJECT);  // shaders/push_constants.h
 
-float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
+float reproj_prev_depth(int i) { return FETCH_DEPTH(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH_NORMAL(prev_normal, i); }
-uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
+uint reproj_prev_object(int i) { return FETCH_OBJECT(prev_object, i); }
 
 // Sanitise: a non-finite pixel becomes 0 (stats[0]); negative components are clamped to 0 (stats[1]).
 // Counted by the main pass only: the box pass revisits pixels it has counted.
@@ -123,8 +123,8 @@ bool reproject_pixel(int i) {
     taps.needs_box = false;
     if (pc.has_prev != 0u) {
         vec2 dzv = FETCH2(depth_grad, i);
-        taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH_NORMAL(normal, i),
-                                      FETCH1(object_id, i), max(abs(dzv.x), abs(dzv.y)));
+        taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH_DEPTH(depth, i), FETCH_NORMAL(normal, i),
+                                      FETCH_OBJECT(object_id, i), max(abs(dzv.x), abs(dzv.y)));
     }
     vec3 c_prev[NCH];
     vec2 m_prev[NCH];

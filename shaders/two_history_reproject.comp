@@ -80,9 +80,9 @@ FOVRT_DECLARE_BINDINGS(TH_REPROJECT_PAIR_BINDING_LIST)
 
 FOVRT_PUSH_CONSTANTS(FOVRT_PUSH_TWO_HISTORY_REPROJECT);  // shaders/push_constants.h
 
-float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
+float reproj_prev_depth(int i) { return FETCH_DEPTH(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH_NORMAL(prev_normal, i); }
-uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
+uint reproj_prev_object(int i) { return FETCH_OBJECT(prev_object, i); }
 
 // NaN/Inf → 0, negative components → 0; counted (each channel once).
 // Counted by the main pass only: the box pass revisits pixels it has counted.
@@ -192,8 +192,8 @@ bool reproject_pixel(int i) {
     taps.needs_box = false;
     if (pc.has_prev != 0u) {
         vec2 dzv = FETCH2(depth_grad, i);
-        taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH1(depth, i), FETCH_NORMAL(normal, i),
-                                      FETCH1(object_id, i),
+        taps = find_reprojection_taps(FETCH2(prev_pixel, i), pc.size, FETCH_DEPTH(depth, i), FETCH_NORMAL(normal, i),
+                                      FETCH_OBJECT(object_id, i),
                                       max(abs(dzv.x), abs(dzv.y)));
     }
     bool success = taps.count > 0;

@@ -38,7 +38,7 @@ void main() {
     [[unroll]] for (int k = 0; k < 9; ++k) {
         ivec2 q = p + ivec2(k % 3 - 1, k / 3 - 1);
         int j = clamped_index(q, pc.size);
-        float w = in_image(q, pc.size) && FETCH1(object_id, j) != FOVRT_NO_OBJECT ? 1.0 : 0.0;
+        float w = in_image(q, pc.size) && FETCH_OBJECT(object_id, j) != FOVRT_NO_OBJECT ? 1.0 : 0.0;
         float lq = luminance(FETCH4(illum_in, j).rgb);
         sum += w * lq;
         sum2 += w * lq * lq;

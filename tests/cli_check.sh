@@ -230,7 +230,7 @@ expect_error "memory --window out of range" "denoise.two_history.window: 0 is ou
 # --window keeps two-history's weighted history (40 B/pixel in fp16) in a quarter of the image.
 if "$fovrt" memory --width 64 --height 64 --eyes 1 --denoiser two-history --precision fp16 --window 0.5 >mem.txt 2>err.txt; then
   grep -q "weighted history in a window of 0.5 per side" mem.txt && grep -q "^wweight.A  *2048 " mem.txt &&
-    grep -q "^history total  *335872  *82.00" mem.txt &&
+    grep -q "^history total  *303104  *74.00" mem.txt &&
     ok "memory --window sizes the weighted planes by the window" || bad "memory --window: $(head -3 mem.txt; grep total mem.txt)"
 else
   bad "memory --window failed: $(cat err.txt)"

@@ -78,7 +78,13 @@ TEST_CASE("texel-format tables follow the binding kinds") {
     CHECK(fp16[SVGF_MOMENTS_B_LENGTH] == VK_FORMAT_R16_SFLOAT);
     CHECK(fp32[SVGF_MOMENTS_B_ILLUM_OUT] == VK_FORMAT_UNDEFINED);                // WRITE: storage
     CHECK(fp32[SVGF_MOMENTS_B_LIST] == VK_FORMAT_UNDEFINED);                     // LIST: storage
-    CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);  // UTEXEL
+    // DTEXEL and OTEXEL: depth is R32F and ids R32UI in fp32; in fp16 both slots view the one
+    // plane of depth + id codes as R32UI.
+    CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);
+    CHECK(StageTexelFormats(S::PackGuide, false, p16)[SVGF_GUIDE_B_OBJECT] == VK_FORMAT_R32_UINT);
+    CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_DEPTH] == VK_FORMAT_R32_SFLOAT);
+    CHECK(StageTexelFormats(S::PackGuide, false, p16)[SVGF_GUIDE_B_DEPTH] == VK_FORMAT_R32_UINT);
+    CHECK(StageTexelFormats(S::TwoHistoryReproject, true, p16)[TH_REPROJECT_B_PREV_DEPTH] == VK_FORMAT_R32_UINT);
     // NTEXEL: a normal is RGB32F in fp32 and an octahedral R16G16_SINT code in fp16.
     CHECK(StageTexelFormats(S::PackGuide, false, p32)[SVGF_GUIDE_B_NORMAL] == VK_FORMAT_R32G32B32_SFLOAT);
     CHECK(StageTexelFormats(S::PackGuide, false, p16)[SVGF_GUIDE_B_NORMAL] == VK_FORMAT_R16G16_SINT);

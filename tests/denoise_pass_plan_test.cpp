@@ -144,7 +144,7 @@ std::vector<std::string> BindingKinds(StageShader shader, bool pair) {
 bool AccessFits(const std::string& kind, Access access) {
     if (access == Access::Unused || kind == "RW" || kind == "LIST") return true;
     if (kind == "WRITE") return access == Access::Write;
-    return access == Access::Read;  // TEXEL, HTEXEL, HTEXEL3, UTEXEL, READ
+    return access == Access::Read;  // TEXEL, HTEXEL, HTEXEL3, UTEXEL, DTEXEL, OTEXEL, NTEXEL, READ
 }
 }  // namespace
 

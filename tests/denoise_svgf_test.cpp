@@ -263,8 +263,10 @@ TEST_CASE("memory plan lists A/B histories and budgets fail with the largest buf
     const size_t n = 64 * 32;
     // Histories: geometry 2×20 B + per channel 2×(12 + 8 + 4) B, two channels.
     CHECK(HistoryBytes(plan) == n * (2 * 20 + 2 * 2 * 24));
-    p.precision = Precision::Fp16;  // the normal octahedral (4 B), the channels' histories in halves
-    CHECK(HistoryBytes(PlanDenoiserMemory("svgf", 64, 32, p)) == n * (2 * 12 + 2 * 2 * 12));
+    // fp16: the normal octahedral (4 B), depth and object id one code (4 B), the channels'
+    // histories in halves.
+    p.precision = Precision::Fp16;
+    CHECK(HistoryBytes(PlanDenoiserMemory("svgf", 64, 32, p)) == n * (2 * 8 + 2 * 2 * 12));
     auto weighted = PlanDenoiserMemory("svgf-weighted", 64, 32, DenoiserParams{});
     CHECK(HistoryBytes(weighted) == n * (2 * 20 + 2 * 2 * 28));
     CHECK_NOTHROW(EnforceMemoryBudget(plan, 0));

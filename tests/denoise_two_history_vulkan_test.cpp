@@ -89,9 +89,11 @@ bool IllConditionedBlend(const TwoHistoryState& st, const HistoryWindow& window,
 }
 
 // `gaze(frame)`, when given, is where the eye looks in each frame (the weighted history's window).
+// `idStride` > 1 turns each object id k into k·idStride + 7 (with 511, every object shares one
+// id code in fp16 storage: common/depth_id.glsl).
 void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int frames, int width = 64,
              int height = 64, bool boxFallback = false, bool zeroSamples = false,
-             const std::function<vec2(int)>& gaze = {}) {
+             const std::function<vec2(int)>& gaze = {}, uint32_t idStride = 1) {
     auto ctx = TestContext();
     SvgfFamilyVulkanDenoiser vk(variant, ctx, params);
     SvgfFamilyReferenceDenoiser ref(variant, params);
@@ -107,6 +109,9 @@ void RunPair(const DenoiserVariant& variant, const DenoiserParams& params, int f
         FrameInputs f = RandomTwoHistoryFrame(width, height, uint32_t(frame), boxFallback);
         if (zeroSamples) f = test::WithZeroSamples(std::move(f), uint32_t(frame));
         if (gaze) f.gazePixel = gaze(frame);
+        if (idStride > 1)
+            for (size_t i = 0; i < f.objectId.size(); ++i)
+                if (f.objectId[i] != kNoObject) f.objectId[i] = f.objectId[i] * idStride + 7u;
         vk.Denoise(f, outVk);
         ref.Denoise(f, outRef);
         const std::string side = vk.LastWrittenSide();
@@ -276,6 +281,13 @@ TEST_CASE("vulkan two-history / asvgf passes match the C++ reference",
         params.svgf.filterCombined = true;
         params.svgf.atrousIterations = 2;
         RunPair(FindDenoiserVariant("two-history"), params, 3);
+    }
+    SECTION("fp16: object ids beyond the depth code's 511 wrap on the device as in the reference") {
+        if (!TestContext()->supports16BitStorage()) FOVRT_SKIP("no 16-bit storage");
+        params.precision = Precision::Fp16;
+        params.svgf.atrousIterations = 2;
+        for (const char* name : {"two-history-asvgf-stable-hysteresis", "asvgf"})
+            RunPair(FindDenoiserVariant(name), params, 3, 64, 64, false, false, {}, 511u);
     }
     SECTION("fp32, no a-trous: two-history-asvgf") {
         params.svgf.atrousIterations = 0;

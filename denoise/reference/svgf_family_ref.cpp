@@ -280,6 +280,12 @@ const FrameInputs& SvgfFamilyReferenceDenoiser::StoredInputs(const FrameInputs& 
         for (size_t i = 0; i < rgb->size(); ++i)
             for (int c = 0; c < 3; ++c) (*rgb)[i][c] = QuantizeInput((*rgb)[i][c]);
     for (size_t i = 0; i < storedInputs_.normal.size(); ++i) storedInputs_.normal[i] = QuantizeNormal(storedInputs_.normal[i]);
+    if (StoresObjectIdsInDepth(params_.precision))
+        for (size_t i = 0; i < storedInputs_.linearDepth.size(); ++i) {
+            const uint32_t code = DepthIdCode(storedInputs_.linearDepth[i], storedInputs_.objectId[i]);
+            storedInputs_.linearDepth[i] = DepthOfCode(code);
+            storedInputs_.objectId[i] = ObjectIdOfCode(code);
+        }
     return storedInputs_;
 }
 

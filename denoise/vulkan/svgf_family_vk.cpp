@@ -152,7 +152,7 @@ void SvgfFamilyVulkanDenoiser::Record(CommandRecorder& rec, const Command& comma
             } else if constexpr (std::is_same_v<T, UploadCommand>) {
                 const HostBytes source = FrameSource(op.to.id.kind, frame.inputs);
                 if (ConvertedOnUpload(op.to.id.kind, params_.precision)) {  // the ring copies it at once
-                    ConvertForUpload(op.to.id.kind, source, halfInput_);
+                    ConvertForUpload(op.to.id.kind, frame.inputs, halfInput_);
                     frame.transfers.Upload(halfInput_.data(), halfInput_.size() * sizeof(uint16_t), buffer(op.to));
                 } else {
                     frame.transfers.Upload(source.data, source.bytes, buffer(op.to));

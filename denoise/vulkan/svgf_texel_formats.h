@@ -38,6 +38,9 @@ inline VkFormat HistoryTexelFormat(VkFormat fp32, Precision precision) {
 #define FOVRT_TEXEL_FORMAT_UTEXEL(format) FOVRT_VK_FORMAT_##format
 #define FOVRT_TEXEL_FORMAT_NTEXEL(format) \
     (precision == Precision::Fp16 ? VK_FORMAT_R16G16_SINT : FOVRT_VK_FORMAT_##format)
+#define FOVRT_TEXEL_FORMAT_DTEXEL(format) \
+    (precision == Precision::Fp16 ? VK_FORMAT_R32_UINT : FOVRT_VK_FORMAT_##format)
+#define FOVRT_TEXEL_FORMAT_OTEXEL(format) FOVRT_VK_FORMAT_##format
 #define FOVRT_TEXEL_FORMAT_HTEXEL(format) HistoryTexelFormat(FOVRT_VK_FORMAT_##format, precision)
 #define FOVRT_TEXEL_FORMAT_HTEXEL3(format) \
     (precision == Precision::Fp16 ? VK_FORMAT_UNDEFINED : FOVRT_VK_FORMAT_##format)

@@ -8,6 +8,7 @@
 // Out-of-range texel fetches return 0 instead of reading out of bounds (callers still test).
 #ifndef FOVRT_ACCESS_GLSL
 #define FOVRT_ACCESS_GLSL
+#include "depth_id.glsl"
 #include "octahedral_normal.glsl"
 
 #define PLANE(binding_, name) layout(binding = binding_) uniform samplerBuffer name
@@ -22,6 +23,15 @@
 #define FETCH_NORMAL(name, i) octahedral_normal(texelFetch(name, (i)).xy)
 #else
 #define FETCH_NORMAL(name, i) texelFetch(name, (i)).xyz
+#endif
+// Linear depth and object id (DTEXEL and OTEXEL bindings): R32F and R32UI planes, or one plane of
+// depth + id codes in the _fp16 variants (common/depth_id.glsl).
+#ifdef FOVRT_FP16
+#define FETCH_DEPTH(name, i) depth_id_depth(texelFetch(name, (i)).x)
+#define FETCH_OBJECT(name, i) depth_id_object(texelFetch(name, (i)).x)
+#else
+#define FETCH_DEPTH(name, i) texelFetch(name, (i)).x
+#define FETCH_OBJECT(name, i) texelFetch(name, (i)).x
 #endif
 
 // Index of pixel q clamped into a size.x × size.y image. The gather filters (svgf_atrous,

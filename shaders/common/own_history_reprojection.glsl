@@ -8,15 +8,15 @@
 #define FOVRT_OWN_HISTORY_REPROJECTION_GLSL
 #include "common/reprojection.glsl"
 
-float reproj_prev_depth(int i) { return FETCH1(prev_depth, i); }
+float reproj_prev_depth(int i) { return FETCH_DEPTH(prev_depth, i); }
 vec3 reproj_prev_normal(int i) { return FETCH_NORMAL(prev_normal, i); }
-uint reproj_prev_object(int i) { return FETCH1(prev_object, i); }
+uint reproj_prev_object(int i) { return FETCH_OBJECT(prev_object, i); }
 
 // The taps of pixel i (= p.y·size.x + p.x) into the previous frame; gather with REPROJ_GATHER.
 ReprojTaps own_history_taps(int i, ivec2 size) {
     vec2 dzv = FETCH2(depth_grad, i);
-    return find_reprojection_taps(FETCH2(prev_pixel, i), size, FETCH1(depth, i), FETCH_NORMAL(normal, i),
-                                  FETCH1(object_id, i), max(abs(dzv.x), abs(dzv.y)));
+    return find_reprojection_taps(FETCH2(prev_pixel, i), size, FETCH_DEPTH(depth, i), FETCH_NORMAL(normal, i),
+                                  FETCH_OBJECT(object_id, i), max(abs(dzv.x), abs(dzv.y)));
 }
 
 #endif

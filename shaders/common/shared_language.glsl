@@ -14,7 +14,8 @@
 #define FOVRT_GLSL_BEGIN \
     namespace fovrt::glsl { \
     using glm::abs, glm::any, glm::clamp, glm::dot, glm::exp, glm::exp2, glm::isinf, glm::isnan, glm::log2, glm::max, \
-        glm::min, glm::mix, glm::normalize, glm::pow, glm::sqrt; \
+        glm::min, glm::mix, glm::normalize, glm::pow, glm::sqrt, glm::floatBitsToUint, glm::uintBitsToFloat; \
+    using uint = unsigned int; \
     using glm::bvec3, glm::ivec2, glm::vec2, glm::vec3, glm::vec4;
 #define FOVRT_GLSL_END }
 #define FOVRT_SHARED_FN inline
