@@ -1,4 +1,5 @@
 // A-SVGF's temporal gradient (Schied et al. 2018, §3) as planned passes.
+#include "denoise/mechanism_passes.h"
 #include "denoise/plan_writer.h"
 
 namespace fovrt::plan {

@@ -1,5 +1,8 @@
 // The plan fragments of two-history's mechanisms with passes of their own (denoise/mechanism_passes.h):
 // the EMA gradient, the held choice, the stabilisation.
+#include "denoise/mechanism_passes.h"
+
+#include "core/error.h"
 #include "denoise/plan_writer.h"
 
 namespace fovrt::plan {
@@ -104,8 +107,19 @@ void Stabilize(Writer& w, const Family& f, FrameCursor& cursor) {
 }
 
 
+PlanFragment FragmentOf(MechanismPass pass) {
+    switch (pass) {
+        case MechanismPass::AsvgfGradient: return AsvgfGradient;
+        case MechanismPass::EmaGradient: return EmaGradient;
+        case MechanismPass::HeldChoice: return HeldChoice;
+        case MechanismPass::Stabilize: return Stabilize;
+        case MechanismPass::None: break;
+    }
+    Fail("plan: no fragment for mechanism pass {}", int(pass));
+}
+
 void EmitMechanismPasses(Writer& w, const Family& f, FrameSlot slot, FrameCursor& cursor) {
-    for (PlanFragment emit : MechanismFragmentsAt(f.v, slot)) emit(w, f, cursor);
+    for (MechanismPass pass : MechanismPassesAt(f.v, slot)) FragmentOf(pass)(w, f, cursor);
 }
 
 }  // namespace fovrt::plan

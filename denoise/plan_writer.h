@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "denoise/gradient_strata.h"
-#include "denoise/mechanism_passes.h"
+#include "denoise/mechanism_slots.h"
 #include "denoise/pass_plan.h"
 #include "denoise/schedule.h"
 #include "denoise/svgf_family_plan.h"

@@ -11,7 +11,6 @@
 #include "core/error.h"
 #include "core/nearest_name.h"
 #include "denoise/debug_views.h"
-#include "denoise/mechanism_passes.h"
 #include "denoise/params.h"
 #include "denoise/planes.h"
 
@@ -67,7 +66,7 @@ constexpr unsigned kSvgfFamilies = Bit(MethodFamily::Svgf) | Bit(MethodFamily::T
 // table, denoise/planes.h); the debug views it offers and those of the rows before it it takes
 // away (the clamp has no p); the token with which it changes nothing, and why (its settings are
 // then unread too); and its plan fragment, the passes of its own it adds at a slot of the frame
-// (denoise/mechanism_passes.h; none for a mechanism that switches a mode of a family pass).
+// (denoise/mechanism_slots.h; none for a mechanism that switches a mode of a family pass).
 // denoise_settings_test holds the settings to what changes the output of every composition,
 // denoise_pass_plan_test the planes to what its plan names and the fragment to where its passes
 // run, and the debug-view tests the views to what both backends read.
@@ -128,7 +127,7 @@ const Mechanism kMechanisms[] = {
     {.flag = &DenoiserVariant::asvgfGradient, .token = "asvgf",
      .description = "A-SVGF temporal gradient -> per-pixel alpha (Schied 2018)", .families = kSvgfFamilies,
      .reads = kAsvgfSettings, .replaces = kSvgfAlpha, .planes = kAsvgfPlanes, .views = kAsvgfViews,
-     .passes = {FrameSlot::BeforeGuide, plan::AsvgfGradient}},
+     .passes = {FrameSlot::BeforeGuide, MechanismPass::AsvgfGradient}},
     {.flag = &DenoiserVariant::antilag, .token = "antilag", .description = "anti-lag: lambda shortens the history (Q2RTX)",
      .families = kSvgfFamilies, .requiresToken = "asvgf", .why = "the anti-lag factor is A-SVGF's lambda",
      .reads = kAntilagSettings, .replaces = kAsvgfAlpha, .views = kAntilagViews, .hidesViews = kAlphaView},
@@ -139,17 +138,17 @@ const Mechanism kMechanisms[] = {
      .description = "second, sample-count-weighted history and the variance-optimal blend (Tu 2024)",
      .reads = kTwoHistorySettings, .planes = kTwoHistoryPlanes, .views = kTwoHistoryViews},
     {.flag = &DenoiserVariant::emaGradient, .token = {}, .description = "EMA luminance gradient -> q (Tu 2024)",
-     .reads = kEmaGradientSettings, .planes = kEmaGradientPlanes, .passes = {FrameSlot::AfterVariance, plan::EmaGradient}},
+     .reads = kEmaGradientSettings, .planes = kEmaGradientPlanes, .passes = {FrameSlot::AfterVariance, MechanismPass::EmaGradient}},
     {.flag = &DenoiserVariant::hystereticChoice, .token = "hysteresis",
      .description = "held history choice (band and rate)", .families = Bit(MethodFamily::TwoHistory),
      .excludesToken = "clamp", .why = "both replace the choice p between the two histories",
-     .reads = kHysteresisSettings, .planes = kChoicePlanes, .passes = {FrameSlot::BeforeBlend, plan::HeldChoice}},
+     .reads = kHysteresisSettings, .planes = kChoicePlanes, .passes = {FrameSlot::BeforeBlend, MechanismPass::HeldChoice}},
     {.flag = &DenoiserVariant::clampHistory, .token = "clamp",
      .description = "history clamp to the weighted history's neighbourhood", .families = Bit(MethodFamily::TwoHistory),
      .reads = kClampSettings, .hidesViews = kChoiceViews},
     {.flag = &DenoiserVariant::stabilize, .token = "stabilize", .description = "luminance stabilisation pass",
      .families = Bit(MethodFamily::TwoHistory), .reads = kStabilizeSettings, .planes = kStabilizePlanes,
-     .views = kStabilizeViews, .passes = {FrameSlot::AfterFilter, plan::Stabilize}},
+     .views = kStabilizeViews, .passes = {FrameSlot::AfterFilter, MechanismPass::Stabilize}},
     {.flag = &DenoiserVariant::stabilizeAntilag, .token = "stabilize-antilag",
      .description = "stabilisation weight driven by the change detector", .families = Bit(MethodFamily::TwoHistory),
      .requiresToken = "stabilize", .why = "it drives the stabilisation's weight", .reads = kStabilizeAntilagSettings,
@@ -533,15 +532,16 @@ std::vector<PlaneKind> VariantPlanes(const DenoiserVariant& variant) {
 std::vector<MechanismFragment> MechanismFragments() {
     std::vector<MechanismFragment> fragments;
     for (const Mechanism& m : kMechanisms)
-        if (m.passes.emit) fragments.push_back({m.flag, m.passes});
+        if (m.passes.pass != MechanismPass::None) fragments.push_back({m.flag, m.passes});
     return fragments;
 }
 
-std::vector<PlanFragment> MechanismFragmentsAt(const DenoiserVariant& variant, FrameSlot slot) {
-    std::vector<PlanFragment> fragments;
+std::vector<MechanismPass> MechanismPassesAt(const DenoiserVariant& variant, FrameSlot slot) {
+    std::vector<MechanismPass> passes;
     for (const Mechanism& m : kMechanisms)
-        if (m.passes.emit && m.passes.slot == slot && variant.*m.flag) fragments.push_back(m.passes.emit);
-    return fragments;
+        if (m.passes.pass != MechanismPass::None && m.passes.slot == slot && variant.*m.flag)
+            passes.push_back(m.passes.pass);
+    return passes;
 }
 
 std::vector<DebugViewId> VariantDebugViews(const DenoiserVariant& variant) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/frame_inputs.h"
+#include "denoise/mechanism_slots.h"
 #include "denoise/params.h"
 
 namespace fovrt {
@@ -142,6 +143,16 @@ std::vector<PlaneKind> VariantPlanes(const DenoiserVariant& variant);
 std::vector<DebugViewId> VariantDebugViews(const DenoiserVariant& variant);
 // What the renderer must produce for the row, in words (empty: the noisy inputs alone).
 std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant);
+
+// A mechanism with passes of its own: its row's flag and what the row declares of its fragment.
+struct MechanismFragment {
+    bool DenoiserVariant::*flag;
+    MechanismPasses passes;
+};
+// Every mechanism with passes of its own, in the order a frame runs them (the plan's tests).
+std::vector<MechanismFragment> MechanismFragments();
+// The passes of the mechanisms `variant` turns on at `slot`, in frame order (PlanSvgfFamily).
+std::vector<MechanismPass> MechanismPassesAt(const DenoiserVariant& variant, FrameSlot slot);
 
 // The aliases, in table order (every composition is accepted too).
 const std::vector<std::string>& DenoiserNames();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "denoise/mechanism_passes.h"
 #include "denoise/pass_plan.h"
 #include "denoise/plan_writer.h"
 #include "denoise/variants.h"
@@ -218,7 +219,7 @@ TEST_CASE("each mechanism's own passes are in a composition's plan exactly where
                 std::vector<PlannedPass> own;
                 plan::Writer w(own);
                 plan::FrameCursor cursor;
-                m.passes.emit(w, family, cursor);
+                plan::FragmentOf(m.passes.pass)(w, family, cursor);
                 REQUIRE(!own.empty());
                 const size_t first = at(own.front().name);
                 INFO(name << ": " << own.front().name << " in " << Catch::Detail::stringify(order));
