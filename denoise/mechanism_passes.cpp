@@ -84,7 +84,8 @@ void Stabilize(Writer& w, const Family& f, FrameCursor& cursor) {
     using K = PlaneKind;
     const K filtered = cursor.filtered;
     const K out = filtered == K::Illum1 ? K::Illum0 : K::Illum1;
-    StabilizeStage stage{{}, f.v.stabilizeAntilag ? std::optional(BlendQPlane(f.v)) : std::nullopt};
+    const PlaneId q = BlendQPlane(f.v);  // the change detector, read with stabilize-antilag
+    StabilizeStage stage{{}, f.v.stabilizeAntilag ? std::optional(q) : std::nullopt};
     for (Channel ch : f.channels) stage.planes.push_back({ch, {filtered, ch}, {out, ch}, This(K::StableLum, ch)});
     w.Pass("two_history_stabilize", "two_history_stabilize", stage);
     const TwoHistoryStableParams& s = f.params.twoHistoryStable;
@@ -99,13 +100,12 @@ void Stabilize(Writer& w, const Family& f, FrameCursor& cursor) {
             .Read(TH_STABILIZE_B_WU, This(K::Length, f.First()))
             .Read(TH_STABILIZE_B_PREV_STABLE, Previous(K::StableLum, p.channel))
             .Write(TH_STABILIZE_B_CUR_STABLE, This(K::StableLum, p.channel));
-        b.ReadIf(stage.q.has_value(), TH_STABILIZE_B_Q, Shared(BlendQPlane(f.v).kind));
+        b.ReadIf(stage.q.has_value(), TH_STABILIZE_B_Q, Shared(q.kind));
         w.Dispatch(OverPixels(f.Pipeline(StageShader::TwoHistoryStabilize), std::move(b), push));
     }
     w.Barrier();
     cursor.filtered = out;
 }
-
 
 PlanFragment FragmentOf(MechanismPass pass) {
     switch (pass) {

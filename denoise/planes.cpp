@@ -256,13 +256,14 @@ void ConvertForUpload(PlaneKind kind, const FrameInputs& in, std::vector<uint16_
     }
 }
 
-const std::vector<PlaneKind>& PlanesUploadedEveryFrame() {
-    static const std::vector<PlaneKind> kinds = [] {
-        std::vector<PlaneKind> k;
-        for (size_t i = 0; i < std::size(kRows); ++i)
-            if (kRows[i].source == Source::EveryFrame) k.push_back(PlaneKind(i));
-        return k;
-    }();
+std::vector<PlaneKind> PlanesUploadedEveryFrame(Precision precision) {
+    std::vector<PlaneKind> kinds;
+    for (size_t i = 0; i < std::size(kRows); ++i) {
+        const PlaneKind kind = PlaneKind(i);
+        if (kRows[i].source != Source::EveryFrame) continue;
+        if (kind == PlaneKind::ObjectId && StoresObjectIdsInDepth(precision)) continue;  // in the depth codes
+        kinds.push_back(kind);
+    }
     return kinds;
 }
 

@@ -178,8 +178,9 @@ struct HostBytes {
     size_t bytes = 0;
 };
 HostBytes FrameSource(PlaneKind kind, const FrameInputs& in);
-// The kinds every frame uploads (EVERY_FRAME and MODULATION), in table order.
-const std::vector<PlaneKind>& PlanesUploadedEveryFrame();
+// The kinds every frame uploads at `precision` (EVERY_FRAME and MODULATION), in table order: the
+// object ids only where the depth plane does not hold them (StoresObjectIdsInDepth).
+std::vector<PlaneKind> PlanesUploadedEveryFrame(Precision precision);
 
 // Whether the host converts the plane's FrameInputs data before uploading it: the INPUT_RGB,
 // INPUT_NORMAL and INPUT_DEPTH planes in fp16.

@@ -16,8 +16,8 @@ void Upload(Writer& w, const Family& f) {
     w.Pass("upload", "", std::monostate{});
     w.Clear(When::NoPrevious);
     w.Barrier(When::NoPrevious);
-    for (PlaneKind kind : PlanesUploadedEveryFrame())
-        if (kind != PlaneKind::ObjectId || !f.idsInDepth) w.Upload(IsHistory(kind) ? This(kind) : Shared(kind));
+    for (PlaneKind kind : PlanesUploadedEveryFrame(f.params.precision))
+        w.Upload(IsHistory(kind) ? This(kind) : Shared(kind));
     w.Fill(Shared(PlaneKind::Stats), 0u);
     if (f.readsSampleCounts) w.Upload(Shared(PlaneKind::SampleCount));
     if (f.v.needsGradientSamples)

@@ -8,9 +8,9 @@
     B(ASVGF_GATHER, GRAD, 2, WRITE, vec2, grad)                         \
     B(ASVGF_GATHER, GUIDE_GEOMETRY, 3, WRITE, vec4, guide_geometry)     \
     B(ASVGF_GATHER, GUIDE_LUMINANCE, 4, WRITE, vec4, guide_luminance)   \
-    B(ASVGF_GATHER, DEPTH, 5, DTEXEL, R32F, depth)                       \
+    B(ASVGF_GATHER, DEPTH, 5, DTEXEL, R32F, depth)                      \
     B(ASVGF_GATHER, NORMAL, 6, NTEXEL, RGB32F, normal)                  \
-    B(ASVGF_GATHER, OBJECT, 7, OTEXEL, R32UI, object_id)                \
+    B(ASVGF_GATHER, OBJECT, 7, OTEXEL, R32UI, object_id)               \
     B(ASVGF_GATHER, DEPTH_GRAD, 8, TEXEL, RG32F, depth_grad)            \
     B(ASVGF_GATHER, DIRECT, 9, HTEXEL, RGB32F, direct)                  \
     B(ASVGF_GATHER, INDIRECT, 10, HTEXEL, RGB32F, indirect)             \

@@ -6,12 +6,12 @@
 #define REPROJECT_INPUT_BINDINGS(B, P)                 \
     B(P, COLOR_IN, 0, HTEXEL, RGB32F, color_in)        \
     B(P, COLOR_IN2, 1, HTEXEL, RGB32F, color_in2)      \
-    B(P, DEPTH, 2, DTEXEL, R32F, depth)                 \
+    B(P, DEPTH, 2, DTEXEL, R32F, depth)                \
     B(P, NORMAL, 3, NTEXEL, RGB32F, normal)            \
-    B(P, OBJECT, 4, OTEXEL, R32UI, object_id)          \
-    B(P, PREV_DEPTH, 5, DTEXEL, R32F, prev_depth)       \
+    B(P, OBJECT, 4, OTEXEL, R32UI, object_id)         \
+    B(P, PREV_DEPTH, 5, DTEXEL, R32F, prev_depth)      \
     B(P, PREV_NORMAL, 6, NTEXEL, RGB32F, prev_normal)  \
-    B(P, PREV_OBJECT, 7, OTEXEL, R32UI, prev_object)   \
+    B(P, PREV_OBJECT, 7, OTEXEL, R32UI, prev_object)  \
     B(P, DEPTH_GRAD, 8, TEXEL, RG32F, depth_grad)      \
     B(P, PREV_PIXEL, 9, TEXEL, RG32F, prev_pixel)      \
     B(P, LIST_ARGS, 10, LIST, uint, list_args)         \
