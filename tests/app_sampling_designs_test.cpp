@@ -235,6 +235,17 @@ TEST_CASE("rays saved from the points: a design that reaches each JOD with half 
     CHECK(rows[0].raysSavedFovea.upper >= 3.0 - 1e-6);
     const std::string table = RaysSavedTable(spec, rows);
     CHECK_THAT(table, Catch::Matchers::Contains("2.00×") && Catch::Matchers::Contains("3.00×"));
+    // At each of its points (1, 2, 4 and 8 spp) the design scores uniform's JOD at twice its rays;
+    // at 8 spp that is uniform's at 16, beyond uniform's last point, so there is nothing to read.
+    REQUIRE(rows[0].raysSavedAtPoints.size() == 4);
+    for (size_t i = 0; i < 3; ++i) {
+        INFO("point " << i << ": " << rows[0].raysSavedAtPoints[i].estimate.reason);
+        REQUIRE(rows[0].raysSavedAtPoints[i].estimate.Ok());
+        CHECK(rows[0].raysSavedAtPoints[i].estimate.value == Approx(2.0).epsilon(1e-9));
+        CHECK(rows[0].raysSavedAtPoints[i].lower == Approx(2.0).epsilon(1e-9));
+        CHECK(rows[0].raysSavedAtPoints[i].upper == Approx(2.0).epsilon(1e-9));
+    }
+    CHECK_THAT(rows[0].raysSavedAtPoints[3].estimate.reason, Catch::Matchers::Contains("lies outside the anchor's"));
 
     const SweepPointValues values = PointValues(points[1], "room", "svgf", spec.seeds);
     CHECK(values.jod.size() == 3);

@@ -1,6 +1,6 @@
 // Rays saved at equal JOD and JOD gain at equal rays (metrics/rate_quality.h): closed forms first
 // (a curve shifted in rate by k saves k, one shifted in JOD by c gains c, identical curves give 1
-// and 0, also over a partial overlap), then the documented no-results, the PCHIP interpolant
+// and 0, also over a partial overlap; a point k× cheaper saves k), then the documented no-results, the PCHIP interpolant
 // against hand-computed Fritsch–Carlson slopes, and the paired seed bootstrap interval.
 #include <cmath>
 #include <string>
@@ -284,4 +284,47 @@ TEST_CASE("the bootstrap refuses mismatched or non-finite seeds and curves resam
     CHECK(std::isnan(noInterval.lower));
     CHECK(Contains(noInterval.intervalReason,
                    "seed resamples give no result (more than 2.5 %), e.g. anchor curve: not monotone"));
+}
+
+TEST_CASE("rays saved at a point: k on a curve k times cheaper, the log-linear closed form between knots, "
+          "nothing outside the anchor's range",
+          "[rate_quality]") {
+    // At the anchor's own knots every fit passes through them: a point with k× fewer rays saves k.
+    for (const RateQualityCurve& anchor : kShapes)
+        for (double k : {0.5, 2.0, 3.3})
+            for (const RateQualityPoint& p : FewerRays(anchor, k)) {
+                const BjontegaardResult r = RaysSavedAtPoint(anchor, p);
+                INFO("k = " << k << " at JOD " << p.jod << ": " << r.reason);
+                REQUIRE(r.Ok());
+                CHECK(Near(r.value, k));
+                CHECK(r.from == p.jod);
+            }
+    // Between knots on ln R = a + bQ (PCHIP and the cubic reproduce a line): the anchor needs
+    // exp(a + bQ) rays for the point's JOD Q.
+    const RateQualityCurve anchor = LogLinear({3.0, 4.0, 6.0, 7.0, 9.0}, 0.2, 0.45);
+    for (RateQualityFit fit : {RateQualityFit::kPchip, RateQualityFit::kCubic})
+        for (double q : {3.0, 4.6, 8.25, 9.0}) {
+            const BjontegaardResult r = RaysSavedAtPoint(anchor, {1.5, q}, fit);
+            REQUIRE(r.Ok());
+            CHECK(Near(r.value, std::exp(0.2 + 0.45 * q) / 1.5));
+        }
+    // Outside the anchor's JOD range nothing is extrapolated; bad input names itself.
+    const BjontegaardResult above = RaysSavedAtPoint(anchor, {1.0, 9.5});
+    CHECK(!above.Ok());
+    CHECK(Contains(above.reason, "the point's JOD 9.5 lies outside the anchor's [3, 9]"));
+    CHECK(Contains(RaysSavedAtPoint(anchor, {0.0, 5.0}).reason, "test curve: point 0 has rays 0"));
+    CHECK(Contains(RaysSavedAtPoint({{1.0, 5.0}, {2.0, 5.0}}, {1.0, 5.0}).reason, "anchor curve: not monotone"));
+
+    // With seeds: the anchor's own per-seed JOD at a third of the rays saves 3 in every paired
+    // resample; a point with other seeds than the anchor's has no estimate.
+    const SeededRateQualityCurve seeded = Seeded(kShapes[0], 5, 0.1, 7);
+    SeededRateQualityPoint point = seeded[2];
+    point.rays /= 3.0;
+    const BjontegaardInterval paired = BootstrapRaysSavedAtPoint(seeded, point);
+    REQUIRE(paired.intervalReason.empty());
+    CHECK(Near(paired.estimate.value, 3.0));
+    CHECK(Near(paired.lower, 3.0));
+    CHECK(Near(paired.upper, 3.0));
+    point.jodPerSeed.pop_back();
+    CHECK(Contains(BootstrapRaysSavedAtPoint(seeded, point).estimate.reason, "test curve: point 0 has 4 seeds"));
 }

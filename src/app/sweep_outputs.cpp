@@ -85,6 +85,13 @@ nlohmann::json IntervalJson(const BjontegaardInterval& r) {
     return j;
 }
 
+const RaysSavedRow* RowOf(const std::vector<RaysSavedRow>& rows, const std::string& scene, const std::string& variant,
+                          const std::string& design) {
+    for (const RaysSavedRow& r : rows)
+        if (r.scene == scene && r.variant == variant && r.design == design) return &r;
+    return nullptr;
+}
+
 std::string BudgetText(const SweepPoint& point) {
     return point.budgetSpp ? fmt::format("{:g}", *point.budgetSpp) : std::string();
 }
@@ -118,7 +125,9 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
         nlohmann::json keys = nlohmann::json::object();
         for (const auto& [key, value] : sweep.designs[d].keys) keys[key] = value;
         nlohmann::json pointsJson = nlohmann::json::array();
-        for (const SweepPointResult* p : PointsOf(spec, points, d)) {
+        const std::vector<const SweepPointResult*> designPoints = PointsOf(spec, points, d);
+        for (size_t i = 0; i < designPoints.size(); ++i) {
+            const SweepPointResult* p = designPoints[i];
             const SweepPoint& point = sweep.points[p->point];
             nlohmann::json traced = nlohmann::json::object(), variants = nlohmann::json::object();
             nlohmann::json guides = nlohmann::json::object();  // guide rays per pixel, whole image
@@ -134,6 +143,8 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
                                                 {"relmse_whole", Mean(v.relmseWhole)},
                                                 {"relmse_fovea", Mean(v.relmseFovea)},
                                                 {"flicker_fovea", Mean(v.flickerFovea)}};
+                    if (const RaysSavedRow* row = RowOf(saved, scene, variant, sweep.designs[d].name))
+                        variants[scene][variant]["rays_saved_here"] = IntervalJson(row->raysSavedAtPoints[i]);
                 }
             }
             pointsJson.push_back({{"label", point.label},
@@ -182,26 +193,33 @@ ReportTable HeadlineReportTable(const ExperimentSpec& spec, const std::vector<Ra
     return t;
 }
 
-ReportTable PointsTable(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
+ReportTable PointsTable(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points,
+                        const std::vector<RaysSavedRow>& saved) {
     ReportTable t{"Every point: measured sampling and scores (mean over seeds)",
                   {"scene", "variant", "design", "budget spp", "traced spp whole / fovea / periphery", "guide rays/pixel", "JOD",
-                   "relMSE whole", "relMSE fovea", "flicker fovea"},
+                   "rays saved at this JOD [95 %]", "relMSE whole", "relMSE fovea", "flicker fovea"},
                   {}};
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants)
-            for (const SweepPointResult& p : points) {
-                const SweepPoint& point = spec.sweep.points[p.point];
-                const SweepPointValues v = PointValues(p, scene, variant, SeedsOf(spec));
-                t.rows.push_back({scene, variant, spec.sweep.designs[point.design].name, BudgetText(point),
-                                  fmt::format("{:.2f} / {:.2f} / {:.2f}", v.tracedSpp[0], v.tracedSpp[1], v.tracedSpp[2]),
-                                  fmt::format("{:.3f}", v.guideRays),
-                                  fmt::format("{:.3f}", Mean(v.jod)), fmt::format("{:.4g}", Mean(v.relmseWhole)),
-                                  fmt::format("{:.4g}", Mean(v.relmseFovea)), fmt::format("{:.4g}", Mean(v.flickerFovea))});
+            for (size_t d = 0; d < spec.sweep.designs.size(); ++d) {
+                const std::vector<const SweepPointResult*> designPoints = PointsOf(spec, points, d);
+                const RaysSavedRow* row = RowOf(saved, scene, variant, spec.sweep.designs[d].name);
+                for (size_t i = 0; i < designPoints.size(); ++i) {
+                    const SweepPoint& point = spec.sweep.points[designPoints[i]->point];
+                    const SweepPointValues v = PointValues(*designPoints[i], scene, variant, SeedsOf(spec));
+                    const std::string here = row ? IntervalText(row->raysSavedAtPoints[i], "{:.2f}", "×") : "";
+                    t.rows.push_back({scene, variant, spec.sweep.designs[d].name, BudgetText(point),
+                                      fmt::format("{:.2f} / {:.2f} / {:.2f}", v.tracedSpp[0], v.tracedSpp[1], v.tracedSpp[2]),
+                                      fmt::format("{:.3f}", v.guideRays), fmt::format("{:.3f}", Mean(v.jod)), here,
+                                      fmt::format("{:.4g}", Mean(v.relmseWhole)), fmt::format("{:.4g}", Mean(v.relmseFovea)),
+                                      fmt::format("{:.4g}", Mean(v.flickerFovea))});
+                }
             }
     return t;
 }
 
-std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
+std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points,
+                                    const std::vector<RaysSavedRow>& saved) {
     std::vector<std::string> plots;
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants) {
@@ -218,6 +236,28 @@ std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vecto
                 plot.series.push_back(std::move(series));
             }
             plots.push_back(SvgLinePlot(plot));
+        }
+    // How the saving changes with the budget: each design's rays saved at its own points' JOD.
+    for (const std::string& scene : points.front().scenes)
+        for (const std::string& variant : spec.variants) {
+            LinePlot plot;
+            plot.title = fmt::format("{} · {}: rays saved at each point's JOD against '{}'", scene, variant,
+                                     spec.sweep.anchor ? spec.sweep.designs[*spec.sweep.anchor].name : "—");
+            plot.xLabel = "traced path samples per pixel (measured)";
+            plot.yLabel = "rays saved at equal JOD (×)";
+            plot.logX = true;
+            plot.markers = true;
+            for (size_t d = 0; d < spec.sweep.designs.size(); ++d) {
+                const RaysSavedRow* row = RowOf(saved, scene, variant, spec.sweep.designs[d].name);
+                if (!row) continue;
+                PlotSeries series{spec.sweep.designs[d].name, {}};
+                const SeededRateQualityCurve curve = CurveOf(spec, points, d, scene, variant);
+                for (size_t i = 0; i < curve.size(); ++i)
+                    if (row->raysSavedAtPoints[i].estimate.Ok())
+                        series.points.emplace_back(curve[i].rays, row->raysSavedAtPoints[i].estimate.value);
+                if (!series.points.empty()) plot.series.push_back(std::move(series));
+            }
+            if (!plot.series.empty()) plots.push_back(SvgLinePlot(plot));
         }
     return plots;
 }
@@ -273,10 +313,13 @@ std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::
                 const SeededRateQualityCurve test = CurveOf(spec, points, d, scene, variant);
                 const SeededRateQualityCurve testFovea =
                     CurveOf(spec, points, d, scene, variant, CurveQuality::kFovealError);
+                std::vector<BjontegaardInterval> atPoints;
+                for (const SeededRateQualityPoint& point : test) atPoints.push_back(BootstrapRaysSavedAtPoint(anchor, point));
                 rows.push_back({scene, variant, sweep.designs[d].name,
                                 BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kRaysSaved),
                                 BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kJodGain),
-                                BootstrapBjontegaardDelta(anchorFovea, testFovea, RateQualityDelta::kRaysSaved, fovea)});
+                                BootstrapBjontegaardDelta(anchorFovea, testFovea, RateQualityDelta::kRaysSaved, fovea),
+                                std::move(atPoints)});
             }
         }
     return rows;
@@ -340,8 +383,8 @@ void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointR
                            {"points' outputs", "designs/<design>-b<budget>/ (each with its own report)"},
                            {"time", fmt::format("{:.1f} s wall, {:.1f} s CPU", wall, cpu)}};
         report.headline.push_back(HeadlineReportTable(spec, saved));
-        report.plots = CurvePlots(spec, points);
-        report.tables.push_back(PointsTable(spec, points));
+        report.plots = CurvePlots(spec, points, saved);
+        report.tables.push_back(PointsTable(spec, points, saved));
         WriteHtmlReport(outDir / "report.html", report);
     }
 

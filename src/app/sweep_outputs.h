@@ -5,9 +5,9 @@
 //   summary.json   per design its keys and per point the measured sampling and the means; per
 //                  (scene, variant, design) the rays saved at equal JOD against the anchor design
 //                  and the JOD gain at equal rays, each with its seed-bootstrap interval
-//                  (metrics/rate_quality.h)
+//                  (metrics/rate_quality.h), and per point the rays saved at its own JOD
 //   report.html    the headline table, then JOD against rays per (scene, variant), one curve per
-//                  design, and the points table; each point's own report is in designs/<point>/
+//                  design, the rays saved at each point against rays, and the points table; each point's own report is in designs/<point>/
 //   manifest.json  the sweep (designs, budgets, anchor, points), scenes, variants, seeds, build, time
 // and the headline table on stdout.
 #pragma once
@@ -54,6 +54,9 @@ struct RaysSavedRow {
     // average as a geometric mean): what the rays buy where the eye looks, which the whole-image
     // JOD can outweigh with the periphery.
     BjontegaardInterval raysSavedFovea;
+    // At each of the design's points (budgets ascending): uniform's rays for that point's JOD over
+    // its own, where its JOD lies within the anchor's range: how the saving changes with the budget.
+    std::vector<BjontegaardInterval> raysSavedAtPoints;
 };
 // Every design but the anchor against the anchor, per scene and variant (none without an anchor
 // or with fewer than two budgets).

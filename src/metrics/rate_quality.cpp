@@ -72,6 +72,11 @@ double FitIntegral(const std::vector<double>& x, const std::vector<double>& y, R
     return Pchip(x, y).Integral(a, b);
 }
 
+double FitValue(const std::vector<double>& x, const std::vector<double>& y, RateQualityFit fit, double at) {
+    if (fit == RateQualityFit::kCubic) return CubicFit(x, y)(at);
+    return Pchip(x, y)(at);
+}
+
 // The curve sorted by rays, or the reason it is not a rate–quality curve.
 std::string CheckCurve(const RateQualityCurve& curve, const char* name, const std::string& quality, size_t minPoints,
                        RateQualityCurve& sorted) {
@@ -226,21 +231,18 @@ BjontegaardResult BjontegaardDelta(const RateQualityCurve& anchor, const RateQua
     return result;
 }
 
-BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anchor,
-                                              const SeededRateQualityCurve& test, RateQualityDelta delta,
-                                              const BjontegaardIntervalOptions& options) {
+namespace {
+
+// The paired seed bootstrap of `estimate(draw)`, a result from the seed means over the drawn seed
+// indices (with repeats): the estimate on all seeds, then `options.resamples` replicates.
+template <typename Estimate>
+BjontegaardInterval BootstrapOverSeeds(size_t seeds, const Estimate& estimate, const BjontegaardIntervalOptions& options) {
     FOVRT_CHECK_OP(options.resamples, >=, 1);
     FOVRT_CHECK(options.confidence > 0.0 && options.confidence < 1.0);
     BjontegaardInterval interval;
-    size_t seeds = 0;
-    interval.estimate.reason = SharedSeedCount(anchor, test, seeds);
-    if (!interval.estimate.Ok()) {
-        interval.intervalReason = "no estimate";
-        return interval;
-    }
     std::vector<uint32_t> draw(seeds);
     for (size_t s = 0; s < seeds; ++s) draw[s] = uint32_t(s);
-    interval.estimate = BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit, options.quality);
+    interval.estimate = estimate(draw);
     if (!interval.estimate.Ok()) {
         interval.intervalReason = "no estimate";
         return interval;
@@ -252,8 +254,7 @@ BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anch
     std::string firstFailure;
     for (int r = 0; r < options.resamples; ++r) {
         for (uint32_t& s : draw) s = rng.NextBounded(uint32_t(seeds));
-        const BjontegaardResult replicate =
-            BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit, options.quality);
+        const BjontegaardResult replicate = estimate(draw);
         if (replicate.Ok()) {
             replicates.push_back(replicate.value);
         } else {
@@ -273,6 +274,60 @@ BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anch
     interval.lower = Quantile(replicates, tail);
     interval.upper = Quantile(replicates, 1.0 - tail);
     return interval;
+}
+
+BjontegaardInterval NoSeeds(std::string reason) {
+    BjontegaardInterval interval;
+    interval.estimate.reason = std::move(reason);
+    interval.intervalReason = "no estimate";
+    return interval;
+}
+
+}  // namespace
+
+BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anchor,
+                                              const SeededRateQualityCurve& test, RateQualityDelta delta,
+                                              const BjontegaardIntervalOptions& options) {
+    size_t seeds = 0;
+    if (std::string reason = SharedSeedCount(anchor, test, seeds); !reason.empty()) return NoSeeds(reason);
+    return BootstrapOverSeeds(
+        seeds,
+        [&](const std::vector<uint32_t>& draw) {
+            return BjontegaardDelta(MeanCurve(anchor, draw), MeanCurve(test, draw), delta, options.fit, options.quality);
+        },
+        options);
+}
+
+BjontegaardResult RaysSavedAtPoint(const RateQualityCurve& anchor, const RateQualityPoint& test, RateQualityFit fit,
+                                   const std::string& quality) {
+    BjontegaardResult result;
+    RateQualityCurve sortedAnchor, sortedTest;
+    result.reason = CheckCurve(anchor, "anchor", quality, fit == RateQualityFit::kCubic ? 4 : 2, sortedAnchor);
+    if (result.reason.empty()) result.reason = CheckCurve({test}, "test", quality, 1, sortedTest);
+    if (!result.Ok()) return result;
+    std::vector<double> q, logRays;
+    Axes(sortedAnchor, RateQualityDelta::kRaysSaved, q, logRays);
+    if (test.jod < q.front() || test.jod > q.back()) {
+        result.reason = fmt::format("the point's {} {:.6g} lies outside the anchor's [{:.6g}, {:.6g}]", quality, test.jod,
+                                    q.front(), q.back());
+        return result;
+    }
+    result.value = std::exp(FitValue(q, logRays, fit, test.jod)) / test.rays;
+    result.from = result.to = test.jod;
+    return result;
+}
+
+BjontegaardInterval BootstrapRaysSavedAtPoint(const SeededRateQualityCurve& anchor, const SeededRateQualityPoint& test,
+                                              const BjontegaardIntervalOptions& options) {
+    size_t seeds = 0;
+    if (std::string reason = SharedSeedCount(anchor, {test}, seeds); !reason.empty()) return NoSeeds(reason);
+    return BootstrapOverSeeds(
+        seeds,
+        [&](const std::vector<uint32_t>& draw) {
+            return RaysSavedAtPoint(MeanCurve(anchor, draw), MeanCurve({test}, draw).front(), options.fit,
+                                    options.quality);
+        },
+        options);
 }
 
 }  // namespace fovrt

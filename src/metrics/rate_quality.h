@@ -101,6 +101,17 @@ BjontegaardInterval BootstrapBjontegaardDelta(const SeededRateQualityCurve& anch
                                               const SeededRateQualityCurve& test, RateQualityDelta delta,
                                               const BjontegaardIntervalOptions& options = {});
 
+// Rays saved at one point of the test curve: the anchor's rays at the point's quality (its fit of
+// ln R over Q) over the point's rays; above 1 the point needs fewer. Where a single delta averages
+// over the whole overlap, this says how the saving changes with the budget. No value when the
+// anchor is not a rate–quality curve or the point's quality lies outside the anchor's range
+// (nothing is extrapolated). `from` and `to` are the point's quality.
+BjontegaardResult RaysSavedAtPoint(const RateQualityCurve& anchor, const RateQualityPoint& test,
+                                   RateQualityFit fit = RateQualityFit::kPchip, const std::string& quality = "JOD");
+// The same on the seed means, with the paired seed bootstrap (the point has the anchor's seeds).
+BjontegaardInterval BootstrapRaysSavedAtPoint(const SeededRateQualityCurve& anchor, const SeededRateQualityPoint& test,
+                                              const BjontegaardIntervalOptions& options = {});
+
 // The monotone piecewise cubic Hermite interpolant (PCHIP) through (x_i, y_i), x strictly
 // increasing. Slopes (Fritsch & Carlson 1980; weights of Fritsch & Butland 1984): 0 at an
 // interior knot where the secants change sign or one is 0, else the weighted harmonic mean
