@@ -658,9 +658,10 @@ std::string SvgLinePlot(const LinePlot& plot) {
         std::string swatch;  // SVG of the symbol at (0, 0)
     };
     std::vector<Entry> entries;
+    auto color = [&](size_t k) { return SeriesColor(plot.series[k].color >= 0 ? size_t(plot.series[k].color) : k); };
     for (size_t k = 0; k < plot.series.size(); ++k)
         entries.push_back({plot.series[k].name, fmt::format("<rect x=\"0\" y=\"-4\" width=\"14\" height=\"3\" fill=\"{}\"/>",
-                                                            SeriesColor(k))});
+                                                            color(k))});
     if (!plot.blinkX.empty())
         entries.push_back({"blink", "<rect x=\"0\" y=\"-9\" width=\"14\" height=\"10\" fill=\"#999\" fill-opacity=\"0.35\"/>"});
     if (!plot.saccadeX.empty())
@@ -753,10 +754,10 @@ std::string SvgLinePlot(const LinePlot& plot) {
             pts += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
             if (plot.markers)
                 dots += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"><title>{:.3g}, {:.4g}</title></circle>",
-                                    px(x), py(y), SeriesColor(k), x, y);
+                                    px(x), py(y), color(k), x, y);
         }
         out += fmt::format("<polyline class=\"series\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>",
-                           SeriesColor(k), pts) + dots;
+                           color(k), pts) + dots;
     }
     out += fmt::format("<g transform=\"translate(0,{:.1f})\">{}</g>", kTop + ph + kAxisH + 12, legend);
     return out + "</svg>";

@@ -124,6 +124,7 @@ Plane<vec3> Crop(const Plane<vec3>& image, const vec2& centre, int radius);
 struct PlotSeries {
     std::string name;
     std::vector<std::pair<double, double>> points;  // (x, y)
+    int color = -1;  // palette index, so that a series keeps its colour across plots; -1: its position
 };
 struct LinePlot {
     std::string title;

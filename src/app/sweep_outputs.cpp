@@ -241,16 +241,15 @@ std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vecto
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants) {
             LinePlot plot;
-            plot.title = fmt::format("{} · {}: rays saved at each point's JOD against '{}'", scene, variant,
-                                     spec.sweep.anchor ? spec.sweep.designs[*spec.sweep.anchor].name : "—");
+            plot.title = fmt::format("{} · {}: rays saved at each point", scene, variant);
             plot.xLabel = "traced path samples per pixel (measured)";
-            plot.yLabel = "rays saved at equal JOD (×)";
+            plot.yLabel = "rays saved at this JOD (×)";
             plot.logX = true;
             plot.markers = true;
             for (size_t d = 0; d < spec.sweep.designs.size(); ++d) {
                 const RaysSavedRow* row = RowOf(saved, scene, variant, spec.sweep.designs[d].name);
                 if (!row) continue;
-                PlotSeries series{spec.sweep.designs[d].name, {}};
+                PlotSeries series{spec.sweep.designs[d].name, {}, int(d)};  // the JOD plot's colour
                 const SeededRateQualityCurve curve = CurveOf(spec, points, d, scene, variant);
                 for (size_t i = 0; i < curve.size(); ++i)
                     if (row->raysSavedAtPoints[i].estimate.Ok())
