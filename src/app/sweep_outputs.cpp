@@ -218,17 +218,23 @@ ReportTable PointsTable(const ExperimentSpec& spec, const std::vector<SweepPoint
     return t;
 }
 
+// A plot of something per point against the measured rays (log axis, a dot at every point).
+LinePlot PlotAgainstRays(std::string title, std::string yLabel) {
+    LinePlot plot;
+    plot.title = std::move(title);
+    plot.xLabel = "traced path samples per pixel (measured)";
+    plot.yLabel = std::move(yLabel);
+    plot.logX = true;
+    plot.markers = true;
+    return plot;
+}
+
 std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points,
                                     const std::vector<RaysSavedRow>& saved) {
     std::vector<std::string> plots;
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants) {
-            LinePlot plot;
-            plot.title = fmt::format("{} · {}: JOD against rays", scene, variant);
-            plot.xLabel = "traced path samples per pixel (measured)";
-            plot.yLabel = "JOD";
-            plot.logX = true;
-            plot.markers = true;
+            LinePlot plot = PlotAgainstRays(fmt::format("{} · {}: JOD against rays", scene, variant), "JOD");
             for (size_t d = 0; d < spec.sweep.designs.size(); ++d) {
                 PlotSeries series{spec.sweep.designs[d].name, {}};
                 for (const SeededRateQualityPoint& q : CurveOf(spec, points, d, scene, variant))
@@ -240,12 +246,8 @@ std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vecto
     // How the saving changes with the budget: each design's rays saved at its own points' JOD.
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants) {
-            LinePlot plot;
-            plot.title = fmt::format("{} · {}: rays saved at each point", scene, variant);
-            plot.xLabel = "traced path samples per pixel (measured)";
-            plot.yLabel = "rays saved at this JOD (×)";
-            plot.logX = true;
-            plot.markers = true;
+            LinePlot plot = PlotAgainstRays(fmt::format("{} · {}: rays saved at each point", scene, variant),
+                                            "rays saved at this JOD (×)");
             for (size_t d = 0; d < spec.sweep.designs.size(); ++d) {
                 const RaysSavedRow* row = RowOf(saved, scene, variant, spec.sweep.designs[d].name);
                 if (!row) continue;
