@@ -66,6 +66,8 @@ struct TwoHistoryStableParams {
 struct RaeParams {
     std::string weights = "training/weights/rae-quarter.raew";           // variant rae
     std::string weightsSpp = "training/weights/rae-quarter-spp.raew";    // variant rae-spp
+    // No setting: the variant's `balance` mechanism sets it (ParamsForVariant, RaeBalanceGains).
+    bool balance = false;
 };
 
 struct DenoiserParams {

@@ -158,6 +158,10 @@ const Mechanism kMechanisms[] = {
                  "denoise.asvgf.antilag_gain >= 1"},
     {.flag = &DenoiserVariant::raeSampleCount, .token = "spp", .description = "sample count as an extra network input",
      .families = Bit(MethodFamily::Rae), .reads = kSppSettings, .replaces = kRaeWeights},
+    {.flag = &DenoiserVariant::raeBalance, .token = "balance",
+     .description = "input balanced to grey by per-channel gains from the frame's mean illumination, undone on the "
+                    "output (a colour cast passes through)",
+     .families = Bit(MethodFamily::Rae)},
 };
 
 // Today's names: aliases of compositions, each with the summary it had as a row of its own.
@@ -599,6 +603,7 @@ const std::vector<std::string>& DenoiserNames() {
 DenoiserParams ParamsForVariant(const DenoiserVariant& variant, DenoiserParams params) {
     params.svgf.weightBySampleCount = variant.weightBySampleCount;
     if (variant.raeSampleCount) params.rae.weights = params.rae.weightsSpp;
+    params.rae.balance = variant.raeBalance;
     return params;
 }
 

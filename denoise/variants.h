@@ -76,6 +76,7 @@ struct DenoiserVariant {
     bool needsGradientSamples = false;  // A-SVGF forward-projected gradient samples
     bool needsSampleCount = false;      // per-pixel sample counts uploaded to the device
     bool raeSampleCount = false;  // rae: the network with the sample-count input (weights_spp)
+    bool raeBalance = false;      // rae: input balanced to grey, undone on the output (RaeBalanceGains)
 };
 
 // The aliases' rows, in the order tables list them.

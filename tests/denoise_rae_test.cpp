@@ -213,6 +213,51 @@ TEST_CASE("rae recurrence: frame 1 changes frame 3's output; a camera cut resets
     CHECK(d.LastTimings().size() == 4);
 }
 
+// The `balance` mechanism: gains that make the frame's mean illumination grey, in closed form, and
+// undone exactly on the output, so that a network passing its colour input through returns it.
+TEST_CASE("rae balance: grey gains in closed form, undone on the output", "[rae]") {
+    const int w = 4, h = 2;
+    Tensor f(kRaeFeatureChannels, h, w);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            // Channel means 2, 1 and 0.5 (each pixel pair averages to them).
+            const float k = (x % 2 == 0) ? 1.5f : 0.5f;
+            f.At(0, y, x) = 2.0f * k;
+            f.At(1, y, x) = 1.0f * k;
+            f.At(2, y, x) = 0.5f * k;
+        }
+    const vec3 g = RaeBalanceGains(f);
+    const float mean = 3.5f / 3.0f;
+    CHECK(g.x == Approx(mean / 2.0f));
+    CHECK(g.y == Approx(mean / 1.0f));
+    CHECK(g.z == Approx(mean / 0.5f));
+
+    // No light in a channel (below 1e-4 of the mean) or in the frame: that gain stays 1.
+    Tensor dark = f;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) dark.At(2, y, x) = 0.0f;
+    CHECK(RaeBalanceGains(dark).z == 1.0f);
+    CHECK(RaeBalanceGains(Tensor(kRaeFeatureChannels, h, w)) == vec3(1.0f));
+
+    // The network's input is the balanced colour raised to γ; its output divided by the gains: a
+    // network that returns its colour input gives back albedo · colour + emission for any gains.
+    const FrameInputs frame = RandomFrame(w, h, 7);
+    Tensor features;
+    RaeFeatures(frame, features);
+    const RaeWeights weights = LoadRaeWeights(Golden("golden.raew"));
+    const vec3 gains = RaeBalanceGains(features);
+    Tensor input;
+    RaeNetworkInput(features, weights, input, gains);
+    CHECK(input.At(0, 1, 2) == Approx(std::pow(features.At(0, 1, 2) * gains.x, weights.gamma)));
+    Plane<vec3> out;
+    RaeRemodulate(frame, input, weights.gamma, out, gains);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const vec3 expected = frame.albedo(x, y) * (frame.direct(x, y) + frame.indirect(x, y));
+            for (int c = 0; c < 3; ++c) CHECK(out(x, y)[c] == Approx(expected[c]).epsilon(1e-4));
+        }
+}
+
 TEST_CASE("rae memory plan counts the hidden state as history", "[rae]") {
     const DenoiserParams p = GoldenParams();
     const RaeWeights& w = *SharedRaeWeights(p);

@@ -129,7 +129,9 @@ TEST_CASE("rae on Vulkan matches the C++ reference layer by layer and end to end
 
 TEST_CASE("rae on Vulkan: denoised frames follow the reference, and a camera cut resets", "[vulkan][rae]") {
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
-    const DenoiserParams p = GoldenParams(Precision::Fp32);
+    DenoiserParams p = GoldenParams(Precision::Fp32);
+    p.rae.balance = GENERATE(false, true);  // with the `balance` mechanism's gains too
+    INFO("balance " << p.rae.balance);
     RaeVulkanDenoiser vk("rae-spp", TestContext(), p);
     RaeReferenceDenoiser ref("rae-spp", p);
     Pcg32 rng(3);

@@ -19,7 +19,7 @@ bool Lists(const std::vector<std::string>& names, const std::string& part) {
 int FlagsSet(const DenoiserVariant& v) {
     return int(v.weightBySampleCount) + int(v.twoHistory) + int(v.emaGradient) + int(v.asvgfGradient) + int(v.antilag) +
            int(v.stabilize) + int(v.suppressFireflies) + int(v.clampHistory) + int(v.stabilizeAntilag) +
-           int(v.hystereticChoice) + int(v.raeSampleCount);
+           int(v.hystereticChoice) + int(v.raeSampleCount) + int(v.raeBalance);
 }
 
 }  // namespace
@@ -88,6 +88,7 @@ std::string SetFlags(const DenoiserVariant& v) {
     add(v.needsGradientSamples, "needsGradientSamples");
     add(v.needsSampleCount, "needsSampleCount");
     add(v.raeSampleCount, "raeSampleCount");
+    add(v.raeBalance, "raeBalance");
     return out;
 }
 
@@ -201,8 +202,8 @@ TEST_CASE("the compositions: every valid one once, the aliases among them", "[de
     const std::vector<std::string> all = DenoiserCompositions();
     // svgf: alone, +weighted, +asvgf, +asvgf+antilag; two-history: (none | asvgf | asvgf+antilag) ×
     // firefly × (none | hysteresis | clamp) × (none | stabilize | stabilize+stabilize-antilag);
-    // rae: alone, +spp.
-    CHECK(all.size() == 4 + 3 * 2 * 3 * 3 + 2);
+    // rae: (none | spp) × (none | balance).
+    CHECK(all.size() == 4 + 3 * 2 * 3 * 3 + 2 * 2);
     for (const std::string& name : all) {
         INFO(name);
         CHECK(CanonicalDenoiserName(name) == name);

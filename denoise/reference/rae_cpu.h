@@ -31,6 +31,7 @@ private:
 
     std::string name_;
     std::shared_ptr<const RaeWeights> weights_;
+    bool balance_;  // the `balance` mechanism (RaeBalanceGains)
     RaeState state_;
     std::vector<PassTiming> timings_;
 };

@@ -30,7 +30,19 @@ void RaeFeatures(const FrameInputs& in, Tensor& f) {
         }
 }
 
-void RaeNetworkInput(const Tensor& f, const RaeWeights& weights, Tensor& input) {
+vec3 RaeBalanceGains(const Tensor& f) {
+    double sum[3] = {0.0, 0.0, 0.0};
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < f.h; ++y)
+            for (int x = 0; x < f.w; ++x) sum[c] += f.At(c, y, x);
+    const double mean = (sum[0] + sum[1] + sum[2]) / 3.0;
+    vec3 gains(1.0f);
+    for (int c = 0; c < 3; ++c)
+        if (mean > 0.0 && sum[c] >= 1e-4 * mean) gains[c] = float(mean / sum[c]);
+    return gains;
+}
+
+void RaeNetworkInput(const Tensor& f, const RaeWeights& weights, Tensor& input, vec3 gains) {
     const int L = weights.Levels();
     const int pw = RaePaddedSize(f.w, L), ph = RaePaddedSize(f.h, L);
     if (input.c != weights.inChannels || input.w != pw || input.h != ph)
@@ -41,7 +53,7 @@ void RaeNetworkInput(const Tensor& f, const RaeWeights& weights, Tensor& input) 
         for (int y = 0; y < f.h; ++y)
             for (int x = 0; x < f.w; ++x) {
                 const float v = f.At(c, y, x);
-                input.At(c, y, x) = c < 3 ? std::pow(v, weights.gamma) : v;
+                input.At(c, y, x) = c < 3 ? std::pow(v * gains[c], weights.gamma) : v;
             }
 }
 
@@ -57,14 +69,14 @@ void RaeTarget(const FrameInputs& in, const Plane<vec3>& reference, Tensor& t) {
         }
 }
 
-void RaeRemodulate(const FrameInputs& in, const Tensor& y, float gamma, Plane<vec3>& output) {
+void RaeRemodulate(const FrameInputs& in, const Tensor& y, float gamma, Plane<vec3>& output, vec3 gains) {
     const int w = in.width(), h = in.height();
     output.Resize(w, h);
     const float inv = 1.0f / gamma;
     for (int py = 0; py < h; ++py)
         for (int px = 0; px < w; ++px) {
             vec3 illum;
-            for (int c = 0; c < 3; ++c) illum[c] = std::pow(std::max(y.At(c, py, px), 0.0f), inv);
+            for (int c = 0; c < 3; ++c) illum[c] = std::pow(std::max(y.At(c, py, px), 0.0f), inv) / gains[c];
             output(px, py) = in.albedo(px, py) * illum + in.emission(px, py);
         }
 }

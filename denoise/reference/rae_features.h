@@ -23,14 +23,23 @@ inline constexpr int kRaeFeatureChannels = 8;
 
 // The raw features of `in` (colour linear) at W×H (no padding): the dataset's input planes.
 void RaeFeatures(const FrameInputs& in, Tensor& features);
-// The network's input: the first weights.inChannels channels of `features`, colour raised to γ,
-// zero-padded to multiples of 2^L.
-void RaeNetworkInput(const Tensor& features, const RaeWeights& weights, Tensor& input);
+// The `balance` mechanism's per-channel gains: g_c = m̄ / m_c, m_c the mean of colour channel c of
+// `features` over the frame and m̄ the mean of the three, so that g · colour is grey on average; 1
+// for a channel holding under 1e-4 of m̄ (no light to balance) and for a black frame. The network
+// runs on g · colour, and its output is divided by g again (RaeRemodulate): a global colour cast
+// (an orange light) passes through it unchanged instead of being pulled towards the grey that most
+// training illumination is.
+vec3 RaeBalanceGains(const Tensor& features);
+// The network's input: the first weights.inChannels channels of `features`, colour times `gains`
+// raised to γ, zero-padded to multiples of 2^L.
+void RaeNetworkInput(const Tensor& features, const RaeWeights& weights, Tensor& input,
+                     vec3 gains = vec3(1.0f));
 // The training target of a reference image: (reference − emission) / albedo where a surface was
 // hit (albedo ≥ 1e-3), 0 for background; 3 × H × W, linear.
 void RaeTarget(const FrameInputs& in, const Plane<vec3>& reference, Tensor& target);
-// The colour: albedo · max(y, 0)^(1/γ) + emission of the network's output `y` (padded size; the
-// top-left W×H is read).
-void RaeRemodulate(const FrameInputs& in, const Tensor& y, float gamma, Plane<vec3>& output);
+// The colour: albedo · max(y, 0)^(1/γ) / gains + emission of the network's output `y` (padded
+// size; the top-left W×H is read), `gains` those the input was multiplied by.
+void RaeRemodulate(const FrameInputs& in, const Tensor& y, float gamma, Plane<vec3>& output,
+                   vec3 gains = vec3(1.0f));
 
 }  // namespace fovrt

@@ -203,11 +203,12 @@ void RaeVulkanDenoiser::Denoise(const FrameInputs& inputs, Plane<vec3>& output) 
     if (inputs.cameraCut) needsClear_ = true;
     Tensor features, input, y;
     RaeFeatures(inputs, features);
-    RaeNetworkInput(features, *weights_, input);
+    const vec3 gains = params_.rae.balance ? RaeBalanceGains(features) : vec3(1.0f);
+    RaeNetworkInput(features, *weights_, input, gains);
     const double featureMs = MsSince(start);
     Forward(input, y);
     start = std::chrono::steady_clock::now();
-    RaeRemodulate(inputs, y, weights_->gamma, output);
+    RaeRemodulate(inputs, y, weights_->gamma, output, gains);
     timings_.insert(timings_.begin(), {"rae_features", featureMs});
     timings_.push_back({"rae_remodulate", MsSince(start)});
 }

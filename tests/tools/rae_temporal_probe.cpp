@@ -9,9 +9,11 @@
 //   --foveated (the default disc instead of uniform 1 spp)  --per-frame (one line per frame)
 //   --weights rae.raew  --weights-spp rae-spp.raew (default: the committed weights)
 //   --reference-spp N (64): the reference whose mean colour the output's is compared with
+//   --balance: rae+balance and rae+spp+balance instead of rae and rae-spp
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "rae_temporal.h"
 
@@ -22,6 +24,7 @@ int main(int argc, char** argv) {
     test::RaeTemporalSetup p;
     p.frames = 8;
     bool perFrame = false;
+    bool balance = false;  // the variants with the `balance` mechanism (rae+balance, rae+spp+balance)
     int referenceSpp = 64;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
         else if (arg == "--weights") p.weights.weights = value();
         else if (arg == "--weights-spp") p.weights.weightsSpp = value();
         else if (arg == "--reference-spp") referenceSpp = std::atoi(value());
+        else if (arg == "--balance") balance = true;
         else {
             std::fprintf(stderr, "rae_temporal_probe: unknown argument '%s'\n", arg.c_str());
             return 2;
@@ -58,19 +62,20 @@ int main(int argc, char** argv) {
         const vec3 control = RaeTemporalError(p, "svgf", false).MeanColour() / reference;
         std::printf("svgf     mean colour / the %d-spp reference's: R %.3f G %.3f B %.3f (the measure's control)\n",
                     referenceSpp, control.x, control.y, control.z);
-        for (const char* variant : {"rae", "rae-spp"}) {
+        for (const std::string& variant : balance ? std::vector<std::string>{"rae+balance", "rae+spp+balance"}
+                                                 : std::vector<std::string>{"rae", "rae-spp"}) {
             const auto carried = RaeTemporalError(p, variant, false);
             const auto reset = RaeTemporalError(p, variant, true);
             if (perFrame)
                 for (int i = 1; i < p.frames; ++i)
                     std::printf("  %-8s frame %3d temporal state %.5f reset %.5f   mean lum state %.4f reset %.4f\n",
-                                variant, i, carried.temporal[size_t(i)], reset.temporal[size_t(i)],
+                                variant.c_str(), i, carried.temporal[size_t(i)], reset.temporal[size_t(i)],
                                 carried.meanLum[size_t(i)], reset.meanLum[size_t(i)]);
             const double c = carried.Mean(), r = reset.Mean();
-            std::printf("%-8s temporal error with state %.5f, reset every frame %.5f (ratio %.3f): %s\n", variant, c,
+            std::printf("%-8s temporal error with state %.5f, reset every frame %.5f (ratio %.3f): %s\n", variant.c_str(), c,
                         r, c / r, c < r ? "the state lowers it" : "the state does NOT lower it");
             const vec3 mean = carried.MeanColour();
-            std::printf("%-8s mean colour / the %d-spp reference's: R %.3f G %.3f B %.3f\n", variant, referenceSpp,
+            std::printf("%-8s mean colour / the %d-spp reference's: R %.3f G %.3f B %.3f\n", variant.c_str(), referenceSpp,
                         mean.x / reference.x, mean.y / reference.y, mean.z / reference.z);
         }
     } catch (const std::exception& e) {
