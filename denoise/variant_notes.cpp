@@ -63,8 +63,9 @@ const std::vector<VariantNote>& VariantNotes() {
          "75cda1d"},
         {"rae", "Chaitanya et al. 2017 (recurrent denoising autoencoder)", S::Experimental,
          "comparing learned against hand-built reconstruction; the committed quarter-width weights (7,200 steps, "
-         "2 core-hours on a CPU) are undertrained and pull the light's hue towards grey: at 320×180 −1.0 JOD "
-         "against svgf on cornell, −0.28 on veach-ajar (training/README.md), so it is no fair rival yet"},
+         "2 core-hours on a CPU) are undertrained and pull the light's hue towards grey (+balance restores the "
+         "hue, not the JOD): at 320×180 −1.0 JOD against svgf on cornell, −0.28 on veach-ajar "
+         "(training/README.md), so it is no fair rival yet"},
         {"rae-spp", "fovrt: Chaitanya et al. 2017 with the sample count as an 8th input", S::Experimental,
          "as rae, with the foveated sample count as an input (10,700 steps, 2.6 core-hours): at 320×180 −1.13 "
          "JOD against svgf on cornell, −0.12 on veach-ajar, −1.54 on pillars"},

@@ -84,8 +84,9 @@ TEST_CASE("rae: the output keeps veach-ajar's light", "[app][rae]") {
 
 // Cornell's hue: its light is orange (Ke 17, 12, 4) and the networks pull the illumination
 // towards grey (R 0.71-0.80, B up to 1.5 of the reference's), which made the experiments' frames
-// grey and their relMSE 27 times svgf's. Not fixed: this case is expected to fail (Catch's
-// [!shouldfail]), and turns red the day the weights meet the bound, so that it becomes a plain check.
+// grey and their relMSE 27 times svgf's. Not fixed in the networks: this case is expected to fail
+// (Catch's [!shouldfail]), and turns red the day the weights meet the bound, so that it becomes a
+// plain check. The `balance` mechanism restores the hue around the same networks (the last case).
 TEST_CASE("rae: the output keeps cornell's hue (known to fail)", "[app][rae][!shouldfail]") {
     const std::string variant = GENERATE(as<std::string>{}, "rae", "rae-spp");
     const vec3 ratio = MeanColourRatio("cornell", false, variant);
