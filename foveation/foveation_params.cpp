@@ -18,7 +18,7 @@ constexpr ParamRange kSppMasked = Closed(kMinSpp, kMaxSpp);
 // radius_deg bounds an eccentricity, the angle between two rays, which lies in [0°, 180°]:
 // a radius of 180° or more would make every direction foveal (the uniform model's job), and
 // every radius below it is a disc, so [0, 180).
-constexpr std::array<SettingRow<FoveationParams>, 19> kFoveationRows{{
+constexpr std::array<SettingRow<FoveationParams>, 20> kFoveationRows{{
     {{.key = "foveation.model",
       .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
       .names = FoveationModelNames},
@@ -67,6 +67,10 @@ constexpr std::array<SettingRow<FoveationParams>, 19> kFoveationRows{{
       .doc = "perceptual: fewer samples where the previous frame's texture masks noise (the metric's contrast "
              "masking of the primary-hit albedo's local contrast at the noise frequency)"},
      &F::contentMasking},
+    {{.key = "foveation.noise_visibility",
+      .doc = "perceptual: more samples where the eye's frames showed more visible noise (one sample's noise "
+             "contrast at the display luminance, and the CSF at that luminance)"},
+     &F::noiseVisibility},
     {{.key = "foveation.pooling",
       .doc = "perceptual: the visible noise it minimises: energy (n ∝ S) or the metric's own pooling (n ∝ S^1.29)",
       .names = PerceptualPoolingNames},
@@ -96,6 +100,9 @@ std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& p) {
                                         p.pooling, p.model)};
     if (p.contentMasking && p.model != "perceptual")
         return ParamProblem{"foveation.content_masking",
+                            fmt::format("true is read by the perceptual model only (foveation.model = \"{}\")", p.model)};
+    if (p.noiseVisibility && p.model != "perceptual")
+        return ParamProblem{"foveation.noise_visibility",
                             fmt::format("true is read by the perceptual model only (foveation.model = \"{}\")", p.model)};
     if (!(p.peripheralDeg > p.fovealDeg))
         return ParamProblem{"foveation.peripheral_deg",

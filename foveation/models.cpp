@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,9 +39,11 @@ public:
     static constexpr int kNodes = 97;
     static constexpr float kMaxDeg = 180.0f;
 
-    RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance)
-        : foveal_(sensitivity(rhoCpd, luminance, 0.0)) {
-        float least = 1.0f;
+    // Relative to `normaliser`, S(ρ, L', 0) at another luminance L' (0: this row's own S(0)).
+    RelativeSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double luminance,
+                        double normaliser = 0.0)
+        : foveal_(normaliser > 0.0 ? normaliser : sensitivity(rhoCpd, luminance, 0.0)) {
+        float least = std::numeric_limits<float>::max();
         for (int i = 0; i < kNodes; ++i) {
             const double root = std::sqrt(double(kMaxDeg)) * i / (kNodes - 1);
             const double relative = foveal_ > 0.0 ? sensitivity(rhoCpd, luminance, root * root) / foveal_ : 0.0;
@@ -54,11 +57,37 @@ public:
         const float f = u - float(i);
         return table_[size_t(i)] + f * (table_[size_t(i) + 1] - table_[size_t(i)]);
     }
-    double Foveal() const { return foveal_; }  // S(0), absolute
+    double Foveal() const { return foveal_; }  // the normaliser: S(0), absolute
 
 private:
     double foveal_;
     std::array<float, kNodes> table_{};
+};
+
+// The noise term's sensitivity, S(ρ, L, e) / S(ρ, adapt_luminance, 0) at the display luminance L
+// a pixel showed: rows of RelativeSensitivity at quarter decades from 0.01 to 10⁴ cd/m² (the
+// range of adapt_luminance), read linearly in log L between rows. A row is non-increasing in e.
+class LuminanceSensitivity {
+public:
+    static constexpr int kRows = 25;
+    static constexpr double kLogMin = -2.0, kLogStep = 0.25;
+
+    LuminanceSensitivity(const ContrastSensitivity& sensitivity, double rhoCpd, double adaptFoveal) {
+        rows_.reserve(kRows);
+        for (int i = 0; i < kRows; ++i)
+            rows_.emplace_back(sensitivity, rhoCpd, std::pow(10.0, kLogMin + kLogStep * i), adaptFoveal);
+    }
+    float At(float luminance, float eccentricityDeg) const {
+        const double u = std::clamp((std::log10(std::max(double(luminance), 1e-30)) - kLogMin) / kLogStep, 0.0,
+                                    double(kRows - 1));
+        const int i = std::min(int(u), kRows - 2);
+        const float f = float(u - i);
+        const float lo = rows_[size_t(i)].At(eccentricityDeg), hi = rows_[size_t(i) + 1].At(eccentricityDeg);
+        return lo + f * (hi - lo);
+    }
+
+private:
+    std::vector<RelativeSensitivity> rows_;
 };
 
 // The perceptual model's exponents: minimising the visible noise Σ S^a M^-b n^(-a/2) (a = pβ, b = β:
@@ -96,6 +125,12 @@ struct GazeContext {
     const RelativeSensitivity* sensitivity = nullptr;  // the perceptual model's, else none
     const ContentMasking* masking = nullptr;           // its content term, else none (flat content)
     float sensitivityExponent = 1.0f;                  // its PoolingExponents::sensitivity
+    // Its noise term, else none (σ/L the same everywhere, the CSF at adapt_luminance), and what
+    // divides S·σ/L so that the most visible noise gets spp_max (the bounds then clip nothing the
+    // budget would scale back).
+    const VisibleNoise* noise = nullptr;
+    const LuminanceSensitivity* luminanceSensitivity = nullptr;
+    float noiseNormaliser = 1.0f;
 };
 
 // A model's continuous spp at one pixel; `e` is the pixel's eccentricity (EccentricityDegrees).
@@ -133,9 +168,13 @@ float UniformDensity(const FoveationParams& p, const EyeCamera&, const vec2&, fl
 }
 
 float PerceptualDensity(const FoveationParams& p, const EyeCamera&, const vec2& pixel, float e, const GazeContext& g) {
-    const float relative = g.sensitivity->At(e);
+    // The noise term: the CSF at the luminance the pixel showed, and its noise contrast.
+    const float relative = g.noise ? g.luminanceSensitivity->At(g.noise->LuminanceAt(pixel.x, pixel.y), e)
+                                   : g.sensitivity->At(e);
+    const float noise = g.noise ? g.noise->ContrastAt(pixel.x, pixel.y) / g.noiseNormaliser : 1.0f;
     const float masked = g.masking ? g.masking->Factor(int(pixel.x), int(pixel.y), relative) : 1.0f;
-    const float weight = g.sensitivityExponent == 1.0f ? relative : std::pow(relative, g.sensitivityExponent);
+    const float seen = relative * noise;
+    const float weight = g.sensitivityExponent == 1.0f ? seen : std::pow(seen, g.sensitivityExponent);
     return std::max(p.sppMin, float(p.sppMax) * weight * masked);
 }
 
@@ -177,9 +216,9 @@ public:
     std::string Name() const override { return row_.name; }
 
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
-                  const Plane<float>* content) const override {
+                  const FrameFeedback& feedback) const override {
         Plane<float> density;
-        GenerateDensity(camera, gazeEye, frameIndex, density, content);
+        GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
         spp.Resize(density.width(), density.height());
         for (int y = 0; y < spp.height(); ++y)
             for (int x = 0; x < spp.width(); ++x) {
@@ -189,7 +228,7 @@ public:
             }
     }
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t, Plane<float>& density,
-                         const Plane<float>* content) const override {
+                         const FrameFeedback& feedback) const override {
         const int w = camera.width(), h = camera.height();
         density.Resize(w, h);
         GazeContext g;
@@ -205,6 +244,7 @@ public:
             p_.pooling == "metric" ? PoolingExponents::Of(masking_.p, masking_.beta) : PoolingExponents{};
         g.sensitivityExponent = exponents.sensitivity;
         std::optional<ContentMasking> masking;
+        const Plane<float>* content = feedback.content;
         if (p_.contentMasking && content) {
             if (content->width() != w || content->height() != h)
                 Fail("foveation.content_masking: the content is {}x{}, the eye's image {}x{}", content->width(),
@@ -214,6 +254,24 @@ public:
                                            float(masking_.k * masking_.sensitivityGain * relative->Foveal()),
                                            float(masking_.q), exponents.masking});
             g.masking = &*masking;
+        }
+        std::optional<LuminanceSensitivity> luminanceSensitivity;
+        if (p_.noiseVisibility && feedback.noise && feedback.noise->Valid()) {
+            if (!feedback.noise->Matches(w, h))
+                Fail("foveation.noise_visibility: the noise was estimated on a {}x{} image, the eye's is {}x{}",
+                     feedback.noise->imageWidth, feedback.noise->imageHeight, w, h);
+            g.luminanceSensitivity = &luminanceSensitivity.emplace(
+                sensitivity_, double(p_.noiseFrequency) * 0.5 * double(camera.PixelsPerDegree()), relative->Foveal());
+            g.noise = feedback.noise;
+            // The most visible noise: the largest contrast times the largest foveal sensitivity
+            // over the tiles (a bound on S·σ/L anywhere: S falls with e, and the tiles'
+            // interpolants lie between their values).
+            float contrast = 0.0f, sensitivity = 0.0f;
+            for (size_t i = 0; i < g.noise->contrast.size(); ++i) {
+                contrast = std::max(contrast, g.noise->contrast[i]);
+                sensitivity = std::max(sensitivity, g.luminanceSensitivity->At(g.noise->luminance[i], 0.0f));
+            }
+            g.noiseNormaliser = std::max(contrast * sensitivity, 1e-30f);
         }
         // View rays are separable in tangent space: (tx[x], ty[y], -1), normalised per pixel.
         std::vector<float> tx(static_cast<size_t>(w)), ty(static_cast<size_t>(h));
@@ -260,8 +318,8 @@ public:
     std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
 
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<float>& density,
-                         const Plane<float>* content) const override {
-        inner_->GenerateDensity(camera, gazeEye, frameIndex, density, content);
+                         const FrameFeedback& feedback) const override {
+        inner_->GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
         const double n = double(density.size()), floor = double(floor_);
         const double target = std::clamp(double(budget_), n * floor, n * kMaxSpp);
         float dMin = float(kMaxSpp);
@@ -300,9 +358,9 @@ public:
     }
 
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
-                  const Plane<float>* content) const override {
+                  const FrameFeedback& feedback) const override {
         Plane<float> density;
-        GenerateDensity(camera, gazeEye, frameIndex, density, content);
+        GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
         spp.Resize(density.width(), density.height());
         double carry = double(HashPcg(frameIndex ^ 0x5bd1e995u)) / 4294967296.0 - 0.5;
         for (int y = 0; y < spp.height(); ++y) {

@@ -13,10 +13,22 @@
 #include "core/image.h"
 #include "core/setting_table.h"
 #include "foveation/sample_mask.h"
+#include "foveation/visible_noise.h"
 
 namespace fovrt {
 
 inline constexpr int kMaxSpp = 16;
+
+// What the previous frames of an eye tell the perceptual model's terms (docs/foveation.md); null:
+// not known (the first frame, after a cut), every pixel flat.
+struct FrameFeedback {
+    // The content's luminance, any scale, at the camera's resolution (the frame pipeline gives the
+    // previous frame's primary-hit albedo): read by foveation.content_masking.
+    const Plane<float>* content = nullptr;
+    // The noise the eye's frames showed (the frame pipeline's VisibleNoiseEstimator over the frames
+    // as the display shows them): read by foveation.noise_visibility.
+    const VisibleNoise* noise = nullptr;
+};
 
 class SppModel {
 public:
@@ -25,18 +37,16 @@ public:
     // Fills `spp` (resized to the camera's resolution) with values in [0, kMaxSpp]: a pixel whose
     // density is below 1 gets 1 on the frames its sample mask selects and 0 on the others
     // (foveation/sample_mask.h); at 1 and above it is never 0.
-    // `gazeEye` is the gaze direction in this eye's space (unit, -Z forward).
-    // `content`: this eye's content luminance, any scale, at the camera's resolution (the frame
-    // pipeline gives the previous frame's primary-hit albedo); null: none, every pixel flat. Only
-    // the perceptual model with foveation.content_masking reads it.
+    // `gazeEye` is the gaze direction in this eye's space (unit, -Z forward). Only the perceptual
+    // model reads `feedback`, and only with foveation.content_masking or noise_visibility.
     virtual void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
-                          const Plane<float>* content = nullptr) const = 0;
+                          const FrameFeedback& feedback = {}) const = 0;
     // The model's continuous spp before rounding (values in [kMinSpp, kMaxSpp]); the ray-budget wrapper
     // scales it. Default: Generate() converted to float.
     virtual void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex,
-                                 Plane<float>& density, const Plane<float>* content = nullptr) const {
+                                 Plane<float>& density, const FrameFeedback& feedback = {}) const {
         Plane<uint16_t> spp;
-        Generate(camera, gazeEye, frameIndex, spp, content);
+        Generate(camera, gazeEye, frameIndex, spp, feedback);
         density.Resize(spp.width(), spp.height());
         for (size_t i = 0; i < spp.size(); ++i) density[i] = float(spp[i]);
     }
@@ -108,6 +118,10 @@ struct FoveationParams {
     // perceptual: the visible noise the map minimises: "energy" Σ S²/n (n ∝ S), or "metric", the
     // metric's own Σ (S·c)^(pβ) with c ∝ n^(-1/2) (n ∝ S^(2pβ/(pβ+2)), 1.29 with its p and β).
     std::string pooling = "energy";
+    // perceptual: weigh each pixel by the noise its frames showed, n ∝ S(ρ, L, e) · σ/L with L the
+    // display luminance and σ/L one path sample's noise contrast there (VisibleNoise), instead of
+    // S(ρ, adapt_luminance, e) with σ/L the same everywhere (docs/foveation.md).
+    bool noiseVisibility = false;
 
     // uniform: the same spp everywhere.
     float uniformSpp = 1.0f;

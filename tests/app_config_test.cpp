@@ -136,6 +136,10 @@ TEST_CASE("Unknown keys are errors naming the key and the file", "[config]") {
                       Catch::Contains("unknown config key 'camera.widht'") && Catch::Contains("--set"));
     CHECK_THROWS_WITH(Resolve("", {"denoise.svgf.alpha=0.1"}), Catch::Contains("'denoise.svgf.alpha'"));
     CHECK_THROWS_WITH(Resolve("", {"top_level_typo=1"}), Catch::Contains("'top_level_typo'"));
+    // Warm-up frames precede the first scored frame, so there must be room for them.
+    CHECK_THROWS_WITH(Resolve("", {"run.warmup_frames=3", "run.first_frame=2"}),
+                      Catch::Contains("run.warmup_frames") && Catch::Contains("run.first_frame = 2"));
+    CHECK(Resolve("", {"run.warmup_frames=3", "run.first_frame=3"}).run.warmupFrames == 3);
     // A known variant with a suffix its family refuses is refused here, before any rendering.
     CHECK_THROWS_WITH(Resolve("", {"denoise.denoisers=[\"rae+brdf\"]"}),
                       Catch::Contains("denoise.denoisers") && Catch::Contains("albedo-demodulated"));
@@ -438,8 +442,9 @@ T OtherValue(const ParamInfo& info, const T& value, const RunConfig& base) {
 RunConfig RoundTripBase() {
     // The perceptual model: foveation.content_masking and a pooling other than energy are refused
     // with any other.
+    // run.warmup_frames needs as many frames before run.first_frame.
     return Resolve("", {"gaze.trace_path=a.csv", "gaze.recording_path=b.csv", "gaze.tracker_rate_hz=120",
-                        "gaze.amplitude=[20, 10]", "foveation.model=\"perceptual\""});
+                        "gaze.amplitude=[20, 10]", "foveation.model=\"perceptual\"", "run.first_frame=100"});
 }
 
 // The value of `key` in `config`, as its member type.
@@ -475,7 +480,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 99);
+    CHECK(keys.size() == 101);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -504,7 +509,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 100);  // the 99 table rows and denoise.precision
+    CHECK(listed.size() == 102);  // the 101 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {

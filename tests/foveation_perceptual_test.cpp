@@ -173,10 +173,10 @@ TEST_CASE("Perceptual content term: n scaled by 1/sqrt(1 + (k S C)^q), flat cont
 
     // Flat content (and no content, as after a cut) masks nothing: the map without the term.
     Plane<float> density;
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, nullptr);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density);
     for (size_t i = 0; i < density.size(); ++i) REQUIRE(density[i] == plain[i]);
     const Plane<float> flat(w, h, 0.4f);
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &flat);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, {&flat});
     for (size_t i = 0; i < density.size(); ++i) REQUIRE(density[i] == plain[i]);
 
     // A grating on the right half: there the density is the flat map's times the masking factor,
@@ -185,7 +185,7 @@ TEST_CASE("Perceptual content term: n scaled by 1/sqrt(1 + (k S C)^q), flat cont
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w / 2; ++x) content(x, y) = 1.0f;
     const Plane<float> contrast = LocalBandContrast(content, 0.25);
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &content);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, density, {&content});
     int masked = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -214,8 +214,8 @@ TEST_CASE("Perceptual content term under a ray budget: the budget met, the rays 
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w / 2; ++x) content(x, y) = 1.0f;
     Plane<float> flat, textured;
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, flat, nullptr);
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, textured, &content);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, flat);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, textured, {&content});
     double sumFlat = 0.0, sumTextured = 0.0, left = 0.0, right = 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -238,7 +238,7 @@ TEST_CASE("Perceptual content term: refusals name the key", "[foveation]") {
     const EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), 1.0f), 32, 32);
     const Plane<float> wrong(16, 32, 1.0f);
     Plane<float> density;
-    CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic, kMasking)->GenerateDensity(cam, vec3(0, 0, -1), 0, density, &wrong),
+    CHECK_THROWS_WITH(CreateSppModel(p, Hyperbolic, kMasking)->GenerateDensity(cam, vec3(0, 0, -1), 0, density, {&wrong}),
                       Catch::Contains("foveation.content_masking") && Catch::Contains("16x32"));
 }
 
@@ -268,8 +268,8 @@ TEST_CASE("Perceptual pooling = metric: n proportional to S^(2pb/(pb+2)), the ma
     const Plane<float> contrast = LocalBandContrast(content, 0.25);
     Plane<float> flat, masked;
     auto model = CreateSppModel(p, Hyperbolic, steep);
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, flat, nullptr);
-    model->GenerateDensity(cam, vec3(0, 0, -1), 0, masked, &content);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, flat);
+    model->GenerateDensity(cam, vec3(0, 0, -1), 0, masked, {&content});
     int checked = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {

@@ -129,3 +129,57 @@ TEST_CASE("without references the loop looks none up", "[loop]") {
     loop.RunSeed(1, SeedWork{2, {}}, Frames(loop.Pipeline(), 1));
     CHECK(log.lines.empty());
 }
+
+TEST_CASE("warm-up frames advance the histories and nothing else", "[loop]") {
+    // run.first_frame = 2 after 2 warm-up frames: the observers see frames 2 and 3 only, no
+    // reference is looked up for 0 and 1, and the denoisers' outputs of 2 and 3 are those of a
+    // run that scores every frame from 0: the warm-up frames were denoised.
+    const fs::path dir = test::ScratchDir("fovrt_frame_loop_warmup_test");
+    RunConfig config = test::SmallCornellConfig();
+    config.denoise.denoisers = {"svgf"};
+    config.reference.spp = 2;
+    config.reference.cacheDir = (dir / "cache").string();
+    class Outputs : public FrameLoopObserver {
+    public:
+        void Output(const StereoFrame& f, int eye, const DenoisedOutput& o) override {
+            if (eye == 0) images.emplace_back(f.frame, *o.image);
+        }
+        std::vector<std::pair<uint32_t, Plane<vec3>>> images;
+    };
+    FrameLoop all(config, true);
+    Outputs allOutputs;
+    all.Attach(allOutputs);
+    all.RunSeed(0, SeedWork{config.run.seed, {}}, Frames(all.Pipeline(), 4));
+    REQUIRE(allOutputs.images.size() == 4);
+
+    config.run.firstFrame = 2;
+    config.run.warmupFrames = 2;
+    FrameLoop warmed(config, true);
+    EventLog log;
+    Outputs warmedOutputs;
+    warmed.Attach(log);
+    warmed.Attach(warmedOutputs);
+    warmed.RunSeed(0, SeedWork{config.run.seed, {}}, Frames(warmed.Pipeline(), 4));
+    CHECK(log.lines == std::vector<std::string>{"seed 0 1", "frame 2", "eye 0", "reference 0 hit", "output 0 svgf",
+                                                "eye 1", "reference 1 hit", "output 1 svgf", "end 2", "frame 3",
+                                                "eye 0", "reference 0 hit", "output 0 svgf", "eye 1",
+                                                "reference 1 hit", "output 1 svgf", "end 3", "end seed"});
+    REQUIRE(warmedOutputs.images.size() == 2);
+    for (size_t i = 0; i < 2; ++i) {
+        CHECK(warmedOutputs.images[i].first == allOutputs.images[i + 2].first);
+        CHECK(warmedOutputs.images[i].second.vector() == allOutputs.images[i + 2].second.vector());
+    }
+    // Without the warm-up frame 2 is a fresh history's first frame: it differs.
+    RunConfig cold = config;
+    cold.run.warmupFrames = 0;
+    FrameLoop coldLoop(cold, false);
+    Outputs coldOutputs;
+    coldLoop.Attach(coldOutputs);
+    coldLoop.RunSeed(0, SeedWork{cold.run.seed, {}}, [&, next = 2](FrameRequest& request) mutable {
+        if (next >= 4) return false;
+        request = coldLoop.Pipeline().RequestAt(uint32_t(next++));
+        return true;
+    });
+    REQUIRE(coldOutputs.images.size() == 2);
+    CHECK(coldOutputs.images[0].second.vector() != allOutputs.images[2].second.vector());
+}

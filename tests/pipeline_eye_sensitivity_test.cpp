@@ -9,6 +9,7 @@
 #include "metrics/vdp_params.h"
 #include "pipeline/eye_sensitivity.h"
 #include "pipeline/frame_pipeline.h"
+#include "pipeline/metric_display.h"
 #include "test_support.h"
 
 using namespace fovrt;
@@ -120,6 +121,62 @@ TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo mo
     masked.Render(masked.RequestAt(2), b);
     masked.SetFoveation(config.foveation);
     masked.Render(masked.RequestAt(3), b);
+    plain.Render(plain.RequestAt(2), a);
+    plain.Render(plain.RequestAt(3), a);
+    CHECK(a.eyes[0].sppMap.vector() == b.eyes[0].sppMap.vector());
+}
+
+TEST_CASE("The noise term in the frame pipeline: the frames as the display shows them, the first frame flat",
+          "[foveation]") {
+    // Cornell at 1 spp under the perceptual map, shown a stop brighter than the radiance. Frame 0
+    // has seen nothing: the map without the term. Frame 1's map is the model's with the noise of
+    // frame 0 as the metric's display shows it (its luminance at the PNGs' exposure, clipped at
+    // its black and white), texture and object edges not counted as noise.
+    RunConfig config = DefaultConfig();
+    config.scene.name = "cornell";
+    config.camera.width = 96;
+    config.camera.height = 54;
+    config.denoise.device = "cpu";
+    config.output.exposure = 1.0f;
+    config.foveation.model = "perceptual";
+    config.foveation.sppMin = kMinSpp;
+    config.foveation.sppFloor = kMinSpp;
+    config.foveation.rayBudget = 96 * 54;
+    FramePipeline plain(config);
+    config.foveation.noiseVisibility = true;
+    FramePipeline noise(config);
+    StereoFrame a, b;
+    plain.Render(plain.RequestAt(0), a);
+    noise.Render(noise.RequestAt(0), b);
+    for (int eye = 0; eye < 2; ++eye) CHECK(a.eyes[size_t(eye)].sppMap.vector() == b.eyes[size_t(eye)].sppMap.vector());
+
+    VisibleNoiseEstimator expected;
+    const FrameInputs& in = b.eyes[0].inputs;
+    Plane<float> modulation(in.width(), in.height());
+    for (size_t i = 0; i < modulation.size(); ++i) modulation[i] = Luminance(in.albedo[i]);
+    const VdpPhotometry photometry = ExperimentVdpDisplay(config, in.camera).photometry;
+    Plane<vec3> shown = in.NoisyImage();
+    for (vec3& c : shown.vector()) c *= 2.0f;  // one stop
+    expected.Add(VdpLuminance(shown, photometry), in.sampleCount, {&modulation, &in.objectId});
+    REQUIRE(expected.Noise().Valid());
+
+    const FrameRequest next = noise.RequestAt(1);
+    noise.Render(next, b);
+    plain.Render(plain.RequestAt(1), a);
+    Plane<uint16_t> map;
+    CreateSppModel(config.foveation, MetricContrastSensitivity(), MetricContrastMasking())
+        ->Generate(next.eyes[0], b.eyes[0].gazeEye, 1, map, {nullptr, &expected.Noise()});
+    CHECK(b.eyes[0].sppMap.vector() == map.vector());
+    CHECK(b.eyes[0].sppMap.vector() != a.eyes[0].sppMap.vector());
+
+    // Switched off and on again (the live panel): what was estimated before is not read, so the
+    // frame after is the map without the term.
+    FoveationParams off = config.foveation;
+    off.noiseVisibility = false;
+    noise.SetFoveation(off);
+    noise.Render(noise.RequestAt(2), b);
+    noise.SetFoveation(config.foveation);
+    noise.Render(noise.RequestAt(3), b);
     plain.Render(plain.RequestAt(2), a);
     plain.Render(plain.RequestAt(3), a);
     CHECK(a.eyes[0].sppMap.vector() == b.eyes[0].sppMap.vector());

@@ -275,13 +275,16 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
         scorer.emplace(config, loop);
     }
     std::optional<SessionRecorder> recorder;
+    if (!recordPath.empty() && config.run.warmupFrames > 0)
+        Fail("--record: run.warmup_frames = {}: a recording replays from its first frame, so it cannot hold frames "
+             "that were not scored (set it to 0)", config.run.warmupFrames);
     if (!recordPath.empty()) recorder.emplace(recordPath, ConfigToJson(config), SessionHeaderExtra(pipeline));
     std::fprintf(stderr, "fovrt run: scene '%s', %d frames%s, %d×%d per eye, denoisers on %s -> %s\n",
-                 pipeline.GetScene().name.c_str(), sequence.Count(),
+                 pipeline.GetScene().name.c_str(), sequence.Scored(),
                  replay ? (" replayed from " + replay->file.string()).c_str() : "", config.camera.width,
                  config.camera.height, denoisers.DeviceDescription().c_str(), outDir.string().c_str());
 
-    RunFiles files(config, outDir, loop, scorer ? &*scorer : nullptr, sequence.Count());
+    RunFiles files(config, outDir, loop, scorer ? &*scorer : nullptr, sequence.Scored());
     loop.Attach(files);
     RecordedFrame recorded;
     auto next = [&](FrameRequest& request) {
@@ -354,7 +357,7 @@ void RunFrames(const RunConfig& config, Replay* replay, const std::string& recor
         out.Keep();  // the frames written so far stay, and the message says so
         if (cacheDir) cacheDir->Keep();  // every cache entry is complete (written atomically)
         throw Interrupted(e.Signal(), fmt::format("{}: {} of {} frames written in {}; no manifest", e.what(),
-                                                  files.framesRendered, sequence.Count(), outDir.string()));
+                                                  files.framesRendered, sequence.Scored(), outDir.string()));
     }
 }
 

@@ -184,6 +184,9 @@ RunConfig ResolveReplayConfig(Replay& replay, ConfigOptions options,
     if (!refused.empty())
         Fail("{}: replay: {}; the frames would differ from the recording (--allow-changes renders them anyway)", file,
              Join(refused, "; "));
+    if (config.run.warmupFrames > 0)
+        Fail("{}: replay: run.warmup_frames = {}: a replay renders the recorded frames only (set it to 0)", file,
+             config.run.warmupFrames);
     config.run.frames = int(replay.summary.frames);
     config.run.firstFrame = int(replay.summary.firstFrame);
 
@@ -236,8 +239,12 @@ uint32_t LastFrameOf(const RunConfig& config, const Replay* replay) {
 }
 
 FrameSequence::FrameSequence(const FramePipeline& pipeline)
-    : pipeline_(pipeline), count_(pipeline.Config().run.frames), lastFrame_(LastFrameOf(pipeline.Config(), nullptr)) {
-    pipeline.CheckGazeCovers(uint32_t(pipeline.Config().run.firstFrame), count_);
+    : pipeline_(pipeline),
+      first_(pipeline.Config().run.firstFrame - pipeline.Config().run.warmupFrames),
+      warmup_(pipeline.Config().run.warmupFrames),
+      count_(pipeline.Config().run.frames + pipeline.Config().run.warmupFrames),
+      lastFrame_(LastFrameOf(pipeline.Config(), nullptr)) {
+    pipeline.CheckGazeCovers(uint32_t(first_), count_);
 }
 
 FrameSequence::FrameSequence(const FramePipeline& pipeline, const Replay& replay)
@@ -259,7 +266,7 @@ bool FrameSequence::Next(RecordedFrame& out) {
         if (width_ > 0)
             for (EyeCamera& eye : out.request.eyes) eye = EyeCamera(eye.pose(), eye.fov(), width_, height_);
     } else {
-        const uint32_t frame = uint32_t(pipeline_.Config().run.firstFrame + next_);
+        const uint32_t frame = uint32_t(first_ + next_);
         out.request = pipeline_.RequestAt(frame);
         out.head = pipeline_.RigAt(frame).head;
         out.gazeSamples.assign(1, out.request.gaze);

@@ -85,7 +85,8 @@ uint32_t LastFrameOf(const RunConfig& config, const Replay* replay);
 
 class FrameSequence {
 public:
-    // Headless frames of `pipeline`'s config.
+    // Headless frames of `pipeline`'s config: run.warmup_frames before run.first_frame, then
+    // run.frames from it.
     explicit FrameSequence(const FramePipeline& pipeline);
     // A recording's frames, rendered at config.camera's size (the recorded eyes resized when the
     // config changed it).
@@ -93,12 +94,15 @@ public:
 
     // The next frame (request, head pose, gaze samples); false after the last.
     bool Next(RecordedFrame& out);
-    int Count() const { return count_; }
+    int Count() const { return count_; }  // warm-up included
+    int Scored() const { return count_ - warmup_; }  // the frames from run.first_frame on
     uint32_t LastFrame() const { return lastFrame_; }
 
 private:
     const FramePipeline& pipeline_;
     std::unique_ptr<SessionReader> reader_;  // null: headless
+    int first_ = 0;   // headless: the first frame, warm-up included
+    int warmup_ = 0;  // headless: run.warmup_frames
     int count_ = 0;
     int next_ = 0;
     uint32_t lastFrame_ = 0;

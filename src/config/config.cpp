@@ -344,6 +344,10 @@ void CheckRules(const RunConfig& c, const Reader& r) {
         if (!(fov[0] < fov[1])) r.Bad("camera.fov_deg", "left must be < right ([left, right, up, down])");
         if (!(fov[3] < fov[2])) r.Bad("camera.fov_deg", "down must be < up ([left, right, up, down])");
     }
+    if (c.run.warmupFrames > c.run.firstFrame)
+        r.Bad("run.warmup_frames", fmt::format("{} frames precede run.first_frame = {}: set run.first_frame to at "
+                                               "least {} (the scored frames start there)",
+                                               c.run.warmupFrames, c.run.firstFrame, c.run.warmupFrames));
     const FoveationConfig& f = c.foveation;
     const int64_t pixels = int64_t(c.camera.width) * c.camera.height;
     const int64_t leastBudget = int64_t(std::ceil(double(f.sppFloor) * double(pixels)));

@@ -41,6 +41,9 @@ struct CameraConfig {
 struct RunSettings {
     int frames = 16;
     int firstFrame = 0;
+    // Frames traced and denoised before first_frame, neither scored nor written: the denoisers'
+    // histories reach the steady state a running headset shows before the first scored frame.
+    int warmupFrames = 0;
     float fps = 0.0f;    // frame i is at time i / fps seconds; 0 = the scene's frame rate
     uint32_t seed = 1;
     int threads = 0;     // 0 = all cores

@@ -53,10 +53,14 @@ constexpr std::array<SettingRow<CameraConfig>, 4> kCameraRows{{
     {{.key = "camera.ipd", .range = Closed(0, 1), .doc = "interpupillary distance in metres"}, &CameraConfig::ipd},
 }};
 
-constexpr std::array<SettingRow<RunSettings>, 7> kRunRows{{
+constexpr std::array<SettingRow<RunSettings>, 8> kRunRows{{
     {{.key = "run.frames", .range = Closed(1, kMaxInt), .doc = "frames to render"}, &RunSettings::frames},
     {{.key = "run.first_frame", .range = Closed(0, kMaxInt), .doc = "index of the first frame"},
      &RunSettings::firstFrame},
+    {{.key = "run.warmup_frames", .range = Closed(0, kMaxInt),
+      .doc = "frames traced and denoised before first_frame (at most first_frame), neither scored nor written: "
+             "the histories' steady state"},
+     &RunSettings::warmupFrames},
     {{.key = "run.fps", .range = Closed(0, 10000), .doc = "frame i is at i/fps seconds; 0 = the scene's frame_rate"},
      &RunSettings::fps},
     {{.key = "run.seed", .range = kSeed, .doc = "seed of the noisy renders (the reference has its own)"},

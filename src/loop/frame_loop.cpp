@@ -46,6 +46,10 @@ void FrameLoop::RunSeed(size_t seedIndex, const SeedWork& work, const std::funct
     while (next(request)) {
         ThrowIfInterrupted();
         pipeline_.Render(request, frame);
+        if (request.frame < uint32_t(config_.run.firstFrame)) {
+            WarmUp(work, frame);
+            continue;
+        }
         for (FrameLoopObserver* o : observers_) o->Frame(frame);
         for (int eye = 0; eye < 2; ++eye) {
             if (!work.RunsEye(eye)) continue;
@@ -80,6 +84,12 @@ void FrameLoop::RunSeed(size_t seedIndex, const SeedWork& work, const std::funct
         for (FrameLoopObserver* o : observers_) o->EndFrame(frame);
     }
     for (FrameLoopObserver* o : observers_) o->EndSeed(pipeline_);
+}
+
+void FrameLoop::WarmUp(const SeedWork& work, StereoFrame& frame) {
+    for (int eye = 0; eye < 2; ++eye)
+        for (size_t v = 0; v < denoisers_.size(); ++v)
+            if (work.Runs(v, eye)) denoisers_.At(v, eye).Denoise(frame.eyes[size_t(eye)].inputs, outputs_[v]);
 }
 
 }  // namespace fovrt

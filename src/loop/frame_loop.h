@@ -5,6 +5,9 @@
 // command does with the frames — scoring them, report visuals, timings, frames.jsonl, EXR and PNG
 // files — attaches as FrameLoopObserver; the loop itself writes nothing.
 //
+// A warm-up frame (run.warmup_frames: before run.first_frame) is rendered and denoised, so the
+// histories advance, and nothing else: no reference, no observer sees it.
+//
 // One frame, in the order observers see it:
 //   Frame(frame)                       both eyes rendered (FramePipeline::Render)
 //   for each eye the pass runs:
@@ -98,6 +101,9 @@ public:
     void RunSeed(size_t seedIndex, const SeedWork& work, const std::function<bool(FrameRequest&)>& next);
 
 private:
+    // A frame before run.first_frame: each denoiser the pass runs advances its histories.
+    void WarmUp(const SeedWork& work, StereoFrame& frame);
+
     RunConfig config_;
     FramePipeline pipeline_;
     DenoiserSet denoisers_;

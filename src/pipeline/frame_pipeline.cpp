@@ -13,6 +13,7 @@
 #include "denoise/variants.h"
 #include "gaze/tracker.h"
 #include "pipeline/eye_sensitivity.h"
+#include "pipeline/metric_display.h"
 
 namespace fovrt {
 namespace {
@@ -115,8 +116,10 @@ void FramePipeline::CheckGazeCovers(uint32_t firstFrame, int frames) const {
 void FramePipeline::SetFoveation(const FoveationParams& params) {
     sppModel_ = CreateSppModel(params, MetricContrastSensitivity(), MetricContrastMasking());
     config_.foveation = params;
-    // Kept only while the content term is on: after it was off, what is held is from an older frame.
+    // Kept only while the content and noise terms are on: after they were off, what is held is
+    // from an older frame.
     for (Plane<float>& content : previousContent_) content = Plane<float>();
+    for (VisibleNoiseEstimator& noise : visibleNoise_) noise.Reset();
 }
 
 StereoRig FramePipeline::RigAtTime(double timeSeconds) const {
@@ -165,12 +168,15 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.gazePixel = GazePixel(camera, out.gaze.direction);
         eyeFrame.trueGazeEye = GazeInEye(camera, out.trueGaze.direction);
         eyeFrame.trueGazePixel = GazePixel(camera, out.trueGaze.direction);
-        // After a cut the previous frame's content does not belong to this view: flat.
+        // After a cut the previous frames' content and noise do not belong to this view: flat.
         const Plane<float>& content = previousContent_[size_t(eye)];
-        sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap,
-                            !cut && content.width() == camera.width() && content.height() == camera.height()
-                                ? &content
-                                : nullptr);
+        VisibleNoiseEstimator& noise = visibleNoise_[size_t(eye)];
+        if (cut) noise.Reset();
+        FrameFeedback feedback;
+        if (!cut && content.width() == camera.width() && content.height() == camera.height()) feedback.content = &content;
+        if (noise.Noise().Valid() && noise.Noise().Matches(camera.width(), camera.height()))
+            feedback.noise = &noise.Noise();
+        sppModel_->Generate(camera, eyeFrame.gazeEye, frame, eyeFrame.sppMap, feedback);
         eyeFrame.uniformForBlink = !out.gaze.valid && config_.gaze.blink == "uniform";
         if (eyeFrame.uniformForBlink) MakeUniform(eyeFrame.sppMap);
         eyeFrame.sppMs = MsSince(start);
@@ -185,6 +191,18 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.renderMs = MsSince(start);
         previousCameras_[size_t(eye)] = camera;
         if (config_.foveation.contentMasking) AlbedoLuminance(eyeFrame.inputs, previousContent_[size_t(eye)]);
+        // As the metric sees the frame: the display's luminance at the PNGs' exposure. Timed with
+        // the map it serves.
+        if (config_.foveation.noiseVisibility) {
+            start = std::chrono::steady_clock::now();
+            const FrameInputs& in = eyeFrame.inputs;
+            Plane<float> modulation(in.width(), in.height());
+            for (size_t i = 0; i < modulation.size(); ++i) modulation[i] = Luminance(in.Modulation()[i]);
+            noise.Add(VdpDisplayLuminance(in.NoisyImage(), config_.output.exposure,
+                                          ExperimentVdpDisplay(config_, camera).photometry),
+                      in.sampleCount, {&modulation, &in.objectId});
+            eyeFrame.sppMs += MsSince(start);
+        }
     }
     hasPrevious_ = true;
     previousFrame_ = frame;

@@ -27,7 +27,7 @@ struct EyeFrame {
     vec2 gazePixel = vec2(0.0f);    // where the gaze lands on this eye's image
     vec3 trueGazeEye = vec3(0, 0, -1);  // where the eye really looked (the metrics' centre)
     vec2 trueGazePixel = vec2(0.0f);
-    double sppMs = 0.0;             // building the spp map
+    double sppMs = 0.0;             // building the spp map (and the noise estimate it reads next frame)
     double renderMs = 0.0;          // path tracing this eye
     bool uniformForBlink = false;   // gaze.blink = "uniform" replaced the map during a blink
 };
@@ -106,6 +106,9 @@ private:
     // The previous frame's primary-hit albedo luminance per eye: the content the perceptual model's
     // content term reads (foveation.content_masking); empty when off.
     std::array<Plane<float>, 2> previousContent_;
+    // The noise each eye's frames showed, as the display shows them: what the perceptual model's
+    // noise term reads (foveation.noise_visibility); empty when off.
+    std::array<VisibleNoiseEstimator, 2> visibleNoise_;
 };
 
 // The file stem of a frame's per-eye outputs: "f00012_left" (run, preview, replays).
