@@ -56,6 +56,8 @@ sed '3s/"fov":{/"fov_typo":{/' rec.jsonl > corrupt.jsonl
 expect_error "truncated recording" "truncated.jsonl: line 3 (after frame 0): truncated line" run --replay truncated.jsonl --set output.dir=e10
 expect_error "corrupt recording" "corrupt.jsonl: line 3 (frame 1): unknown key eyes\[0\].fov_typo" run --replay corrupt.jsonl --set output.dir=e11
 expect_error "missing recording" "no_such.jsonl: cannot open" run --replay no_such.jsonl --set output.dir=e12
+expect_error "replay refuses warm-up frames" "rec.jsonl: replay: run.warmup_frames = 2 differs from the recording's 0: a replay renders the recorded frames only" run --replay rec.jsonl --set run.warmup_frames=2 --set run.first_frame=2 --set output.dir=e14
+expect_error "record refuses warm-up frames" "--record: run.warmup_frames = 2" run "${small[@]}" --set run.first_frame=2 --set run.warmup_frames=2 --set output.dir=e15 --record rec_warm.jsonl
 expect_error "replay refuses a changed spp model" "rec.jsonl: replay: foveation.model = \"uniform\" differs" run --replay rec.jsonl --set foveation.model=uniform --set output.dir=e13
 # experiment --replay: the recording's scene and frames, the file's variants and reference.
 printf '[reference]\nspp = 4\ncache_dir = "refcache"\n[output]\ndir = "exp1"\n[experiment]\nscenes = ["room"]\nvariants = ["svgf"]\n' > exp.toml

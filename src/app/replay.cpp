@@ -33,6 +33,7 @@ constexpr ReplayKeyRule kReplayKeyRules[] = {
     {"camera.ipd", KeyRule::kSupplied, "each recorded eye has its position"},
     {"run.frames", KeyRule::kSupplied, "every recorded frame is rendered"},
     {"run.first_frame", KeyRule::kSupplied, "every recorded frame is rendered"},
+    {"run.warmup_frames", KeyRule::kRefused, "a replay renders the recorded frames only"},
     {"run.fps", KeyRule::kSupplied, "each recorded frame has its scene time"},
     {"run.seed", KeyRule::kChanges, "seeds every sample"},
     {"run.max_depth", KeyRule::kChanges, "the path length"},
@@ -184,9 +185,6 @@ RunConfig ResolveReplayConfig(Replay& replay, ConfigOptions options,
     if (!refused.empty())
         Fail("{}: replay: {}; the frames would differ from the recording (--allow-changes renders them anyway)", file,
              Join(refused, "; "));
-    if (config.run.warmupFrames > 0)
-        Fail("{}: replay: run.warmup_frames = {}: a replay renders the recorded frames only (set it to 0)", file,
-             config.run.warmupFrames);
     config.run.frames = int(replay.summary.frames);
     config.run.firstFrame = int(replay.summary.firstFrame);
 
