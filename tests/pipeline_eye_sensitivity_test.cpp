@@ -71,12 +71,12 @@ TEST_CASE("The content term and the metric's pooling read the metric's constants
     CHECK(m.beta == params.beta);
 }
 
-TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo moves rays off the texture",
-          "[foveation]") {
-    // The room's checker floor under the perceptual map at a budget of 1 spp: frame 0 has no
-    // previous frame (flat, the map without the term); frame 1 reads frame 0's albedo.
+namespace {
+
+// `scene` at 96×54 under the perceptual map at a budget of 1 spp, the periphery free to go below it.
+RunConfig PerceptualAtOneSpp(const char* scene) {
     RunConfig config = DefaultConfig();
-    config.scene.name = "room";
+    config.scene.name = scene;
     config.camera.width = 96;
     config.camera.height = 54;
     config.denoise.device = "cpu";
@@ -84,6 +84,30 @@ TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo mo
     config.foveation.sppMin = kMinSpp;
     config.foveation.sppFloor = kMinSpp;
     config.foveation.rayBudget = 96 * 54;
+    return config;
+}
+
+// A term switched off for frame `frame` and on again (the live panel): what was held from before
+// is not read, so frame + 1 is the map without the term, as `plain` renders it.
+void CheckOffAndOnReadsNothingOld(FramePipeline& term, FramePipeline& plain, const FoveationParams& on,
+                                  const FoveationParams& off, uint32_t frame) {
+    StereoFrame a, b;
+    term.SetFoveation(off);
+    term.Render(term.RequestAt(frame), b);
+    term.SetFoveation(on);
+    term.Render(term.RequestAt(frame + 1), b);
+    plain.Render(plain.RequestAt(frame), a);
+    plain.Render(plain.RequestAt(frame + 1), a);
+    CHECK(a.eyes[0].sppMap.vector() == b.eyes[0].sppMap.vector());
+}
+
+}  // namespace
+
+TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo moves rays off the texture",
+          "[foveation]") {
+    // The room's checker floor under the perceptual map at a budget of 1 spp: frame 0 has no
+    // previous frame (flat, the map without the term); frame 1 reads frame 0's albedo.
+    RunConfig config = PerceptualAtOneSpp("room");
     FramePipeline plain(config);
     config.foveation.contentMasking = true;
     FramePipeline masked(config);
@@ -113,17 +137,10 @@ TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo mo
     CHECK(texturedMasked < 0.8 * double(texturedPlain));
     CHECK(otherMasked > otherPlain);
 
-    // Switched off for frame 2 and on again (the live panel): the albedo held from before is not
-    // read, so frame 3 is the flat map, the map without the term.
+    // Switched off for frame 2 and on again: the albedo held from before is not read.
     FoveationParams off = config.foveation;
     off.contentMasking = false;
-    masked.SetFoveation(off);
-    masked.Render(masked.RequestAt(2), b);
-    masked.SetFoveation(config.foveation);
-    masked.Render(masked.RequestAt(3), b);
-    plain.Render(plain.RequestAt(2), a);
-    plain.Render(plain.RequestAt(3), a);
-    CHECK(a.eyes[0].sppMap.vector() == b.eyes[0].sppMap.vector());
+    CheckOffAndOnReadsNothingOld(masked, plain, config.foveation, off, 2);
 }
 
 TEST_CASE("The noise term in the frame pipeline: the frames as the display shows them, the first frame flat",
@@ -132,16 +149,8 @@ TEST_CASE("The noise term in the frame pipeline: the frames as the display shows
     // has seen nothing: the map without the term. Frame 1's map is the model's with the noise of
     // frame 0 as the metric's display shows it (its luminance at the PNGs' exposure, clipped at
     // its black and white), texture and object edges not counted as noise.
-    RunConfig config = DefaultConfig();
-    config.scene.name = "cornell";
-    config.camera.width = 96;
-    config.camera.height = 54;
-    config.denoise.device = "cpu";
+    RunConfig config = PerceptualAtOneSpp("cornell");
     config.output.exposure = 1.0f;
-    config.foveation.model = "perceptual";
-    config.foveation.sppMin = kMinSpp;
-    config.foveation.sppFloor = kMinSpp;
-    config.foveation.rayBudget = 96 * 54;
     FramePipeline plain(config);
     config.foveation.noiseVisibility = true;
     FramePipeline noise(config);
@@ -169,15 +178,8 @@ TEST_CASE("The noise term in the frame pipeline: the frames as the display shows
     CHECK(b.eyes[0].sppMap.vector() == map.vector());
     CHECK(b.eyes[0].sppMap.vector() != a.eyes[0].sppMap.vector());
 
-    // Switched off and on again (the live panel): what was estimated before is not read, so the
-    // frame after is the map without the term.
+    // Switched off for frame 2 and on again: the noise estimated before is not read.
     FoveationParams off = config.foveation;
     off.noiseVisibility = false;
-    noise.SetFoveation(off);
-    noise.Render(noise.RequestAt(2), b);
-    noise.SetFoveation(config.foveation);
-    noise.Render(noise.RequestAt(3), b);
-    plain.Render(plain.RequestAt(2), a);
-    plain.Render(plain.RequestAt(3), a);
-    CHECK(a.eyes[0].sppMap.vector() == b.eyes[0].sppMap.vector());
+    CheckOffAndOnReadsNothingOld(noise, plain, config.foveation, off, 2);
 }
