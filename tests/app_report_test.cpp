@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "app/experiment.h"
 #include "app/report.h"
 #include "app/report_collect.h"
 #include "app/report_html.h"
@@ -423,4 +424,13 @@ TEST_CASE("plots: ticks on both axes, the legend under the plot, gaze events and
     };
     CHECK(height(svg) > height(SvgLinePlot(shortNames)));
     CHECK(SvgColorBar(320, {{0.0, "1e-4"}, {1.0, "1"}}, "relMSE").find(">1e-4<") != std::string::npos);
+}
+
+TEST_CASE("the report states the frames it scored, and the warm-up before them", "[app][report]") {
+    RunSettings run;
+    run.frames = 8;
+    CHECK(ScoredFramesText(run) == "8");
+    run.firstFrame = 24;
+    run.warmupFrames = 24;
+    CHECK(ScoredFramesText(run) == "8 from frame 24, after 24 warm-up frames");
 }

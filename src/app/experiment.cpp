@@ -126,6 +126,11 @@ std::string SceneLabel(const std::string& name, std::vector<std::string>& used) 
     return unique;
 }
 
+std::string ScoredFramesText(const RunSettings& run) {
+    if (run.warmupFrames == 0) return std::to_string(run.frames);
+    return fmt::format("{} from frame {}, after {} warm-up frames", run.frames, run.firstFrame, run.warmupFrames);
+}
+
 std::vector<uint32_t> ParseSeedsOption(const std::string& text, uint32_t first) {
     auto bad = [&](const std::string& why) -> std::vector<uint32_t> {
         Fail("--seeds {}: {} (a count N >= 1, or a list such as 1,2,3)", text.empty() ? "''" : text, why);
@@ -448,7 +453,7 @@ Results WriteExperimentOutputs(const ExperimentSpec& spec, ExperimentPart& part,
     report.manifest = {{"experiment", spec.file.string()},
                        {"quick", spec.quick ? "yes" : "no"},
                        {"resolution per eye", fmt::format("{}×{}", base.camera.width, base.camera.height)},
-                       {"frames", std::to_string(base.run.frames)},
+                       {"frames", ScoredFramesText(base.run)},
                        {"seeds", SeedsText(seeds)},
                        {"baseline", spec.baseline},
                        {"reference seed", std::to_string(base.reference.seed)},

@@ -30,6 +30,10 @@ struct ConfigOptions;  // config/config_cli.h
 // in `used` gets "-2", "-3", ... (the label returned is appended to `used`).
 std::string SceneLabel(const std::string& name, std::vector<std::string>& used);
 
+// The frames a run scores, as its report states them: "8", or "8 from frame 8, after 8 warm-up
+// frames" (run.warmup_frames).
+std::string ScoredFramesText(const RunSettings& run);
+
 // An experiment file: a RunConfig plus an [experiment] table (scenes, variants, quick overrides).
 struct ExperimentSpec {
     std::filesystem::path file;

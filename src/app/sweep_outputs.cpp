@@ -380,7 +380,7 @@ void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointR
                            {"anchor design", sweep.anchor ? sweep.designs[*sweep.anchor].name : "none"},
                            {"budgets (mean spp)", budgets},
                            {"resolution per eye", fmt::format("{}×{}", spec.config.camera.width, spec.config.camera.height)},
-                           {"frames", std::to_string(spec.config.run.frames)},
+                           {"frames", ScoredFramesText(spec.config.run)},
                            {"points' outputs", "designs/<design>-b<budget>/ (each with its own report)"},
                            {"time", fmt::format("{:.1f} s wall, {:.1f} s CPU", wall, cpu)}};
         report.headline.push_back(HeadlineReportTable(spec, saved));
