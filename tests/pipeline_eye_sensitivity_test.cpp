@@ -87,6 +87,13 @@ RunConfig PerceptualAtOneSpp(const char* scene) {
     return config;
 }
 
+// Frame 0 has no previous frame: with the term, the map without it, on both eyes.
+void CheckFirstFrameIsPlain(FramePipeline& term, FramePipeline& plain, StereoFrame& a, StereoFrame& b) {
+    plain.Render(plain.RequestAt(0), a);
+    term.Render(term.RequestAt(0), b);
+    for (int eye = 0; eye < 2; ++eye) CHECK(a.eyes[size_t(eye)].sppMap.vector() == b.eyes[size_t(eye)].sppMap.vector());
+}
+
 // A term switched off for frame `frame` and on again (the live panel): what was held from before
 // is not read, so frame + 1 is the map without the term, as `plain` renders it.
 void CheckOffAndOnReadsNothingOld(FramePipeline& term, FramePipeline& plain, const FoveationParams& on,
@@ -112,9 +119,7 @@ TEST_CASE("Content masking in the frame pipeline: the previous frame's albedo mo
     config.foveation.contentMasking = true;
     FramePipeline masked(config);
     StereoFrame a, b;
-    plain.Render(plain.RequestAt(0), a);
-    masked.Render(masked.RequestAt(0), b);
-    for (int eye = 0; eye < 2; ++eye) CHECK(a.eyes[size_t(eye)].sppMap.vector() == b.eyes[size_t(eye)].sppMap.vector());
+    CheckFirstFrameIsPlain(masked, plain, a, b);
 
     Plane<float> albedo(96, 54);
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = Luminance(b.eyes[0].inputs.albedo[i]);
@@ -155,9 +160,7 @@ TEST_CASE("The noise term in the frame pipeline: the frames as the display shows
     config.foveation.noiseVisibility = true;
     FramePipeline noise(config);
     StereoFrame a, b;
-    plain.Render(plain.RequestAt(0), a);
-    noise.Render(noise.RequestAt(0), b);
-    for (int eye = 0; eye < 2; ++eye) CHECK(a.eyes[size_t(eye)].sppMap.vector() == b.eyes[size_t(eye)].sppMap.vector());
+    CheckFirstFrameIsPlain(noise, plain, a, b);
 
     VisibleNoiseEstimator expected;
     const FrameInputs& in = b.eyes[0].inputs;
