@@ -198,8 +198,9 @@ else bad "reference SIGINT: exit $rc, $(find refsINT -name '*.tmp-*' | wc -l) te
 "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=k9 >/dev/null 2>k9.err || bad "run before the kill: $(cat k9.err)"
 "$fovrt" run "${small[@]}" --set run.frames=100000 --set output.dir=k9 >/dev/null 2>k9.err &
 pid=$!
-# until its own first frame: its ledger (no "added" yet) is written once the first run moved aside
-first_frame_written() { [[ -s k9/frames.jsonl ]] && ! grep -q '"added"' k9/.fovrt-outputs.json 2>/dev/null; }
+# until its own first frame: the first run's frames.jsonl moved aside and a new one written since,
+# so the kill never lands in the move itself
+first_frame_written() { compgen -G 'k9/previous-run-*/frames.jsonl' >/dev/null && [[ -s k9/frames.jsonl ]]; }
 for _ in $(seq 100000); do first_frame_written || ! kill -0 $pid 2>/dev/null && break; sleep 0.05; done  # polls the event
 kill -KILL $pid; wait $pid 2>/dev/null
 "$fovrt" run "${small[@]}" --set run.frames=1 --set output.dir=k9 >/dev/null 2>k9.err || bad "run after the kill: $(cat k9.err)"
