@@ -28,12 +28,12 @@ void MakeUniform(Plane<uint16_t>& sppMap) {
     for (size_t p = 0; p < sppMap.size(); ++p) sppMap[p] = spp;
 }
 
-// The content the perceptual model's masking term reads: the primary hit's albedo (noise-free,
-// traced for every pixel, sampled or not), as luminance. Under smooth light the image's local
-// contrast is its texture's.
-void AlbedoLuminance(const FrameInputs& in, Plane<float>& out) {
-    out.ResizeForOverwrite(in.width(), in.height());
-    for (size_t i = 0; i < out.size(); ++i) out[i] = Luminance(in.albedo[i]);
+// A guide plane (noise-free, traced for every pixel, sampled or not) as luminance: the albedo is
+// the content the masking term reads (under smooth light the image's local contrast is its
+// texture's), the demodulation factor what the noise term divides out.
+void GuideLuminance(const Plane<vec3>& guide, Plane<float>& out) {
+    out.ResizeForOverwrite(guide.width(), guide.height());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = Luminance(guide[i]);
 }
 
 
@@ -190,14 +190,14 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         eyeFrame.inputs.timeSeconds = out.timeSeconds;
         eyeFrame.renderMs = MsSince(start);
         previousCameras_[size_t(eye)] = camera;
-        if (config_.foveation.contentMasking) AlbedoLuminance(eyeFrame.inputs, previousContent_[size_t(eye)]);
+        if (config_.foveation.contentMasking) GuideLuminance(eyeFrame.inputs.albedo, previousContent_[size_t(eye)]);
         // As the metric sees the frame: the display's luminance at the PNGs' exposure. Timed with
         // the map it serves.
         if (config_.foveation.noiseVisibility) {
             start = std::chrono::steady_clock::now();
             const FrameInputs& in = eyeFrame.inputs;
-            Plane<float> modulation(in.width(), in.height());
-            for (size_t i = 0; i < modulation.size(); ++i) modulation[i] = Luminance(in.Modulation()[i]);
+            Plane<float> modulation;
+            GuideLuminance(in.Modulation(), modulation);
             noise.Add(VdpDisplayLuminance(in.NoisyImage(), config_.output.exposure,
                                           ExperimentVdpDisplay(config_, camera).photometry),
                       in.sampleCount, {&modulation, &in.objectId});
