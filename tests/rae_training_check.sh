@@ -104,4 +104,16 @@ for spp in "" "--sample-count"; do
     { echo "FAIL: the two datasets were not read together"; exit 1; }
   [ -s "$out-ft/rae.raew" ] || { echo "FAIL: fine-tuning wrote no weights"; exit 1; }
 done
+# --device: a device this torch cannot use is refused in one line naming it, before anything is
+# written (on a machine with CUDA the refusal cannot be provoked and is not checked).
+if "$py" -c 'import sys, torch; sys.exit(0 if torch.cuda.is_available() else 1)'; then
+  echo "CUDA present: the --device refusal is not checked"
+else
+  if "$py" "$src/training/train.py" --data "$work/data" --out "$work/cuda" --device cuda 2>"$work/cuda.err"; then
+    echo "FAIL: --device cuda accepted without a CUDA device"; exit 1
+  fi
+  { [ "$(wc -l <"$work/cuda.err")" -eq 1 ] && grep -q -- "--device cuda: .*sees no CUDA device" "$work/cuda.err"; } ||
+    { echo "FAIL: the refusal of --device cuda:"; cat "$work/cuda.err"; exit 1; }
+  [ ! -e "$work/cuda" ] || { echo "FAIL: a refused --device left $work/cuda"; exit 1; }
+fi
 echo "rae training check: ok"

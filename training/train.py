@@ -5,7 +5,8 @@ Paper recipe (Chaitanya et al. 2017, §4.3-4.4, §5.3): 7-frame sequences, 128²
 loss 0.8 L1 + 0.1 HFEN (L1 of LoG σ 1.5) + 0.1 temporal (L1 of frame differences), per-frame
 weights exp(-(6-t)²/8); augmentations: playback direction, camera stops, 90° rotations (view-space
 normals rotated too), per-channel colour scale U[0, 2]; Adam 1e-3, β (0.9, 0.99), learning rate
-ramped up tenfold geometrically, then ∝ 1/√t. CPU, torch.set_num_threads(--threads).
+ramped up tenfold geometrically, then ∝ 1/√t. CPU (torch.set_num_threads(--threads)) or a CUDA
+GPU (--device cuda): the same recipe, the batches drawn on the CPU either way.
 
 Writes into --out: train_log.csv (one row per --log-every steps), checkpoint.pt (every
 --ckpt-every steps and at the end; --resume continues from it), rae.raew (the exported weights).
@@ -46,7 +47,8 @@ LOG = log_kernel()
 def hfen(x):
     """LoG of every channel, x [N, C, H, W]."""
     n, c, h, w = x.shape
-    return F.conv2d(x.reshape(n * c, 1, h, w), LOG, padding=LOG.shape[-1] // 2).reshape(n, c, h, w)
+    k = LOG.to(x.device)
+    return F.conv2d(x.reshape(n * c, 1, h, w), k, padding=k.shape[-1] // 2).reshape(n, c, h, w)
 
 
 def frame_weights(floor=0.0):
@@ -62,7 +64,7 @@ def rae_loss(out, tgt, w_temporal=0.1, w_temporal_linear=0.0, fw=FRAME_WEIGHTS):
     tgt^(1/γ)): γ = 0.2 compresses the flicker of bright regions that the temporal error of
     fovrt's experiments (mean |lum_t − lum_{t−1}|, linear) is made of."""
     B, T = out.shape[:2]
-    w = fw[:T] / fw[:T].sum()
+    w = fw[:T].to(out.device) / fw[:T].sum()
     l1 = ((out - tgt).abs().mean(dim=(0, 2, 3, 4)) * w).sum()
     hf = (hfen(out.flatten(0, 1)) - hfen(tgt.flatten(0, 1))).abs().view(B, T, -1).mean(dim=(0, 2))
     hf = (hf * w).sum()
@@ -77,7 +79,7 @@ def rae_loss(out, tgt, w_temporal=0.1, w_temporal_linear=0.0, fw=FRAME_WEIGHTS):
         dl_tgt = lin_tgt[:, 1:] - lin_tgt[:, :-1]
         tl = ((dl_out - dl_tgt).abs().mean(dim=(0, 2, 3, 4)) * tw).sum()
     else:
-        tl = torch.zeros(())
+        tl = torch.zeros((), device=out.device)
     return 0.8 * l1 + 0.1 * hf + w_temporal * tm + w_temporal_linear * tl, l1, hf, tm, tl
 
 
@@ -89,7 +91,7 @@ def energy_loss(out, tgt, block=8, fw=FRAME_WEIGHTS):
     compares energy: a network that keeps a region's texture while losing half its light pays it
     here, where the per-pixel L1 in γ space, which pulls towards the median, barely does."""
     B, T = out.shape[:2]
-    w = fw[:T] / fw[:T].sum()
+    w = fw[:T].to(out.device) / fw[:T].sum()
     m_out = F.avg_pool2d(rae_net.linear_output(out).flatten(0, 1), block)
     m_tgt = F.avg_pool2d(rae_net.linear_output(tgt).flatten(0, 1), block)
     # (m + 1e-6)^γ: the gradient of x^γ is unbounded at 0 (black blocks).
@@ -207,6 +209,21 @@ def parse_widths(text):
     return tuple(int(w) for w in text.split(","))
 
 
+def training_device(name):
+    """The torch device --device names; one line and a non-zero exit when this torch cannot use it."""
+    try:
+        device = torch.device(name)
+    except RuntimeError as e:
+        sys.exit(f"--device {name}: {e}")
+    if device.type == "cuda" and not torch.cuda.is_available():
+        sys.exit(f"--device {name}: torch {torch.__version__} sees no CUDA device (torch.cuda.is_available() is false)")
+    if device.type == "cuda" and (device.index or 0) >= torch.cuda.device_count():
+        sys.exit(f"--device {name}: torch sees {torch.cuda.device_count()} CUDA device(s)")
+    if device.type not in ("cpu", "cuda"):
+        sys.exit(f"--device {name}: not cpu or cuda")
+    return device
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--data", required=True, nargs="+", help="one or more `fovrt dataset` folders")
@@ -218,7 +235,8 @@ def main(argv=None):
     ap.add_argument("--crop", type=int, default=128)
     ap.add_argument("--lr", type=float, default=1e-3)
     ap.add_argument("--ramp", type=int, default=200, help="steps of the tenfold ramp-up")
-    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--threads", type=int, default=2, help="CPU threads (with --device cpu, the network's)")
+    ap.add_argument("--device", default="cpu", help="cpu | cuda | cuda:N: where the network trains")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--log-every", type=int, default=20)
     ap.add_argument("--ckpt-every", type=int, default=200)
@@ -245,6 +263,7 @@ def main(argv=None):
     p, lo, hi = args.stops.split(",")
     STOP_PROB, STOP_HOLD = float(p), (int(lo), int(hi))
     torch.set_num_threads(args.threads)
+    device = training_device(args.device)
     torch.manual_seed(args.seed)
     rng = random.Random(args.seed)
     os.makedirs(args.out, exist_ok=True)
@@ -260,12 +279,13 @@ def main(argv=None):
                      f"this run {net.widths} / {net.in_channels}")
         net.load_state_dict(init.state_dict())
     channels = net.in_channels
+    net.to(device)
     opt = torch.optim.Adam(net.parameters(), lr=args.lr, betas=(0.9, 0.99))
     step, elapsed = 0, 0.0
     ckpt_path = os.path.join(args.out, "checkpoint.pt")
     log_path = os.path.join(args.out, "train_log.csv")
     if args.resume and os.path.exists(ckpt_path):
-        ck = torch.load(ckpt_path)
+        ck = torch.load(ckpt_path, map_location=device)
         net.load_state_dict(ck["net"])
         opt.load_state_dict(ck["opt"])
         step, elapsed = ck["step"], ck["elapsed"]
@@ -285,7 +305,8 @@ def main(argv=None):
     vbatch = None
     src = val if len(val) else train
     if src is not None and len(src):
-        vbatch = sample_batch(src, 4, args.crop, channels, random.Random(12345), augment=False)
+        vbatch = tuple(t.to(device) for t in
+                       sample_batch(src, 4, args.crop, channels, random.Random(12345), augment=False))
 
     def save():
         torch.save({"net": net.state_dict(), "opt": opt.state_dict(), "step": step, "elapsed": elapsed,
@@ -309,6 +330,7 @@ def main(argv=None):
             x, y = fixed
         else:
             x, y = sample_batch(train, args.batch, args.crop, channels, rng)
+        x, y = x.to(device), y.to(device)
         out = net(x)
         loss, l1, hf, tm, tl = rae_loss(out, y, args.temporal_weight, args.temporal_linear,
                                         frame_weights(args.frame_weight_floor))
@@ -316,7 +338,7 @@ def main(argv=None):
             en = energy_loss(out, y, fw=frame_weights(args.frame_weight_floor))
             loss = loss + args.energy_weight * en
         else:
-            en = torch.zeros(())
+            en = torch.zeros((), device=device)
         opt.zero_grad()
         loss.backward()
         opt.step()
