@@ -290,7 +290,7 @@ def main(argv=None):
         opt.load_state_dict(ck["opt"])
         step, elapsed = ck["step"], ck["elapsed"]
         rng.setstate(ck["rng"])
-        torch.set_rng_state(ck["torch_rng"])
+        torch.set_rng_state(ck["torch_rng"].cpu())  # map_location moved it to the device
         print(f"resumed at step {step}", flush=True)
     else:
         with open(log_path, "w", newline="") as f:
