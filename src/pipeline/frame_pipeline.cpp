@@ -196,7 +196,7 @@ void FramePipeline::Render(const FrameRequest& request, StereoFrame& out) {
         if (config_.foveation.noiseVisibility) {
             start = std::chrono::steady_clock::now();
             const FrameInputs& in = eyeFrame.inputs;
-            Plane<float> modulation;
+            Plane<float>& modulation = noiseModulation_[size_t(eye)];
             GuideLuminance(in.Modulation(), modulation);
             noise.Add(VdpDisplayLuminance(in.NoisyImage(), config_.output.exposure,
                                           ExperimentVdpDisplay(config_, camera).photometry),

@@ -109,6 +109,9 @@ private:
     // The noise each eye's frames showed, as the display shows them: what the perceptual model's
     // noise term reads (foveation.noise_visibility); empty when off.
     std::array<VisibleNoiseEstimator, 2> visibleNoise_;
+    // The demodulation factor's luminance per eye, which the noise term divides out: kept so that
+    // a frame overwrites it instead of allocating it.
+    std::array<Plane<float>, 2> noiseModulation_;
 };
 
 // The file stem of a frame's per-eye outputs: "f00012_left" (run, preview, replays).
