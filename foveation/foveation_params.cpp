@@ -18,7 +18,7 @@ constexpr ParamRange kSppMasked = Closed(kMinSpp, kMaxSpp);
 // radius_deg bounds an eccentricity, the angle between two rays, which lies in [0°, 180°]:
 // a radius of 180° or more would make every direction foveal (the uniform model's job), and
 // every radius below it is a disc, so [0, 180).
-constexpr std::array<SettingRow<FoveationParams>, 20> kFoveationRows{{
+constexpr std::array<SettingRow<FoveationParams>, 21> kFoveationRows{{
     {{.key = "foveation.model",
       .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
       .names = FoveationModelNames},
@@ -79,13 +79,17 @@ constexpr std::array<SettingRow<FoveationParams>, 20> kFoveationRows{{
       .doc = "uniform: spp everywhere (below 1: traced on that fraction of frames)", .slider = kSppMasked},
      &F::uniformSpp},
     {{.key = "foveation.ray_budget", .range = Closed(0, double(std::numeric_limits<int64_t>::max())),
-      .doc = "samples per eye per frame, the map scaled to it; 0 = none (else from spp_floor × W·H to the spp "
-              "cap × W·H)"},
+      .doc = "samples per eye per frame, the map scaled to it; 0 = none (else from spp_floor × W·H to "
+              "spp_cap × W·H)"},
      &F::rayBudget},
     {{.key = "foveation.spp_floor", .range = Closed(kMinSpp, 1),
       .doc = "ray budget: the least spp it scales a pixel to (below 1: traced on that fraction of frames)",
       .slider = Closed(kMinSpp, 1)},
      &F::sppFloor},
+    {{.key = "foveation.spp_cap", .range = kSpp,
+      .doc = "ray budget: the most spp it scales a pixel to (the fovea of a steep map under a large budget)",
+      .slider = kSpp},
+     &F::sppCap},
 }};
 static_assert(RowsWellFormed(kFoveationRows), "a [foveation] row is malformed (see ParamRowProblem)");
 

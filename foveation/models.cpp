@@ -303,26 +303,26 @@ private:
 };
 
 // Fixed ray budget: scale the inner model's continuous map by s so that
-// Σ clamp(s·d, floor, kMaxSpp) = budget (regula falsi; the sum is monotone in s), then round the
+// Σ clamp(s·d, floor, cap) = budget (regula falsi; the sum is monotone in s), then round the
 // targets at 1 and above with serpentine 1-D error diffusion and mask those below 1. Every
-// diffused target lies in [1, kMaxSpp] and the carried error in [-0.5, 0.5], so each output stays
-// in [1, kMaxSpp] and their total differs from their targets' by < 1 sample; a masked pixel of
+// diffused target lies in [1, cap] and the carried error in [-0.5, 0.5], so each output stays
+// in [1, cap] and their total differs from their targets' by < 1 sample; a masked pixel of
 // target d is traced d times per frame on average (sample_mask.h), so the map's total meets the
 // budget in expectation, within that sample plus the solver tolerance (0.05) and float rounding
 // of the targets. The carry starts at a hash of the frame index, so the dither pattern changes
 // from frame to frame deterministically.
 class BudgetModel final : public SppModel {
 public:
-    BudgetModel(std::unique_ptr<SppModel> inner, int64_t budget, float floor)
-        : inner_(std::move(inner)), budget_(budget), floor_(floor) {}
+    BudgetModel(std::unique_ptr<SppModel> inner, int64_t budget, float floor, int cap)
+        : inner_(std::move(inner)), budget_(budget), floor_(floor), cap_(cap) {}
     std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
 
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<float>& density,
                          const FrameFeedback& feedback) const override {
         inner_->GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
-        const double n = double(density.size()), floor = double(floor_);
-        const double target = std::clamp(double(budget_), n * floor, n * kMaxSpp);
-        float dMin = float(kMaxSpp);
+        const double n = double(density.size()), floor = double(floor_), cap = double(cap_);
+        const double target = std::clamp(double(budget_), n * floor, n * cap);
+        float dMin = float(cap_);
         for (size_t i = 0; i < density.size(); ++i) {
             dMin = std::min(dMin, density[i]);
         }
@@ -330,13 +330,13 @@ public:
         auto total = [&](double s) {
             double sum = 0.0;
             for (size_t i = 0; i < density.size(); ++i)
-                sum += std::clamp(s * double(density[i]), floor, double(kMaxSpp));
+                sum += std::clamp(s * double(density[i]), floor, cap);
             return sum;
         };
-        // total(0) = n·floor <= target <= total(kMaxSpp / dMin) = n·kMaxSpp; total is monotone and
+        // total(0) = n·floor <= target <= total(cap / dMin) = n·cap; total is monotone and
         // piecewise linear in s, so regula falsi (Illinois variant) converges in a few passes.
-        double lo = 0.0, hi = double(kMaxSpp) / dMin;
-        double fLo = n * floor - target, fHi = n * kMaxSpp - target;
+        double lo = 0.0, hi = cap / dMin;
+        double fLo = n * floor - target, fHi = n * cap - target;
         double s = hi;
         int side = 0;
         for (int it = 0; it < 100 && fHi - fLo > 0.0 && hi - lo > 1e-12 * hi; ++it) {
@@ -354,7 +354,7 @@ public:
             }
         }
         for (size_t i = 0; i < density.size(); ++i)
-            density[i] = float(std::clamp(s * double(density[i]), floor, double(kMaxSpp)));
+            density[i] = float(std::clamp(s * double(density[i]), floor, cap));
     }
 
     void Generate(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<uint16_t>& spp,
@@ -371,7 +371,7 @@ public:
                     continue;
                 }
                 double want = double(density(x, y)) + carry;
-                double value = std::clamp(std::floor(want + 0.5), 1.0, double(kMaxSpp));
+                double value = std::clamp(std::floor(want + 0.5), 1.0, double(cap_));
                 carry = want - value;
                 spp(x, y) = uint16_t(value);
             }
@@ -382,13 +382,14 @@ private:
     std::unique_ptr<SppModel> inner_;
     int64_t budget_;
     float floor_;
+    int cap_;
 };
 
 }  // namespace
 
-std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget,
-                                               float sppFloor) {
-    return std::make_unique<BudgetModel>(std::move(inner), rayBudget, sppFloor);
+std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget, float sppFloor,
+                                               int sppCap) {
+    return std::make_unique<BudgetModel>(std::move(inner), rayBudget, sppFloor, sppCap);
 }
 
 NameList FoveationModelNames() { return kModelNames; }
@@ -399,7 +400,7 @@ NameList PerceptualPoolingNames() {
 }
 
 std::optional<std::string> ZeroSppKey(const FoveationParams& p) {
-    // Under a ray budget every pixel is scaled into [spp_floor, kMaxSpp], whatever the model's least.
+    // Under a ray budget every pixel is scaled into [spp_floor, spp_cap], whatever the model's least.
     if (p.rayBudget > 0)
         return p.sppFloor < 1.0f ? std::optional(fmt::format("foveation.spp_floor = {}", p.sppFloor)) : std::nullopt;
     for (const ModelRow& row : kModels)
@@ -422,7 +423,7 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
                  p.contentMasking ? "foveation.content_masking" : "foveation.pooling = \"metric\"");
         model = std::make_unique<DensityModel>(row, p, sensitivity, masking);
     }
-    if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor);
+    if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor, p.sppCap);
     return model;
 }
 

@@ -17,7 +17,10 @@
 
 namespace fovrt {
 
-inline constexpr int kMaxSpp = 16;
+// The most samples a pixel may ask for: the renderer-to-denoiser contract's sample counts are
+// uint16, and 64 lets a ray budget's fovea hold 16× a uniform 4 spp. A budget's own cap is
+// foveation.spp_cap (FoveationParams::sppCap), 16 unless a design raises it.
+inline constexpr int kMaxSpp = 64;
 
 // What the previous frames of an eye tell the perceptual model's terms (docs/foveation.md); null:
 // not known (the first frame, after a cut), every pixel flat.
@@ -127,11 +130,12 @@ struct FoveationParams {
     float uniformSpp = 1.0f;
 
     // Fixed ray budget: total samples per eye per frame (0 = none). Any model's map is scaled to it,
-    // each pixel kept in [sppFloor, kMaxSpp], then dithered (at 1 and above) or masked (below 1);
-    // the budget is clamped to the feasible [sppFloor*W*H, kMaxSpp*W*H]. sppFloor = 1 traces every
+    // each pixel kept in [sppFloor, sppCap], then dithered (at 1 and above) or masked (below 1);
+    // the budget is clamped to the feasible [sppFloor*W*H, sppCap*W*H]. sppFloor = 1 traces every
     // pixel every frame.
     int64_t rayBudget = 0;
     float sppFloor = 1.0f;
+    int sppCap = 16;
 
     bool operator==(const FoveationParams&) const = default;
 };
@@ -162,8 +166,8 @@ inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSp
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {},
                                          const ContrastMasking& masking = {});
 // Wraps a model so each map's total equals `rayBudget` (within a few samples, and in expectation
-// over frames where pixels fall below 1; see models.cpp), no pixel's density below `sppFloor`.
-std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget,
-                                               float sppFloor = 1.0f);
+// over frames where pixels fall below 1; see models.cpp), each pixel's density in [sppFloor, sppCap].
+std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget, float sppFloor,
+                                               int sppCap);
 
 }  // namespace fovrt

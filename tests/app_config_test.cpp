@@ -169,7 +169,8 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     fails({"reference.spp=0"}, "reference.spp");
     fails({"run.frames=0"}, "run.frames");
     fails({"run.fps=-1"}, "run.fps");
-    fails({"foveation.spp_inside=17"}, "foveation.spp_inside");
+    fails({"foveation.spp_inside=65"}, "foveation.spp_inside");  // past kMaxSpp
+    fails({"foveation.spp_cap=65"}, "foveation.spp_cap");
     fails({"foveation.model=gaussian"}, "foveation.model");
     fails({"foveation.peripheral_deg=1"}, "foveation.peripheral_deg");
     fails({"foveation.ray_budget=10"}, "foveation.ray_budget");
@@ -179,6 +180,9 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     fails({"foveation.ray_budget=115200"}, "foveation.ray_budget");
     fails({"foveation.ray_budget=50000", "foveation.spp_floor=0.25"}, "foveation.ray_budget");
     CHECK(Resolve("", {"foveation.ray_budget=57600", "foveation.spp_floor=0.25"}).foveation.rayBudget == 57600);
+    // Above 16 spp on average needs a raised cap (230400 pixels).
+    fails({"foveation.ray_budget=3916800"}, "foveation.ray_budget");
+    CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap=32"}).foveation.sppCap == 32);
     CHECK(Resolve("", {"foveation.spp_outside=0.25"}).foveation.sppOutside == 0.25f);
     fails({"gaze.source=eyelink"}, "gaze.source");
     fails({"gaze.source=trace"}, "gaze.trace_path");
@@ -480,7 +484,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 101);
+    CHECK(keys.size() == 102);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -509,7 +513,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 102);  // the 101 table rows and denoise.precision
+    CHECK(listed.size() == 103);  // the 102 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {

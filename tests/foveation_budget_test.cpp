@@ -62,11 +62,43 @@ TEST_CASE("Ray budget keeps the foveation shape and is deterministic", "[foveati
     for (size_t i = 0; i < c.size(); ++i) totalC += c[i];
     CHECK(std::abs(totalC - p.rayBudget) <= 2);
 
-    // Infeasible budgets clamp to [W*H, 16*W*H].
+    // Infeasible budgets clamp to [spp_floor*W*H, spp_cap*W*H].
     p.rayBudget = 10;
     CreateSppModel(p)->Generate(cam, vec3(0, 0, -1), 0, a);
     for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == 1);
     p.rayBudget = 100 * w * h;
     CreateSppModel(p)->Generate(cam, vec3(0, 0, -1), 0, a);
-    for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == kMaxSpp);
+    for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == p.sppCap);
+}
+
+TEST_CASE("A raised spp_cap lets a budget's fovea past 16 and no pixel past the cap", "[foveation]") {
+    const int w = 64, h = 48;
+    const int64_t n = int64_t(w) * h;
+    EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p;
+    p.model = "linear";  // 8 spp inside 5°, 1 beyond 30°: scaled ×4 by a 4-spp budget
+    p.sppMin = 0.25f;
+    p.sppFloor = 0.0625f;
+    p.rayBudget = 4 * n;
+    const auto largest = [&](int cap, int64_t& total) {
+        p.sppCap = cap;
+        Plane<uint16_t> spp;
+        CreateSppModel(p)->Generate(cam, vec3(0, 0, -1), 3, spp);
+        uint16_t top = 0;
+        total = 0;
+        for (size_t i = 0; i < spp.size(); ++i) top = std::max(top, spp[i]), total += spp[i];
+        return top;
+    };
+    int64_t total16 = 0, total48 = 0, totalMax = 0;
+    CHECK(largest(16, total16) == 16);  // the default cap binds: the fovea wants more
+    const uint16_t top48 = largest(48, total48);
+    CHECK(top48 > 16);
+    CHECK(top48 <= 48);
+    CHECK(largest(kMaxSpp, totalMax) <= kMaxSpp);
+    // The same budget either way (the masked periphery meets it in expectation: within 2 %).
+    for (int64_t total : {total16, total48, totalMax}) CHECK(std::abs(double(total - p.rayBudget)) <= 0.02 * double(n * 4));
+    // Every budget up to spp_cap × W·H is feasible: at the cap, every pixel holds it.
+    p.rayBudget = 48 * n;
+    CHECK(largest(48, total48) == 48);
+    CHECK(total48 == 48 * n);
 }

@@ -160,7 +160,7 @@ TEST_CASE("Uniform model and parameter errors", "[foveation]") {
     bad.model = "gaussian";
     CHECK_THROWS_WITH(CreateSppModel(bad), Catch::Contains("foveation.model") && Catch::Contains("gaussian"));
     bad = FoveationParams();
-    bad.sppInside = 17;
+    bad.sppInside = 65;
     CHECK_THROWS_WITH(CreateSppModel(bad), Catch::Contains("foveation.spp_inside"));
     bad = FoveationParams();
     bad.peripheralDeg = 2.0f;

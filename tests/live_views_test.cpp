@@ -59,6 +59,11 @@ TEST_CASE("every base view has the eye's size; error needs a reference", "[live]
     REQUIRE(BuildView("spp", sources, sppView));
     CHECK(sppView.rgb(3, 2) == FalseColour(16.0f, 1.0f, 16.0f));
     CHECK(sppView.rgb(0, 0) == FalseColour(1.0f, 1.0f, 16.0f));
+    spp(3, 2) = 40;  // a raised foveation.spp_cap: the scale reaches the map's largest
+    REQUIRE(BuildView("spp", sources, sppView));
+    CHECK(sppView.rgb(3, 2) == FalseColour(40.0f, 1.0f, 40.0f));
+    CHECK(sppView.rgb(0, 0) == FalseColour(1.0f, 1.0f, 40.0f));
+    CHECK(sppView.legend == "spp map: 1 (dark) .. 40 (yellow)");
     ViewImage noisy;
     REQUIRE(BuildView("noisy", sources, noisy));
     CHECK(noisy.rgb(0, 0).r == Approx(0.8f * 0.5f));

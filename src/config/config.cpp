@@ -351,11 +351,11 @@ void CheckRules(const RunConfig& c, const Reader& r) {
     const FoveationConfig& f = c.foveation;
     const int64_t pixels = int64_t(c.camera.width) * c.camera.height;
     const int64_t leastBudget = int64_t(std::ceil(double(f.sppFloor) * double(pixels)));
-    if (f.rayBudget != 0 && (f.rayBudget < leastBudget || f.rayBudget > pixels * kMaxSpp))
+    if (f.rayBudget != 0 && (f.rayBudget < leastBudget || f.rayBudget > pixels * f.sppCap))
         r.Bad("foveation.ray_budget",
-              fmt::format("{} is outside [spp_floor*width*height, {}*width*height] = [{}, {}] (0 = no budget; "
-                          "foveation.spp_floor = {} is the least spp it may scale a pixel to)",
-                          f.rayBudget, kMaxSpp, leastBudget, pixels * kMaxSpp, f.sppFloor));
+              fmt::format("{} is outside [spp_floor*width*height, spp_cap*width*height] = [{}, {}] (0 = no budget; "
+                          "foveation.spp_floor = {} and foveation.spp_cap = {} bound the spp it may scale a pixel to)",
+                          f.rayBudget, leastBudget, pixels * f.sppCap, f.sppFloor, f.sppCap));
     const DenoiseConfig& d = c.denoise;
     std::map<std::string, std::string> spelled;  // canonical name → the first spelling of it
     for (const std::string& name : d.denoisers) {

@@ -73,8 +73,12 @@ bool BuildView(const std::string& name, const ViewSources& s, ViewImage& out) {
     } else if (name == "noisy") {
         out = {in.NoisyImage(), true, "noisy colour (albedo x (direct + indirect) + emission)"};
     } else if (name == "spp") {
-        out = {Map(*s.sppMap, [](uint16_t n) { return FalseColour(float(n), 1.0f, float(kMaxSpp)); }),
-               false, fmt::format("spp map: 1 (dark) .. {} (yellow)", kMaxSpp)};
+        // Scaled to the default spp_cap so the colours hold still from frame to frame, or to the
+        // map's largest where a raised cap goes past it.
+        uint16_t top = uint16_t(FoveationParams{}.sppCap);
+        for (size_t i = 0; i < s.sppMap->size(); ++i) top = std::max(top, (*s.sppMap)[i]);
+        out = {Map(*s.sppMap, [top](uint16_t n) { return FalseColour(float(n), 1.0f, float(top)); }), false,
+               fmt::format("spp map: 1 (dark) .. {} (yellow)", top)};
     } else if (name == "albedo") {
         out = {Map(in.albedo, [](const vec3& a) { return glm::clamp(a, 0.0f, 1.0f); }), false, "albedo"};
     } else if (name == "normal") {

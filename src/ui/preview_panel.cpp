@@ -83,7 +83,10 @@ bool FoveationControls(FoveationParams& f) {
         f.rayBudget = std::max(0, budget);
         changed = true;
     }
-    if (f.rayBudget > 0) changed |= SliderOf("spp floor", "foveation.spp_floor", f.sppFloor, "%.3g");
+    if (f.rayBudget > 0) {
+        changed |= SliderOf("spp floor", "foveation.spp_floor", f.sppFloor, "%.3g");
+        changed |= SliderOf("spp cap", "foveation.spp_cap", f.sppCap);
+    }
     return changed;
 }
 
