@@ -1,7 +1,8 @@
 // Sampling designs as an experiment axis (app/sampling_designs.h, app/sweep_outputs.h): the points
 // an experiment file's designs and budgets make, every refusal naming the design and key, and the
 // rays saved computed from the points' scores, on synthetic curves whose answer is known in closed
-// form.
+// form, in one sweep and from sweeps that ran apart (app/sweep_compare.h).
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,8 +11,10 @@
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "app/experiment.h"
+#include "app/sweep_compare.h"
 #include "app/sweep_outputs.h"
 #include "app_test_configs.h"
 #include "config/config_cli.h"
@@ -238,7 +241,7 @@ TEST_CASE("rays saved from the points: a design that reaches each JOD with half 
     CHECK(rows[0].raysSavedFovea.estimate.value == Approx(3.0).epsilon(1e-3));
     CHECK(rows[0].raysSavedFovea.lower <= 3.0 + 1e-6);
     CHECK(rows[0].raysSavedFovea.upper >= 3.0 - 1e-6);
-    const std::string table = RaysSavedTable(spec, rows);
+    const std::string table = RaysSavedTable("uniform", rows);
     CHECK_THAT(table, Catch::Matchers::Contains("2.00×") && Catch::Matchers::Contains("3.00×"));
     // At each of its points (1, 2, 4 and 8 spp) the design scores uniform's JOD at twice its rays;
     // at 8 spp that is uniform's at 16, beyond uniform's last point, so there is nothing to read.
@@ -256,4 +259,125 @@ TEST_CASE("rays saved from the points: a design that reaches each JOD with half 
     CHECK(values.jod.size() == 3);
     CHECK(values.jod[1] == Approx(uniform(2.0, 2)));
     CHECK(values.tracedSpp[0] == 2.0);
+}
+
+namespace {
+
+nlohmann::json ReadJsonFile(const fs::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+void WriteJsonFile(const fs::path& path, const nlohmann::json& json) { std::ofstream(path) << json.dump(2); }
+
+std::string GatherError(const std::vector<fs::path>& runs) {
+    try {
+        (void)GatherSweepRuns(runs);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs that differ refused", "[app][designs]") {
+    // The closed-form sweep above, written as two runs: run a holds uniform's four points and the
+    // design's at 1 and 2 spp, run b uniform's 1 spp again and the design's at 4 and 8.
+    ExperimentSpec spec = LoadExperiment(DesignOptions("apart",
+                                                       "budgets = [1, 2, 4, 8]\n"
+                                                       "[experiment.designs.uniform]\nfoveation.model = \"uniform\"\n"
+                                                       "[experiment.designs.fov]\nfoveation.model = \"linear\"\n"));
+    spec.seeds = {1, 2, 3};
+    spec.variants = {"svgf"};
+    spec.config.output.report = false;
+    auto uniform = [](double rays, uint32_t seed) { return 7.0 + 0.8 * std::log(rays) + 0.01 * seed; };
+    auto foveated = [&](double rays, uint32_t seed) { return uniform(2.0 * rays, seed); };
+    auto uniformFovea = [](double rays, uint32_t seed) { return 0.1 * (1.0 + 0.05 * seed) / rays; };
+    auto foveatedFovea = [&](double rays, uint32_t seed) { return uniformFovea(3.0 * rays, seed); };
+    std::vector<SweepPointResult> points, a, b;
+    for (size_t i = 0; i < spec.sweep.points.size(); ++i) {
+        const SweepPoint& point = spec.sweep.points[i];
+        const bool anchor = point.design == 0;
+        points.push_back(SyntheticPoint(i, *point.budgetSpp, anchor ? SeedCurve(uniform) : SeedCurve(foveated),
+                                        anchor ? SeedCurve(uniformFovea) : SeedCurve(foveatedFovea)));
+        if (anchor || *point.budgetSpp <= 2.0) a.push_back(points.back());
+        if ((anchor && *point.budgetSpp == 1.0) || (!anchor && *point.budgetSpp >= 4.0)) b.push_back(points.back());
+    }
+    const std::vector<RaysSavedRow> whole = SweepRaysSaved(spec, points);
+    REQUIRE(whole.size() == 1);
+    const fs::path dir = test::ScratchDir("fovrt_rays_saved");
+    for (const auto& [name, part] : {std::pair{"a", &a}, std::pair{"b", &b}}) {
+        fs::create_directories(dir / name);
+        WriteSweepOutputs(spec, *part, dir / name, std::chrono::steady_clock::now());
+    }
+
+    const GatheredCurves curves = GatherSweepRuns({dir / "a", dir / "b"});
+    CHECK(curves.rows.size() == 8 * 3);  // 8 points × 3 seeds: uniform's 1 spp once
+    const std::vector<DesignComparison> apart = CompareDesigns(curves, "uniform", {});
+    REQUIRE(apart.size() == 1);
+    const DesignComparison& c = apart[0];
+    CHECK(c.seeds == std::vector<uint32_t>{1, 2, 3});
+    CHECK(c.budgets == std::vector<std::string>{"1", "2", "4", "8"});
+    // curves.csv keeps 9 significant digits.
+    REQUIRE(c.saved.raysSaved.estimate.Ok());
+    CHECK(c.saved.raysSaved.estimate.value == Approx(2.0).epsilon(1e-6));
+    CHECK(c.saved.raysSaved.estimate.value == Approx(whole[0].raysSaved.estimate.value).epsilon(1e-6));
+    CHECK(c.saved.raysSaved.lower == Approx(whole[0].raysSaved.lower).epsilon(1e-6));
+    CHECK(c.saved.raysSaved.upper == Approx(whole[0].raysSaved.upper).epsilon(1e-6));
+    CHECK(c.saved.jodGain.estimate.value == Approx(0.8 * std::log(2.0)).epsilon(1e-6));
+    CHECK(c.saved.raysSavedFovea.estimate.value == Approx(3.0).epsilon(1e-6));
+    REQUIRE(c.saved.raysSavedAtPoints.size() == 4);
+    CHECK(c.saved.raysSavedAtPoints[2].estimate.value == Approx(2.0).epsilon(1e-6));  // from run b, on run a's anchor
+    CHECK_FALSE(c.saved.raysSavedAtPoints[3].estimate.Ok());                           // beyond uniform's 8 spp
+    const std::string text = DesignComparisonText("uniform", apart);
+    CHECK_THAT(text, Catch::Matchers::Contains("2.00× [2.00, 2.00]") && Catch::Matchers::Contains("1 2 3"));
+    CHECK_THROWS_WITH(CompareDesigns(curves, "disc", {}), Catch::Matchers::Contains("anchor design 'disc'"));
+    CHECK_THROWS_WITH(CompareDesigns(curves, "uniform", {"fovv"}), Catch::Matchers::Contains("design 'fovv'"));
+
+    // Only the seeds every point holds: run c has the design's 4 and 8 spp with seed 2 alone.
+    ExperimentSpec seed2 = spec;
+    seed2.seeds = {2};
+    fs::create_directories(dir / "c");
+    WriteSweepOutputs(seed2, {b[1], b[2]}, dir / "c", std::chrono::steady_clock::now());
+    const std::vector<DesignComparison> seedTwo =
+        CompareDesigns(GatherSweepRuns({dir / "a", dir / "c"}), "uniform", {"fov"});
+    REQUIRE(seedTwo.size() == 1);
+    CHECK(seedTwo[0].seeds == std::vector<uint32_t>{2});
+    CHECK(seedTwo[0].saved.raysSaved.estimate.value == Approx(2.0).epsilon(1e-6));
+
+    // A point two runs hold with different scores.
+    fs::copy(dir / "b", dir / "changed", fs::copy_options::recursive);
+    {
+        std::ifstream in(dir / "b" / "curves.csv");
+        std::string csv((std::istreambuf_iterator<char>(in)), {});
+        const size_t row = csv.find("room,svgf,uniform,1,1,");
+        REQUIRE(row != std::string::npos);
+        const size_t jod = csv.find(",7.", row);  // the row's JOD: 7 + 0.01
+        csv.replace(jod, 3, ",6.");
+        std::ofstream(dir / "changed" / "curves.csv") << csv;
+    }
+    CHECK_THAT(GatherError({dir / "a", dir / "changed"}),
+               Catch::Matchers::Contains("disagree on room / svgf / design uniform at 1 spp / seed 1: jod"));
+    // Another configuration.
+    fs::copy(dir / "b", dir / "wider", fs::copy_options::recursive);
+    nlohmann::json manifest = ReadJsonFile(dir / "b" / "manifest.json");
+    manifest["config"]["camera"]["width"] = 999;
+    WriteJsonFile(dir / "wider" / "manifest.json", manifest);
+    CHECK_THAT(GatherError({dir / "a", dir / "wider"}), Catch::Matchers::Contains("camera.width differs"));
+    // The output folder alone may differ.
+    manifest = ReadJsonFile(dir / "b" / "manifest.json");
+    manifest["config"]["output"]["dir"] = "elsewhere";
+    WriteJsonFile(dir / "wider" / "manifest.json", manifest);
+    CHECK(GatherError({dir / "a", dir / "wider"}) == "(no error)");
+    // One name, two designs.
+    fs::copy(dir / "b", dir / "renamed", fs::copy_options::recursive);
+    nlohmann::json summary = ReadJsonFile(dir / "b" / "summary.json");
+    summary["designs"]["fov"]["keys"]["foveation.model"] = "disc";
+    WriteJsonFile(dir / "renamed" / "summary.json", summary);
+    CHECK_THAT(GatherError({dir / "a", dir / "renamed"}),
+               Catch::Matchers::Contains("different designs 'fov' (foveation.model differs)"));
+    // Not a sweep's output.
+    fs::create_directories(dir / "empty");
+    CHECK_THAT(GatherError({dir / "empty"}), Catch::Matchers::Contains("manifest.json: cannot open"));
 }

@@ -3,8 +3,9 @@
 # as app_foveation_study: two sampling designs at three budgets on the room, every point a whole
 # experiment; the rays-saved table printed with a value and its interval; curves.csv with one row
 # per (design, budget, seed) and the measured rays equal to each budget; summary.json's rays saved
-# matching the table; the report's JOD-against-rays plot; two shards and a merge give the same
-# curves and summary as the single run.
+# matching the table; `fovrt rays-saved` on the run's folder, and with a second run's, giving the
+# same table; the report's JOD-against-rays plot; two shards and a merge give the same curves and
+# summary as the single run.
 # Usage: foveation_study_check.sh FOVRT SOURCE_DIR WORK_DIR
 set -uo pipefail
 . "$(dirname "${BASH_SOURCE[0]}")/tools/skip.sh"
@@ -57,6 +58,20 @@ d = {r["seed"]: r for r in rows if r["design"] == "disc"}
 cols = ["jod", "relmse_whole", "relmse_fovea", "flicker_fovea", "traced_spp_fovea"]
 sys.exit(0 if u and u.keys() == d.keys() and all(u[k][c] == d[k][c] for k in u for c in cols) else 1)
 PY
+# Sweeps that ran apart (fovrt rays-saved): the study's own folder gives the table it printed; with
+# the second run's uniform and disc at 1 spp gathered beside it, perceptual's row is unchanged.
+table() { awk '/^Rays saved at equal perceived quality/ {on = 1; next} on && /^  / {print; next} on {exit}' "$1"; }
+"$fovrt" rays-saved single > apart.txt 2> apart.err || bad "rays-saved of the single run: $(tail -1 apart.err)"
+diff <(table single.txt) <(table apart.txt) > /dev/null && [[ -n $(table apart.txt) ]] \
+  && ok "rays-saved of the run's folder prints the run's own table" || bad "rays-saved table differs: $(cat apart.txt)"
+row() { grep -E '^  room +svgf-weighted +perceptual ' "$1" | head -1 | tr -s ' '; }
+"$fovrt" rays-saved single fovea > apart2.txt 2> apart2.err || bad "rays-saved of two runs: $(tail -1 apart2.err)"
+[[ -n $(row apart.txt) && "$(row apart.txt)" == "$(row apart2.txt)" ]] && grep -Eq '^  room +svgf-weighted +disc ' apart2.txt \
+  && ok "a second run's points gathered beside it: perceptual's row unchanged, disc listed" \
+  || bad "two runs: '$(row apart.txt)' against '$(row apart2.txt)'"
+"$fovrt" rays-saved single --anchor nope > /dev/null 2> apart3.err && bad "rays-saved ran with an unknown anchor" \
+  || { grep -q "no run holds the anchor design 'nope'" apart3.err && ok "an unknown anchor is refused: $(tail -1 apart3.err)" \
+       || bad "anchor message: $(tail -1 apart3.err)"; }
 python3 - single/summary.json single.txt <<'PY' && ok "summary.json's rays saved is the table's" || bad "summary.json rays saved"
 import json, re, sys
 s = json.load(open(sys.argv[1]))

@@ -18,5 +18,6 @@ void RegisterPreviewCommand(CLI::App& app);  // runs src/preview
 void RegisterXrCommand(CLI::App& app);       // runs src/xr
 void RegisterClusterCommand(CLI::App& app);
 void RegisterVdpCommand(CLI::App& app);  // FovVideoVDP between two frame sequences
+void RegisterRaysSavedCommand(CLI::App& app);  // rays saved from sweeps that ran apart
 
 }  // namespace fovrt

@@ -16,9 +16,9 @@ int main(int argc, char** argv) {
     // In the order `fovrt --help` lists them.
     using namespace fovrt;
     for (auto registerCommand : {RegisterRunCommand, RegisterReferenceCommand, RegisterDatasetCommand,
-                                 RegisterExperimentCommand, RegisterClusterCommand, RegisterInfoCommand,
-                                 RegisterConfigCommand, RegisterBenchCommand, RegisterMemoryCommand,
-                                 RegisterVdpCommand, RegisterPreviewCommand, RegisterXrCommand})
+                                 RegisterExperimentCommand, RegisterRaysSavedCommand, RegisterClusterCommand,
+                                 RegisterInfoCommand, RegisterConfigCommand, RegisterBenchCommand,
+                                 RegisterMemoryCommand, RegisterVdpCommand, RegisterPreviewCommand, RegisterXrCommand})
         registerCommand(app);
     try {
         app.parse(argc, argv);

@@ -52,20 +52,10 @@ SeededRateQualityCurve CurveOf(const ExperimentSpec& spec, const std::vector<Swe
         const SweepPointValues v = PointValues(*p, scene, variant, SeedsOf(spec));
         std::vector<double> perSeed = v.jod;
         if (quality == CurveQuality::kFovealError)
-            for (size_t s = 0; s < perSeed.size(); ++s) perSeed[s] = -std::log(v.relmseFovea[s]);
+            for (size_t s = 0; s < perSeed.size(); ++s) perSeed[s] = FovealQuality(v.relmseFovea[s]);
         curve.push_back({v.tracedSpp[0], perSeed});
     }
     return curve;
-}
-
-std::string IntervalText(const BjontegaardInterval& r, const char* format, const char* unit) {
-    if (!r.estimate.Ok()) return "— (" + r.estimate.reason + ")";
-    std::string text = fmt::format(fmt::runtime(format), r.estimate.value) + unit;
-    if (r.intervalReason.empty())
-        text += fmt::format(fmt::runtime(std::string(" [") + format + ", " + format + "]"), r.lower, r.upper);
-    else
-        text += " (no interval: " + r.intervalReason + ")";
-    return text;
 }
 
 nlohmann::json IntervalJson(const BjontegaardInterval& r) {
@@ -98,9 +88,7 @@ std::string BudgetText(const SweepPoint& point) {
 
 std::string CurvesCsv(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
     const std::vector<uint32_t> seeds = SeedsOf(spec);
-    std::string out =
-        "scene,variant,design,budget_spp,seed,traced_spp_whole,traced_spp_fovea,traced_spp_periphery,guide_rays_whole,jod,"
-        "jod_sustained,jod_transient,relmse_whole,relmse_fovea,flicker_fovea\n";
+    std::string out = std::string(kCurvesCsvHeader) + "\n";
     for (const std::string& scene : points.front().scenes)
         for (const std::string& variant : spec.variants)
             for (const SweepPointResult& p : points) {
@@ -181,9 +169,13 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
             {"designs", designs}};
 }
 
-ReportTable HeadlineReportTable(const ExperimentSpec& spec, const std::vector<RaysSavedRow>& rows) {
-    ReportTable t{fmt::format("Rays saved at equal perceived quality against '{}'",
-                              spec.sweep.anchor ? spec.sweep.designs[*spec.sweep.anchor].name : "—"),
+// The anchor design's name, empty without one.
+std::string AnchorName(const ExperimentSpec& spec) {
+    return spec.sweep.anchor ? spec.sweep.designs[*spec.sweep.anchor].name : std::string();
+}
+
+ReportTable HeadlineReportTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows) {
+    ReportTable t{fmt::format("Rays saved at equal perceived quality against '{}'", anchor.empty() ? "—" : anchor),
                   {"scene", "variant", "design", "rays saved at equal JOD [95 %]", "JOD gain at equal rays [95 %]",
                    "rays saved at equal foveal relMSE [95 %]"},
                   {}};
@@ -265,6 +257,16 @@ std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vecto
 
 }  // namespace
 
+std::string IntervalText(const BjontegaardInterval& r, const char* format, const char* unit) {
+    if (!r.estimate.Ok()) return "— (" + r.estimate.reason + ")";
+    std::string text = fmt::format(fmt::runtime(format), r.estimate.value) + unit;
+    if (r.intervalReason.empty())
+        text += fmt::format(fmt::runtime(std::string(" [") + format + ", " + format + "]"), r.lower, r.upper);
+    else
+        text += " (no interval: " + r.intervalReason + ")";
+    return text;
+}
+
 SweepPointValues PointValues(const SweepPointResult& point, const std::string& scene, const std::string& variant,
                              const std::vector<uint32_t>& seeds) {
     SweepPointValues v;
@@ -298,6 +300,22 @@ SweepPointValues PointValues(const SweepPointResult& point, const std::string& s
     return v;
 }
 
+RaysSavedRow CompareCurves(std::string scene, std::string variant, std::string design, const SeededRateQualityCurve& anchor,
+                           const SeededRateQualityCurve& anchorFovea, const SeededRateQualityCurve& test,
+                           const SeededRateQualityCurve& testFovea) {
+    BjontegaardIntervalOptions fovea;
+    fovea.quality = kFovealErrorName;
+    std::vector<BjontegaardInterval> atPoints;
+    for (const SeededRateQualityPoint& point : test) atPoints.push_back(BootstrapRaysSavedAtPoint(anchor, point));
+    return {std::move(scene),
+            std::move(variant),
+            std::move(design),
+            BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kRaysSaved),
+            BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kJodGain),
+            BootstrapBjontegaardDelta(anchorFovea, testFovea, RateQualityDelta::kRaysSaved, fovea),
+            std::move(atPoints)};
+}
+
 std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points) {
     std::vector<RaysSavedRow> rows;
     const SamplingSweep& sweep = spec.sweep;
@@ -307,34 +325,17 @@ std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::
             const SeededRateQualityCurve anchor = CurveOf(spec, points, *sweep.anchor, scene, variant);
             const SeededRateQualityCurve anchorFovea =
                 CurveOf(spec, points, *sweep.anchor, scene, variant, CurveQuality::kFovealError);
-            BjontegaardIntervalOptions fovea;
-            fovea.quality = kFovealErrorName;
             for (size_t d = 0; d < sweep.designs.size(); ++d) {
                 if (d == *sweep.anchor) continue;
-                const SeededRateQualityCurve test = CurveOf(spec, points, d, scene, variant);
-                const SeededRateQualityCurve testFovea =
-                    CurveOf(spec, points, d, scene, variant, CurveQuality::kFovealError);
-                std::vector<BjontegaardInterval> atPoints;
-                for (const SeededRateQualityPoint& point : test) atPoints.push_back(BootstrapRaysSavedAtPoint(anchor, point));
-                rows.push_back({scene, variant, sweep.designs[d].name,
-                                BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kRaysSaved),
-                                BootstrapBjontegaardDelta(anchor, test, RateQualityDelta::kJodGain),
-                                BootstrapBjontegaardDelta(anchorFovea, testFovea, RateQualityDelta::kRaysSaved, fovea),
-                                std::move(atPoints)});
+                rows.push_back(CompareCurves(scene, variant, sweep.designs[d].name, anchor, anchorFovea,
+                                             CurveOf(spec, points, d, scene, variant),
+                                             CurveOf(spec, points, d, scene, variant, CurveQuality::kFovealError)));
             }
         }
     return rows;
 }
 
-std::string RaysSavedTable(const ExperimentSpec& spec, const std::vector<RaysSavedRow>& rows) {
-    const ReportTable t = HeadlineReportTable(spec, rows);
-    std::string out = t.title +
-                      " (FovVideoVDP JOD, and foveal relMSE: what the eye looks at; Bjøntegaard delta on PCHIP fits, 95 % "
-                      "seed bootstrap)\n";
-    if (rows.empty()) {
-        return out + (spec.sweep.anchor ? "  (no design besides the anchor)\n"
-                                        : "  (no anchor: name one with experiment.anchor_design, or list one uniform design)\n");
-    }
+std::string TextTable(const ReportTable& t) {
     std::vector<size_t> widths(t.header.size(), 0);
     for (size_t c = 0; c < t.header.size(); ++c) {
         widths[c] = t.header[c].size();
@@ -346,9 +347,21 @@ std::string RaysSavedTable(const ExperimentSpec& spec, const std::vector<RaysSav
         while (!l.empty() && l.back() == ' ') l.pop_back();
         return l + "\n";
     };
-    out += line(t.header);
+    std::string out = line(t.header);
     for (const auto& row : t.rows) out += line(row);
     return out;
+}
+
+std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows) {
+    const ReportTable t = HeadlineReportTable(anchor, rows);
+    std::string out = t.title +
+                      " (FovVideoVDP JOD, and foveal relMSE: what the eye looks at; Bjøntegaard delta on PCHIP fits, 95 % "
+                      "seed bootstrap)\n";
+    if (rows.empty()) {
+        return out + (!anchor.empty() ? "  (no design besides the anchor)\n"
+                                      : "  (no anchor: name one with experiment.anchor_design, or list one uniform design)\n");
+    }
+    return out + TextTable(t);
 }
 
 void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points,
@@ -357,7 +370,7 @@ void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointR
     const std::vector<RaysSavedRow> saved = SweepRaysSaved(spec, points);
     WriteTextAtomically(outDir / "curves.csv", CurvesCsv(spec, points));
     WriteTextAtomically(outDir / "summary.json", SummaryJson(spec, points, saved).dump(2) + "\n");
-    const std::string headline = RaysSavedTable(spec, saved);
+    const std::string headline = RaysSavedTable(AnchorName(spec), saved);
     const double wall = MsSince(start) / 1000.0, cpu = CpuSeconds();
 
     if (spec.config.output.report) {
@@ -383,7 +396,7 @@ void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointR
                            {"frames", ScoredFramesText(spec.config.run)},
                            {"points' outputs", "designs/<design>-b<budget>/ (each with its own report)"},
                            {"time", fmt::format("{:.1f} s wall, {:.1f} s CPU", wall, cpu)}};
-        report.headline.push_back(HeadlineReportTable(spec, saved));
+        report.headline.push_back(HeadlineReportTable(AnchorName(spec), saved));
         report.plots = CurvePlots(spec, points, saved);
         report.tables.push_back(PointsTable(spec, points, saved));
         WriteHtmlReport(outDir / "report.html", report);

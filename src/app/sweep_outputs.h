@@ -14,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -21,9 +22,15 @@
 
 #include "app/experiment.h"
 #include "app/experiment_vdp.h"
+#include "app/report_html.h"
 #include "metrics/rate_quality.h"
 
 namespace fovrt {
+
+// curves.csv's columns, in order.
+inline constexpr const char* kCurvesCsvHeader =
+    "scene,variant,design,budget_spp,seed,traced_spp_whole,traced_spp_fovea,traced_spp_periphery,guide_rays_whole,jod,"
+    "jod_sustained,jod_transient,relmse_whole,relmse_fovea,flicker_fovea";
 
 // What the sweep keeps of one point.
 struct SweepPointResult {
@@ -58,12 +65,27 @@ struct RaysSavedRow {
     // its own, where its JOD lies within the anchor's range: how the saving changes with the budget.
     std::vector<BjontegaardInterval> raysSavedAtPoints;
 };
+// The quality the foveal curves fit: −ln foveal relMSE, higher is better, and its seed mean is the
+// log of the geometric mean.
+inline double FovealQuality(double fovealRelMse) { return -std::log(fovealRelMse); }
+
+// A design's curves against the anchor's on one (scene, variant): JOD against rays, and −ln foveal
+// relMSE against rays (per seed; the seed mean is the log of the geometric mean).
+RaysSavedRow CompareCurves(std::string scene, std::string variant, std::string design, const SeededRateQualityCurve& anchor,
+                           const SeededRateQualityCurve& anchorFovea, const SeededRateQualityCurve& test,
+                           const SeededRateQualityCurve& testFovea);
 // Every design but the anchor against the anchor, per scene and variant (none without an anchor
 // or with fewer than two budgets).
 std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points);
 
-// The headline table as text: scene, variant, design, rays saved and JOD gain with intervals.
-std::string RaysSavedTable(const ExperimentSpec& spec, const std::vector<RaysSavedRow>& rows);
+// The headline table as text against the anchor design `anchor` (empty: the sweep has none): scene,
+// variant, design, rays saved and JOD gain with intervals.
+std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows);
+// "2.00× [1.90, 2.10]" (`format` for each number, then `unit`), or the reason there is no value or
+// no interval.
+std::string IntervalText(const BjontegaardInterval& interval, const char* format, const char* unit);
+// A table as aligned text, two spaces in, a line per row.
+std::string TextTable(const ReportTable& table);
 
 void WriteSweepOutputs(const ExperimentSpec& spec, const std::vector<SweepPointResult>& points,
                        const std::filesystem::path& outDir, std::chrono::steady_clock::time_point start);

@@ -1,0 +1,45 @@
+// `fovrt rays-saved RUN...`: the rays each design saves against an anchor design at equal JOD,
+// from the curves of sweeps that ran apart (app/sweep_compare.h): a design added after the anchor's
+// points ran is measured against them without running them again.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/sweep_compare.h"
+#include "commands.h"
+
+namespace fovrt {
+
+namespace {
+
+struct RaysSavedOptions {
+    std::vector<std::string> runs;
+    std::string anchor = "uniform";
+    std::vector<std::string> designs;  // empty: every design but the anchor
+};
+
+void PrintRaysSaved(const RaysSavedOptions& o) {
+    std::vector<std::filesystem::path> runs(o.runs.begin(), o.runs.end());
+    const GatheredCurves curves = GatherSweepRuns(runs);
+    std::printf("%zu rows (scene, variant, design, budget, seed) from %zu runs\n", curves.rows.size(),
+                runs.size());
+    std::printf("%s", DesignComparisonText(o.anchor, CompareDesigns(curves, o.anchor, o.designs)).c_str());
+}
+
+}  // namespace
+
+void RegisterRaysSavedCommand(CLI::App& app) {
+    auto o = std::make_shared<RaysSavedOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "rays-saved", "Rays saved at equal JOD against an anchor design, from the curves of sweeps that ran apart");
+    cmd->add_option("runs", o->runs, "Output folders of `fovrt experiment` sweeps with the same configuration")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    cmd->add_option("--anchor", o->anchor, "The design the others are measured against");
+    cmd->add_option("--design", o->designs, "Only these designs (repeatable; default: every design but the anchor)");
+    cmd->callback([o] { PrintRaysSaved(*o); });
+}
+
+}  // namespace fovrt

@@ -1,0 +1,268 @@
+#include "app/sweep_compare.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace fovrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json ReadJson(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) Fail("{}: cannot open (is {} the output folder of a finished `fovrt experiment` sweep?)", path.string(),
+                  path.parent_path().string());
+    try {
+        return nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+        Fail("{}: not valid JSON ({})", path.string(), e.what());
+    }
+}
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+    std::vector<std::string> fields;
+    std::string field;
+    std::istringstream in(line);
+    while (std::getline(in, field, ',')) fields.push_back(field);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    return fields;
+}
+
+double ParseNumber(const std::string& text, const fs::path& file, size_t line, const char* column) {
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size())
+        Fail("{}:{}: column {} is '{}', not a number", file.string(), line, column, text);
+    return value;
+}
+
+std::vector<CurveRow> ReadCurvesCsv(const fs::path& file, size_t run) {
+    std::ifstream in(file);
+    if (!in) Fail("{}: cannot open (is {} a sampling-design sweep's output folder?)", file.string(), file.parent_path().string());
+    std::string line;
+    if (!std::getline(in, line) || line != kCurvesCsvHeader)
+        Fail("{}:1: not a curves.csv of this fovrt (its header differs from '{}')", file.string(), kCurvesCsvHeader);
+    const std::vector<std::string> columns = SplitCsvLine(kCurvesCsvHeader);
+    std::vector<CurveRow> rows;
+    for (size_t number = 2; std::getline(in, line); ++number) {
+        if (line.empty()) continue;
+        const std::vector<std::string> f = SplitCsvLine(line);
+        if (f.size() != columns.size())
+            Fail("{}:{}: {} fields, expected {}", file.string(), number, f.size(), columns.size());
+        auto num = [&](size_t c) { return ParseNumber(f[c], file, number, columns[c].c_str()); };
+        CurveRow r;
+        r.scene = f[0], r.variant = f[1], r.design = f[2], r.budget = f[3];
+        const double seed = num(4);
+        if (seed < 0 || seed != std::floor(seed) || seed > 4294967295.0)
+            Fail("{}:{}: column seed is '{}', not a seed", file.string(), number, f[4]);
+        r.seed = uint32_t(seed);
+        r.tracedWhole = num(5), r.tracedFovea = num(6), r.tracedPeriphery = num(7), r.guideRays = num(8);
+        r.jod = num(9), r.jodSustained = num(10), r.jodTransient = num(11);
+        r.relmseWhole = num(12), r.relmseFovea = num(13), r.flickerFovea = num(14);
+        r.run = run;
+        rows.push_back(std::move(r));
+    }
+    if (rows.empty()) Fail("{}: no rows", file.string());
+    return rows;
+}
+
+// The first key (dotted) where two JSON values differ; empty when they are equal.
+std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b, const std::string& prefix) {
+    if (a.is_object() && b.is_object()) {
+        std::set<std::string> keys;
+        for (const auto& [k, v] : a.items()) keys.insert(k);
+        for (const auto& [k, v] : b.items()) keys.insert(k);
+        for (const std::string& k : keys) {
+            const std::string path = prefix.empty() ? k : prefix + "." + k;
+            if (!a.contains(k) || !b.contains(k)) return path;
+            if (std::string d = FirstDifference(a[k], b[k], path); !d.empty()) return d;
+        }
+        return {};
+    }
+    return a == b ? std::string() : (prefix.empty() ? std::string("(the whole value)") : prefix);
+}
+
+using PointKey = std::tuple<std::string, std::string, std::string, std::string, uint32_t>;
+PointKey KeyOf(const CurveRow& r) { return {r.scene, r.variant, r.design, r.budget, r.seed}; }
+
+std::string PointText(const CurveRow& r) {
+    return fmt::format("{} / {} / design {} at {} / seed {}", r.scene, r.variant, r.design,
+                       r.budget.empty() ? "its own sampling" : r.budget + " spp", r.seed);
+}
+
+// Where two runs hold the same point and seed: the same scores (a deterministic sweep), the same
+// rays to 1 % (a mean over each run's seeds).
+void CheckSamePoint(const CurveRow& a, const CurveRow& b, const std::vector<fs::path>& runs) {
+    const std::tuple<const char*, double, double> scores[] = {
+        {"jod", a.jod, b.jod},
+        {"jod_sustained", a.jodSustained, b.jodSustained},
+        {"jod_transient", a.jodTransient, b.jodTransient},
+        {"relmse_whole", a.relmseWhole, b.relmseWhole},
+        {"relmse_fovea", a.relmseFovea, b.relmseFovea},
+        {"flicker_fovea", a.flickerFovea, b.flickerFovea}};
+    for (const auto& [name, x, y] : scores)
+        if (x != y && !(std::isnan(x) && std::isnan(y)))  // a score a run did not take is NaN in both
+            Fail("{} and {} disagree on {}: {} {:.9g} against {:.9g} (a sweep repeats its points to the last digit: "
+                 "a different build, scene or input?)",
+                 runs[a.run].string(), runs[b.run].string(), PointText(a), name, x, y);
+    if (std::abs(a.tracedWhole - b.tracedWhole) > 0.01 * std::max(a.tracedWhole, b.tracedWhole))
+        Fail("{} and {} measured {} rays apart on {}: {:.6g} against {:.6g} traced spp", runs[a.run].string(),
+             runs[b.run].string(), "more than 1 %", PointText(a), a.tracedWhole, b.tracedWhole);
+}
+
+}  // namespace
+
+GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
+    if (runs.empty()) Fail("rays-saved: name at least one sweep's output folder");
+    GatheredCurves out;
+    out.runs = runs;
+    nlohmann::json firstConfig;
+    std::map<std::string, std::pair<nlohmann::json, size_t>> designKeys;  // name -> keys, run
+    std::map<PointKey, size_t> index;                                     // -> row in out.rows
+    for (size_t r = 0; r < runs.size(); ++r) {
+        const fs::path& run = runs[r];
+        const nlohmann::json manifest = ReadJson(run / "manifest.json");
+        if (!manifest.value("complete", false) || !manifest.contains("sweep") || !manifest.contains("config"))
+            Fail("{}: not a finished sampling-design sweep (its manifest.json has no complete sweep)", run.string());
+        nlohmann::json config = manifest["config"];
+        config.erase("output");
+        if (r == 0) {
+            firstConfig = config;
+        } else if (const std::string key = FirstDifference(firstConfig, config, ""); !key.empty()) {
+            Fail("{} and {} ran different configurations ({} differs): their points are not comparable",
+                 runs[0].string(), run.string(), key);
+        }
+        const nlohmann::json summary = ReadJson(run / "summary.json");
+        if (!summary.contains("designs") || !summary["designs"].is_object())
+            Fail("{}: summary.json has no designs", run.string());
+        for (const auto& [name, design] : summary["designs"].items()) {
+            const nlohmann::json keys = design.value("keys", nlohmann::json::object());
+            auto [it, added] = designKeys.emplace(name, std::pair{keys, r});
+            if (!added)
+                if (const std::string key = FirstDifference(it->second.first, keys, ""); !key.empty())
+                    Fail("{} and {} name different designs '{}' ({} differs): rename one", runs[it->second.second].string(),
+                         run.string(), name, key);
+        }
+        for (CurveRow& row : ReadCurvesCsv(run / "curves.csv", r)) {
+            auto [it, added] = index.emplace(KeyOf(row), out.rows.size());
+            if (added)
+                out.rows.push_back(std::move(row));
+            else
+                CheckSamePoint(out.rows[it->second], row, runs);
+        }
+    }
+    return out;
+}
+
+std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const std::string& anchor,
+                                             const std::vector<std::string>& designs) {
+    // (scene, variant) -> design -> budget -> seed -> row
+    using Points = std::map<std::string, std::map<uint32_t, const CurveRow*>>;
+    std::map<std::pair<std::string, std::string>, std::map<std::string, Points>> all;
+    std::vector<std::string> order;  // designs in the order the runs list them
+    for (const CurveRow& r : curves.rows) {
+        all[{r.scene, r.variant}][r.design][r.budget][r.seed] = &r;
+        if (std::find(order.begin(), order.end(), r.design) == order.end()) order.push_back(r.design);
+    }
+    auto known = [&](const std::string& d) { return std::find(order.begin(), order.end(), d) != order.end(); };
+    if (!known(anchor)) Fail("rays-saved: no run holds the anchor design '{}'", anchor);
+    std::vector<std::string> tests = designs;
+    if (tests.empty())
+        for (const std::string& d : order)
+            if (d != anchor) tests.push_back(d);
+    for (const std::string& d : tests)
+        if (!known(d)) Fail("rays-saved: no run holds the design '{}'", d);
+
+    std::vector<DesignComparison> out;
+    for (const auto& [sceneVariant, byDesign] : all) {
+        const auto anchorIt = byDesign.find(anchor);
+        if (anchorIt == byDesign.end()) continue;
+        for (const std::string& design : tests) {
+            const auto testIt = byDesign.find(design);
+            if (testIt == byDesign.end() || design == anchor) continue;
+            // The seeds every point of both curves holds.
+            std::set<uint32_t> seeds;
+            bool first = true;
+            for (const Points* points : {&anchorIt->second, &testIt->second})
+                for (const auto& [budget, bySeed] : *points) {
+                    std::set<uint32_t> here;
+                    for (const auto& [seed, row] : bySeed) here.insert(seed);
+                    if (first) seeds = here, first = false;
+                    else {
+                        std::set<uint32_t> both;
+                        std::set_intersection(seeds.begin(), seeds.end(), here.begin(), here.end(),
+                                              std::inserter(both, both.begin()));
+                        seeds = both;
+                    }
+                }
+            DesignComparison c;
+            c.seeds.assign(seeds.begin(), seeds.end());
+            if (c.seeds.empty())
+                Fail("rays-saved: {} / {}: no seed is common to every point of '{}' and '{}'", sceneVariant.first,
+                     sceneVariant.second, anchor, design);
+            // A curve over those seeds, rays ascending; a point's rays are those of the first run holding it.
+            auto curveOf = [&](const Points& points, bool fovea, std::vector<std::string>* budgets) {
+                SeededRateQualityCurve curve;
+                std::vector<std::pair<SeededRateQualityPoint, std::string>> sorted;
+                for (const auto& [budget, bySeed] : points) {
+                    SeededRateQualityPoint p;
+                    const CurveRow* firstRun = nullptr;
+                    for (uint32_t seed : c.seeds) {
+                        const CurveRow* row = bySeed.at(seed);
+                        if (!firstRun || row->run < firstRun->run) firstRun = row;
+                        p.jodPerSeed.push_back(fovea ? FovealQuality(row->relmseFovea) : row->jod);
+                    }
+                    p.rays = firstRun->tracedWhole;
+                    sorted.emplace_back(std::move(p), budget);
+                }
+                std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first.rays < b.first.rays; });
+                for (auto& [p, budget] : sorted) {
+                    if (budgets) budgets->push_back(budget);
+                    curve.push_back(std::move(p));
+                }
+                return curve;
+            };
+            const SeededRateQualityCurve test = curveOf(testIt->second, false, &c.budgets);
+            c.saved = CompareCurves(sceneVariant.first, sceneVariant.second, design, curveOf(anchorIt->second, false, nullptr),
+                                    curveOf(anchorIt->second, true, nullptr), test, curveOf(testIt->second, true, nullptr));
+            for (const SeededRateQualityPoint& p : test) {
+                double sum = 0.0;
+                for (double j : p.jodPerSeed) sum += j;
+                c.rays.push_back(p.rays);
+                c.jod.push_back(sum / double(p.jodPerSeed.size()));
+            }
+            out.push_back(std::move(c));
+        }
+    }
+    return out;
+}
+
+std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons) {
+    std::vector<RaysSavedRow> rows;
+    for (const DesignComparison& c : comparisons) rows.push_back(c.saved);
+    std::string out = RaysSavedTable(anchor, rows);
+    ReportTable points{"", {"scene", "variant", "design", "seeds", "budget spp", "traced spp", "JOD", "rays saved at this JOD [95 %]"}, {}};
+    for (const DesignComparison& c : comparisons) {
+        const std::string seeds = fmt::format("{}", fmt::join(c.seeds, " "));
+        for (size_t i = 0; i < c.rays.size(); ++i) {
+            points.rows.push_back({c.saved.scene, c.saved.variant, c.saved.design, seeds, c.budgets[i],
+                                   fmt::format("{:.3f}", c.rays[i]), fmt::format("{:.3f}", c.jod[i]),
+                                   IntervalText(c.saved.raysSavedAtPoints[i], "{:.2f}", "×")});
+        }
+    }
+    return out + "At each of a design's points (the seeds both curves hold; the anchor's fit read at the point's JOD):\n" +
+           TextTable(points);
+}
+
+}  // namespace fovrt
