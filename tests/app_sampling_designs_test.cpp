@@ -205,30 +205,41 @@ SweepPointResult SyntheticPoint(size_t index, double rays, const SeedCurve& jod,
     return p;
 }
 
-}  // namespace
+// The closed-form sweep: JOD = 7 + 0.8 ln(rays) (+ a per-seed offset that cancels in the paired
+// bootstrap) for uniform; the foveated design `fov` scores as uniform does with twice its rays:
+// rays saved exactly 2, JOD gain 0.8 ln 2 at every rate. Its fovea's relMSE is uniform's with three
+// times its rays (relMSE ∝ 1/rays, a per-seed factor): rays saved at equal foveal relMSE exactly 3.
+double ClosedFormUniformJod(double rays, uint32_t seed) { return 7.0 + 0.8 * std::log(rays) + 0.01 * seed; }
 
-TEST_CASE("rays saved from the points: a design that reaches each JOD with half the rays saves 2×", "[app][designs]") {
-    // JOD = 7 + 0.8 ln(rays) (+ a per-seed offset that cancels in the paired bootstrap) for uniform;
-    // the foveated design scores as uniform does with twice its rays: rays saved exactly 2, JOD gain
-    // 0.8 ln 2 at every rate. Its fovea's relMSE is uniform's with three times its rays (relMSE ∝
-    // 1/rays, a per-seed factor): rays saved at equal foveal relMSE exactly 3.
-    ExperimentSpec spec = LoadExperiment(DesignOptions("closed-form",
+ExperimentSpec ClosedFormSpec(const std::string& name) {
+    ExperimentSpec spec = LoadExperiment(DesignOptions(name,
                                                        "budgets = [1, 2, 4, 8]\n"
                                                        "[experiment.designs.uniform]\nfoveation.model = \"uniform\"\n"
                                                        "[experiment.designs.fov]\nfoveation.model = \"linear\"\n"));
     spec.seeds = {1, 2, 3};
     spec.variants = {"svgf"};
-    auto uniform = [](double rays, uint32_t seed) { return 7.0 + 0.8 * std::log(rays) + 0.01 * seed; };
-    auto foveated = [&](double rays, uint32_t seed) { return uniform(2.0 * rays, seed); };
+    return spec;
+}
+
+std::vector<SweepPointResult> ClosedFormPoints(const ExperimentSpec& spec) {
+    auto foveated = [](double rays, uint32_t seed) { return ClosedFormUniformJod(2.0 * rays, seed); };
     auto uniformFovea = [](double rays, uint32_t seed) { return 0.1 * (1.0 + 0.05 * seed) / rays; };
     auto foveatedFovea = [&](double rays, uint32_t seed) { return uniformFovea(3.0 * rays, seed); };
     std::vector<SweepPointResult> points;
     for (size_t i = 0; i < spec.sweep.points.size(); ++i) {
-        const SweepPoint& point = spec.sweep.points[i];
-        const bool anchor = point.design == 0;
-        points.push_back(SyntheticPoint(i, *point.budgetSpp, anchor ? SeedCurve(uniform) : SeedCurve(foveated),
+        const bool anchor = spec.sweep.points[i].design == 0;
+        points.push_back(SyntheticPoint(i, *spec.sweep.points[i].budgetSpp,
+                                        anchor ? SeedCurve(ClosedFormUniformJod) : SeedCurve(foveated),
                                         anchor ? SeedCurve(uniformFovea) : SeedCurve(foveatedFovea)));
     }
+    return points;
+}
+
+}  // namespace
+
+TEST_CASE("rays saved from the points: a design that reaches each JOD with half the rays saves 2×", "[app][designs]") {
+    const ExperimentSpec spec = ClosedFormSpec("closed-form");
+    const std::vector<SweepPointResult> points = ClosedFormPoints(spec);
     const std::vector<RaysSavedRow> rows = SweepRaysSaved(spec, points);
     REQUIRE(rows.size() == 1);
     CHECK(rows[0].design == "fov");
@@ -257,7 +268,7 @@ TEST_CASE("rays saved from the points: a design that reaches each JOD with half 
 
     const SweepPointValues values = PointValues(points[1], "room", "svgf", spec.seeds);
     CHECK(values.jod.size() == 3);
-    CHECK(values.jod[1] == Approx(uniform(2.0, 2)));
+    CHECK(values.jod[1] == Approx(ClosedFormUniformJod(2.0, 2)));
     CHECK(values.tracedSpp[0] == 2.0);
 }
 
@@ -284,25 +295,15 @@ std::string GatherError(const std::vector<fs::path>& runs) {
 TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs that differ refused", "[app][designs]") {
     // The closed-form sweep above, written as two runs: run a holds uniform's four points and the
     // design's at 1 and 2 spp, run b uniform's 1 spp again and the design's at 4 and 8.
-    ExperimentSpec spec = LoadExperiment(DesignOptions("apart",
-                                                       "budgets = [1, 2, 4, 8]\n"
-                                                       "[experiment.designs.uniform]\nfoveation.model = \"uniform\"\n"
-                                                       "[experiment.designs.fov]\nfoveation.model = \"linear\"\n"));
-    spec.seeds = {1, 2, 3};
-    spec.variants = {"svgf"};
+    ExperimentSpec spec = ClosedFormSpec("apart");
     spec.config.output.report = false;
-    auto uniform = [](double rays, uint32_t seed) { return 7.0 + 0.8 * std::log(rays) + 0.01 * seed; };
-    auto foveated = [&](double rays, uint32_t seed) { return uniform(2.0 * rays, seed); };
-    auto uniformFovea = [](double rays, uint32_t seed) { return 0.1 * (1.0 + 0.05 * seed) / rays; };
-    auto foveatedFovea = [&](double rays, uint32_t seed) { return uniformFovea(3.0 * rays, seed); };
-    std::vector<SweepPointResult> points, a, b;
-    for (size_t i = 0; i < spec.sweep.points.size(); ++i) {
-        const SweepPoint& point = spec.sweep.points[i];
+    const std::vector<SweepPointResult> points = ClosedFormPoints(spec);
+    std::vector<SweepPointResult> a, b;
+    for (const SweepPointResult& p : points) {
+        const SweepPoint& point = spec.sweep.points[p.point];
         const bool anchor = point.design == 0;
-        points.push_back(SyntheticPoint(i, *point.budgetSpp, anchor ? SeedCurve(uniform) : SeedCurve(foveated),
-                                        anchor ? SeedCurve(uniformFovea) : SeedCurve(foveatedFovea)));
-        if (anchor || *point.budgetSpp <= 2.0) a.push_back(points.back());
-        if ((anchor && *point.budgetSpp == 1.0) || (!anchor && *point.budgetSpp >= 4.0)) b.push_back(points.back());
+        if (anchor || *point.budgetSpp <= 2.0) a.push_back(p);
+        if ((anchor && *point.budgetSpp == 1.0) || (!anchor && *point.budgetSpp >= 4.0)) b.push_back(p);
     }
     const std::vector<RaysSavedRow> whole = SweepRaysSaved(spec, points);
     REQUIRE(whole.size() == 1);
