@@ -281,6 +281,17 @@ nlohmann::json ReadJsonFile(const fs::path& path) {
 
 void WriteJsonFile(const fs::path& path, const nlohmann::json& json) { std::ofstream(path) << json.dump(2); }
 
+// What an experiment writes beside each point of a sweep that the points of these tests, made
+// without rendering, lack: the point's manifest with the content its scene loaded.
+void WritePointManifests(const fs::path& run, const std::string& fingerprint) {
+    const nlohmann::json manifest = ReadJsonFile(run / "manifest.json");
+    for (const nlohmann::json& point : manifest["sweep"]["points"]) {
+        const fs::path dir = run / "designs" / point["label"].get<std::string>();
+        fs::create_directories(dir);
+        WriteJsonFile(dir / "manifest.json", {{"scenes", {{{"scene", "room"}, {"fingerprint", fingerprint}}}}});
+    }
+}
+
 std::string GatherError(const std::vector<fs::path>& runs) {
     try {
         (void)GatherSweepRuns(runs);
@@ -311,6 +322,7 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     for (const auto& [name, part] : {std::pair{"a", &a}, std::pair{"b", &b}}) {
         fs::create_directories(dir / name);
         WriteSweepOutputs(spec, *part, dir / name, std::chrono::steady_clock::now());
+        WritePointManifests(dir / name, "00c0ffee00c0ffee");
     }
 
     const GatheredCurves curves = GatherSweepRuns({dir / "a", dir / "b"});
@@ -341,6 +353,7 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     seed2.seeds = {2};
     fs::create_directories(dir / "c");
     WriteSweepOutputs(seed2, {b[1], b[2]}, dir / "c", std::chrono::steady_clock::now());
+    WritePointManifests(dir / "c", "00c0ffee00c0ffee");
     const std::vector<DesignComparison> seedTwo =
         CompareDesigns(GatherSweepRuns({dir / "a", dir / "c"}), "uniform", {"fov"});
     REQUIRE(seedTwo.size() == 1);
@@ -378,6 +391,16 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     WriteJsonFile(dir / "renamed" / "summary.json", summary);
     CHECK_THAT(GatherError({dir / "a", dir / "renamed"}),
                Catch::Matchers::Contains("different designs 'fov' (foveation.model differs)"));
+    // A scene whose files changed between the runs, under the same config.
+    fs::copy(dir / "b", dir / "edited", fs::copy_options::recursive);
+    WritePointManifests(dir / "edited", "00c0ffee00c0ffef");
+    CHECK_THAT(GatherError({dir / "a", dir / "edited"}),
+               Catch::Matchers::Contains("loaded different content for scene 'room' (fingerprints 00c0ffee00c0ffee and "
+                                         "00c0ffee00c0ffef)"));
+    // A sweep whose point lost its folder.
+    fs::remove_all(dir / "edited" / "designs");
+    CHECK_THAT(GatherError({dir / "a", dir / "edited"}),
+               Catch::Matchers::Contains("is incomplete (its point uniform-b1 has no manifest)"));
     // Not a sweep's output.
     fs::create_directories(dir / "empty");
     CHECK_THAT(GatherError({dir / "empty"}), Catch::Matchers::Contains("manifest.json: cannot open"));

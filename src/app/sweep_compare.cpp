@@ -19,15 +19,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json ReadJson(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) Fail("{}: cannot open (is {} the output folder of a finished `fovrt experiment` sweep?)", path.string(),
-                  path.parent_path().string());
+nlohmann::json ParseJson(std::ifstream& in, const fs::path& path) {
     try {
         return nlohmann::json::parse(in);
     } catch (const nlohmann::json::exception& e) {
         Fail("{}: not valid JSON ({})", path.string(), e.what());
     }
+}
+
+nlohmann::json ReadJson(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) Fail("{}: cannot open (is {} the output folder of a finished `fovrt experiment` sweep?)", path.string(),
+                  path.parent_path().string());
+    return ParseJson(in, path);
 }
 
 std::vector<std::string> SplitCsvLine(const std::string& line) {
@@ -121,6 +125,33 @@ void CheckSamePoint(const CurveRow& a, const CurveRow& b, const std::vector<fs::
              runs[b.run].string(), "more than 1 %", PointText(a), a.tracedWhole, b.tracedWhole);
 }
 
+// The content each scene loaded, as its points' manifests record it (designs/<label>/manifest.json,
+// "scenes"[].fingerprint): one scene with two fingerprints, in one run or two, means its files
+// changed between the points, which a sweep's config cannot show.
+class SceneContent {
+public:
+    void Check(const fs::path& run, const nlohmann::json& manifest) {
+        for (const nlohmann::json& point : manifest["sweep"].value("points", nlohmann::json::array())) {
+            const fs::path dir = run / "designs" / point.value("label", "");
+            std::ifstream in(dir / "manifest.json");
+            if (!in) Fail("{}: missing: the sweep {} is incomplete (its point {} has no manifest)", (dir / "manifest.json").string(),
+                          run.string(), point.value("label", ""));
+            for (const nlohmann::json& scene : ParseJson(in, dir / "manifest.json").value("scenes", nlohmann::json::array())) {
+                if (!scene.is_object()) continue;
+                const std::string name = scene.value("scene", ""), fingerprint = scene.value("fingerprint", "");
+                const auto [it, added] = first_.try_emplace(name, fingerprint, dir);
+                if (!added && it->second.first != fingerprint)
+                    Fail("{} and {} loaded different content for scene '{}' (fingerprints {} and {}): its files changed "
+                         "between them, so their points are not comparable",
+                         it->second.second.string(), dir.string(), name, it->second.first, fingerprint);
+            }
+        }
+    }
+
+private:
+    std::map<std::string, std::pair<std::string, fs::path>> first_;  // scene -> fingerprint, the point that loaded it
+};
+
 }  // namespace
 
 GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
@@ -130,6 +161,7 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
     nlohmann::json firstConfig;
     std::map<std::string, std::pair<nlohmann::json, size_t>> designKeys;  // name -> keys, run
     std::map<PointKey, size_t> index;                                     // -> row in out.rows
+    SceneContent content;
     for (size_t r = 0; r < runs.size(); ++r) {
         const fs::path& run = runs[r];
         const nlohmann::json manifest = ReadJson(run / "manifest.json");
@@ -143,6 +175,7 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
             Fail("{} and {} ran different configurations ({} differs): their points are not comparable",
                  runs[0].string(), run.string(), key);
         }
+        content.Check(run, manifest);
         const nlohmann::json summary = ReadJson(run / "summary.json");
         if (!summary.contains("designs") || !summary["designs"].is_object())
             Fail("{}: summary.json has no designs", run.string());

@@ -8,6 +8,9 @@
 //   - each run is a finished sweep: manifest.json complete, curves.csv and summary.json present;
 //   - the same config but for the output folder (manifest.json "config": the eye, frames, gaze,
 //     references, denoiser settings, the fovea the errors are taken in);
+//   - the same content wherever a scene was loaded, in every point of every run (each point's
+//     designs/<label>/manifest.json: the scene's fingerprint), so a scene file changed between
+//     two runs is caught although their configs are equal;
 //   - the same keys wherever two runs name the same design (summary.json);
 //   - the same scores wherever two runs hold the same point (scene, variant, design, budget, seed),
 //     to the last digit: the sweep is deterministic, so a difference means a different build or
