@@ -224,3 +224,55 @@ TEST_CASE("reference cache never uses an entry made for another key or changed o
         CHECK_FALSE(hit);
     }
 }
+
+TEST_CASE("a reference above 1024 spp is the mean of 1024-spp chunks, the cached ones reused", "[app]") {
+    CornellCacheBench bench("fovrt_reference_chunks_test");
+    const Scene& scene = bench.scene;
+    Renderer& renderer = *bench.renderer;
+    const uint64_t fp = SceneFingerprint(scene);
+    const auto key = MakeReferenceKey(scene, fp, 0, 0.0, 0, Camera(), 3 * kReferenceChunkSpp, 2, 7);
+    REQUIRE(ReferenceChunks(key.spp) == 3);
+    CHECK(ReferenceChunks(kReferenceChunkSpp) == 1);
+    CHECK(ReferenceChunks(kReferenceChunkSpp + 1) == 1);  // not a multiple: one piece
+    // Chunk 0 is the 1024-spp reference of the same seed; the others have seeds of their own.
+    const auto single = MakeReferenceKey(scene, fp, 0, 0.0, 0, Camera(), kReferenceChunkSpp, 2, 7);
+    CHECK(key.Chunk(0).Hex() == single.Hex());
+    CHECK(key.Chunk(1).Hex() != single.Hex());
+    CHECK(key.Chunk(1).spp == kReferenceChunkSpp);
+    CHECK(key.Chunk(1).seed != key.Chunk(2).seed);
+    CHECK(key.Hex() != MakeReferenceKey(scene, fp, 0, 0.0, 0, Camera(), 3 * kReferenceChunkSpp + 1, 2, 7).Hex());
+
+    bool hit = true;
+    Plane<vec3> chunk0, chunk1, chunk2, mean;
+    {
+        ReferenceCache cache(bench.dir);
+        chunk0 = cache.GetOrRender(single, renderer, &hit);  // an earlier run's 1024-spp reference
+        CHECK_FALSE(hit);
+    }
+    // Chunk 1 is rendered without the cache, to count what the 3072-spp reference then renders.
+    renderer.RenderReference(0, Camera(), kReferenceChunkSpp, HashCombine(key.Chunk(1).seed, 0u), chunk1);
+    {
+        ReferenceCache cache(bench.dir);
+        const uint64_t before = renderer.Stats().primaryRays;  // one per pixel and render
+        mean = cache.GetOrRender(key, renderer, &hit);
+        CHECK_FALSE(hit);
+        // Chunks 1 and 2 are rendered; chunk 0 came from the cache.
+        CHECK(renderer.Stats().primaryRays - before == 2u * 24u * 16u);
+        chunk2 = cache.GetOrRender(key.Chunk(2), renderer, &hit);
+        CHECK(hit);
+        CHECK(std::filesystem::exists(cache.PathOf(key.Chunk(1))));
+    }
+    REQUIRE(mean.size() == chunk0.size());
+    int differs = 0;
+    for (size_t i = 0; i < mean.size(); ++i) {
+        const vec3 expected = (chunk0[i] + chunk1[i] + chunk2[i]) / 3.0f;
+        for (int c = 0; c < 3; ++c) REQUIRE(mean[i][c] == Approx(expected[c]).epsilon(1e-6).margin(1e-7));
+        differs += chunk1[i] != chunk0[i];
+    }
+    CHECK(differs > int(mean.size()) / 2);  // independent chunks, not one image three times
+    // Read back whole.
+    ReferenceCache later(bench.dir);
+    const Plane<vec3> again = later.GetOrRender(key, renderer, &hit);
+    CHECK(hit);
+    for (size_t i = 0; i < mean.size(); ++i) REQUIRE(again[i] == mean[i]);
+}

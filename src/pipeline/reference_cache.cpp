@@ -57,7 +57,16 @@ std::string ReferenceKey::Hex() const {
     h.Value(spp);
     h.Value(maxDepth);
     h.Value(seed);
+    // The mean of chunks is another image than one render of as many samples.
+    if (ReferenceChunks(spp) > 1) h.String(fmt::format("chunks of {}", kReferenceChunkSpp));
     return h.Hex();
+}
+
+ReferenceKey ReferenceKey::Chunk(int k) const {
+    ReferenceKey chunk = *this;
+    chunk.spp = kReferenceChunkSpp;
+    chunk.seed = k == 0 ? seed : HashCombine(seed, uint32_t(k));
+    return chunk;
 }
 
 std::filesystem::path ReferenceCache::PathOf(const ReferenceKey& key) const {
@@ -143,7 +152,16 @@ Plane<vec3> ReferenceCache::GetOrRender(const ReferenceKey& key, Renderer& rende
     }
     if (hit) *hit = false;
     Plane<vec3> image;
-    renderer.RenderReference(key.eye, key.camera, key.spp, HashCombine(key.seed, key.frame), image);
+    if (const int chunks = ReferenceChunks(key.spp); chunks > 1) {
+        for (int k = 0; k < chunks; ++k) {
+            const Plane<vec3> chunk = GetOrRender(key.Chunk(k), renderer);
+            if (k == 0) image = Plane<vec3>(chunk.width(), chunk.height());
+            for (size_t i = 0; i < image.size(); ++i) image[i] += chunk[i];
+        }
+        for (size_t i = 0; i < image.size(); ++i) image[i] *= 1.0f / float(chunks);
+    } else {
+        renderer.RenderReference(key.eye, key.camera, key.spp, HashCombine(key.seed, key.frame), image);
+    }
     WriteEntry(PathOf(key), key.Hex(), image);
     Remember(key.Hex(), image);
     return image;

@@ -6,6 +6,12 @@
 // Each entry carries its key and a checksum of its pixels; an entry that fails either check (copied
 // over another's file, edited, damaged, or written before entries carried them) is never used: one
 // line on stderr names the file, and GetOrRender renders it again.
+//
+// A reference of more than kReferenceChunkSpp samples per pixel, a multiple of it, is the mean of
+// chunks of kReferenceChunkSpp samples, each an entry of its own: chunk 0 is the reference of that
+// many samples with the same seed, chunk k > 0 the one seeded HashCombine(seed, k). Raising
+// reference.spp from 1024 to 4096 renders three chunks and reuses the 1024-spp entry, and a long
+// render that is interrupted keeps the chunks it finished.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +38,10 @@ uint64_t SceneFingerprint(const Scene& scene);
 // "unreadable" for a file gone since.
 std::map<std::string, std::string> SceneFileHashes(const Scene& scene);
 
+inline constexpr int kReferenceChunkSpp = 1024;
+// How many chunks a reference of `spp` samples is rendered in (1: in one piece).
+inline int ReferenceChunks(int spp) { return spp > kReferenceChunkSpp && spp % kReferenceChunkSpp == 0 ? spp / kReferenceChunkSpp : 1; }
+
 struct ReferenceKey {
     uint64_t sceneFingerprint = 0;
     uint32_t frame = 0;
@@ -43,6 +53,7 @@ struct ReferenceKey {
     uint32_t seed = 0;  // reference.seed (never the run seed: every run seed shares the reference)
 
     std::string Hex() const;  // the file stem of the cache entry
+    ReferenceKey Chunk(int k) const;  // chunk k of a reference rendered in chunks
 };
 
 // The key of one reference frame. For a static scene the frame and time are left out, so every

@@ -12,6 +12,11 @@
 //   image_probe exr-equal A.exr B.exr     exit 0 when every channel of A is in B, bit for bit
 //   image_probe exr-channels A.exr        each float channel, sorted by name: "name min max"
 //                                         (non-finite values counted as "nonfinite N")
+//   image_probe exr-relmse A.exr B.exr [R X Y ...]
+//                                         relMSE of A against B (the experiments' ε), whole image,
+//                                         and the mean over discs of radius R px at each (X, Y):
+//                                         two references of different seeds give twice the
+//                                         noise either holds (docs/foveation-study.md)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +28,7 @@
 #include <stb/stb_image.h>
 
 #include "io/exr.h"
+#include "metrics/image_metrics.h"
 
 namespace {
 
@@ -173,6 +179,29 @@ int ExrEqual(const char* a, const char* b) {
     return 0;
 }
 
+int ExrRelMse(int argc, char** argv) {
+    const fovrt::Plane<fovrt::vec3> a = fovrt::ReadRgbExr(argv[2]), b = fovrt::ReadRgbExr(argv[3]);
+    if (a.width() != b.width() || a.height() != b.height()) {
+        std::printf("size differs\n");
+        return 1;
+    }
+    std::printf("whole %.6g\n", fovrt::RelMse(a, b));
+    if (argc < 7) return 0;
+    const float r = std::strtof(argv[4], nullptr);
+    double sum = 0.0;
+    int discs = 0;
+    for (int i = 5; i + 1 < argc; i += 2, ++discs) {
+        const float cx = std::strtof(argv[i], nullptr), cy = std::strtof(argv[i + 1], nullptr);
+        fovrt::Plane<uint8_t> mask(a.width(), a.height());
+        for (int y = 0; y < a.height(); ++y)
+            for (int x = 0; x < a.width(); ++x)
+                mask(x, y) = (x + 0.5f - cx) * (x + 0.5f - cx) + (y + 0.5f - cy) * (y + 0.5f - cy) <= r * r;
+        sum += fovrt::RelMse(a, b, &mask);
+    }
+    std::printf("discs %d radius %g mean %.6g\n", discs, r, sum / discs);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -181,6 +210,7 @@ int main(int argc, char** argv) {
         if (cmd == "diff" && argc == 4) return Diff(argv[2], argv[3]);
         if (cmd == "exr-equal" && argc == 4) return ExrEqual(argv[2], argv[3]);
         if (cmd == "exr-channels" && argc == 3) return ExrChannels(argv[2]);
+        if (cmd == "exr-relmse" && (argc == 4 || (argc >= 7 && argc % 2 == 1))) return ExrRelMse(argc, argv);
         if (cmd == "colour" && argc == 8)
             return ColourCentroid(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]), std::atoi(argv[6]),
                                   std::atoi(argv[7]));
@@ -193,6 +223,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "image_probe: %s\n", e.what());
         return 2;
     }
-    std::fprintf(stderr, "usage: image_probe diff|stats|centroid|colour|exr-equal ...\n");
+    std::fprintf(stderr, "usage: image_probe diff|stats|centroid|colour|exr-equal|exr-channels|exr-relmse ...\n");
     return 2;
 }
