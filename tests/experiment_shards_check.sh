@@ -78,6 +78,15 @@ same=0; for f in solo/*.exr; do "$probe" exr-equal "$f" "shared/$(basename "$f")
   && ok "two writers of the same keys: $n entries (one per eye), no temporaries, equal to a solo render" \
   || bad "concurrent writers: exit $r1/$r2, $n entries, $tmp temporaries, $same equal"
 
+# image_probe exr-relmse, as docs/foveation-study.md measures a reference's own noise: 0 against
+# itself, above 0 against the reference of another seed, in the whole image and in two discs.
+"$fovrt" reference "${ref[@]}" --eye 0 --set reference.seed=2 --set reference.cache_dir=seed2 >/dev/null 2>&1
+self=$("$probe" exr-relmse solo/*-e0-*.exr solo/*-e0-*.exr 10 48 27 20 20)
+other=$("$probe" exr-relmse seed2/*-e0-*.exr solo/*-e0-*.exr 10 48 27 20 20)
+[[ "$self" == $'whole 0\ndiscs 2 radius 10 mean 0' ]] && awk '{ if ($NF <= 0) bad = 1 } END { exit bad }' <<<"$other" \
+  && ok "exr-relmse: 0 against itself, $(tr '\n' ' ' <<<"$other")against another seed" \
+  || bad "exr-relmse: '$self' / '$other'"
+
 # The cluster jobs on this machine with GNU parallel: the same CSV.
 "$fovrt" cluster "$preset" "${args[@]}" --set output.dir=viaparallel --shards 3 --reference-tasks 4 \
   --jobs-dir jobs 2>cluster.err || bad "fovrt cluster: $(cat cluster.err)"
