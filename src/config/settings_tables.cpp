@@ -106,7 +106,9 @@ constexpr std::array<SettingRow<OutputConfig>, 7> kOutputRows{{
 }};
 
 constexpr std::array<SettingRow<ReferenceConfig>, 3> kReferenceRows{{
-    {{.key = "reference.spp", .range = Closed(1, 1 << 24), .doc = "samples per pixel of the reference (a multiple of 1024 above it: the mean of cached 1024-spp chunks)"},
+    {{.key = "reference.spp",
+      .range = Closed(1, 1 << 24),
+      .doc = "samples per pixel of the reference (a multiple of 1024 above it: the mean of cached 1024-spp chunks)"},
      &ReferenceConfig::spp},
     {{.key = "reference.seed", .range = kSeed,
       .doc = "the reference's own sampling seed (every run seed is scored against the same reference)"},

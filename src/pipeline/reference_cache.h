@@ -40,7 +40,9 @@ std::map<std::string, std::string> SceneFileHashes(const Scene& scene);
 
 inline constexpr int kReferenceChunkSpp = 1024;
 // How many chunks a reference of `spp` samples is rendered in (1: in one piece).
-inline int ReferenceChunks(int spp) { return spp > kReferenceChunkSpp && spp % kReferenceChunkSpp == 0 ? spp / kReferenceChunkSpp : 1; }
+inline int ReferenceChunks(int spp) {
+    return spp > kReferenceChunkSpp && spp % kReferenceChunkSpp == 0 ? spp / kReferenceChunkSpp : 1;
+}
 
 struct ReferenceKey {
     uint64_t sceneFingerprint = 0;
