@@ -221,15 +221,18 @@ ExperimentSpec ClosedFormSpec(const std::string& name) {
     return spec;
 }
 
-std::vector<SweepPointResult> ClosedFormPoints(const ExperimentSpec& spec) {
-    auto foveated = [](double rays, uint32_t seed) { return ClosedFormUniformJod(2.0 * rays, seed); };
+// `saved`: the design scores as uniform does with that many times its rays; `offset`: added to
+// every JOD (another window's content).
+std::vector<SweepPointResult> ClosedFormPoints(const ExperimentSpec& spec, double saved = 2.0, double offset = 0.0) {
+    auto uniform = [offset](double rays, uint32_t seed) { return ClosedFormUniformJod(rays, seed) + offset; };
+    auto foveated = [=](double rays, uint32_t seed) { return uniform(saved * rays, seed); };
     auto uniformFovea = [](double rays, uint32_t seed) { return 0.1 * (1.0 + 0.05 * seed) / rays; };
     auto foveatedFovea = [&](double rays, uint32_t seed) { return uniformFovea(3.0 * rays, seed); };
     std::vector<SweepPointResult> points;
     for (size_t i = 0; i < spec.sweep.points.size(); ++i) {
         const bool anchor = spec.sweep.points[i].design == 0;
         points.push_back(SyntheticPoint(i, *spec.sweep.points[i].budgetSpp,
-                                        anchor ? SeedCurve(ClosedFormUniformJod) : SeedCurve(foveated),
+                                        anchor ? SeedCurve(uniform) : SeedCurve(foveated),
                                         anchor ? SeedCurve(uniformFovea) : SeedCurve(foveatedFovea)));
     }
     return points;
@@ -330,7 +333,7 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     const std::vector<DesignComparison> apart = CompareDesigns(curves, "uniform", {});
     REQUIRE(apart.size() == 1);
     const DesignComparison& c = apart[0];
-    CHECK(c.seeds == std::vector<uint32_t>{1, 2, 3});
+    CHECK(c.units == std::vector<SampleUnit>{{0, 1}, {0, 2}, {0, 3}});
     CHECK(c.budgets == std::vector<std::string>{"1", "2", "4", "8"});
     // curves.csv keeps 9 significant digits.
     REQUIRE(c.saved.raysSaved.estimate.Ok());
@@ -357,7 +360,7 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     const std::vector<DesignComparison> seedTwo =
         CompareDesigns(GatherSweepRuns({dir / "a", dir / "c"}), "uniform", {"fov"});
     REQUIRE(seedTwo.size() == 1);
-    CHECK(seedTwo[0].seeds == std::vector<uint32_t>{2});
+    CHECK(seedTwo[0].units == std::vector<SampleUnit>{{0, 2}});
     CHECK(seedTwo[0].saved.raysSaved.estimate.value == Approx(2.0).epsilon(1e-6));
 
     // A point two runs hold with different scores.
@@ -404,4 +407,59 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     // Not a sweep's output.
     fs::create_directories(dir / "empty");
     CHECK_THAT(GatherError({dir / "empty"}), Catch::Matchers::Contains("manifest.json: cannot open"));
+}
+
+TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slope windows", "[app][designs]") {
+    // Window 1 (the eye from 3 s) saves 2×, window 2 (from 9 s, 0.3 JOD higher everywhere) 4×. With
+    // equal slopes the averaged curves are 0.8 ln(rays) apart by 0.8 (ln 2 + ln 4) / 2: √8 rays saved.
+    ExperimentSpec spec = ClosedFormSpec("pooled");
+    spec.config.output.report = false;
+    const fs::path dir = test::ScratchDir("fovrt_rays_saved_pooled");
+    auto write = [&](const std::string& name, double saved, double offset, double startMs) {
+        fs::create_directories(dir / name);
+        WriteSweepOutputs(spec, ClosedFormPoints(spec, saved, offset), dir / name, std::chrono::steady_clock::now());
+        WritePointManifests(dir / name, "00c0ffee00c0ffee");
+        nlohmann::json manifest = ReadJsonFile(dir / name / "manifest.json");
+        manifest["config"]["gaze"]["trace_start_ms"] = startMs;
+        WriteJsonFile(dir / name / "manifest.json", manifest);
+    };
+    write("w1", 2.0, 0.0, 3000.0);
+    write("w2", 4.0, 0.3, 9000.0);
+    CHECK_THAT(GatherError({dir / "w1", dir / "w2"}),
+               Catch::Matchers::Contains("gaze.trace_start_ms differs") && Catch::Matchers::Contains("--pool-gaze"));
+
+    const GatheredCurves curves = GatherSweepRuns({dir / "w1", dir / "w2"}, GazeWindows::kPooled);
+    REQUIRE(curves.windows.size() == 2);
+    CHECK(curves.windows[0] == "gaze.trace_start_ms=3000.0");
+    CHECK(curves.windows[1] == "gaze.trace_start_ms=9000.0");
+    CHECK(curves.rows.size() == 2 * 8 * 3);
+    const std::vector<DesignComparison> pooled = CompareDesigns(curves, "uniform", {});
+    REQUIRE(pooled.size() == 1);
+    CHECK(pooled[0].units.size() == 6);
+    REQUIRE(pooled[0].saved.raysSaved.estimate.Ok());
+    CHECK(pooled[0].saved.raysSaved.estimate.value == Approx(std::sqrt(8.0)).epsilon(1e-6));
+    // The interval spans the windows: resamples of window 1 alone give 2×, of window 2 alone 4×.
+    CHECK(pooled[0].saved.raysSaved.lower < 2.6);
+    CHECK(pooled[0].saved.raysSaved.upper > 3.1);
+    const std::string text = DesignComparisonText("uniform", pooled, curves.windows);
+    CHECK_THAT(text, Catch::Matchers::Contains("2 gaze windows pooled") &&
+                         Catch::Matchers::Contains("95 % window and seed bootstrap") &&
+                         Catch::Matchers::Contains("w2  gaze.trace_start_ms=9000.0") && Catch::Matchers::Contains("w2:3"));
+    // Each window alone still gives its own saving.
+    CHECK(CompareDesigns(GatherSweepRuns({dir / "w2"}, GazeWindows::kPooled), "uniform", {})[0]
+              .saved.raysSaved.estimate.value == Approx(4.0).epsilon(1e-6));
+
+    // The tracker is not where the eye looks: runs behind different trackers are not pooled.
+    fs::copy(dir / "w2", dir / "late", fs::copy_options::recursive);
+    nlohmann::json manifest = ReadJsonFile(dir / "w2" / "manifest.json");
+    manifest["config"]["gaze"]["tracker_latency_ms"] = 40.0;
+    WriteJsonFile(dir / "late" / "manifest.json", manifest);
+    std::string error = "(no error)";
+    try {
+        (void)GatherSweepRuns({dir / "w1", dir / "late"}, GazeWindows::kPooled);
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    CHECK_THAT(error, Catch::Matchers::Contains("gaze.tracker_latency_ms differs"));
+    CHECK_THAT(error, !Catch::Matchers::Contains("--pool-gaze"));
 }

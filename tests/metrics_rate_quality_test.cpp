@@ -283,7 +283,7 @@ TEST_CASE("the bootstrap refuses mismatched or non-finite seeds and curves resam
     CHECK(noInterval.failedReplicates > 300);
     CHECK(std::isnan(noInterval.lower));
     CHECK(Contains(noInterval.intervalReason,
-                   "seed resamples give no result (more than 2.5 %), e.g. anchor curve: not monotone"));
+                   "bootstrap resamples give no result (more than 2.5 %), e.g. anchor curve: not monotone"));
 }
 
 TEST_CASE("rays saved at a point: k on a curve k times cheaper, the log-linear closed form between knots, "

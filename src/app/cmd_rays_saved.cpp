@@ -18,14 +18,16 @@ struct RaysSavedOptions {
     std::vector<std::string> runs;
     std::string anchor = "uniform";
     std::vector<std::string> designs;  // empty: every design but the anchor
+    bool poolGaze = false;
 };
 
 void PrintRaysSaved(const RaysSavedOptions& o) {
     std::vector<std::filesystem::path> runs(o.runs.begin(), o.runs.end());
-    const GatheredCurves curves = GatherSweepRuns(runs);
-    std::printf("%zu rows (scene, variant, design, budget, seed) from %zu runs\n", curves.rows.size(),
-                runs.size());
-    std::printf("%s", DesignComparisonText(o.anchor, CompareDesigns(curves, o.anchor, o.designs)).c_str());
+    const GatheredCurves curves = GatherSweepRuns(runs, o.poolGaze ? GazeWindows::kPooled : GazeWindows::kSame);
+    std::printf("%zu rows (scene, variant, design, budget, %s) from %zu runs\n", curves.rows.size(),
+                curves.windows.size() > 1 ? "window, seed" : "seed", runs.size());
+    std::printf("%s",
+                DesignComparisonText(o.anchor, CompareDesigns(curves, o.anchor, o.designs), curves.windows).c_str());
 }
 
 }  // namespace
@@ -38,7 +40,12 @@ void RegisterRaysSavedCommand(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingDirectory);
     cmd->add_option("--anchor", o->anchor, "The design the others are measured against");
-    cmd->add_option("--design", o->designs, "Only these designs (repeatable; default: every design but the anchor)");
+    // One design per --design, so that the run folders after it stay positionals.
+    cmd->add_option("--design", o->designs, "Only this design (repeatable; default: every design but the anchor)")
+        ->allow_extra_args(false);
+    cmd->add_flag("--pool-gaze", o->poolGaze,
+                  "Gather runs that differ only in where the eye looks (gaze source, recording or trace and its start, "
+                  "static direction): each gaze window with each seed is a unit of the bootstrap");
     cmd->callback([o] { PrintRaysSaved(*o); });
 }
 

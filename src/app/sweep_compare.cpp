@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "gaze/gaze_source.h"
 
 namespace fovrt {
 namespace {
@@ -97,17 +98,47 @@ std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b, co
     return a == b ? std::string() : (prefix.empty() ? std::string("(the whole value)") : prefix);
 }
 
-using PointKey = std::tuple<std::string, std::string, std::string, std::string, uint32_t>;
-PointKey KeyOf(const CurveRow& r) { return {r.scene, r.variant, r.design, r.budget, r.seed}; }
+using PointKey = std::tuple<std::string, std::string, std::string, std::string, size_t, uint32_t>;
+PointKey KeyOf(const CurveRow& r) { return {r.scene, r.variant, r.design, r.budget, r.window, r.seed}; }
 
-std::string PointText(const CurveRow& r) {
-    return fmt::format("{} / {} / design {} at {} / seed {}", r.scene, r.variant, r.design,
-                       r.budget.empty() ? "its own sampling" : r.budget + " spp", r.seed);
+std::string PointText(const CurveRow& r, bool pooled) {
+    return fmt::format("{} / {} / design {} at {} / {}seed {}", r.scene, r.variant, r.design,
+                       r.budget.empty() ? "its own sampling" : r.budget + " spp",
+                       pooled ? fmt::format("window w{} / ", r.window + 1) : "", r.seed);
+}
+
+// The keys of where the eye looks (GazeParams), moved out of a run's config into their own object.
+nlohmann::json TakeEyePath(nlohmann::json& config) {
+    nlohmann::json eye = nlohmann::json::object();
+    nlohmann::json& gaze = config["gaze"];
+    for (const SettingRow<GazeParams>& row : GazeParamTable()) {
+        const std::string key = std::string(row.info.key).substr(std::string("gaze.").size());
+        if (gaze.contains(key)) eye[key] = gaze[key], gaze.erase(key);
+    }
+    return eye;
+}
+
+// Each window's keys that differ between the windows, as "gaze.key=value".
+std::vector<std::string> DescribeWindows(const std::vector<nlohmann::json>& eyes) {
+    if (eyes.size() <= 1) return {""};
+    std::vector<std::string> out(eyes.size());
+    for (const auto& [key, value] : eyes[0].items()) {
+        const bool differs = std::any_of(eyes.begin(), eyes.end(), [&](const nlohmann::json& e) {
+            return !e.contains(key) || e[key] != value;
+        });
+        if (!differs) continue;
+        for (size_t w = 0; w < eyes.size(); ++w) {
+            const nlohmann::json v = eyes[w].value(key, nlohmann::json());
+            out[w] += fmt::format("{}gaze.{}={}", out[w].empty() ? "" : " ", key,
+                                  v.is_string() ? v.get<std::string>() : v.dump());
+        }
+    }
+    return out;
 }
 
 // Where two runs hold the same point and seed: the same scores (a deterministic sweep), the same
 // rays to 1 % (a mean over each run's seeds).
-void CheckSamePoint(const CurveRow& a, const CurveRow& b, const std::vector<fs::path>& runs) {
+void CheckSamePoint(const CurveRow& a, const CurveRow& b, const std::vector<fs::path>& runs, bool pooled) {
     const std::tuple<const char*, double, double> scores[] = {
         {"jod", a.jod, b.jod},
         {"jod_sustained", a.jodSustained, b.jodSustained},
@@ -119,10 +150,10 @@ void CheckSamePoint(const CurveRow& a, const CurveRow& b, const std::vector<fs::
         if (x != y && !(std::isnan(x) && std::isnan(y)))  // a score a run did not take is NaN in both
             Fail("{} and {} disagree on {}: {} {:.9g} against {:.9g} (a sweep repeats its points to the last digit: "
                  "a different build, scene or input?)",
-                 runs[a.run].string(), runs[b.run].string(), PointText(a), name, x, y);
+                 runs[a.run].string(), runs[b.run].string(), PointText(a, pooled), name, x, y);
     if (std::abs(a.tracedWhole - b.tracedWhole) > 0.01 * std::max(a.tracedWhole, b.tracedWhole))
         Fail("{} and {} measured {} rays apart on {}: {:.6g} against {:.6g} traced spp", runs[a.run].string(),
-             runs[b.run].string(), "more than 1 %", PointText(a), a.tracedWhole, b.tracedWhole);
+             runs[b.run].string(), "more than 1 %", PointText(a, pooled), a.tracedWhole, b.tracedWhole);
 }
 
 // The content each scene loaded, as its points' manifests record it (designs/<label>/manifest.json,
@@ -154,11 +185,13 @@ private:
 
 }  // namespace
 
-GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
+GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs, GazeWindows gaze) {
     if (runs.empty()) Fail("rays-saved: name at least one sweep's output folder");
+    const bool pooled = gaze == GazeWindows::kPooled;
     GatheredCurves out;
     out.runs = runs;
     nlohmann::json firstConfig;
+    std::vector<nlohmann::json> eyes;  // each window's eye path
     std::map<std::string, std::pair<nlohmann::json, size_t>> designKeys;  // name -> keys, run
     std::map<PointKey, size_t> index;                                     // -> row in out.rows
     SceneContent content;
@@ -169,11 +202,20 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
             Fail("{}: not a finished sampling-design sweep (its manifest.json has no complete sweep)", run.string());
         nlohmann::json config = manifest["config"];
         config.erase("output");
+        size_t window = 0;
+        if (pooled) {
+            const nlohmann::json eye = TakeEyePath(config);
+            window = size_t(std::find(eyes.begin(), eyes.end(), eye) - eyes.begin());
+            if (window == eyes.size()) eyes.push_back(eye);
+        }
         if (r == 0) {
             firstConfig = config;
         } else if (const std::string key = FirstDifference(firstConfig, config, ""); !key.empty()) {
-            Fail("{} and {} ran different configurations ({} differs): their points are not comparable",
-                 runs[0].string(), run.string(), key);
+            const bool eyeKey = std::any_of(GazeParamTable().begin(), GazeParamTable().end(),
+                                            [&](const SettingRow<GazeParams>& row) { return key == row.info.key; });
+            Fail("{} and {} ran different configurations ({} differs): their points are not comparable{}",
+                 runs[0].string(), run.string(), key,
+                 eyeKey ? " (--pool-gaze gathers runs that differ only in where the eye looks)" : "");
         }
         content.Check(run, manifest);
         const nlohmann::json summary = ReadJson(run / "summary.json");
@@ -188,24 +230,26 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs) {
                          run.string(), name, key);
         }
         for (CurveRow& row : ReadCurvesCsv(run / "curves.csv", r)) {
+            row.window = window;
             auto [it, added] = index.emplace(KeyOf(row), out.rows.size());
             if (added)
                 out.rows.push_back(std::move(row));
             else
-                CheckSamePoint(out.rows[it->second], row, runs);
+                CheckSamePoint(out.rows[it->second], row, runs, pooled);
         }
     }
+    out.windows = DescribeWindows(eyes);
     return out;
 }
 
 std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const std::string& anchor,
                                              const std::vector<std::string>& designs) {
-    // (scene, variant) -> design -> budget -> seed -> row
-    using Points = std::map<std::string, std::map<uint32_t, const CurveRow*>>;
+    // (scene, variant) -> design -> budget -> unit -> row
+    using Points = std::map<std::string, std::map<SampleUnit, const CurveRow*>>;
     std::map<std::pair<std::string, std::string>, std::map<std::string, Points>> all;
     std::vector<std::string> order;  // designs in the order the runs list them
     for (const CurveRow& r : curves.rows) {
-        all[{r.scene, r.variant}][r.design][r.budget][r.seed] = &r;
+        all[{r.scene, r.variant}][r.design][r.budget][SampleUnit{r.window, r.seed}] = &r;
         if (std::find(order.begin(), order.end(), r.design) == order.end()) order.push_back(r.design);
     }
     auto known = [&](const std::string& d) { return std::find(order.begin(), order.end(), d) != order.end(); };
@@ -224,35 +268,35 @@ std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const
         for (const std::string& design : tests) {
             const auto testIt = byDesign.find(design);
             if (testIt == byDesign.end() || design == anchor) continue;
-            // The seeds every point of both curves holds.
-            std::set<uint32_t> seeds;
+            // The units (window, seed) every point of both curves holds.
+            std::set<SampleUnit> units;
             bool first = true;
             for (const Points* points : {&anchorIt->second, &testIt->second})
-                for (const auto& [budget, bySeed] : *points) {
-                    std::set<uint32_t> here;
-                    for (const auto& [seed, row] : bySeed) here.insert(seed);
-                    if (first) seeds = here, first = false;
+                for (const auto& [budget, byUnit] : *points) {
+                    std::set<SampleUnit> here;
+                    for (const auto& [unit, row] : byUnit) here.insert(unit);
+                    if (first) units = here, first = false;
                     else {
-                        std::set<uint32_t> both;
-                        std::set_intersection(seeds.begin(), seeds.end(), here.begin(), here.end(),
+                        std::set<SampleUnit> both;
+                        std::set_intersection(units.begin(), units.end(), here.begin(), here.end(),
                                               std::inserter(both, both.begin()));
-                        seeds = both;
+                        units = both;
                     }
                 }
             DesignComparison c;
-            c.seeds.assign(seeds.begin(), seeds.end());
-            if (c.seeds.empty())
-                Fail("rays-saved: {} / {}: no seed is common to every point of '{}' and '{}'", sceneVariant.first,
-                     sceneVariant.second, anchor, design);
-            // A curve over those seeds, rays ascending; a point's rays are those of the first run holding it.
+            c.units.assign(units.begin(), units.end());
+            if (c.units.empty())
+                Fail("rays-saved: {} / {}: no {} is common to every point of '{}' and '{}'", sceneVariant.first,
+                     sceneVariant.second, curves.windows.size() > 1 ? "window and seed" : "seed", anchor, design);
+            // A curve over those units, rays ascending; a point's rays are those of the first run holding it.
             auto curveOf = [&](const Points& points, bool fovea, std::vector<std::string>* budgets) {
                 SeededRateQualityCurve curve;
                 std::vector<std::pair<SeededRateQualityPoint, std::string>> sorted;
-                for (const auto& [budget, bySeed] : points) {
+                for (const auto& [budget, byUnit] : points) {
                     SeededRateQualityPoint p;
                     const CurveRow* firstRun = nullptr;
-                    for (uint32_t seed : c.seeds) {
-                        const CurveRow* row = bySeed.at(seed);
+                    for (const SampleUnit& unit : c.units) {
+                        const CurveRow* row = byUnit.at(unit);
                         if (!firstRun || row->run < firstRun->run) firstRun = row;
                         p.jodPerSeed.push_back(fovea ? FovealQuality(row->relmseFovea) : row->jod);
                     }
@@ -281,20 +325,32 @@ std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const
     return out;
 }
 
-std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons) {
+std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
+                                 const std::vector<std::string>& windows) {
+    const bool pooled = windows.size() > 1;
+    std::string out;
+    if (pooled) {
+        out += fmt::format("{} gaze windows pooled, each (window, seed) a unit of the bootstrap:\n", windows.size());
+        for (size_t w = 0; w < windows.size(); ++w) out += fmt::format("  w{}  {}\n", w + 1, windows[w]);
+    }
     std::vector<RaysSavedRow> rows;
     for (const DesignComparison& c : comparisons) rows.push_back(c.saved);
-    std::string out = RaysSavedTable(anchor, rows);
-    ReportTable points{"", {"scene", "variant", "design", "seeds", "budget spp", "traced spp", "JOD", "rays saved at this JOD [95 %]"}, {}};
+    out += RaysSavedTable(anchor, rows, pooled ? "window and seed" : "seed");
+    ReportTable points{"", {"scene", "variant", "design", pooled ? "window:seed" : "seeds", "budget spp", "traced spp", "JOD",
+                            "rays saved at this JOD [95 %]"}, {}};
     for (const DesignComparison& c : comparisons) {
-        const std::string seeds = fmt::format("{}", fmt::join(c.seeds, " "));
+        std::vector<std::string> units;
+        for (const SampleUnit& u : c.units)
+            units.push_back(pooled ? fmt::format("w{}:{}", u.window + 1, u.seed) : fmt::format("{}", u.seed));
+        const std::string seeds = fmt::format("{}", fmt::join(units, " "));
         for (size_t i = 0; i < c.rays.size(); ++i) {
             points.rows.push_back({c.saved.scene, c.saved.variant, c.saved.design, seeds, c.budgets[i],
                                    fmt::format("{:.3f}", c.rays[i]), fmt::format("{:.3f}", c.jod[i]),
                                    IntervalText(c.saved.raysSavedAtPoints[i], "{:.2f}", "×")});
         }
     }
-    return out + "At each of a design's points (the seeds both curves hold; the anchor's fit read at the point's JOD):\n" +
+    return out + fmt::format("At each of a design's points (the {} both curves hold; the anchor's fit read at the point's JOD):\n",
+                             pooled ? "units" : "seeds") +
            TextTable(points);
 }
 

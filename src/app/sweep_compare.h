@@ -17,8 +17,16 @@
 //     input; the measured rays to 1 % (they are a mean over the run's seeds, which may differ).
 // A curve takes the seeds every one of its points and the anchor's hold (the paired bootstrap's
 // unit); the seeds each comparison used are reported with it.
+//
+// Pooled gaze (`--pool-gaze`): runs may also differ in where the eye looks, the keys of
+// GazeParams (gaze/gaze_source.h: the source, its recording or trace and start, a static direction,
+// a Lissajous path), never in the tracker's. Each distinct gaze is a window, and each (window,
+// seed) a unit of the bootstrap: the curves average every unit's JOD at each budget, and the
+// interval spans where the eye looked as well as the seeds.
 #pragma once
 
+#include <compare>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -33,34 +41,49 @@ struct CurveRow {
     std::string scene, variant, design;
     std::string budget;  // as written ("" for a design at its own sampling)
     uint32_t seed = 0;
+    size_t window = 0;  // index into GatheredCurves::windows: where the eye looked
     double tracedWhole = 0.0, tracedFovea = 0.0, tracedPeriphery = 0.0, guideRays = 0.0;
     double jod = 0.0, jodSustained = 0.0, jodTransient = 0.0;
     double relmseWhole = 0.0, relmseFovea = 0.0, flickerFovea = 0.0;
     size_t run = 0;  // index into GatheredCurves::runs: the first run that holds it
 };
 
-// The rows of several runs, each point and seed once.
+// The rows of several runs, each point, window and seed once.
 struct GatheredCurves {
     std::vector<std::filesystem::path> runs;
     std::vector<CurveRow> rows;
+    // Each window's gaze keys that differ between the windows ("gaze.trace_start_ms=9000"), in the
+    // order the runs first hold them; one empty entry when every run shares its gaze.
+    std::vector<std::string> windows;
 };
 
-// Reads and checks the runs (output folders of `fovrt experiment` sweeps), in the order given.
-GatheredCurves GatherSweepRuns(const std::vector<std::filesystem::path>& runs);
+enum class GazeWindows { kSame, kPooled };
 
-// One comparison: a design against the anchor on one (scene, variant), with the seeds it used.
+// Reads and checks the runs (output folders of `fovrt experiment` sweeps), in the order given.
+GatheredCurves GatherSweepRuns(const std::vector<std::filesystem::path>& runs, GazeWindows gaze = GazeWindows::kSame);
+
+// A unit of the bootstrap: a seed in one window.
+struct SampleUnit {
+    size_t window = 0;
+    uint32_t seed = 0;
+    auto operator<=>(const SampleUnit&) const = default;
+};
+
+// One comparison: a design against the anchor on one (scene, variant), with the units it used.
 struct DesignComparison {
     RaysSavedRow saved;
-    std::vector<uint32_t> seeds;
+    std::vector<SampleUnit> units;
     std::vector<std::string> budgets;  // the design's points, rays ascending
-    std::vector<double> rays, jod;     // per point: measured rays, seed-mean JOD over `seeds`
+    std::vector<double> rays, jod;     // per point: measured rays, mean JOD over `units`
 };
 // Every design in `designs` (empty: every design but the anchor) against `anchor`, per scene and
 // variant both hold. Refuses an anchor or design no run holds.
 std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const std::string& anchor,
                                              const std::vector<std::string>& designs);
 
-// The headline table and each design's points with the rays saved at each, as text.
-std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons);
+// The headline table and each design's points with the rays saved at each, as text; with several
+// windows, each window's gaze and the units are named (w1:2: window 1, seed 2).
+std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
+                                 const std::vector<std::string>& windows = {});
 
 }  // namespace fovrt

@@ -352,11 +352,11 @@ std::string TextTable(const ReportTable& t) {
     return out;
 }
 
-std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows) {
+std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows, const std::string& unit) {
     const ReportTable t = HeadlineReportTable(anchor, rows);
     std::string out = t.title +
-                      " (FovVideoVDP JOD, and foveal relMSE: what the eye looks at; Bjøntegaard delta on PCHIP fits, 95 % "
-                      "seed bootstrap)\n";
+                      " (FovVideoVDP JOD, and foveal relMSE: what the eye looks at; Bjøntegaard delta on PCHIP fits, 95 % " +
+                      unit + " bootstrap)\n";
     if (rows.empty()) {
         return out + (!anchor.empty() ? "  (no design besides the anchor)\n"
                                       : "  (no anchor: name one with experiment.anchor_design, or list one uniform design)\n");

@@ -80,7 +80,9 @@ std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::
 
 // The headline table as text against the anchor design `anchor` (empty: the sweep has none): scene,
 // variant, design, rays saved and JOD gain with intervals.
-std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows);
+// `unit`: what the bootstrap resamples ("seed", or "window and seed" over pooled gaze windows).
+std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows,
+                           const std::string& unit = "seed");
 // "2.00× [1.90, 2.10]" (`format` for each number, then `unit`), or the reason there is no value or
 // no interval.
 std::string IntervalText(const BjontegaardInterval& interval, const char* format, const char* unit);

@@ -267,7 +267,7 @@ BjontegaardInterval BootstrapOverSeeds(size_t seeds, const Estimate& estimate, c
     const double tail = 0.5 * (1.0 - options.confidence);
     if (double(interval.failedReplicates) > tail * double(options.resamples)) {
         interval.intervalReason =
-            fmt::format("{} of {} seed resamples give no result (more than {:g} %), e.g. {}",
+            fmt::format("{} of {} bootstrap resamples give no result (more than {:g} %), e.g. {}",
                         interval.failedReplicates, options.resamples, 100.0 * tail, firstFailure);
         return interval;
     }
