@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -108,12 +110,21 @@ TEST_CASE("a late tracker misses the true gaze after a saccade; the foveal error
     std::istringstream lines(csv);
     std::string line;
     std::getline(lines, line);
-    CHECK(line == "frame,time_s,blink,speed_deg_s,saccade,fovea_distance_deg,outside_fovea,gaze_held");
+    CHECK(line ==
+          "frame,time_s,blink,gaze_yaw_deg,gaze_pitch_deg,speed_deg_s,saccade,fovea_distance_deg,outside_fovea,gaze_held");
     for (int frame = 0; frame < 10; ++frame) {
         REQUIRE(std::getline(lines, line));
         INFO(line);
         const bool miss = frame >= 3 && frame <= 8;
         CHECK(line.substr(line.size() - 4) == (miss ? ",1,0" : ",0,0"));  // outside_fovea, gaze_held
+        // Where the eye looks: the trace's yaw, −15° before the saccade at 100 ms, +15° after.
+        std::istringstream fields(line);
+        std::string field;
+        std::vector<double> values;
+        while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
+        REQUIRE(values.size() == 10);
+        CHECK(values[3] == Approx(frame < 3 ? -15.0 : 15.0).margin(1e-4));
+        CHECK(values[4] == Approx(0.0).margin(1e-4));
     }
     const nlohmann::json summary = nlohmann::json::parse(ReadFile(dir / "late" / "summary.json"));
     const nlohmann::json& tracking = summary.at("gaze_tracking").at("cornell");

@@ -21,6 +21,10 @@ GazeMark GazeMarkOf(int frame, const GazeSample& gaze, const std::optional<GazeS
     GazeMark mark;
     mark.frame = frame;
     mark.blink = !gaze.valid;
+    if (gaze.valid) {
+        const vec2 angles = GazeAnglesFromDirection(gaze.direction);
+        mark.yawDeg = angles.x, mark.pitchDeg = angles.y;
+    }
     if (gaze.valid && previous && previous->valid && gaze.timeSeconds > previous->timeSeconds) {
         const double cosine = std::clamp(double(glm::dot(glm::normalize(gaze.direction),
                                                          glm::normalize(previous->direction))), -1.0, 1.0);

@@ -96,7 +96,7 @@ void WriteVisuals(const fs::path& dir, const SceneVisuals& v) {
     fs::create_directories(dir);
     nlohmann::json marks = nlohmann::json::array();
     for (const GazeMark& m : v.gazeMarks) marks.push_back({m.frame, m.blink, m.speedDegPerSecond, m.timeSeconds, m.foveaDistanceDeg, m.outsideFovea,
-                          m.gazeHeld});
+                          m.gazeHeld, m.yawDeg, m.pitchDeg});
     nlohmann::json path = nlohmann::json::array();
     for (const vec2& p : v.gazePath) path.push_back(Vec2Json(p));
     nlohmann::json variants = nlohmann::json::array();
@@ -130,8 +130,12 @@ SceneVisuals ReadVisuals(const fs::path& dir) {
     const nlohmann::json meta = nlohmann::json::parse(in);
     SceneVisuals v;
     VisualsFields(v, JsonFieldReader{meta});
-    for (const auto& m : meta.at("gaze_marks"))
-        v.gazeMarks.push_back({m.at(0), m.at(1), m.at(2), m.at(3), m.at(4), m.at(5), m.at(6)});
+    for (const auto& m : meta.at("gaze_marks")) {
+        GazeMark& mark = v.gazeMarks.emplace_back();
+        m.at(0).get_to(mark.frame), m.at(1).get_to(mark.blink), m.at(2).get_to(mark.speedDegPerSecond);
+        m.at(3).get_to(mark.timeSeconds), m.at(4).get_to(mark.foveaDistanceDeg), m.at(5).get_to(mark.outsideFovea);
+        m.at(6).get_to(mark.gazeHeld), m.at(7).get_to(mark.yawDeg), m.at(8).get_to(mark.pitchDeg);
+    }
     for (const auto& p : meta.at("gaze_path")) v.gazePath.push_back(Vec2From(p));
     v.gazePixel = Vec2From(meta.at("gaze_pixel"));
     if (!meta.at("has_images").get<bool>()) return v;

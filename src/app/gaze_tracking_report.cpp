@@ -46,11 +46,12 @@ GazeTrackingSummary SummarizeGazeTracking(const std::vector<GazeMark>& marks) {
 }
 
 std::string GazeTrackingCsv(const std::vector<GazeMark>& marks) {
-    std::string out = "frame,time_s,blink,speed_deg_s,saccade,fovea_distance_deg,outside_fovea,gaze_held\n";
+    std::string out =
+        "frame,time_s,blink,gaze_yaw_deg,gaze_pitch_deg,speed_deg_s,saccade,fovea_distance_deg,outside_fovea,gaze_held\n";
     for (const GazeMark& m : marks)
-        out += fmt::format("{},{:.9g},{},{:.9g},{},{:.9g},{},{}\n", m.frame, m.timeSeconds, m.blink ? 1 : 0,
-                           m.speedDegPerSecond, m.Saccade() ? 1 : 0, m.foveaDistanceDeg, m.outsideFovea ? 1 : 0,
-                           m.gazeHeld ? 1 : 0);
+        out += fmt::format("{},{:.9g},{},{:.9g},{:.9g},{:.9g},{},{:.9g},{},{}\n", m.frame, m.timeSeconds, m.blink ? 1 : 0,
+                           m.yawDeg, m.pitchDeg, m.speedDegPerSecond, m.Saccade() ? 1 : 0, m.foveaDistanceDeg,
+                           m.outsideFovea ? 1 : 0, m.gazeHeld ? 1 : 0);
     return out;
 }
 

@@ -48,6 +48,9 @@ struct GazeMark {
     bool blink = false;
     double speedDegPerSecond = 0.0;
     double timeSeconds = 0.0;
+    // Where the eye looks (the true gaze, head space, Fick yaw + = right and pitch + = up, degrees);
+    // 0 in a blink.
+    double yawDeg = 0.0, pitchDeg = 0.0;
     // The rendered fovea (the tracked gaze's spp disc) against the true gaze: their angle, and
     // whether the true gaze fell outside the disc (app/gaze_tracking_report.h).
     double foveaDistanceDeg = 0.0;
