@@ -69,6 +69,11 @@ row() { grep -E '^  room +svgf-weighted +perceptual ' "$1" | head -1 | tr -s ' '
 [[ -n $(row apart.txt) && "$(row apart.txt)" == "$(row apart2.txt)" ]] && grep -Eq '^  room +svgf-weighted +disc ' apart2.txt \
   && ok "a second run's points gathered beside it: perceptual's row unchanged, disc listed" \
   || bad "two runs: '$(row apart.txt)' against '$(row apart2.txt)'"
+# One gaze window pooled is the run itself; --design takes one name, so the folder after it stays a run.
+"$fovrt" rays-saved --pool-gaze --design perceptual single > pooled.txt 2> pooled.err \
+  || bad "rays-saved --pool-gaze of the single run: $(tail -1 pooled.err)"
+[[ -n $(row apart.txt) && "$(row apart.txt)" == "$(row pooled.txt)" ]] && ! grep -q "gaze windows pooled" pooled.txt \
+  && ok "--pool-gaze over one window: perceptual's row unchanged" || bad "pooled: '$(row pooled.txt)'"
 "$fovrt" rays-saved single --anchor nope > /dev/null 2> apart3.err && bad "rays-saved ran with an unknown anchor" \
   || { grep -q "no run holds the anchor design 'nope'" apart3.err && ok "an unknown anchor is refused: $(tail -1 apart3.err)" \
        || bad "anchor message: $(tail -1 apart3.err)"; }
