@@ -463,3 +463,24 @@ TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slop
     CHECK_THAT(error, Catch::Matchers::Contains("gaze.tracker_latency_ms differs"));
     CHECK_THAT(error, !Catch::Matchers::Contains("--pool-gaze"));
 }
+
+TEST_CASE("rays saved on the budgets runs share: --budget keeps those points", "[app][designs]") {
+    // The closed-form sweep (both designs at 1, 2, 4 and 8 spp, seeds 1–3) kept to 1, 2 and 4 spp:
+    // 8 spp drops out of both curves, every seed stays, and the saving is still exactly 2.
+    ExperimentSpec spec = ClosedFormSpec("budgets");
+    spec.config.output.report = false;
+    const std::vector<SweepPointResult> points = ClosedFormPoints(spec);
+    const fs::path dir = test::ScratchDir("fovrt_rays_saved_budgets");
+    fs::create_directories(dir / "a");
+    WriteSweepOutputs(spec, points, dir / "a", std::chrono::steady_clock::now());
+    WritePointManifests(dir / "a", "00c0ffee00c0ffee");
+    GatheredCurves curves = GatherSweepRuns({dir / "a"});
+    KeepBudgets(curves, {1.0, 2.0, 4.0});
+    CHECK(curves.rows.size() == 6 * 3);
+    const std::vector<DesignComparison> kept = CompareDesigns(curves, "uniform", {});
+    REQUIRE(kept.size() == 1);
+    CHECK(kept[0].budgets == std::vector<std::string>{"1", "2", "4"});
+    CHECK(kept[0].units.size() == 3);
+    CHECK(kept[0].saved.raysSaved.estimate.value == Approx(2.0).epsilon(1e-6));
+    CHECK_THROWS_WITH(KeepBudgets(curves, {3.0}), Catch::Matchers::Contains("--budget 3: no run holds a point at 3 spp"));
+}

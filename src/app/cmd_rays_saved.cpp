@@ -18,12 +18,14 @@ struct RaysSavedOptions {
     std::vector<std::string> runs;
     std::string anchor = "uniform";
     std::vector<std::string> designs;  // empty: every design but the anchor
+    std::vector<double> budgets;  // empty: every budget
     bool poolGaze = false;
 };
 
 void PrintRaysSaved(const RaysSavedOptions& o) {
     std::vector<std::filesystem::path> runs(o.runs.begin(), o.runs.end());
-    const GatheredCurves curves = GatherSweepRuns(runs, o.poolGaze ? GazeWindows::kPooled : GazeWindows::kSame);
+    GatheredCurves curves = GatherSweepRuns(runs, o.poolGaze ? GazeWindows::kPooled : GazeWindows::kSame);
+    KeepBudgets(curves, o.budgets);
     std::printf("%zu rows (scene, variant, design, budget, %s) from %zu runs\n", curves.rows.size(),
                 curves.windows.size() > 1 ? "window, seed" : "seed", runs.size());
     std::printf("%s",
@@ -43,6 +45,11 @@ void RegisterRaysSavedCommand(CLI::App& app) {
     // One design per --design, so that the run folders after it stay positionals.
     cmd->add_option("--design", o->designs, "Only this design (repeatable; default: every design but the anchor)")
         ->allow_extra_args(false);
+    cmd->add_option("--budget", o->budgets,
+                    "Only the points at this budget, spp (repeatable; default: every budget): runs with different "
+                    "budget lists compare on those they share")
+        ->allow_extra_args(false)
+        ->check(CLI::PositiveNumber);
     cmd->add_flag("--pool-gaze", o->poolGaze,
                   "Gather runs that differ only in where the eye looks (gaze source, recording or trace and its start, "
                   "static direction): each gaze window with each seed is a unit of the bootstrap");

@@ -68,6 +68,7 @@ std::vector<CurveRow> ReadCurvesCsv(const fs::path& file, size_t run) {
         auto num = [&](size_t c) { return ParseNumber(f[c], file, number, columns[c].c_str()); };
         CurveRow r;
         r.scene = f[0], r.variant = f[1], r.design = f[2], r.budget = f[3];
+        if (!r.budget.empty()) (void)num(3);  // a number, or empty for a design at its own sampling
         const double seed = num(4);
         if (seed < 0 || seed != std::floor(seed) || seed > 4294967295.0)
             Fail("{}:{}: column seed is '{}', not a seed", file.string(), number, f[4]);
@@ -240,6 +241,18 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs, GazeWindows ga
     }
     out.windows = DescribeWindows(eyes);
     return out;
+}
+
+void KeepBudgets(GatheredCurves& curves, const std::vector<double>& budgets) {
+    if (budgets.empty()) return;
+    auto budgetOf = [](const CurveRow& r) { return std::stod(r.budget); };  // checked by ReadCurvesCsv
+    for (double budget : budgets)
+        if (std::none_of(curves.rows.begin(), curves.rows.end(),
+                         [&](const CurveRow& r) { return !r.budget.empty() && budgetOf(r) == budget; }))
+            Fail("rays-saved: --budget {:g}: no run holds a point at {:g} spp", budget, budget);
+    std::erase_if(curves.rows, [&](const CurveRow& r) {
+        return !r.budget.empty() && std::find(budgets.begin(), budgets.end(), budgetOf(r)) == budgets.end();
+    });
 }
 
 std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const std::string& anchor,

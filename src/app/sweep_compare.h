@@ -62,6 +62,11 @@ enum class GazeWindows { kSame, kPooled };
 // Reads and checks the runs (output folders of `fovrt experiment` sweeps), in the order given.
 GatheredCurves GatherSweepRuns(const std::vector<std::filesystem::path>& runs, GazeWindows gaze = GazeWindows::kSame);
 
+// Keeps the rows at these budgets (spp, as numbers) and those of designs at their own sampling,
+// so that runs with different budget lists compare on the budgets they share (a comparison takes
+// only the units every one of its points holds). Refuses a budget no row holds.
+void KeepBudgets(GatheredCurves& curves, const std::vector<double>& budgets);
+
 // A unit of the bootstrap: a seed in one window.
 struct SampleUnit {
     size_t window = 0;
