@@ -295,9 +295,9 @@ void WritePointManifests(const fs::path& run, const std::string& fingerprint) {
     }
 }
 
-std::string GatherError(const std::vector<fs::path>& runs) {
+std::string GatherError(const std::vector<fs::path>& runs, GazeWindows gaze = GazeWindows::kSame) {
     try {
-        (void)GatherSweepRuns(runs);
+        (void)GatherSweepRuns(runs, gaze);
     } catch (const Error& e) {
         return e.what();
     }
@@ -454,12 +454,7 @@ TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slop
     nlohmann::json manifest = ReadJsonFile(dir / "w2" / "manifest.json");
     manifest["config"]["gaze"]["tracker_latency_ms"] = 40.0;
     WriteJsonFile(dir / "late" / "manifest.json", manifest);
-    std::string error = "(no error)";
-    try {
-        (void)GatherSweepRuns({dir / "w1", dir / "late"}, GazeWindows::kPooled);
-    } catch (const Error& e) {
-        error = e.what();
-    }
+    const std::string error = GatherError({dir / "w1", dir / "late"}, GazeWindows::kPooled);
     CHECK_THAT(error, Catch::Matchers::Contains("gaze.tracker_latency_ms differs"));
     CHECK_THAT(error, !Catch::Matchers::Contains("--pool-gaze"));
 }

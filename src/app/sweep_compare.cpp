@@ -108,14 +108,19 @@ std::string PointText(const CurveRow& r, bool pooled) {
                        pooled ? fmt::format("window w{} / ", r.window + 1) : "", r.seed);
 }
 
-// The keys of where the eye looks (GazeParams), moved out of a run's config into their own object.
+// The keys of where the eye looks (GazeParams' rows, "gaze.source", …), not the tracker's.
+bool IsEyePathKey(const std::string& key) {
+    return std::any_of(GazeParamTable().begin(), GazeParamTable().end(),
+                       [&](const SettingRow<GazeParams>& row) { return key == row.info.key; });
+}
+
+// The keys of where the eye looks, moved out of a run's config into their own object.
 nlohmann::json TakeEyePath(nlohmann::json& config) {
     nlohmann::json eye = nlohmann::json::object();
     nlohmann::json& gaze = config["gaze"];
-    for (const SettingRow<GazeParams>& row : GazeParamTable()) {
-        const std::string key = std::string(row.info.key).substr(std::string("gaze.").size());
-        if (gaze.contains(key)) eye[key] = gaze[key], gaze.erase(key);
-    }
+    for (auto it = gaze.begin(); it != gaze.end();)
+        if (IsEyePathKey("gaze." + it.key())) eye[it.key()] = it.value(), it = gaze.erase(it);
+        else ++it;
     return eye;
 }
 
@@ -212,11 +217,9 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs, GazeWindows ga
         if (r == 0) {
             firstConfig = config;
         } else if (const std::string key = FirstDifference(firstConfig, config, ""); !key.empty()) {
-            const bool eyeKey = std::any_of(GazeParamTable().begin(), GazeParamTable().end(),
-                                            [&](const SettingRow<GazeParams>& row) { return key == row.info.key; });
             Fail("{} and {} ran different configurations ({} differs): their points are not comparable{}",
                  runs[0].string(), run.string(), key,
-                 eyeKey ? " (--pool-gaze gathers runs that differ only in where the eye looks)" : "");
+                 IsEyePathKey(key) ? " (--pool-gaze gathers runs that differ only in where the eye looks)" : "");
         }
         content.Check(run, manifest);
         const nlohmann::json summary = ReadJson(run / "summary.json");
