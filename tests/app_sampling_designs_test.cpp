@@ -445,6 +445,13 @@ TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slop
     CHECK_THAT(text, Catch::Matchers::Contains("2 gaze windows pooled") &&
                          Catch::Matchers::Contains("95 % window and seed bootstrap") &&
                          Catch::Matchers::Contains("w2  gaze.trace_start_ms=9000.0") && Catch::Matchers::Contains("w2:3"));
+    // The runs' order on the command line changes neither the windows' labels nor the interval.
+    const GatheredCurves reversed = GatherSweepRuns({dir / "w2", dir / "w1"}, GazeWindows::kPooled);
+    CHECK(reversed.windows == curves.windows);
+    const std::vector<DesignComparison> pooledReversed = CompareDesigns(reversed, "uniform", {});
+    REQUIRE(pooledReversed.size() == 1);
+    CHECK(pooledReversed[0].saved.raysSaved.lower == pooled[0].saved.raysSaved.lower);
+    CHECK(pooledReversed[0].saved.raysSaved.upper == pooled[0].saved.raysSaved.upper);
     // Each window alone still gives its own saving.
     CHECK(CompareDesigns(GatherSweepRuns({dir / "w2"}, GazeWindows::kPooled), "uniform", {})[0]
               .saved.raysSaved.estimate.value == Approx(4.0).epsilon(1e-6));

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -242,7 +243,16 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs, GazeWindows ga
                 CheckSamePoint(out.rows[it->second], row, runs, pooled);
         }
     }
-    out.windows = DescribeWindows(eyes);
+    // Windows numbered in the order of their gaze keys (numbers by value), not of the runs on the
+    // command line: the labels and the bootstrap's units, hence its interval, do not depend on it.
+    std::vector<size_t> order(eyes.size()), rank(eyes.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return eyes[a] < eyes[b]; });
+    std::vector<nlohmann::json> sorted;
+    for (size_t w = 0; w < order.size(); ++w) rank[order[w]] = w, sorted.push_back(eyes[order[w]]);
+    for (CurveRow& row : out.rows)
+        if (pooled) row.window = rank[row.window];
+    out.windows = DescribeWindows(sorted);
     return out;
 }
 

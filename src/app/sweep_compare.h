@@ -52,8 +52,9 @@ struct CurveRow {
 struct GatheredCurves {
     std::vector<std::filesystem::path> runs;
     std::vector<CurveRow> rows;
-    // Each window's gaze keys that differ between the windows ("gaze.trace_start_ms=9000"), in the
-    // order the runs first hold them; one empty entry when every run shares its gaze.
+    // Each window's gaze keys that differ between the windows ("gaze.trace_start_ms=9000"), ordered
+    // by those keys (numbers by value), whatever the runs' order; one empty entry when every run
+    // shares its gaze.
     std::vector<std::string> windows;
 };
 
