@@ -445,6 +445,12 @@ TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slop
     CHECK_THAT(text, Catch::Matchers::Contains("2 gaze windows pooled") &&
                          Catch::Matchers::Contains("95 % window and seed bootstrap") &&
                          Catch::Matchers::Contains("w2  gaze.trace_start_ms=9000.0") && Catch::Matchers::Contains("w2:3"));
+    // Each window's own saving, beside the pooled one.
+    const std::string perWindow = PerWindowText(curves, "uniform", {});
+    CHECK_THAT(perWindow, Catch::Matchers::Contains("Each window alone"));
+    CHECK_THAT(perWindow, Catch::Matchers::Matches("[\\s\\S]*w1 +room +[^\\n]*2\\.00× \\[2\\.00, 2\\.00\\][\\s\\S]*"));
+    CHECK_THAT(perWindow, Catch::Matchers::Matches("[\\s\\S]*w2 +room +[^\\n]*4\\.00× \\[4\\.00, 4\\.00\\][\\s\\S]*"));
+    CHECK(PerWindowText(GatherSweepRuns({dir / "w2"}, GazeWindows::kPooled), "uniform", {}).empty());
     // The runs' order on the command line changes neither the windows' labels nor the interval.
     const GatheredCurves reversed = GatherSweepRuns({dir / "w2", dir / "w1"}, GazeWindows::kPooled);
     CHECK(reversed.windows == curves.windows);

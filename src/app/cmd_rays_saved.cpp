@@ -30,6 +30,7 @@ void PrintRaysSaved(const RaysSavedOptions& o) {
                 curves.windows.size() > 1 ? "window, seed" : "seed", runs.size());
     std::printf("%s",
                 DesignComparisonText(o.anchor, CompareDesigns(curves, o.anchor, o.designs), curves.windows).c_str());
+    std::printf("%s", PerWindowText(curves, o.anchor, o.designs).c_str());
 }
 
 }  // namespace

@@ -380,4 +380,30 @@ std::string DesignComparisonText(const std::string& anchor, const std::vector<De
            TextTable(points);
 }
 
+std::string PerWindowText(const GatheredCurves& curves, const std::string& anchor,
+                          const std::vector<std::string>& designs) {
+    if (curves.windows.size() <= 1) return "";
+    ReportTable table{"", {"window", "scene", "variant", "design", "units", "rays saved at equal JOD [95 %]",
+                           "JOD gain at equal rays [95 %]"}, {}};
+    for (size_t w = 0; w < curves.windows.size(); ++w) {
+        GatheredCurves one{curves.runs, {}, {""}};
+        std::copy_if(curves.rows.begin(), curves.rows.end(), std::back_inserter(one.rows),
+                     [&](const CurveRow& r) { return r.window == w; });
+        auto holds = [&](const std::string& d) {
+            return std::any_of(one.rows.begin(), one.rows.end(), [&](const CurveRow& r) { return r.design == d; });
+        };
+        // A window that lacks a design (a run added to some windows only) is left out of its rows,
+        // as the pooled comparison leaves it out of its units.
+        std::vector<std::string> kept;
+        for (const std::string& d : designs)
+            if (holds(d)) kept.push_back(d);
+        if (!holds(anchor) || (!designs.empty() && kept.empty())) continue;
+        for (const DesignComparison& c : CompareDesigns(one, anchor, kept))
+            table.rows.push_back({fmt::format("w{}", w + 1), c.saved.scene, c.saved.variant, c.saved.design,
+                                  fmt::format("{}", c.units.size()), IntervalText(c.saved.raysSaved, "{:.2f}", "×"),
+                                  IntervalText(c.saved.jodGain, "{:+.3f}", "")});
+    }
+    return "Each window alone (its seeds the units of its interval):\n" + TextTable(table);
+}
+
 }  // namespace fovrt

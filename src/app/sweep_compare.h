@@ -92,4 +92,10 @@ std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const
 std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
                                  const std::vector<std::string>& windows = {});
 
+// With several windows: each window's comparisons on its own rows, one line per (window, scene,
+// variant, design), so that how the pooled saving spreads over where the eye looked is read off
+// the same command. Empty with one window.
+std::string PerWindowText(const GatheredCurves& curves, const std::string& anchor,
+                          const std::vector<std::string>& designs);
+
 }  // namespace fovrt
