@@ -477,17 +477,6 @@ const DenoiserVariant& FindDenoiserVariant(std::string_view name, std::string_vi
     return *LookupDenoiserVariant(name);
 }
 
-bool AcceptsZeroSamplePixels(const DenoiserVariant& variant) { return variant.family != DenoiserFamily::Rae; }
-
-std::optional<std::string> ZeroSamplePixelsProblem(std::string_view name, std::string_view zeroSppKey) {
-    const DenoiserVariant* v = LookupDenoiserVariant(name);
-    if (!v || AcceptsZeroSamplePixels(*v)) return std::nullopt;
-    return fmt::format("{} cannot take pixels without a path sample (its network has no notion of an empty "
-                       "pixel and would see them black), and {} puts them in the spp map (raise it to 1, or "
-                       "use an SVGF-family denoiser)",
-                       name, zeroSppKey);
-}
-
 RendererNeeds RendererNeedsOf(const std::vector<std::string>& names, std::string_view what) {
     RendererNeeds needs;
     for (const std::string& name : names) {
@@ -586,7 +575,7 @@ std::vector<std::string> VariantRendererNeeds(const DenoiserVariant& variant) {
     if (variant.needsGradientSamples) needs.emplace_back("A-SVGF gradient samples (forward-projected, re-shaded)");
     if (variant.needsSampleCount)
         needs.emplace_back("per-pixel sample counts");
-    else if (AcceptsZeroSamplePixels(variant))
+    else if (variant.family != DenoiserFamily::Rae)  // the RAE reads them on the host, from FrameInputs
         needs.emplace_back("per-pixel sample counts where the spp map may hold zeros (a foveation below 1 spp)");
     return needs;
 }

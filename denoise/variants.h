@@ -109,15 +109,6 @@ const DenoiserVariant* LookupDenoiserVariant(std::string_view name);
 // The demodulation a name asks for ("+brdf", "+albedo"); nullopt without one.
 std::optional<Demodulation> DenoiserDemodulation(std::string_view name);
 
-// Whether the variant accepts pixels without a path sample (spp-map entries of 0): the SVGF and
-// two-history families keep such a pixel's history (the ones that weigh by no sample count with
-// DenoiserParams::sampleCountsMayBeZero); the RAE's network has no notion of an empty pixel.
-bool AcceptsZeroSamplePixels(const DenoiserVariant& variant);
-// Why `name` cannot run while the spp map may hold zeros, which `zeroSppKey` (ZeroSppKey in
-// foveation/spp_model.h, e.g. "foveation.spp_outside = 0.25") allows: one line naming both;
-// nullopt when it can (or is no variant: DenoiserNameProblem says so).
-std::optional<std::string> ZeroSamplePixelsProblem(std::string_view name, std::string_view zeroSppKey);
-
 // What the renderer must produce for a set of variant names, from their rows and suffixes.
 struct RendererNeeds {
     bool gradientSamples = false;  // some row's needsGradientSamples

@@ -158,32 +158,15 @@ ConfigOptions VariantsOptions(const std::string& name, const std::string& varian
 
 }  // namespace
 
-// The RAE cannot take pixels without a path sample: refused wherever the spp map may hold zeros,
-// in one line naming where, the variant and the foveation key.
-TEST_CASE("the RAE is refused by every point whose sampling goes below 1 spp, and by the experiment's own",
-          "[app][designs]") {
-    using Catch::Matchers::Contains;
-    // No designs: the experiment's own foveation.
-    CHECK_THAT(LoadError(VariantsOptions("rae-own", "[\"svgf\", \"rae\"]", "", {"foveation.spp_outside=0.5"})),
-               Contains("experiment.variants") && Contains("rae cannot") && Contains("foveation.spp_outside = 0.5"));
-    CHECK_NOTHROW(LoadExperiment(VariantsOptions("rae-own-1", "[\"svgf\", \"rae\"]", "")));
-    // Designs × budgets: each point, by its design and budget.
-    CHECK_THAT(LoadError(VariantsOptions("rae-budget", "[\"rae-spp\"]",
-                                         "budgets = [0.5, 1]\n[experiment.designs.u]\n"
-                                         "foveation = { model = \"uniform\", spp_floor = 0.0625 }\n")),
-               Contains("experiment.designs.u at budget 0.5 spp") && Contains("rae-spp cannot") &&
-                   Contains("foveation.spp_floor = 0.0625"));
-    // A design of its own sampling, below 1 spp.
-    CHECK_THAT(LoadError(VariantsOptions("rae-design", "[\"rae\"]",
-                                         "[experiment.designs.ok]\nfoveation.spp_outside = 1\n"
-                                         "[experiment.designs.masked]\nfoveation.spp_outside = 0.25\n")),
-               Contains("experiment.designs.masked:") && Contains("rae cannot") &&
-                   Contains("foveation.spp_outside = 0.25"));
-    // Points at 1 spp and above run the RAE, whatever the experiment's own foveation (a sweep runs
-    // its points only).
-    CHECK_NOTHROW(LoadExperiment(VariantsOptions("rae-points-ok", "[\"rae\"]",
-                                                 "budgets = [1, 2]\n[experiment.designs.d]\nfoveation.model = \"disc\"\n",
-                                                 {"foveation.spp_outside=0.5"})));
+// The RAE takes pixels without a path sample (filled from their neighbours): every point runs it,
+// below 1 spp too, and so does the experiment's own sampling.
+TEST_CASE("the RAE runs every point, those whose sampling goes below 1 spp included", "[app][designs]") {
+    CHECK_NOTHROW(LoadExperiment(VariantsOptions("rae-own", "[\"svgf\", \"rae\"]", "", {"foveation.spp_outside=0.5"})));
+    const ExperimentSpec spec = LoadExperiment(VariantsOptions("rae-budget", "[\"rae-spp\"]",
+                                                               "budgets = [0.5, 1]\n[experiment.designs.u]\n"
+                                                               "foveation = { model = \"uniform\", spp_floor = 0.0625 }\n"));
+    REQUIRE(spec.sweep.points.size() == 2);
+    CHECK(spec.sweep.points[0].config.denoise.denoisers == std::vector<std::string>{"rae-spp"});
 }
 
 namespace {

@@ -258,6 +258,79 @@ TEST_CASE("rae balance: grey gains in closed form, undone on the output", "[rae]
         }
 }
 
+// A surface pixel without a path sample (a periphery below 1 spp) is filled from its sampled
+// neighbours before the network sees it: the mean of the known pixels of the smallest aligned
+// 2^k block that holds any.
+TEST_CASE("rae empty pixels: push-pull fill in closed form", "[rae]") {
+    const int w = 8, h = 4;
+    auto frame = [&](auto known, auto colour) {
+        FrameInputs f;
+        f.Allocate(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                f.objectId(x, y) = 0;
+                f.albedo(x, y) = vec3(0.5f);
+                f.normal(x, y) = vec3(0, 0, 1);
+                f.linearDepth(x, y) = 1.0f;
+                f.sampleCount(x, y) = known(x, y) ? 2 : 0;
+                f.direct(x, y) = known(x, y) ? colour(x, y) : vec3(0.0f);
+            }
+        return f;
+    };
+    auto ramp = [](int x, int y) { return vec3(float(1 + x + 10 * y), 2.0f, 0.5f * float(x)); };
+    Tensor t;
+
+    // One sample per 2×2 block: each empty pixel takes its block's sample; the sampled ones keep
+    // theirs bit for bit, and the sample-count feature reads an empty pixel as one sample.
+    auto corner = [](int x, int y) { return x % 2 == 0 && y % 2 == 0; };
+    RaeFeatures(frame(corner, ramp), t);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const vec3 expected = ramp(x - x % 2, y - y % 2);
+            for (int c = 0; c < 3; ++c) CHECK(t.At(c, y, x) == expected[c]);
+            CHECK(t.At(7, y, x) == (corner(x, y) ? 0.25f : 0.0f));
+        }
+
+    // An empty 2×2 block takes the mean of the known pixels of its 4×4 block; an empty 4×4 block
+    // that of the whole 8×4 frame's known pixels.
+    auto holes = [](int x, int y) { return !(x < 2 && y < 2) && x < 4; };  // the right 4×4 empty too
+    RaeFeatures(frame(holes, ramp), t);
+    vec3 block(0.0f);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+            if (holes(x, y)) block += ramp(x, y) / 12.0f;
+    for (int c = 0; c < 3; ++c) {
+        CHECK(t.At(c, 0, 0) == Approx(block[c]));  // the empty top-left block
+        CHECK(t.At(c, 1, 1) == Approx(block[c]));
+        CHECK(t.At(c, 3, 7) == Approx(block[c]));  // the right half: the frame's only known pixels are that 4×4's
+        CHECK(t.At(c, 2, 2) == ramp(2, 2)[c]);
+    }
+
+    // A constant image stays constant wherever it is sampled; the background is neither filled nor
+    // read (its "illumination" here is large and must not leak).
+    FrameInputs f = frame([](int x, int y) { return (x + y) % 3 == 0; }, [](int, int) { return vec3(0.3f, 0.6f, 0.9f); });
+    f.objectId(7, 3) = kNoObject;
+    f.sampleCount(7, 3) = 1;
+    f.direct(7, 3) = vec3(100.0f);
+    f.objectId(6, 3) = kNoObject;  // an empty background pixel stays 0
+    f.sampleCount(6, 3) = 0;
+    f.direct(6, 3) = vec3(0.0f);
+    RaeFeatures(f, t);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (f.objectId(x, y) == kNoObject) continue;
+            CHECK(t.At(0, y, x) == Approx(0.3f));
+            CHECK(t.At(2, y, x) == Approx(0.9f));
+        }
+    CHECK(t.At(0, 3, 6) == 0.0f);
+    CHECK(t.At(0, 3, 7) == 100.0f);
+
+    // No sample anywhere: every pixel 0, nothing non-finite.
+    RaeFeatures(frame([](int, int) { return false; }, ramp), t);
+    CHECK(std::all_of(t.data.begin(), t.data.end(), [](float v) { return std::isfinite(v); }));
+    for (int c = 0; c < 3; ++c) CHECK(t.At(c, 2, 5) == 0.0f);
+}
+
 TEST_CASE("rae memory plan counts the hidden state as history", "[rae]") {
     const DenoiserParams p = GoldenParams();
     const RaeWeights& w = *SharedRaeWeights(p);

@@ -32,8 +32,9 @@ DenoiserParams GoldenParams(Precision precision) {
 }
 
 // A 37×21 frame of random direct light over a flat grey surface facing the camera, with per-pixel
-// sample counts 1 + x mod 8.
-FrameInputs RandomFlatFrame(Pcg32& rng) {
+// sample counts 1 + x mod 8; with `emptyPhase` ≥ 0, 3 of every 4 pixels have no path sample (the
+// one with (x + y + phase) mod 4 = 0 keeps it: a moving 1/4 mask).
+FrameInputs RandomFlatFrame(Pcg32& rng, int emptyPhase = -1) {
     FrameInputs f;
     f.Allocate(37, 21);
     for (int y = 0; y < 21; ++y)
@@ -44,6 +45,7 @@ FrameInputs RandomFlatFrame(Pcg32& rng) {
             f.linearDepth(x, y) = 2.0f;
             f.objectId(x, y) = 0;
             f.sampleCount(x, y) = uint16_t(1 + x % 8);
+            if (emptyPhase >= 0 && (x + y + emptyPhase) % 4 != 0) f.sampleCount(x, y) = 0, f.direct(x, y) = vec3(0.0f);
         }
     return f;
 }
@@ -131,16 +133,19 @@ TEST_CASE("rae on Vulkan: denoised frames follow the reference, and a camera cut
     if (!VulkanContext::Available()) FOVRT_SKIP("no Vulkan device");
     DenoiserParams p = GoldenParams(Precision::Fp32);
     p.rae.balance = GENERATE(false, true);  // with the `balance` mechanism's gains too
-    INFO("balance " << p.rae.balance);
+    const bool empty = GENERATE(false, true);  // 3 of 4 pixels without a path sample
+    INFO("balance " << p.rae.balance << ", empty pixels " << empty);
     RaeVulkanDenoiser vk("rae-spp", TestContext(), p);
     RaeReferenceDenoiser ref("rae-spp", p);
     Pcg32 rng(3);
     for (int frame = 0; frame < 4; ++frame) {
-        FrameInputs f = RandomFlatFrame(rng);
+        FrameInputs f = RandomFlatFrame(rng, empty ? frame : -1);
         f.cameraCut = frame == 2;
         Plane<vec3> a, b;
         vk.Denoise(f, a);
         ref.Denoise(f, b);
+        CHECK(std::all_of(a.data(), a.data() + a.size(),
+                          [](vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }));
         double err = 0.0, scale = 0.0;
         for (size_t i = 0; i < a.size(); ++i) {
             err = std::max(err, double(glm::length(a[i] - b[i])));

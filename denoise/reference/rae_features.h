@@ -5,11 +5,14 @@
 // Feature channels (kRaeFeatureChannels, in this order; the .raew header says how many a network
 // reads: 7, or 8 with the sample-count extension):
 //   0-2  direct + indirect illumination, demodulated by albedo (FrameInputs already is), linear HDR;
-//        NaN/Inf and negatives → 0. The network sees it raised to γ (RaeNetworkInput).
+//        NaN/Inf and negatives → 0. The network sees it raised to γ (RaeNetworkInput). A surface
+//        pixel without a path sample (sampleCount 0: a periphery below 1 spp) is filled from its
+//        sampled neighbours (RaeFillEmptyPixels) rather than seen black.
 //   3-4  view-space shading normal x, y (camera.View()); 0 for background
 //   5    depth d/(d + 1), d = linear depth in metres; 1 for background
 //   6    roughness (FrameInputs::roughness)
-//   7    log2(sample count)/4: 0 at 1 spp, 1 at 16 spp (the foveated extension)
+//   7    log2(max(sample count, 1))/4: 0 at 1 spp, 1 at 16 spp (the foveated extension); a filled
+//        empty pixel reads as one sample, the least the weights were trained on
 // Frames are zero-padded at the right and bottom to multiples of 2^L; the output is cropped.
 #pragma once
 
@@ -23,6 +26,14 @@ inline constexpr int kRaeFeatureChannels = 8;
 
 // The raw features of `in` (colour linear) at W×H (no padding): the dataset's input planes.
 void RaeFeatures(const FrameInputs& in, Tensor& features);
+// Push-pull hole filling (Gortler et al. 1996, the Lumigraph's pull-push) of channels 0-2 of a
+// W×H `features`: each pixel marked in `fill` takes the mean of the pixels marked in `known`
+// within the smallest enclosing aligned 2^k × 2^k block that holds any (pull: each coarser level
+// averages its known 2×2 children, weighted by how many known pixels each stands for; push: a
+// pixel with none takes its parent's value). Every other pixel is left as it is; with no known
+// pixel at all the filled ones become 0. The network has no notion of an empty pixel: it gets a
+// spatial estimate from the neighbours, as the SVGF family's spatial filter gives one.
+void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uint8_t>& fill, Tensor& features);
 // The `balance` mechanism's per-channel gains: g_c = m̄ / m_c, m_c the mean of colour channel c of
 // `features` over the frame and m̄ the mean of the three, so that g · colour is grey on average; 1
 // for a channel holding under 1e-4 of m̄ (no light to balance) and for a black frame. The network

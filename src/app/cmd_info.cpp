@@ -112,7 +112,7 @@ void PrintDenoisersPage() {
                 "Pixels without a path sample (an spp map of 0 there): every SVGF-family variant adds nothing\n"
                 "to such a pixel's histories and lets a disoccluded one be filled by its neighbours (svgf,\n"
                 "asvgf and asvgf-antilag read the sample counts for it only where the foveation goes below\n"
-                "1 spp); rae and rae-spp refuse such a foveation\n"
+                "1 spp); rae and rae-spp fill it from its sampled neighbours before the network\n"
                 "([algorithms.md](algorithms.md#what-is-implemented-and-the-choices-the-papers-leave-open)).\n"
                 "Per-pass time: `fovrt bench --denoisers` ([performance.md](performance.md)).\n\n");
     std::printf("## Names\n\n"

@@ -217,10 +217,6 @@ ExperimentSpec LoadExperiment(const ConfigOptions& options, const ExperimentArgs
             Fail("{}: experiment.designs needs metric.vdp = true (the curves are FovVideoVDP's JOD against rays)",
                  experiment.Origin("designs"));
     }
-    // A sweep runs its points only (each checked by LoadSamplingSweep), else the config's sampling.
-    if (!spec.sweep.Active())
-        if (std::optional<std::string> problem = DenoisersZeroSampleProblem(spec.variants, spec.config.foveation))
-            Fail("{}: experiment.variants: {}", experiment.Origin("variants"), *problem);
     if (!replayPath.empty() && experiment.table.contains("designs")) {
         Fail("{}: experiment.designs and --replay exclude each other (a recording has its own sampling)",
              experiment.Origin("designs"));

@@ -198,9 +198,6 @@ SamplingSweep LoadSamplingSweep(const ExperimentTable& experiment, const ConfigO
                      budget ? fmt::format(" at budget {:g} spp", *budget) : std::string(), e.what());
             }
             point.config.denoise.denoisers = variants;
-            if (std::optional<std::string> problem = DenoisersZeroSampleProblem(variants, point.config.foveation))
-                Fail("experiment.designs.{}{}: experiment.variants: {}", sweep.designs[d].name,
-                     budget ? fmt::format(" at budget {:g} spp", *budget) : std::string(), *problem);
             sweep.points.push_back(std::move(point));
         }
     }

@@ -17,8 +17,7 @@
 // A design may set only [foveation] keys and the eye-tracker keys of [gaze] (the rows of
 // FoveationParamTable and TrackerParamTable); with budgets, not foveation.ray_budget. A key outside
 // them, a name that is not one path component, a --set of a key a design sets, or a point whose
-// config is invalid (an infeasible budget, or a variant that cannot take the zero-sample pixels of
-// a sampling below 1 spp: the RAE) is refused in one line naming the design and key.
+// config is invalid (an infeasible budget) is refused in one line naming the design and key.
 #pragma once
 
 #include <optional>

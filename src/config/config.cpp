@@ -376,8 +376,6 @@ void CheckRules(const RunConfig& c, const Reader& r) {
     for (const std::optional<ParamProblem>& problem :
          {FoveationParamConflict(f), GazeParamConflict(c.gaze), DenoiserParamConflict(d.params)})
         if (problem) r.Bad(problem->key, problem->message);
-    if (std::optional<std::string> problem = DenoisersZeroSampleProblem(d.denoisers, f))
-        r.Bad("denoise.denoisers", *problem);
 }
 
 RunConfig Build(const toml::table& given, const Origins& origins, const std::string& sources,
@@ -568,15 +566,6 @@ uint64_t ParseByteSize(const std::string& text, const std::string& what) {
 }
 
 RunConfig DefaultConfig() { return Build(toml::table{}, {}, "defaults"); }
-
-std::optional<std::string> DenoisersZeroSampleProblem(const std::vector<std::string>& denoisers,
-                                                      const FoveationConfig& foveation) {
-    const std::optional<std::string> key = ZeroSppKey(foveation);
-    if (!key) return std::nullopt;
-    for (const std::string& name : denoisers)
-        if (std::optional<std::string> problem = ZeroSamplePixelsProblem(name, *key)) return problem;
-    return std::nullopt;
-}
 
 RunConfig LoadConfigFile(const std::string& path) {
     Origins origins;

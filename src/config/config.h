@@ -111,14 +111,6 @@ struct RunConfig {
 // The default job's configuration (validated like any other).
 RunConfig DefaultConfig();
 
-// The first of `denoisers` that cannot take pixels without a path sample while `foveation` may put
-// 0 in the spp map (ZeroSppKey), as one line naming the variant and the foveation key
-// (ZeroSamplePixelsProblem, denoise/variants.h); nullopt when every one can or the map holds no
-// zeros. Config validation checks denoise.denoisers with it, an experiment its variants and every
-// point of its sampling sweep.
-std::optional<std::string> DenoisersZeroSampleProblem(const std::vector<std::string>& denoisers,
-                                                      const FoveationConfig& foveation);
-
 // Parses "1234", "512MiB", "2GB" etc. into bytes; `what` names the option/key in errors.
 uint64_t ParseByteSize(const std::string& text, const std::string& what);
 

@@ -234,11 +234,6 @@ std::shared_ptr<LiveFrame> LiveLoop::Trace(const LiveControls& controls) {
         tracedDenoiser_ = controls.denoiser;
     }
     if (!(controls.foveation == runningFoveation_)) ApplyFoveation(controls.foveation);
-    // A config refuses the RAE below 1 spp; a live session's foveation moves under it, so it says so.
-    const std::optional<std::string> problem = DenoisersZeroSampleProblem({tracedDenoiser_}, runningFoveation_);
-    if (problem && !zeroSampleProblem_)
-        std::fprintf(stderr, "fovrt: %s; the live preview runs it anyway, those pixels black\n", problem->c_str());
-    zeroSampleProblem_ = problem.has_value();
 
     auto frame = std::make_shared<LiveFrame>();
     frame->startedAt = LiveClock::now();

@@ -125,9 +125,6 @@ private:
     std::string runningDenoiser_;  // the denoise stage's
     std::string tracedDenoiser_;   // the trace stage's (gradient samples, cut on a switch)
     FoveationParams runningFoveation_;
-    // The trace stage's: whether its denoiser cannot take the zero-sample pixels its foveation
-    // leaves (the RAE below 1 spp), said once each time it becomes so; a live session runs it anyway.
-    bool zeroSampleProblem_ = false;
     std::function<void(const SourcedFrame&)> onFrameStart_;
     std::function<void(const LiveFrame&)> onFrameDone_;
 
