@@ -441,6 +441,13 @@ TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slop
     REQUIRE(pooledReversed.size() == 1);
     CHECK(pooledReversed[0].saved.raysSaved.lower == pooled[0].saved.raysSaved.lower);
     CHECK(pooledReversed[0].saved.raysSaved.upper == pooled[0].saved.raysSaved.upper);
+    // Nor where the windows' maps traced slightly different rays: a point's rays are its units' mean.
+    GatheredCurves shifted = curves, shiftedReversed = reversed;
+    for (GatheredCurves* g : {&shifted, &shiftedReversed})
+        for (CurveRow& row : g->rows)
+            if (row.window == 1) row.tracedWhole *= 1.005;
+    CHECK(CompareDesigns(shifted, "uniform", {})[0].saved.raysSaved.estimate.value ==
+          CompareDesigns(shiftedReversed, "uniform", {})[0].saved.raysSaved.estimate.value);
     // Each window alone still gives its own saving.
     CHECK(CompareDesigns(GatherSweepRuns({dir / "w2"}, GazeWindows::kPooled), "uniform", {})[0]
               .saved.raysSaved.estimate.value == Approx(4.0).epsilon(1e-6));

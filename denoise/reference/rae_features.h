@@ -16,6 +16,9 @@
 // Frames are zero-padded at the right and bottom to multiples of 2^L; the output is cropped.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/frame_inputs.h"
 #include "core/image.h"
 #include "denoise/reference/rae_net.h"

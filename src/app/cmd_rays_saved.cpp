@@ -53,7 +53,7 @@ void RegisterRaysSavedCommand(CLI::App& app) {
         ->check(CLI::PositiveNumber);
     cmd->add_flag("--pool-gaze", o->poolGaze,
                   "Gather runs that differ only in where the eye looks (gaze source, recording or trace and its start, "
-                  "static direction): each gaze window with each seed is a unit of the bootstrap");
+                  "static direction): each gaze window with each seed is a unit of the bootstrap; then each window alone");
     cmd->callback([o] { PrintRaysSaved(*o); });
 }
 

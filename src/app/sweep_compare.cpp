@@ -314,19 +314,20 @@ std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const
             if (c.units.empty())
                 Fail("rays-saved: {} / {}: no {} is common to every point of '{}' and '{}'", sceneVariant.first,
                      sceneVariant.second, curves.windows.size() > 1 ? "window and seed" : "seed", anchor, design);
-            // A curve over those units, rays ascending; a point's rays are those of the first run holding it.
+            // A curve over those units, rays ascending; a point's rays are the mean of its units' (each
+            // run's rows hold that run's mean; pooled windows' maps differ a little), whatever the runs' order.
             auto curveOf = [&](const Points& points, bool fovea, std::vector<std::string>* budgets) {
                 SeededRateQualityCurve curve;
                 std::vector<std::pair<SeededRateQualityPoint, std::string>> sorted;
                 for (const auto& [budget, byUnit] : points) {
                     SeededRateQualityPoint p;
-                    const CurveRow* firstRun = nullptr;
+                    double rays = 0.0;
                     for (const SampleUnit& unit : c.units) {
                         const CurveRow* row = byUnit.at(unit);
-                        if (!firstRun || row->run < firstRun->run) firstRun = row;
+                        rays += row->tracedWhole;
                         p.jodPerSeed.push_back(fovea ? FovealQuality(row->relmseFovea) : row->jod);
                     }
-                    p.rays = firstRun->tracedWhole;
+                    p.rays = rays / double(c.units.size());
                     sorted.emplace_back(std::move(p), budget);
                 }
                 std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first.rays < b.first.rays; });
@@ -398,7 +399,14 @@ std::string PerWindowText(const GatheredCurves& curves, const std::string& ancho
         for (const std::string& d : designs)
             if (holds(d)) kept.push_back(d);
         if (!holds(anchor) || (!designs.empty() && kept.empty())) continue;
-        for (const DesignComparison& c : CompareDesigns(one, anchor, kept))
+        std::vector<DesignComparison> comparisons;
+        try {
+            comparisons = CompareDesigns(one, anchor, kept);
+        } catch (const Error& e) {  // e.g. no seed common to every point here: the pooled table stands
+            table.rows.push_back({fmt::format("w{}", w + 1), "—", "", "", "", e.what(), ""});
+            continue;
+        }
+        for (const DesignComparison& c : comparisons)
             table.rows.push_back({fmt::format("w{}", w + 1), c.saved.scene, c.saved.variant, c.saved.design,
                                   fmt::format("{}", c.units.size()), IntervalText(c.saved.raysSaved, "{:.2f}", "×"),
                                   IntervalText(c.saved.jodGain, "{:+.3f}", "")});
