@@ -43,56 +43,54 @@ void RaeFeatures(const FrameInputs& in, Tensor& f) {
 }
 
 void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uint8_t>& fill, Tensor& f) {
-    // Level k: the colour sums and known-pixel counts of each 2^k block (pull).
+    // Levels 1, 2, …: per 2^k block the colour sum and the count of its known pixels (pull), then,
+    // top down and in place, their mean or the parent's where the block holds none (push). Level 0
+    // is the features themselves; the pyramid adds a third of the pixels at 16 bytes each.
+    struct Cell {
+        vec3 colour{0.0f};
+        float count = 0.0f;
+    };
     struct Level {
         int w, h;
-        std::vector<double> sum;  // 3 per cell
-        std::vector<double> count;
+        std::vector<Cell> cells;
+        Cell& At(int x, int y) { return cells[size_t(y) * w + x]; }
     };
     std::vector<Level> levels;
-    Level base{f.w, f.h, std::vector<double>(size_t(3) * f.w * f.h, 0.0), std::vector<double>(size_t(f.w) * f.h, 0.0)};
+    levels.push_back({(f.w + 1) / 2, (f.h + 1) / 2, {}});
+    levels[0].cells.resize(size_t(levels[0].w) * levels[0].h);
     for (int y = 0; y < f.h; ++y)
-        for (int x = 0; x < f.w; ++x) {
-            const size_t i = size_t(y) * f.w + x;
-            if (!known[i]) continue;
-            base.count[i] = 1.0;
-            for (int c = 0; c < 3; ++c) base.sum[3 * i + c] = f.At(c, y, x);
-        }
-    levels.push_back(std::move(base));
+        for (int x = 0; x < f.w; ++x)
+            if (known[size_t(y) * f.w + x]) {
+                Cell& c = levels[0].At(x / 2, y / 2);
+                c.colour += vec3(f.At(0, y, x), f.At(1, y, x), f.At(2, y, x));
+                c.count += 1.0f;
+            }
     while (levels.back().w > 1 || levels.back().h > 1) {
-        const Level& fine = levels.back();
-        Level coarse{(fine.w + 1) / 2, (fine.h + 1) / 2, {}, {}};
-        coarse.sum.assign(size_t(3) * coarse.w * coarse.h, 0.0);
-        coarse.count.assign(size_t(coarse.w) * coarse.h, 0.0);
+        Level coarse{(levels.back().w + 1) / 2, (levels.back().h + 1) / 2, {}};
+        coarse.cells.resize(size_t(coarse.w) * coarse.h);
+        Level& fine = levels.back();
         for (int y = 0; y < fine.h; ++y)
             for (int x = 0; x < fine.w; ++x) {
-                const size_t i = size_t(y) * fine.w + x, j = size_t(y / 2) * coarse.w + x / 2;
-                coarse.count[j] += fine.count[i];
-                for (int c = 0; c < 3; ++c) coarse.sum[3 * j + c] += fine.sum[3 * i + c];
+                Cell& c = coarse.At(x / 2, y / 2);
+                c.colour += fine.At(x, y).colour;
+                c.count += fine.At(x, y).count;
             }
         levels.push_back(std::move(coarse));
     }
-    // Push: the mean of a cell's known pixels, or its parent's where it has none.
-    std::vector<double> parent(3, 0.0);  // the 1×1 top's parent: 0, for a frame with nothing known
-    int parentW = 1;
-    for (size_t k = levels.size(); k-- > 0;) {
-        Level& level = levels[k];
-        std::vector<double> mean(size_t(3) * level.w * level.h);
-        for (int y = 0; y < level.h; ++y)
-            for (int x = 0; x < level.w; ++x) {
-                const size_t i = size_t(y) * level.w + x;
-                const size_t p = k + 1 < levels.size() ? size_t(y / 2) * parentW + x / 2 : 0;
-                for (int c = 0; c < 3; ++c)
-                    mean[3 * i + c] = level.count[i] > 0.0 ? level.sum[3 * i + c] / level.count[i] : parent[3 * p + c];
+    for (size_t k = levels.size(); k-- > 0;)
+        for (int y = 0; y < levels[k].h; ++y)
+            for (int x = 0; x < levels[k].w; ++x) {
+                Cell& c = levels[k].At(x, y);
+                // The top's parent is black: a frame with nothing known fills with 0.
+                const vec3 parent = k + 1 < levels.size() ? levels[k + 1].At(x / 2, y / 2).colour : vec3(0.0f);
+                c.colour = c.count > 0.0f ? c.colour / c.count : parent;
             }
-        parent = std::move(mean);
-        parentW = level.w;
-    }
     for (int y = 0; y < f.h; ++y)
         for (int x = 0; x < f.w; ++x) {
             const size_t i = size_t(y) * f.w + x;
-            if (fill[i] && !known[i])
-                for (int c = 0; c < 3; ++c) f.At(c, y, x) = float(parent[3 * i + c]);
+            if (!fill[i] || known[i]) continue;
+            const vec3 mean = levels[0].At(x / 2, y / 2).colour;
+            for (int c = 0; c < 3; ++c) f.At(c, y, x) = mean[c];
         }
 }
 
