@@ -14,8 +14,10 @@ void RaeFeatures(const FrameInputs& in, Tensor& f) {
     const int w = in.width(), h = in.height();
     f = Tensor(kRaeFeatureChannels, h, w);
     const mat3 view = mat3(in.camera.View());
+    bool anyEmpty = false;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
+            anyEmpty |= in.sampleCount(x, y) == 0 && in.objectId(x, y) != kNoObject;
             const vec3 c = in.direct(x, y) + in.indirect(x, y);
             f.At(0, y, x) = Clean(c.x);
             f.At(1, y, x) = Clean(c.y);
@@ -29,17 +31,16 @@ void RaeFeatures(const FrameInputs& in, Tensor& f) {
             f.At(7, y, x) = std::log2(float(std::max<uint16_t>(in.sampleCount(x, y), 1))) * 0.25f;
         }
     // Surface pixels a sub-1-spp mask left without a path sample hold 0 illumination; the
-    // background holds none to fill from or into.
+    // background holds none to fill from or into. At 1 spp and above nothing is allocated.
+    if (!anyEmpty) return;
     std::vector<uint8_t> known(size_t(w) * h), fill(size_t(w) * h);
-    bool anyEmpty = false;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const bool surface = in.objectId(x, y) != kNoObject, sampled = in.sampleCount(x, y) > 0;
             known[size_t(y) * w + x] = surface && sampled;
             fill[size_t(y) * w + x] = surface && !sampled;
-            anyEmpty |= surface && !sampled;
         }
-    if (anyEmpty) RaeFillEmptyPixels(known, fill, f);
+    RaeFillEmptyPixels(known, fill, f);
 }
 
 void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uint8_t>& fill, Tensor& f) {
