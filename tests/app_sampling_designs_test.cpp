@@ -434,6 +434,13 @@ TEST_CASE("rays saved pooled over gaze windows: the geometric mean of equal-slop
     CHECK_THAT(perWindow, Catch::Matchers::Matches("[\\s\\S]*w1 +room +[^\\n]*2\\.00× \\[2\\.00, 2\\.00\\][\\s\\S]*"));
     CHECK_THAT(perWindow, Catch::Matchers::Matches("[\\s\\S]*w2 +room +[^\\n]*4\\.00× \\[4\\.00, 4\\.00\\][\\s\\S]*"));
     CHECK(PerWindowText(GatherSweepRuns({dir / "w2"}, GazeWindows::kPooled), "uniform", {}).empty());
+    // A window whose design shares no seed with its anchor: listed with the reason, the others kept.
+    GatheredCurves unpaired = curves;
+    for (CurveRow& row : unpaired.rows)
+        if (row.window == 1 && row.design == "fov") row.seed += 100;
+    const std::string partial = PerWindowText(unpaired, "uniform", {});
+    CHECK_THAT(partial, Catch::Matchers::Matches("[\\s\\S]*w1 +room +[^\\n]*2\\.00× \\[2\\.00, 2\\.00\\][\\s\\S]*"));
+    CHECK_THAT(partial, Catch::Matchers::Matches("[\\s\\S]*w2 +— +[^\\n]*no seed is common to every point[\\s\\S]*"));
     // The runs' order on the command line changes neither the windows' labels nor the interval.
     const GatheredCurves reversed = GatherSweepRuns({dir / "w2", dir / "w1"}, GazeWindows::kPooled);
     CHECK(reversed.windows == curves.windows);
