@@ -18,7 +18,7 @@ constexpr ParamRange kSppMasked = Closed(kMinSpp, kMaxSpp);
 // radius_deg bounds an eccentricity, the angle between two rays, which lies in [0°, 180°]:
 // a radius of 180° or more would make every direction foveal (the uniform model's job), and
 // every radius below it is a disc, so [0, 180).
-constexpr std::array<SettingRow<FoveationParams>, 21> kFoveationRows{{
+constexpr std::array<SettingRow<FoveationParams>, 22> kFoveationRows{{
     {{.key = "foveation.model",
       .doc = "spp model: disc (thesis), linear, acuity (Guenter 2012), uniform, perceptual (the metric's CSF)",
       .names = FoveationModelNames},
@@ -90,6 +90,10 @@ constexpr std::array<SettingRow<FoveationParams>, 21> kFoveationRows{{
       .doc = "ray budget: the most spp it scales a pixel to (the fovea of a steep map under a large budget)",
       .slider = kSpp},
      &F::sppCap},
+    {{.key = "foveation.spp_cap_ratio", .range = Closed(0, kMaxSpp),
+      .doc = "ray budget: > 0 = the cap follows the budget, this many times its mean spp (rounded up, at most "
+             "64), instead of spp_cap; at least 1"},
+     &F::sppCapRatio},
 }};
 static_assert(RowsWellFormed(kFoveationRows), "a [foveation] row is malformed (see ParamRowProblem)");
 
@@ -108,6 +112,11 @@ std::optional<ParamProblem> FoveationParamConflict(const FoveationParams& p) {
     if (p.noiseVisibility && p.model != "perceptual")
         return ParamProblem{"foveation.noise_visibility",
                             fmt::format("true is read by the perceptual model only (foveation.model = \"{}\")", p.model)};
+    if (p.sppCapRatio > 0.0f && p.sppCapRatio < 1.0f)
+        return ParamProblem{"foveation.spp_cap_ratio",
+                            fmt::format("{} would cap every pixel below the budget's mean: 0 (spp_cap decides) or "
+                                        "at least 1",
+                                        p.sppCapRatio)};
     if (!(p.peripheralDeg > p.fovealDeg))
         return ParamProblem{"foveation.peripheral_deg",
                             fmt::format("{} must be > foveation.foveal_deg = {}", p.peripheralDeg, p.fovealDeg)};

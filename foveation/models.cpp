@@ -313,16 +313,19 @@ private:
 // from frame to frame deterministically.
 class BudgetModel final : public SppModel {
 public:
-    BudgetModel(std::unique_ptr<SppModel> inner, int64_t budget, float floor, int cap)
-        : inner_(std::move(inner)), budget_(budget), floor_(floor), cap_(cap) {}
+    // The budget's keys of `p` (ray_budget, spp_floor, spp_cap, spp_cap_ratio); the cap is resolved
+    // per map, as it may follow the budget's mean over the map's pixels.
+    BudgetModel(std::unique_ptr<SppModel> inner, const FoveationParams& p)
+        : inner_(std::move(inner)), budget_(p.rayBudget), floor_(p.sppFloor), keys_(p) {}
     std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
 
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<float>& density,
                          const FrameFeedback& feedback) const override {
         inner_->GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
-        const double n = double(density.size()), floor = double(floor_), cap = double(cap_);
+        const int capSpp = BudgetSppCap(keys_, int64_t(density.size()));
+        const double n = double(density.size()), floor = double(floor_), cap = double(capSpp);
         const double target = std::clamp(double(budget_), n * floor, n * cap);
-        float dMin = float(cap_);
+        float dMin = float(capSpp);
         for (size_t i = 0; i < density.size(); ++i) {
             dMin = std::min(dMin, density[i]);
         }
@@ -362,6 +365,7 @@ public:
         Plane<float> density;
         GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
         spp.Resize(density.width(), density.height());
+        const double cap = double(BudgetSppCap(keys_, int64_t(density.size())));
         double carry = double(HashPcg(frameIndex ^ 0x5bd1e995u)) / 4294967296.0 - 0.5;
         for (int y = 0; y < spp.height(); ++y) {
             for (int i = 0; i < spp.width(); ++i) {
@@ -371,7 +375,7 @@ public:
                     continue;
                 }
                 double want = double(density(x, y)) + carry;
-                double value = std::clamp(std::floor(want + 0.5), 1.0, double(cap_));
+                double value = std::clamp(std::floor(want + 0.5), 1.0, cap);
                 carry = want - value;
                 spp(x, y) = uint16_t(value);
             }
@@ -382,15 +386,10 @@ private:
     std::unique_ptr<SppModel> inner_;
     int64_t budget_;
     float floor_;
-    int cap_;
+    FoveationParams keys_;
 };
 
 }  // namespace
-
-std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget, float sppFloor,
-                                               int sppCap) {
-    return std::make_unique<BudgetModel>(std::move(inner), rayBudget, sppFloor, sppCap);
-}
 
 NameList FoveationModelNames() { return kModelNames; }
 
@@ -423,8 +422,14 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
                  p.contentMasking ? "foveation.content_masking" : "foveation.pooling = \"metric\"");
         model = std::make_unique<DensityModel>(row, p, sensitivity, masking);
     }
-    if (p.rayBudget > 0) model = MakeBudgetedSppModel(std::move(model), p.rayBudget, p.sppFloor, p.sppCap);
+    if (p.rayBudget > 0) model = std::make_unique<BudgetModel>(std::move(model), p);
     return model;
+}
+
+int BudgetSppCap(const FoveationParams& p, int64_t pixels) {
+    if (!(p.sppCapRatio > 0.0f) || pixels <= 0) return p.sppCap;
+    const double cap = std::ceil(double(p.sppCapRatio) * double(p.rayBudget) / double(pixels) - 1e-9);
+    return int(std::clamp(cap, 1.0, double(kMaxSpp)));
 }
 
 }  // namespace fovrt

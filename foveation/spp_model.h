@@ -136,6 +136,10 @@ struct FoveationParams {
     int64_t rayBudget = 0;
     float sppFloor = 1.0f;
     int sppCap = 16;
+    // > 0: the cap follows the budget, ⌈sppCapRatio × budget / (W·H)⌉ (at most kMaxSpp), instead of
+    // sppCap: the best cap measured for a steep map is about four times the mean at every budget
+    // (docs/foveation-study.md), so one design can sweep budgets with it. 0 = sppCap.
+    float sppCapRatio = 0.0f;
 
     bool operator==(const FoveationParams&) const = default;
 };
@@ -160,14 +164,15 @@ void ValidateFoveationParams(const FoveationParams& params);
 std::optional<std::string> ZeroSppKey(const FoveationParams& params);
 inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSppKey(params).has_value(); }
 
-// Creates the model (wrapped in the ray-budget model when rayBudget > 0). Unknown model names and
+// Creates the model, wrapped when rayBudget > 0 in the ray-budget model: each map's total equals
+// the budget (within a few samples, and in expectation over frames where pixels fall below 1; see
+// models.cpp), each pixel's density in [sppFloor, BudgetSppCap]. Unknown model names and
 // out-of-range parameters throw fovrt::Error naming the foveation.* key; so does the perceptual
 // model without a `sensitivity`, and content_masking or pooling = "metric" without a `masking` (k = 0).
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {},
                                          const ContrastMasking& masking = {});
-// Wraps a model so each map's total equals `rayBudget` (within a few samples, and in expectation
-// over frames where pixels fall below 1; see models.cpp), each pixel's density in [sppFloor, sppCap].
-std::unique_ptr<SppModel> MakeBudgetedSppModel(std::unique_ptr<SppModel> inner, int64_t rayBudget, float sppFloor,
-                                               int sppCap);
+// The most spp the ray budget scales a pixel to in a W·H map: spp_cap, or with spp_cap_ratio > 0
+// the ratio times the budget's mean, rounded up, within [1, kMaxSpp].
+int BudgetSppCap(const FoveationParams& params, int64_t pixels);
 
 }  // namespace fovrt

@@ -183,6 +183,10 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     // Above 16 spp on average needs a raised cap (230400 pixels).
     fails({"foveation.ray_budget=3916800"}, "foveation.ray_budget");
     CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap=32"}).foveation.sppCap == 32);
+    // ... or a cap that follows the budget: 17 spp × 4 passes 64, so the cap is 64.
+    CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap_ratio=4"}).foveation.sppCapRatio == 4);
+    fails({"foveation.spp_cap_ratio=0.5"}, "foveation.spp_cap_ratio");
+    fails({"foveation.spp_cap_ratio=65"}, "foveation.spp_cap_ratio");
     CHECK(Resolve("", {"foveation.spp_outside=0.25"}).foveation.sppOutside == 0.25f);
     fails({"gaze.source=eyelink"}, "gaze.source");
     fails({"gaze.source=trace"}, "gaze.trace_path");
@@ -484,7 +488,7 @@ TEST_CASE("Settings tables: every key round-trips a non-default value through TO
         CHECK(ValueOf<T>(ConfigFromJson(ConfigToJson(c)), info.key) == changed);
         CHECK(ConfigToJson(back) == ConfigToJson(c));
     });
-    CHECK(keys.size() == 102);
+    CHECK(keys.size() == 103);
     RunConfig c = DefaultConfig();
     c.denoise.params.precision = Precision::Fp16;
     CHECK(ConfigFromTomlString(ConfigToToml(c)).denoise.params.precision == Precision::Fp16);
@@ -513,7 +517,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 103);  // the 102 table rows and denoise.precision
+    CHECK(listed.size() == 104);  // the 102 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {

@@ -102,3 +102,35 @@ TEST_CASE("A raised spp_cap lets a budget's fovea past 16 and no pixel past the 
     CHECK(largest(48, total48) == 48);
     CHECK(total48 == 48 * n);
 }
+
+TEST_CASE("spp_cap_ratio makes the cap follow the budget's mean", "[foveation]") {
+    const int w = 64, h = 48;
+    const int64_t n = int64_t(w) * h;
+    EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p;
+    p.model = "linear";  // 8 spp inside 5°, 1 beyond 30°: the fovea wants more than the cap
+    p.sppMax = 64;
+    p.sppMin = 0.0625f;
+    p.sppFloor = 0.0625f;
+    p.sppCapRatio = 4;
+    // Closed forms: ⌈4 × mean⌉, at most kMaxSpp; the ratio off leaves spp_cap.
+    for (const auto& [budget, cap] : std::vector<std::pair<int64_t, int>>{
+             {n, 4}, {2 * n, 8}, {6 * n, 24}, {n / 2, 2}, {n + n / 3, 6}, {20 * n, kMaxSpp}}) {
+        p.rayBudget = budget;
+        INFO("budget " << budget << " over " << n << " pixels");
+        CHECK(BudgetSppCap(p, n) == cap);
+        Plane<uint16_t> spp;
+        CreateSppModel(p)->Generate(cam, vec3(0, 0, -1), 3, spp);
+        uint16_t top = 0;
+        int64_t total = 0;
+        for (size_t i = 0; i < spp.size(); ++i) top = std::max(top, spp[i]), total += spp[i];
+        CHECK(top == cap);  // the steep map fills its fovea to the cap, and no pixel passes it
+        CHECK(std::abs(double(total - budget)) <= 0.02 * double(budget));
+    }
+    p.sppCapRatio = 0;
+    p.rayBudget = 2 * n;
+    CHECK(BudgetSppCap(p, n) == p.sppCap);
+    // Below 1 the cap would sit below the mean and make the budget infeasible: refused.
+    p.sppCapRatio = 0.5f;
+    CHECK_THROWS_WITH(CreateSppModel(p), Catch::Contains("foveation.spp_cap_ratio"));
+}

@@ -351,11 +351,15 @@ void CheckRules(const RunConfig& c, const Reader& r) {
     const FoveationConfig& f = c.foveation;
     const int64_t pixels = int64_t(c.camera.width) * c.camera.height;
     const int64_t leastBudget = int64_t(std::ceil(double(f.sppFloor) * double(pixels)));
-    if (f.rayBudget != 0 && (f.rayBudget < leastBudget || f.rayBudget > pixels * f.sppCap))
+    const int cap = BudgetSppCap(f, pixels);
+    if (f.rayBudget != 0 && (f.rayBudget < leastBudget || f.rayBudget > pixels * cap))
         r.Bad("foveation.ray_budget",
               fmt::format("{} is outside [spp_floor*width*height, spp_cap*width*height] = [{}, {}] (0 = no budget; "
-                          "foveation.spp_floor = {} and foveation.spp_cap = {} bound the spp it may scale a pixel to)",
-                          f.rayBudget, leastBudget, pixels * f.sppCap, f.sppFloor, f.sppCap));
+                          "foveation.spp_floor = {} and {} bound the spp it may scale a pixel to)",
+                          f.rayBudget, leastBudget, pixels * cap, f.sppFloor,
+                          f.sppCapRatio > 0 ? fmt::format("the cap of {} (foveation.spp_cap_ratio = {} times the mean)",
+                                                          cap, f.sppCapRatio)
+                                            : fmt::format("foveation.spp_cap = {}", cap)));
     const DenoiseConfig& d = c.denoise;
     std::map<std::string, std::string> spelled;  // canonical name → the first spelling of it
     for (const std::string& name : d.denoisers) {
