@@ -370,6 +370,18 @@ TEST_CASE("rays saved from sweeps that ran apart: what one sweep gives, and runs
     manifest["config"]["output"]["dir"] = "elsewhere";
     WriteJsonFile(dir / "wider" / "manifest.json", manifest);
     CHECK(GatherError({dir / "a", dir / "wider"}) == "(no error)");
+    // A run from a build before a key existed ran at its default, and compares with one that
+    // records it; a run that set it elsewhere still differs.
+    manifest = ReadJsonFile(dir / "b" / "manifest.json");
+    REQUIRE(manifest["config"]["foveation"].contains("spp_cap_ratio"));
+    manifest["config"]["foveation"].erase("spp_cap_ratio");
+    WriteJsonFile(dir / "wider" / "manifest.json", manifest);
+    CHECK(GatherError({dir / "a", dir / "wider"}) == "(no error)");
+    CHECK(GatherError({dir / "wider", dir / "a"}) == "(no error)");
+    manifest = ReadJsonFile(dir / "b" / "manifest.json");
+    manifest["config"]["foveation"]["spp_cap_ratio"] = 4;
+    WriteJsonFile(dir / "wider" / "manifest.json", manifest);
+    CHECK_THAT(GatherError({dir / "a", dir / "wider"}), Catch::Matchers::Contains("foveation.spp_cap_ratio differs"));
     // One name, two designs.
     fs::copy(dir / "b", dir / "renamed", fs::copy_options::recursive);
     nlohmann::json summary = ReadJsonFile(dir / "b" / "summary.json");

@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "config/config_io.h"
 #include "core/error.h"
 #include "gaze/gaze_source.h"
 
@@ -98,6 +99,17 @@ std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b, co
         return {};
     }
     return a == b ? std::string() : (prefix.empty() ? std::string("(the whole value)") : prefix);
+}
+
+// A key a run's manifest lacks was added to fovrt after that run, and the run ran at its default:
+// a key is added with the default that keeps what runs did before it. So runs from either side of
+// it compare, while a run that set the new key to anything else still differs.
+void FillAbsentKeys(nlohmann::json& config, const nlohmann::json& defaults) {
+    if (!config.is_object() || !defaults.is_object()) return;
+    for (const auto& [key, value] : defaults.items()) {
+        if (!config.contains(key)) config[key] = value;
+        else FillAbsentKeys(config[key], value);
+    }
 }
 
 using PointKey = std::tuple<std::string, std::string, std::string, std::string, size_t, uint32_t>;
@@ -202,12 +214,14 @@ GatheredCurves GatherSweepRuns(const std::vector<fs::path>& runs, GazeWindows ga
     std::map<std::string, std::pair<nlohmann::json, size_t>> designKeys;  // name -> keys, run
     std::map<PointKey, size_t> index;                                     // -> row in out.rows
     SceneContent content;
+    const nlohmann::json defaults = ConfigToJson(RunConfig{});
     for (size_t r = 0; r < runs.size(); ++r) {
         const fs::path& run = runs[r];
         const nlohmann::json manifest = ReadJson(run / "manifest.json");
         if (!manifest.value("complete", false) || !manifest.contains("sweep") || !manifest.contains("config"))
             Fail("{}: not a finished sampling-design sweep (its manifest.json has no complete sweep)", run.string());
         nlohmann::json config = manifest["config"];
+        FillAbsentKeys(config, defaults);
         config.erase("output");
         size_t window = 0;
         if (pooled) {
