@@ -428,7 +428,9 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
 
 int BudgetSppCap(const FoveationParams& p, int64_t pixels) {
     if (!(p.sppCapRatio > 0.0f) || pixels <= 0) return p.sppCap;
-    const double cap = std::ceil(double(p.sppCapRatio) * double(p.rayBudget) / double(pixels) - 1e-9);
+    // A budget set from a mean spp is that mean times W·H rounded to whole samples, up to half a
+    // sample above it, which must not raise the cap by one.
+    const double cap = std::ceil(double(p.sppCapRatio) * (double(p.rayBudget) - 0.5) / double(pixels));
     return int(std::clamp(cap, 1.0, double(kMaxSpp)));
 }
 

@@ -127,6 +127,10 @@ TEST_CASE("spp_cap_ratio makes the cap follow the budget's mean", "[foveation]")
         CHECK(top == cap);  // the steep map fills its fovea to the cap, and no pixel passes it
         CHECK(std::abs(double(total - budget)) <= 0.02 * double(budget));
     }
+    // A mean rounded up to whole samples keeps its cap: 1.75 spp over 3073 pixels is 5377.75,
+    // set as 5378, 4 × 5378 / 3073 = 7.0003.
+    p.rayBudget = std::llround(1.75 * 3073);
+    CHECK(BudgetSppCap(p, 3073) == 7);
     p.sppCapRatio = 0;
     p.rayBudget = 2 * n;
     CHECK(BudgetSppCap(p, n) == p.sppCap);
