@@ -316,15 +316,15 @@ public:
     // The budget's keys of `p` (ray_budget, spp_floor, spp_cap, spp_cap_ratio); the cap is resolved
     // per map, as it may follow the budget's mean over the map's pixels.
     BudgetModel(std::unique_ptr<SppModel> inner, const FoveationParams& p)
-        : inner_(std::move(inner)), budget_(p.rayBudget), floor_(p.sppFloor), keys_(p) {}
+        : inner_(std::move(inner)), keys_(p) {}
     std::string Name() const override { return "budget(" + inner_->Name() + ")"; }
 
     void GenerateDensity(const EyeCamera& camera, const vec3& gazeEye, uint32_t frameIndex, Plane<float>& density,
                          const FrameFeedback& feedback) const override {
         inner_->GenerateDensity(camera, gazeEye, frameIndex, density, feedback);
         const int capSpp = BudgetSppCap(keys_, int64_t(density.size()));
-        const double n = double(density.size()), floor = double(floor_), cap = double(capSpp);
-        const double target = std::clamp(double(budget_), n * floor, n * cap);
+        const double n = double(density.size()), floor = double(keys_.sppFloor), cap = double(capSpp);
+        const double target = std::clamp(double(keys_.rayBudget), n * floor, n * cap);
         float dMin = float(capSpp);
         for (size_t i = 0; i < density.size(); ++i) {
             dMin = std::min(dMin, density[i]);
@@ -384,8 +384,6 @@ public:
 
 private:
     std::unique_ptr<SppModel> inner_;
-    int64_t budget_;
-    float floor_;
     FoveationParams keys_;
 };
 
