@@ -136,7 +136,7 @@ struct FoveationParams {
     int64_t rayBudget = 0;
     float sppFloor = 1.0f;
     int sppCap = 16;
-    // > 0: the cap follows the budget, ⌈sppCapRatio × budget / (W·H)⌉ (at most kMaxSpp), instead of
+    // > 0: the cap follows the budget, ⌈sppCapRatio × the mean⌉ (at most kMaxSpp; BudgetSppCap), instead of
     // sppCap: the best cap measured for a steep map is about four times the mean at every budget
     // (docs/foveation-study.md), so one design can sweep budgets with it. 0 = sppCap.
     float sppCapRatio = 0.0f;

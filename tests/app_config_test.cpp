@@ -517,7 +517,7 @@ TEST_CASE("config --keys lists every key the writer writes, with its default", "
         else CHECK(!line.defaultValue.empty());
     }
     CHECK(listed == written);
-    CHECK(listed.size() == 104);  // the 102 table rows and denoise.precision
+    CHECK(listed.size() == 104);  // the 103 table rows and denoise.precision
 }
 
 TEST_CASE("Settings tables: a value outside its row fails in one line naming the key and the range", "[config]") {

@@ -108,7 +108,7 @@ TEST_CASE("spp_cap_ratio makes the cap follow the budget's mean", "[foveation]")
     const int64_t n = int64_t(w) * h;
     EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
     FoveationParams p;
-    p.model = "linear";  // 8 spp inside 5°, 1 beyond 30°: the fovea wants more than the cap
+    p.model = "linear";  // 64 spp inside 5°, 1/16 beyond 30°: the fovea wants more than the cap
     p.sppMax = 64;
     p.sppMin = 0.0625f;
     p.sppFloor = 0.0625f;

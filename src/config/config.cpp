@@ -354,7 +354,7 @@ void CheckRules(const RunConfig& c, const Reader& r) {
     const int cap = BudgetSppCap(f, pixels);
     if (f.rayBudget != 0 && (f.rayBudget < leastBudget || f.rayBudget > pixels * cap))
         r.Bad("foveation.ray_budget",
-              fmt::format("{} is outside [spp_floor*width*height, spp_cap*width*height] = [{}, {}] (0 = no budget; "
+              fmt::format("{} is outside [spp_floor*width*height, cap*width*height] = [{}, {}] (0 = no budget; "
                           "foveation.spp_floor = {} and {} bound the spp it may scale a pixel to)",
                           f.rayBudget, leastBudget, pixels * cap, f.sppFloor,
                           f.sppCapRatio > 0 ? fmt::format("the cap of {} (foveation.spp_cap_ratio = {} times the mean)",
