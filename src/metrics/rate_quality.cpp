@@ -216,8 +216,8 @@ BjontegaardResult BjontegaardDelta(const RateQualityCurve& anchor, const RateQua
         // The ranges as measured (rays, not ln rays).
         const bool jod = delta == RateQualityDelta::kRaysSaved;
         const auto range = [jod](const RateQualityCurve& c) {
-            return jod ? fmt::format("[{}, {}]", c.front().jod, c.back().jod)
-                       : fmt::format("[{}, {}]", c.front().rays, c.back().rays);
+            return jod ? fmt::format("[{:.4g}, {:.4g}]", c.front().jod, c.back().jod)
+                       : fmt::format("[{:.4g}, {:.4g}]", c.front().rays, c.back().rays);
         };
         result.reason = fmt::format("the curves' {} do not overlap: anchor {}, test {}", jod ? quality : "rays",
                                     range(sortedAnchor), range(sortedTest));
