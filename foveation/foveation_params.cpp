@@ -92,7 +92,8 @@ constexpr std::array<SettingRow<FoveationParams>, 22> kFoveationRows{{
      &F::sppCap},
     {{.key = "foveation.spp_cap_ratio", .range = Closed(0, kMaxSpp),
       .doc = "ray budget: > 0 = the cap follows the budget, this many times its mean spp (rounded up, at most "
-             "64), instead of spp_cap; at least 1"},
+             "64), instead of spp_cap; at least 1",
+      .slider = Closed(1, 16)},
      &F::sppCapRatio},
 }};
 static_assert(RowsWellFormed(kFoveationRows), "a [foveation] row is malformed (see ParamRowProblem)");

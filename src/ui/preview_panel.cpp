@@ -50,7 +50,12 @@ bool SliderOf(const char* label, const char* key, float& value, const char* form
     return ImGui::SliderFloat(label, &value, float(span.min), float(span.max), format);
 }
 
-bool FoveationControls(FoveationParams& f) {
+// The cap ratio a "cap follows the budget" tick starts from: the best cap measured for a steep
+// map is about four times the budget's mean (docs/foveation-study.md, a cap that follows the budget).
+constexpr float kStartingCapRatio = 4.0f;
+
+// `pixels`: one eye's W·H, to show the cap a ratio gives.
+bool FoveationControls(FoveationParams& f, int64_t pixels) {
     std::vector<std::string> models(FoveationModelNames().begin(), FoveationModelNames().end());
     bool changed = Combo("model", models, f.model);
     if (f.model != "perceptual") {  // read by the perceptual model only
@@ -85,7 +90,17 @@ bool FoveationControls(FoveationParams& f) {
     }
     if (f.rayBudget > 0) {
         changed |= SliderOf("spp floor", "foveation.spp_floor", f.sppFloor, "%.3g");
-        changed |= SliderOf("spp cap", "foveation.spp_cap", f.sppCap);
+        bool capFollows = f.sppCapRatio > 0.0f;
+        if (ImGui::Checkbox("cap follows the budget", &capFollows)) {
+            f.sppCapRatio = capFollows ? kStartingCapRatio : 0.0f;
+            changed = true;
+        }
+        if (capFollows) {  // spp_cap is not read while a ratio is set
+            changed |= SliderOf("cap x mean", "foveation.spp_cap_ratio", f.sppCapRatio, "%.2g");
+            Text(fmt::format("cap: {} spp", BudgetSppCap(f, pixels)));
+        } else {
+            changed |= SliderOf("spp cap", "foveation.spp_cap", f.sppCap);
+        }
     }
     return changed;
 }
@@ -123,7 +138,8 @@ void DrawPreviewPanel(LiveLoop& loop, PreviewFrameSource* sourcePtr, const LiveS
                            "%.1f");
     }
     if (ImGui::CollapsingHeader("Foveation")) {
-        if (FoveationControls(controls.foveation)) {
+        const int64_t pixels = int64_t(loop.Config().camera.width) * loop.Config().camera.height;
+        if (FoveationControls(controls.foveation, pixels)) {
             try {
                 loop.SetFoveation(controls.foveation);
             } catch (const std::exception&) {
