@@ -6,6 +6,7 @@
 // its colour 0 as a sample instead darkens the image by about a quarter, far above the bound.
 // (The first frame, each empty pixel filled spatially from its sampled neighbours, is smooth: the
 // error rises while the histories are shorter than SVGF's variance threshold, then falls below it.)
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -75,5 +76,48 @@ TEST_CASE("a still view through a moving sparse mask converges towards the refer
                   << error.back());
         CHECK(error.back() < error.front());
         CHECK(error.back() < 0.007);
+    }
+}
+
+// The RAE family does not accumulate: its recurrent state carries features, not a running mean, so
+// on a still view its error does not fall with frames as SVGF's does (with the committed weights it
+// holds at about 0.08 from the first frame, most of it an overall brightening of ~13 %: issue of
+// its training, docs/limitations.md). What a sparse mask must not do is make it worse than the same
+// rays spread evenly: a pixel without a sample is filled from its sampled neighbours and reads
+// their sample count. Mean error over frames 16–31 with the committed weights: rae 0.091 masked
+// against 0.079 at 1 spp everywhere, rae-spp 0.068 against 0.075. Reading a filled pixel as one
+// sample, rae-spp took the mask's pattern for noise and brightened the image by 38 %: 0.21.
+TEST_CASE("rae and rae-spp through a moving sparse mask do no worse than the same rays spread evenly",
+          "[zero_samples][rae]") {
+    const Scene scene = BoxScene();
+    const EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
+    auto renderer = CreateRenderer(scene, RenderSettings{});
+    Plane<vec3> reference;
+    renderer->RenderReference(0, camera, 1024, 77, reference);
+    for (const char* name : {"rae", "rae-spp"}) {
+        // Mean relMSE over the second half of the frames.
+        auto meanError = [&](bool masked) {
+            DenoiserParams params = ParamsForDenoiser(name, DenoiserParams{});
+            params.rae.weights = (SourceDir() / params.rae.weights).string();
+            params.rae.weightsSpp = (SourceDir() / params.rae.weightsSpp).string();
+            params.sampleCountsMayBeZero = masked;
+            auto denoiser = CreateDenoiser(name, "cpu", params);
+            renderer->Restart(3);
+            double sum = 0.0;
+            Plane<vec3> out;
+            for (uint32_t frame = 0; frame < kFrames; ++frame) {
+                renderer->SetFrame(frame);
+                FrameInputs f;
+                renderer->RenderEye(0, camera, camera,
+                                    masked ? MovingQuarterMask(frame) : Plane<uint16_t>(kW, kH, uint16_t(1)), f);
+                denoiser->Denoise(f, out);
+                REQUIRE(std::all_of(out.vector().begin(), out.vector().end(), [](vec3 c) { return std::isfinite(c.x + c.y + c.z); }));
+                if (frame >= kFrames / 2) sum += RelativeSquaredError(out, reference);
+            }
+            return sum / (kFrames / 2);
+        };
+        const double masked = meanError(true), even = meanError(false);
+        INFO(name << ": mean error through the mask " << masked << ", at 1 spp everywhere " << even);
+        CHECK(masked < 1.2 * even);
     }
 }

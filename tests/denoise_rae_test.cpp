@@ -263,6 +263,9 @@ TEST_CASE("rae balance: grey gains in closed form, undone on the output", "[rae]
 // 2^k block that holds any.
 TEST_CASE("rae empty pixels: push-pull fill in closed form", "[rae]") {
     const int w = 8, h = 4;
+    // Sampled pixels hold 1, 2, 4 or 8 samples, by column.
+    auto count = [](int x, int) { return uint16_t(1u << (x % 4)); };
+    auto countFeature = [](int x, int) { return float(x % 4) * 0.25f; };
     auto frame = [&](auto known, auto colour) {
         FrameInputs f;
         f.Allocate(w, h);
@@ -272,7 +275,7 @@ TEST_CASE("rae empty pixels: push-pull fill in closed form", "[rae]") {
                 f.albedo(x, y) = vec3(0.5f);
                 f.normal(x, y) = vec3(0, 0, 1);
                 f.linearDepth(x, y) = 1.0f;
-                f.sampleCount(x, y) = known(x, y) ? 2 : 0;
+                f.sampleCount(x, y) = known(x, y) ? count(x, y) : 0;
                 f.direct(x, y) = known(x, y) ? colour(x, y) : vec3(0.0f);
             }
         return f;
@@ -280,15 +283,15 @@ TEST_CASE("rae empty pixels: push-pull fill in closed form", "[rae]") {
     auto ramp = [](int x, int y) { return vec3(float(1 + x + 10 * y), 2.0f, 0.5f * float(x)); };
     Tensor t;
 
-    // One sample per 2×2 block: each empty pixel takes its block's sample; the sampled ones keep
-    // theirs bit for bit, and the sample-count feature reads an empty pixel as one sample.
+    // One sampled pixel per 2×2 block: each empty pixel takes its block's colour and sample count;
+    // the sampled ones keep theirs bit for bit.
     auto corner = [](int x, int y) { return x % 2 == 0 && y % 2 == 0; };
     RaeFeatures(frame(corner, ramp), t);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const vec3 expected = ramp(x - x % 2, y - y % 2);
             for (int c = 0; c < 3; ++c) CHECK(t.At(c, y, x) == expected[c]);
-            CHECK(t.At(7, y, x) == (corner(x, y) ? 0.25f : 0.0f));
+            CHECK(t.At(7, y, x) == countFeature(x - x % 2, y - y % 2));
         }
 
     // An empty 2×2 block takes the mean of the known pixels of its 4×4 block; an empty 4×4 block
@@ -296,15 +299,22 @@ TEST_CASE("rae empty pixels: push-pull fill in closed form", "[rae]") {
     auto holes = [](int x, int y) { return !(x < 2 && y < 2) && x < 4; };  // the right 4×4 empty too
     RaeFeatures(frame(holes, ramp), t);
     vec3 block(0.0f);
+    float blockCount = 0.0f;
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x)
-            if (holes(x, y)) block += ramp(x, y) / 12.0f;
+            if (holes(x, y)) {
+                block += ramp(x, y) / 12.0f;
+                blockCount += countFeature(x, y) / 12.0f;
+            }
     for (int c = 0; c < 3; ++c) {
         CHECK(t.At(c, 0, 0) == Approx(block[c]));  // the empty top-left block
         CHECK(t.At(c, 1, 1) == Approx(block[c]));
         CHECK(t.At(c, 3, 7) == Approx(block[c]));  // the right half: the frame's only known pixels are that 4×4's
         CHECK(t.At(c, 2, 2) == ramp(2, 2)[c]);
     }
+    CHECK(t.At(7, 0, 0) == Approx(blockCount));
+    CHECK(t.At(7, 3, 7) == Approx(blockCount));
+    CHECK(t.At(7, 2, 3) == countFeature(3, 2));
 
     // A constant image stays constant wherever it is sampled; the background is neither filled nor
     // read (its "illumination" here is large and must not leak).

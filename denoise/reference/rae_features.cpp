@@ -46,9 +46,10 @@ void RaeFeatures(const FrameInputs& in, Tensor& f) {
 void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uint8_t>& fill, Tensor& f) {
     // Levels 1, 2, …: per 2^k block the colour sum and the count of its known pixels (pull), then,
     // top down and in place, their mean or the parent's where the block holds none (push). Level 0
-    // is the features themselves; the pyramid adds a third of the pixels at 16 bytes each.
+    // is the features themselves; the pyramid adds a third of the pixels at 20 bytes each.
     struct Cell {
         vec3 colour{0.0f};
+        float samples = 0.0f;  // the sample-count feature (channel 7)
         float count = 0.0f;
     };
     struct Level {
@@ -64,6 +65,7 @@ void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uin
             if (known[size_t(y) * f.w + x]) {
                 Cell& c = levels[0].At(x / 2, y / 2);
                 c.colour += vec3(f.At(0, y, x), f.At(1, y, x), f.At(2, y, x));
+                c.samples += f.At(7, y, x);
                 c.count += 1.0f;
             }
     while (levels.back().w > 1 || levels.back().h > 1) {
@@ -74,6 +76,7 @@ void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uin
             for (int x = 0; x < fine.w; ++x) {
                 Cell& c = coarse.At(x / 2, y / 2);
                 c.colour += fine.At(x, y).colour;
+                c.samples += fine.At(x, y).samples;
                 c.count += fine.At(x, y).count;
             }
         levels.push_back(std::move(coarse));
@@ -83,15 +86,17 @@ void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uin
             for (int x = 0; x < levels[k].w; ++x) {
                 Cell& c = levels[k].At(x, y);
                 // The top's parent is black: a frame with nothing known fills with 0.
-                const vec3 parent = k + 1 < levels.size() ? levels[k + 1].At(x / 2, y / 2).colour : vec3(0.0f);
-                c.colour = c.count > 0.0f ? c.colour / c.count : parent;
+                const Cell parent = k + 1 < levels.size() ? levels[k + 1].At(x / 2, y / 2) : Cell{};
+                c.colour = c.count > 0.0f ? c.colour / c.count : parent.colour;
+                c.samples = c.count > 0.0f ? c.samples / c.count : parent.samples;
             }
     for (int y = 0; y < f.h; ++y)
         for (int x = 0; x < f.w; ++x) {
             const size_t i = size_t(y) * f.w + x;
             if (!fill[i] || known[i]) continue;
-            const vec3 mean = levels[0].At(x / 2, y / 2).colour;
-            for (int c = 0; c < 3; ++c) f.At(c, y, x) = mean[c];
+            const Cell& mean = levels[0].At(x / 2, y / 2);
+            for (int c = 0; c < 3; ++c) f.At(c, y, x) = mean.colour[c];
+            f.At(7, y, x) = mean.samples;
         }
 }
 
