@@ -614,7 +614,7 @@ TEST_CASE("a slider span outside its row's range is a malformed row", "[config]"
     for (const char* key : {"foveation.spp_inside", "foveation.radius_px", "foveation.foveal_deg",
                             "foveation.peripheral_deg", "foveation.mar_slope", "foveation.uniform_spp",
                             "foveation.spp_outside", "foveation.spp_min", "foveation.spp_floor",
-                            "foveation.noise_frequency"})
+                            "foveation.noise_frequency", "foveation.spp_cap", "foveation.spp_cap_ratio"})
         CHECK(!FindRow(FoveationParamTable(), key)->slider.Empty());
 }
 

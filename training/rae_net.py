@@ -20,7 +20,8 @@ Inputs (channel order), all produced by fovrt (denoise/reference/rae_features.*)
       max(c, 0)^gamma (gamma = 0.2, paper §4.4), applied here after augmentation
   3-4 view-space normal x, y        5 depth d/(d+1) (d metres; background 1)
   6   roughness                     7 (optional) log2(max(n, 1))/4, n the sample count: the foveated
-      spp extension (a pixel without a path sample is filled from its neighbours and reads as n = 1)
+      spp extension (a pixel without a path sample is filled from its
+      sampled neighbours and reads the mean of their value)
 Output: illumination^gamma; fovrt inverts (max(y,0)^(1/gamma)) and remodulates.
 
 Weight file (.raew, little endian), read by denoise/reference/rae_weights.cpp:

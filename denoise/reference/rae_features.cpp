@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/check.h"
+
 namespace fovrt {
 namespace {
 
@@ -44,9 +46,11 @@ void RaeFeatures(const FrameInputs& in, Tensor& f) {
 }
 
 void RaeFillEmptyPixels(const std::vector<uint8_t>& known, const std::vector<uint8_t>& fill, Tensor& f) {
-    // Levels 1, 2, …: per 2^k block the colour sum and the count of its known pixels (pull), then,
-    // top down and in place, their mean or the parent's where the block holds none (push). Level 0
-    // is the features themselves; the pyramid adds a third of the pixels at 20 bytes each.
+    FOVRT_CHECK(f.c >= kRaeFeatureChannels && known.size() == size_t(f.w) * f.h && fill.size() == known.size());
+    // Levels 1, 2, …: per 2^k block the sums of the colour and of the sample-count feature over its
+    // known pixels and their count (pull), then, top down and in place, their means or the
+    // parent's where the block holds none (push). Level 0 is the features themselves; the pyramid
+    // adds a third of the pixels at 20 bytes each.
     struct Cell {
         vec3 colour{0.0f};
         float samples = 0.0f;  // the sample-count feature (channel 7)

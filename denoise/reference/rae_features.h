@@ -13,7 +13,7 @@
 //   6    roughness (FrameInputs::roughness)
 //   7    log2(max(sample count, 1))/4: 0 at 1 spp, 1 at 16 spp (the foveated extension); a filled
 //        empty pixel reads what the pixels it was filled from read: its colour is their mean, at
-//        least as converged as they are. Read as one sample instead, rae-spp took the mask's
+//        least as converged as they are. Read as one sample instead, rae-spp takes the mask's
 //        pattern for noise: on a still box scene under a moving quarter mask, relMSE 0.21 against
 //        0.068 this way (tests/app_zero_samples_convergence_test.cpp).
 // Frames are zero-padded at the right and bottom to multiples of 2^L; the output is cropped.
