@@ -47,15 +47,24 @@ double RelativeSquaredError(const Plane<vec3>& image, const Plane<vec3>& referen
     return err / norm;
 }
 
+// The box scene's first camera at kW×kH, its tracer, and its 1024-spp reference.
+struct StillView {
+    Scene scene = BoxScene();
+    EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
+    std::unique_ptr<Renderer> renderer = CreateRenderer(scene, RenderSettings{});
+    Plane<vec3> reference = [this] {
+        Plane<vec3> image;
+        renderer->RenderReference(0, camera, 1024, 77, image);
+        return image;
+    }();
+};
+
 }  // namespace
 
 TEST_CASE("a still view through a moving sparse mask converges towards the reference",
           "[zero_samples]") {
-    const Scene scene = BoxScene();
-    const EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
-    auto renderer = CreateRenderer(scene, RenderSettings{});
-    Plane<vec3> reference;
-    renderer->RenderReference(0, camera, 1024, 77, reference);
+    StillView view;
+    auto& [scene, camera, renderer, reference] = view;
     for (const DenoiserVariant& variant : DenoiserVariants()) {
         if (variant.family == DenoiserFamily::Rae) continue;
         const std::string name(variant.name);
@@ -87,14 +96,12 @@ TEST_CASE("a still view through a moving sparse mask converges towards the refer
 // their sample count. Mean error over frames 16–31 with the committed weights: rae 0.091 masked
 // against 0.079 at 1 spp everywhere, rae-spp 0.068 against 0.075. Reading a filled pixel as one
 // sample, rae-spp takes the mask's pattern for noise and brightens the image by 38 %: 0.21. rae
-// does not read the count: its check guards the fill itself (seen black, three pixels in four would read no light).
+// does not read the count: its check guards the fill itself (seen black, three pixels in four
+// would read no light).
 TEST_CASE("rae and rae-spp through a moving sparse mask do no worse than the same rays spread evenly",
           "[zero_samples][rae]") {
-    const Scene scene = BoxScene();
-    const EyeCamera camera = MakeCamera(scene.cameraPath.front().pose, kW, kH);
-    auto renderer = CreateRenderer(scene, RenderSettings{});
-    Plane<vec3> reference;
-    renderer->RenderReference(0, camera, 1024, 77, reference);
+    StillView view;
+    auto& [scene, camera, renderer, reference] = view;
     for (const char* name : {"rae", "rae-spp"}) {
         // Mean relMSE over the second half of the frames.
         auto meanError = [&](bool masked) {
