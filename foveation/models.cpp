@@ -425,10 +425,14 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
 }
 
 int BudgetSppCap(const FoveationParams& p, int64_t pixels) {
-    if (!(p.sppCapRatio > 0.0f) || pixels <= 0) return p.sppCap;
+    if (pixels <= 0) return p.sppCap;
     // A budget set from a mean spp is that mean times W·H rounded to whole samples, up to half a
     // sample above it, which must not raise the cap by one.
-    const double cap = std::ceil(double(p.sppCapRatio) * (double(p.rayBudget) - 0.5) / double(pixels));
+    const double mean = (double(p.rayBudget) - 0.5) / double(pixels);
+    double cap = p.sppCapRatio > 0.0f ? std::ceil(double(p.sppCapRatio) * mean) : double(p.sppCap);
+    // The cap bounds a shaped map's peak; a uniform map has none, every pixel at the mean, so its
+    // budget is feasible up to kMaxSpp whatever the cap (uniform sampling at 32 spp as a sweep's anchor).
+    if (p.model == "uniform") cap = std::max(cap, std::ceil(mean));
     return int(std::clamp(cap, 1.0, double(kMaxSpp)));
 }
 

@@ -131,7 +131,7 @@ struct FoveationParams {
 
     // Fixed ray budget: total samples per eye per frame (0 = none). Any model's map is scaled to it,
     // each pixel kept in [sppFloor, sppCap], then dithered (at 1 and above) or masked (below 1);
-    // the budget is clamped to the feasible [sppFloor*W*H, sppCap*W*H]. sppFloor = 1 traces every
+    // the budget is clamped to the feasible [sppFloor*W*H, BudgetSppCap*W*H]. sppFloor = 1 traces every
     // pixel every frame.
     int64_t rayBudget = 0;
     float sppFloor = 1.0f;
@@ -172,7 +172,8 @@ inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSp
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {},
                                          const ContrastMasking& masking = {});
 // The most spp the ray budget scales a pixel to in a W·H map: spp_cap, or with spp_cap_ratio > 0
-// the ratio times the budget's mean, rounded up, within [1, kMaxSpp].
+// the ratio times the budget's mean, rounded up; for the uniform model at least the mean (it has no
+// peak to bound); within [1, kMaxSpp].
 int BudgetSppCap(const FoveationParams& params, int64_t pixels);
 
 }  // namespace fovrt

@@ -183,6 +183,8 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     // Above 16 spp on average needs a raised cap (230400 pixels).
     fails({"foveation.ray_budget=3916800"}, "foveation.ray_budget");
     CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap=32"}).foveation.sppCap == 32);
+    // ... except for the uniform model, which has no peak for the cap to bound.
+    CHECK(Resolve("", {"foveation.model=uniform", "foveation.ray_budget=3916800"}).foveation.rayBudget == 3916800);
     // ... or a cap that follows the budget: 17 spp × 4 passes 64, so the cap is 64.
     CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap_ratio=4"}).foveation.sppCapRatio == 4);
     fails({"foveation.spp_cap_ratio=0.5"}, "foveation.spp_cap_ratio");

@@ -138,3 +138,29 @@ TEST_CASE("spp_cap_ratio makes the cap follow the budget's mean", "[foveation]")
     p.sppCapRatio = 0.5f;
     CHECK_THROWS_WITH(CreateSppModel(p), Catch::Contains("foveation.spp_cap_ratio"));
 }
+
+TEST_CASE("A uniform map's budget is not bounded by the cap", "[foveation]") {
+    // The cap bounds a shaped map's peak; uniform sampling's pixels all sit at the mean, so a sweep
+    // can anchor on uniform at 32 spp with the default cap of 16.
+    const int w = 40, h = 30;
+    const int64_t n = int64_t(w) * h;
+    EyeCamera cam(Pose(), Fov::FromHorizontal(Radians(100.0f), float(w) / h), w, h);
+    FoveationParams p;
+    p.model = "uniform";
+    p.sppFloor = 0.0625f;
+    p.rayBudget = 32 * n;
+    REQUIRE(p.sppCap == 16);
+    CHECK(BudgetSppCap(p, n) == 32);
+    Plane<uint16_t> spp;
+    CreateSppModel(p)->Generate(cam, vec3(0, 0, -1), 5, spp);
+    for (size_t i = 0; i < spp.size(); ++i) REQUIRE(spp[i] == 32);
+    // Below the cap nothing changes, and past kMaxSpp the budget stays infeasible.
+    p.rayBudget = 8 * n;
+    CHECK(BudgetSppCap(p, n) == 16);
+    p.rayBudget = 80 * n;
+    CHECK(BudgetSppCap(p, n) == kMaxSpp);
+    // A shaped map keeps the cap it was given.
+    p.model = "linear";
+    p.rayBudget = 32 * n;
+    CHECK(BudgetSppCap(p, n) == 16);
+}
