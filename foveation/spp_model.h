@@ -19,7 +19,8 @@ namespace fovrt {
 
 // The most samples a pixel may ask for: the renderer-to-denoiser contract's sample counts are
 // uint16, and 64 lets a ray budget's fovea hold 16× a uniform 4 spp. A budget's own cap is
-// foveation.spp_cap (FoveationParams::sppCap), 16 unless a design raises it.
+// BudgetSppCap: foveation.spp_cap (16 unless a design raises it), the one spp_cap_ratio gives, or
+// for the uniform model at least the mean.
 inline constexpr int kMaxSpp = 64;
 
 // What the previous frames of an eye tell the perceptual model's terms (docs/foveation.md); null:

@@ -185,6 +185,10 @@ TEST_CASE("Wrong types and out-of-range values name the key", "[config]") {
     CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap=32"}).foveation.sppCap == 32);
     // ... except for the uniform model, which has no peak for the cap to bound.
     CHECK(Resolve("", {"foveation.model=uniform", "foveation.ray_budget=3916800"}).foveation.rayBudget == 3916800);
+    // ... up to 64 spp: 65 × 230400 is refused, naming the uniform model's most.
+    fails({"foveation.model=uniform", "foveation.ray_budget=14976000"}, "foveation.ray_budget");
+    CHECK_THROWS_WITH(Resolve("", {"foveation.model=uniform", "foveation.ray_budget=14976000"}),
+                      Catch::Contains("the uniform model's most, 64 spp"));
     // ... or a cap that follows the budget: 17 spp × 4 passes 64, so the cap is 64.
     CHECK(Resolve("", {"foveation.ray_budget=3916800", "foveation.spp_cap_ratio=4"}).foveation.sppCapRatio == 4);
     fails({"foveation.spp_cap_ratio=0.5"}, "foveation.spp_cap_ratio");
