@@ -187,12 +187,13 @@ struct ModelRow {
     const char* leastKey;
     float FoveationParams::*least;
     bool readsSensitivity = false;
+    bool flat = false;  // every pixel at the same density: no peak for a budget's cap to bound
 };
 constexpr std::array<ModelRow, 5> kModels{{
     {"disc", DiscDensity, "foveation.spp_outside", &FoveationParams::sppOutside},
     {"linear", LinearDensity, "foveation.spp_min", &FoveationParams::sppMin},
     {"acuity", AcuityDensity, "foveation.spp_min", &FoveationParams::sppMin},
-    {"uniform", UniformDensity, "foveation.uniform_spp", &FoveationParams::uniformSpp},
+    {"uniform", UniformDensity, "foveation.uniform_spp", &FoveationParams::uniformSpp, false, true},
     {"perceptual", PerceptualDensity, "foveation.spp_min", &FoveationParams::sppMin, true},
 }};
 constexpr std::array<const char*, kModels.size()> kModelNames = [] {
@@ -424,6 +425,10 @@ std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& p, const Contras
     return model;
 }
 
+bool FlatSppMap(const FoveationParams& p) {
+    return std::ranges::any_of(kModels, [&](const ModelRow& row) { return p.model == row.name && row.flat; });
+}
+
 int BudgetSppCap(const FoveationParams& p, int64_t pixels) {
     if (pixels <= 0) return p.sppCap;
     // A budget set from a mean spp is that mean times W·H rounded to whole samples, up to half a
@@ -432,7 +437,7 @@ int BudgetSppCap(const FoveationParams& p, int64_t pixels) {
     double cap = p.sppCapRatio > 0.0f ? std::ceil(double(p.sppCapRatio) * mean) : double(p.sppCap);
     // The cap bounds a shaped map's peak; a uniform map has none, every pixel at the mean, so its
     // budget is feasible up to kMaxSpp whatever the cap (uniform sampling at 32 spp as a sweep's anchor).
-    if (p.model == "uniform") cap = std::max(cap, std::ceil(mean));
+    if (FlatSppMap(p)) cap = std::max(cap, std::ceil(mean));
     return int(std::clamp(cap, 1.0, double(kMaxSpp)));
 }
 

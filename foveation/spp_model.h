@@ -173,8 +173,10 @@ inline bool MapMayHaveZeroSamples(const FoveationParams& params) { return ZeroSp
 std::unique_ptr<SppModel> CreateSppModel(const FoveationParams& params, const ContrastSensitivity& sensitivity = {},
                                          const ContrastMasking& masking = {});
 // The most spp the ray budget scales a pixel to in a W·H map: spp_cap, or with spp_cap_ratio > 0
-// the ratio times the budget's mean, rounded up; for the uniform model at least the mean (it has no
-// peak to bound); within [1, kMaxSpp].
+// the ratio times the budget's mean, rounded up; for a flat map (FlatSppMap) at least the mean (it
+// has no peak to bound); within [1, kMaxSpp].
 int BudgetSppCap(const FoveationParams& params, int64_t pixels);
+// Whether the model's map is flat (uniform): every pixel at the mean, so the cap does not bound its budget.
+bool FlatSppMap(const FoveationParams& params);
 
 }  // namespace fovrt

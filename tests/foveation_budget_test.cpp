@@ -150,6 +150,7 @@ TEST_CASE("A uniform map's budget is not bounded by the cap", "[foveation]") {
     p.sppFloor = 0.0625f;
     p.rayBudget = 32 * n;
     REQUIRE(p.sppCap == 16);
+    CHECK(FlatSppMap(p));
     CHECK(BudgetSppCap(p, n) == 32);
     Plane<uint16_t> spp;
     CreateSppModel(p)->Generate(cam, vec3(0, 0, -1), 5, spp);
@@ -162,5 +163,6 @@ TEST_CASE("A uniform map's budget is not bounded by the cap", "[foveation]") {
     // A shaped map keeps the cap it was given.
     p.model = "linear";
     p.rayBudget = 32 * n;
+    CHECK_FALSE(FlatSppMap(p));
     CHECK(BudgetSppCap(p, n) == 16);
 }

@@ -357,7 +357,7 @@ void CheckRules(const RunConfig& c, const Reader& r) {
               fmt::format("{} is outside [spp_floor*width*height, cap*width*height] = [{}, {}] (0 = no budget; "
                           "foveation.spp_floor = {} and {} bound the spp it may scale a pixel to)",
                           f.rayBudget, leastBudget, pixels * cap, f.sppFloor,
-                          f.model == "uniform" && cap > f.sppCap
+                          FlatSppMap(f) && cap > f.sppCap
                               ? fmt::format("the uniform model's most, {} spp (every pixel at the mean)", cap)
                           : f.sppCapRatio > 0 ? fmt::format("the cap of {} (foveation.spp_cap_ratio = {} times the mean)",
                                                             cap, f.sppCapRatio)

@@ -101,7 +101,7 @@ bool FoveationControls(FoveationParams& f, int64_t pixels) {
         } else {
             changed |= SliderOf("spp cap", "foveation.spp_cap", f.sppCap);
         }
-        if (f.model == "uniform" && BudgetSppCap(f, pixels) > (capFollows ? 0 : f.sppCap))
+        if (!capFollows && FlatSppMap(f) && BudgetSppCap(f, pixels) > f.sppCap)
             Text(fmt::format("uniform: cap {} spp, the mean", BudgetSppCap(f, pixels)));
     }
     return changed;
