@@ -358,7 +358,7 @@ void CheckRules(const RunConfig& c, const Reader& r) {
                           "foveation.spp_floor = {} and {} bound the spp it may scale a pixel to)",
                           f.rayBudget, leastBudget, pixels * cap, f.sppFloor,
                           FlatSppMap(f) && cap > f.sppCap
-                              ? fmt::format("the uniform model's most, {} spp (every pixel at the mean)", cap)
+                              ? fmt::format("the {} model's most, {} spp (every pixel at the mean)", f.model, cap)
                           : f.sppCapRatio > 0 ? fmt::format("the cap of {} (foveation.spp_cap_ratio = {} times the mean)",
                                                             cap, f.sppCapRatio)
                                               : fmt::format("foveation.spp_cap = {}", cap)));
