@@ -89,6 +89,29 @@ f = s["designs"]["perceptual"]["rays_saved_fovea"]["room"]["svgf-weighted"]  # a
 ok = ok and f["value"] is not None and f["lower"] <= f["value"] <= f["upper"]
 sys.exit(0 if ok else 1)
 PY
+# --json: the same comparison unrounded, equal to the sweep's own summary.json (to curves.csv's 9 digits).
+"$fovrt" rays-saved single --json apart.json > apart4.txt 2> apart4.err || bad "rays-saved --json: $(tail -1 apart4.err)"
+python3 - single/summary.json apart.json <<'PY' && ok "rays-saved --json: the run's rays saved, JOD gain and points, unrounded" \
+  || bad "rays-saved --json differs from summary.json"
+import json, math, sys
+s, j = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+def same(a, b):  # equal but for the 9 significant digits curves.csv keeps
+    if isinstance(a, dict): return isinstance(b, dict) and a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if isinstance(a, list): return isinstance(b, list) and len(a) == len(b) and all(map(same, a, b))
+    if isinstance(a, float) and isinstance(b, (int, float)): return math.isclose(a, b, rel_tol=1e-7, abs_tol=1e-6)
+    return a == b
+c = [c for c in j["comparisons"] if (c["scene"], c["variant"], c["design"]) == ("room", "svgf-weighted", "perceptual")][0]
+d = s["designs"]["perceptual"]
+ok = j["anchor_design"] == "uniform" and j["method"] == s["method"] and [u["seed"] for u in c["units"]] == s["seeds"]
+ok = ok and all(same(c[k], d[k]["room"]["svgf-weighted"]) for k in ("rays_saved", "jod_gain", "rays_saved_fovea"))
+ok = ok and same([p["rays_saved_here"] for p in c["points"]], [p["scores"]["room"]["svgf-weighted"]["rays_saved_here"] for p in d["points"]])
+ok = ok and same([p["traced_spp"] for p in c["points"]], [p["traced_spp"]["room"]["whole"] for p in d["points"]])
+ok = ok and c["rays_saved"]["value"] is not None and "lower" in c["rays_saved"]
+sys.exit(0 if ok else 1)
+PY
+"$fovrt" rays-saved single --json apart.txt/apart.json > /dev/null 2> apart5.err && bad "rays-saved --json under a file ran" \
+  || { [[ $(wc -l < apart5.err) -eq 1 ]] && grep -q "\-\-json apart.txt/apart.json" apart5.err && ! ls apart.txt?* > /dev/null 2>&1 \
+         && ok "--json under a file: one line naming it, nothing left: $(cat apart5.err)" || bad "--json failure: $(cat apart5.err)"; }
 grep -q "room · svgf-weighted: JOD against rays" single/report.html && [[ $(grep -o "<circle" single/report.html | wc -l) -ge 6 ]] \
   && ok "the report plots JOD against rays, a marker per point" || bad "report plot"
 if command -v chromium > /dev/null 2>&1 || command -v chromium-browser > /dev/null 2>&1; then

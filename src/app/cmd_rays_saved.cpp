@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "app/sweep_compare.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
 #include "commands.h"
 
 namespace fovrt {
@@ -20,6 +22,7 @@ struct RaysSavedOptions {
     std::vector<std::string> designs;  // empty: every design but the anchor
     std::vector<double> budgets;  // empty: every budget
     bool poolGaze = false;
+    std::string json;  // empty: none
 };
 
 void PrintRaysSaved(const RaysSavedOptions& o) {
@@ -28,9 +31,17 @@ void PrintRaysSaved(const RaysSavedOptions& o) {
     KeepBudgets(curves, o.budgets);
     std::printf("%zu rows (scene, variant, design, budget, %s) from %zu runs\n", curves.rows.size(),
                 curves.windows.size() > 1 ? "window, seed" : "seed", runs.size());
-    std::printf("%s",
-                DesignComparisonText(o.anchor, CompareDesigns(curves, o.anchor, o.designs), curves.windows).c_str());
+    const std::vector<DesignComparison> comparisons = CompareDesigns(curves, o.anchor, o.designs);
+    std::printf("%s", DesignComparisonText(o.anchor, comparisons, curves.windows).c_str());
     std::printf("%s", PerWindowText(curves, o.anchor, o.designs).c_str());
+    if (!o.json.empty()) {
+        try {
+            WriteTextAtomically(o.json, DesignComparisonJson(o.anchor, comparisons, curves).dump(2) + "\n");
+        } catch (const std::filesystem::filesystem_error& e) {  // its folder cannot be made
+            Fail("--json {}: {}", o.json, e.code().message());
+        }
+        std::printf("wrote %s\n", o.json.c_str());
+    }
 }
 
 }  // namespace
@@ -54,6 +65,8 @@ void RegisterRaysSavedCommand(CLI::App& app) {
     cmd->add_flag("--pool-gaze", o->poolGaze,
                   "Gather runs that differ only in where the eye looks (gaze source, recording or trace and its start, "
                   "static direction): each gaze window with each seed is a unit of the bootstrap; then each window alone");
+    cmd->add_option("--json", o->json,
+                    "Also write the comparisons, every figure unrounded, to this JSON file (written whole or not at all)");
     cmd->callback([o] { PrintRaysSaved(*o); });
 }
 

@@ -395,6 +395,31 @@ std::string DesignComparisonText(const std::string& anchor, const std::vector<De
            TextTable(points);
 }
 
+nlohmann::json DesignComparisonJson(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
+                                    const GatheredCurves& curves) {
+    nlohmann::json runs = nlohmann::json::array(), list = nlohmann::json::array();
+    for (const fs::path& run : curves.runs) runs.push_back(run.string());
+    for (const DesignComparison& c : comparisons) {
+        nlohmann::json units = nlohmann::json::array(), points = nlohmann::json::array();
+        for (const SampleUnit& u : c.units) units.push_back({{"window", u.window + 1}, {"seed", u.seed}});
+        for (size_t i = 0; i < c.rays.size(); ++i)
+            points.push_back({{"budget_spp", c.budgets[i]},
+                              {"traced_spp", c.rays[i]},
+                              {"jod", c.jod[i]},
+                              {"rays_saved_here", IntervalJson(c.saved.raysSavedAtPoints[i])}});
+        list.push_back({{"scene", c.saved.scene},
+                        {"variant", c.saved.variant},
+                        {"design", c.saved.design},
+                        {"units", units},
+                        {"rays_saved", IntervalJson(c.saved.raysSaved)},
+                        {"jod_gain", IntervalJson(c.saved.jodGain)},
+                        {"rays_saved_fovea", IntervalJson(c.saved.raysSavedFovea)},
+                        {"points", points}});
+    }
+    return {{"anchor_design", anchor}, {"runs", runs}, {"windows", curves.windows},
+            {"method", kRaysSavedMethod}, {"comparisons", list}};
+}
+
 std::string PerWindowText(const GatheredCurves& curves, const std::string& anchor,
                           const std::vector<std::string>& designs) {
     if (curves.windows.size() <= 1) return "";

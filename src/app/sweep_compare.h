@@ -32,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "app/sweep_outputs.h"
 
 namespace fovrt {
@@ -91,6 +93,13 @@ std::vector<DesignComparison> CompareDesigns(const GatheredCurves& curves, const
 // windows, each window's gaze and the units are named (w1:2: window 1, seed 2).
 std::string DesignComparisonText(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
                                  const std::vector<std::string>& windows = {});
+
+// The same comparisons as JSON, every figure unrounded: the anchor, the runs and windows, and per
+// comparison its scene, variant, design, units, rays saved, JOD gain and rays saved at equal
+// foveal relMSE (IntervalJson) and each point's budget, measured rays, mean JOD and rays saved
+// at its JOD: what `fovrt rays-saved --json` writes.
+nlohmann::json DesignComparisonJson(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
+                                    const GatheredCurves& curves);
 
 // With several windows: each window's comparisons on its own rows, one line per (window, scene,
 // variant, design), so that how the pooled saving spreads over where the eye looked is read off

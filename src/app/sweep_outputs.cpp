@@ -58,23 +58,6 @@ SeededRateQualityCurve CurveOf(const ExperimentSpec& spec, const std::vector<Swe
     return curve;
 }
 
-nlohmann::json IntervalJson(const BjontegaardInterval& r) {
-    nlohmann::json j = {{"value", r.estimate.Ok() ? nlohmann::json(r.estimate.value) : nlohmann::json(nullptr)}};
-    if (!r.estimate.Ok()) {
-        j["reason"] = r.estimate.reason;
-        return j;
-    }
-    j["over"] = {r.estimate.from, r.estimate.to};
-    if (r.intervalReason.empty()) {
-        j["lower"] = r.lower;
-        j["upper"] = r.upper;
-    } else {
-        j["interval_reason"] = r.intervalReason;
-    }
-    j["failed_resamples"] = r.failedReplicates;
-    return j;
-}
-
 const RaysSavedRow* RowOf(const std::vector<RaysSavedRow>& rows, const std::string& scene, const std::string& variant,
                           const std::string& design) {
     for (const RaysSavedRow& r : rows)
@@ -160,12 +143,7 @@ nlohmann::json SummaryJson(const ExperimentSpec& spec, const std::vector<SweepPo
     return {{"anchor_design", sweep.anchor ? nlohmann::json(sweep.designs[*sweep.anchor].name) : nlohmann::json(nullptr)},
             {"budgets_spp", sweep.budgets},
             {"seeds", seeds},
-            {"method",
-             "rays = measured traced path samples per pixel (whole image, every eye-frame); JOD = FovVideoVDP, mean "
-             "over eyes per seed; rays saved = anchor rays / design rays at equal JOD (Bjøntegaard delta on PCHIP "
-             "fits of ln rays over JOD, over the JOD range both curves cover); JOD gain = design − anchor at equal "
-             "rays; rays saved fovea = the same on -ln foveal relMSE (geometric mean over seeds) instead of JOD; 95 % "
-             "percentile intervals from a paired bootstrap over seeds (2000 resamples)"},
+            {"method", kRaysSavedMethod},
             {"designs", designs}};
 }
 
@@ -256,6 +234,23 @@ std::vector<std::string> CurvePlots(const ExperimentSpec& spec, const std::vecto
 }
 
 }  // namespace
+
+nlohmann::json IntervalJson(const BjontegaardInterval& r) {
+    nlohmann::json j = {{"value", r.estimate.Ok() ? nlohmann::json(r.estimate.value) : nlohmann::json(nullptr)}};
+    if (!r.estimate.Ok()) {
+        j["reason"] = r.estimate.reason;
+        return j;
+    }
+    j["over"] = {r.estimate.from, r.estimate.to};
+    if (r.intervalReason.empty()) {
+        j["lower"] = r.lower;
+        j["upper"] = r.upper;
+    } else {
+        j["interval_reason"] = r.intervalReason;
+    }
+    j["failed_resamples"] = r.failedReplicates;
+    return j;
+}
 
 std::string IntervalText(const BjontegaardInterval& r, const char* format, const char* unit) {
     if (!r.estimate.Ok()) return "— (" + r.estimate.reason + ")";

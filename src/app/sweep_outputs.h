@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "app/experiment.h"
 #include "app/experiment_vdp.h"
 #include "app/report_html.h"
@@ -83,6 +85,18 @@ std::vector<RaysSavedRow> SweepRaysSaved(const ExperimentSpec& spec, const std::
 // `unit`: what the bootstrap resamples ("seed", or "window and seed" over pooled gaze windows).
 std::string RaysSavedTable(const std::string& anchor, const std::vector<RaysSavedRow>& rows,
                            const std::string& unit = "seed");
+// How rays saved, JOD gain and their intervals are measured, as summary.json and `fovrt rays-saved
+// --json` state it.
+inline constexpr const char* kRaysSavedMethod =
+    "rays = measured traced path samples per pixel (whole image, every eye-frame); JOD = FovVideoVDP, mean "
+    "over eyes per seed; rays saved = anchor rays / design rays at equal JOD (Bjøntegaard delta on PCHIP "
+    "fits of ln rays over JOD, over the JOD range both curves cover); JOD gain = design − anchor at equal "
+    "rays; rays saved fovea = the same on -ln foveal relMSE (geometric mean over seeds) instead of JOD; 95 % "
+    "percentile intervals from a paired bootstrap over seeds (2000 resamples)";
+// An interval as JSON, unrounded: {"value", "over": [from, to], "lower", "upper",
+// "failed_resamples"}, or {"value": null, "reason"}; "interval_reason" where there is a value and
+// no interval.
+nlohmann::json IntervalJson(const BjontegaardInterval& interval);
 // "2.00× [1.90, 2.10]" (`format` for each number, then `unit`), or the reason there is no value or
 // no interval.
 std::string IntervalText(const BjontegaardInterval& interval, const char* format, const char* unit);
