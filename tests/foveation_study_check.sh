@@ -102,7 +102,7 @@ def same(a, b):  # equal but for the 9 significant digits curves.csv keeps
     return a == b
 c = [c for c in j["comparisons"] if (c["scene"], c["variant"], c["design"]) == ("room", "svgf-weighted", "perceptual")][0]
 d = s["designs"]["perceptual"]
-ok = j["anchor_design"] == "uniform" and j["method"] == s["method"] and [u["seed"] for u in c["units"]] == s["seeds"]
+ok = j["anchor_design"] == "uniform" and j["method"] == s["method"] and j["bootstrap_unit"] == "seed" and [u["seed"] for u in c["units"]] == s["seeds"]
 ok = ok and all(same(c[k], d[k]["room"]["svgf-weighted"]) for k in ("rays_saved", "jod_gain", "rays_saved_fovea"))
 ok = ok and same([p["rays_saved_here"] for p in c["points"]], [p["scores"]["room"]["svgf-weighted"]["rays_saved_here"] for p in d["points"]])
 ok = ok and same([p["traced_spp"] for p in c["points"]], [p["traced_spp"]["room"]["whole"] for p in d["points"]])

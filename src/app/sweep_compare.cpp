@@ -416,8 +416,11 @@ nlohmann::json DesignComparisonJson(const std::string& anchor, const std::vector
                         {"rays_saved_fovea", IntervalJson(c.saved.raysSavedFovea)},
                         {"points", points}});
     }
+    // The method's seeds are (window, seed) units where gaze windows were pooled, as the table says.
     return {{"anchor_design", anchor}, {"runs", runs}, {"windows", curves.windows},
-            {"method", kRaysSavedMethod}, {"comparisons", list}};
+            {"method", kRaysSavedMethod},
+            {"bootstrap_unit", curves.windows.size() > 1 ? "window and seed" : "seed"},
+            {"comparisons", list}};
 }
 
 std::string PerWindowText(const GatheredCurves& curves, const std::string& anchor,

@@ -95,7 +95,8 @@ std::string DesignComparisonText(const std::string& anchor, const std::vector<De
                                  const std::vector<std::string>& windows = {});
 
 // The same comparisons as JSON, every figure unrounded: the anchor, the runs and windows, and per
-// comparison its scene, variant, design, units, rays saved, JOD gain and rays saved at equal
+// comparison its scene, variant, design, units (with the bootstrap's unit: "seed", or "window
+// and seed" over pooled gaze windows), rays saved, JOD gain and rays saved at equal
 // foveal relMSE (IntervalJson) and each point's budget, measured rays, mean JOD and rays saved
 // at its JOD: what `fovrt rays-saved --json` writes.
 nlohmann::json DesignComparisonJson(const std::string& anchor, const std::vector<DesignComparison>& comparisons,
